@@ -1,0 +1,30 @@
+#pragma once
+// Shared pieces of the `tilekit` commands: the --json switch and one way to print results.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace tilekit::cli {
+
+// Thrown after the result was printed, to end with a given exit code and no extra message.
+struct Exit {
+  int code;
+};
+
+struct Context {
+  bool json = false;  // print exactly one JSON object on stdout instead of human output
+};
+
+// Prints `j` (with --json) or runs `human`.
+void emit(const Context& ctx, const nlohmann::json& j, const std::function<void()>& human);
+
+// Adds the --json flag to a (sub)command.
+void add_json_flag(CLI::App* cmd, Context& ctx);
+
+// Command groups, one per cmd_*.cpp.
+void add_tileset_commands(CLI::App& app, Context& ctx);
+void add_check_command(CLI::App& app, Context& ctx);
+
+}  // namespace tilekit::cli

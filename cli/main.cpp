@@ -1,0 +1,48 @@
+// tilekit: Wang tiles and corner tiles, tile packings, aperiodic sets.
+// Exit codes (DESIGN.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cli/command.hpp"
+#include "tilesets/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace tilekit;
+  cli::Context ctx;
+  CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
+  app.set_version_flag("--version", TILEKIT_VERSION);
+  app.require_subcommand(1);
+  app.footer("Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.\n"
+             "Run `tilekit COMMAND --help` for a command's options.");
+  cli::add_tileset_commands(app, ctx);
+  cli::add_check_command(app, ctx);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const cli::Exit& e) {
+    return e.code;
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "tilekit: " << e.what() << " (see --help)" << std::endl;
+    return 2;
+  } catch (const InputError& e) {
+    std::cerr << "tilekit: " << e.what() << std::endl;
+    return 2;
+  } catch (const NotFound& e) {
+    std::cerr << "tilekit: " << e.what() << std::endl;
+    return 1;
+  } catch (const Interrupted& e) {
+    std::cerr << "tilekit: " << e.what() << std::endl;
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "tilekit: internal error: " << e.what() << std::endl;
+    return 4;
+  }
+  return 0;
+}

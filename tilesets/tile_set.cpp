@@ -1,0 +1,144 @@
+#include "tilesets/tile_set.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+#include "tilesets/error.hpp"
+
+namespace tilekit {
+
+namespace {
+
+template <class T>
+std::uint32_t distinct(const std::vector<T>& tiles, auto... members) {
+  std::set<Colour> seen;
+  for (const T& t : tiles) (seen.insert(t.*members), ...);
+  return static_cast<std::uint32_t>(seen.size());
+}
+
+}  // namespace
+
+void check_colour_count(std::int64_t c, const char* what) {
+  if (c < 1 || c > 255) throw InputError(fmt::format("{} must be between 1 and 255, got {}", what, c));
+}
+
+TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string source, std::uint32_t ch,
+                      std::uint32_t cv) {
+  TileSet s;
+  s.kind_ = TileKind::Wang;
+  for (const WangTile& t : tiles) {
+    ch = std::max({ch, t.n + 1, t.s + 1});
+    cv = std::max({cv, t.e + 1, t.w + 1});
+  }
+  s.ch_ = std::max(ch, 1u);
+  s.cv_ = std::max(cv, 1u);
+  s.wang_ = std::move(tiles);
+  s.name_ = std::move(name);
+  s.source_ = std::move(source);
+  s.check_distinct();
+  return s;
+}
+
+TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::string source, std::uint32_t c) {
+  TileSet s;
+  s.kind_ = TileKind::Corner;
+  for (const CornerTile& t : tiles) c = std::max({c, t.ne + 1, t.se + 1, t.sw + 1, t.nw + 1});
+  s.ch_ = s.cv_ = std::max(c, 1u);
+  s.corner_ = std::move(tiles);
+  s.name_ = std::move(name);
+  s.source_ = std::move(source);
+  s.check_distinct();
+  return s;
+}
+
+void TileSet::check_distinct() const {
+  std::vector<TileIndex> idx(size());
+  for (std::size_t k = 0; k < size(); ++k) idx[k] = index_of(k);
+  std::vector<TileIndex> sorted = idx;
+  std::sort(sorted.begin(), sorted.end());
+  auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+  if (dup != sorted.end()) {
+    auto first = std::find(idx.begin(), idx.end(), *dup) - idx.begin();
+    auto second = std::find(idx.begin() + first + 1, idx.end(), *dup) - idx.begin();
+    throw InputError(fmt::format("duplicate tile: tile {} repeats tile {} ({})", second + 1, first + 1,
+                                 fmt::join(file_colours(first), " ")));
+  }
+}
+
+const std::vector<WangTile>& TileSet::wang_tiles() const {
+  if (kind_ != TileKind::Wang) throw InputError(fmt::format("tile set '{}' is a corner set, not a Wang set", name_));
+  return wang_;
+}
+
+const std::vector<CornerTile>& TileSet::corner_tiles() const {
+  if (kind_ != TileKind::Corner) throw InputError(fmt::format("tile set '{}' is a Wang set, not a corner set", name_));
+  return corner_;
+}
+
+std::uint32_t TileSet::horizontal_colours() const {
+  return kind_ == TileKind::Wang ? distinct(wang_, &WangTile::n, &WangTile::s) : colours();
+}
+
+std::uint32_t TileSet::vertical_colours() const {
+  return kind_ == TileKind::Wang ? distinct(wang_, &WangTile::e, &WangTile::w) : colours();
+}
+
+std::uint32_t TileSet::colours() const {
+  if (kind_ == TileKind::Wang) return std::max(horizontal_colours(), vertical_colours());
+  return distinct(corner_, &CornerTile::ne, &CornerTile::se, &CornerTile::sw, &CornerTile::nw);
+}
+
+TileIndex TileSet::index_of(std::size_t k) const {
+  return kind_ == TileKind::Wang ? wang_index(wang_[k], ch_, cv_) : corner_index(corner_[k], ch_);
+}
+
+std::optional<std::size_t> TileSet::find_index(TileIndex i) const {
+  for (std::size_t k = 0; k < size(); ++k)
+    if (index_of(k) == i) return k;
+  return std::nullopt;
+}
+
+std::vector<Colour> TileSet::file_colours(std::size_t k) const {
+  if (kind_ == TileKind::Wang) {
+    const WangTile& t = wang_[k];
+    return {t.n, t.s, t.w, t.e};
+  }
+  const CornerTile& t = corner_[k];
+  return {t.nw, t.ne, t.sw, t.se};
+}
+
+TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv) {
+  check_colour_count(ch, "horizontal colours");
+  check_colour_count(cv, "vertical colours");
+  const std::uint64_t n = complete_size(ch, cv);
+  if (n > (1u << 26)) throw InputError(fmt::format("complete Wang set over {}x{} colours is too large ({} tiles)", ch, cv, n));
+  std::vector<WangTile> tiles(n);
+  for (TileIndex i = 0; i < n; ++i) tiles[i] = wang_tile(i, ch, cv);
+  std::string name = ch == cv ? fmt::format("complete-wang-{}", ch) : fmt::format("complete-wang-{}x{}", ch, cv);
+  return TileSet::wang(std::move(tiles), name, "complete Wang set (thesis sec. 2.7)", ch, cv);
+}
+
+TileSet complete_corner_set(std::uint32_t c) {
+  check_colour_count(c);
+  const std::uint64_t n = complete_size(c, c);
+  if (n > (1u << 26)) throw InputError(fmt::format("complete corner set over {} colours is too large ({} tiles)", c, n));
+  std::vector<CornerTile> tiles(n);
+  for (TileIndex i = 0; i < n; ++i) tiles[i] = corner_tile(i, c);
+  return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c), "complete corner set (thesis sec. 2.7)", c);
+}
+
+TileSet corner_to_wang(const TileSet& corner) {
+  const std::uint32_t c = corner.horizontal_radix();
+  std::vector<WangTile> tiles;
+  tiles.reserve(corner.size());
+  for (const CornerTile& t : corner.corner_tiles()) {
+    // thesis sec. 2.9: a pair of corner colours becomes one edge colour
+    tiles.push_back({t.nw * c + t.ne, t.ne * c + t.se, t.sw * c + t.se, t.nw * c + t.sw});
+  }
+  return TileSet::wang(std::move(tiles), corner.name().empty() ? "" : corner.name() + "-as-wang",
+                       "corner set as Wang set (thesis sec. 2.9)", c * c, c * c);
+}
+
+}  // namespace tilekit

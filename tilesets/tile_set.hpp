@@ -1,0 +1,74 @@
+#pragma once
+// Tile sets (thesis ch. 2): an ordered list of distinct Wang or corner tiles, with a name
+// and a source line. The position of a tile in the list is its "tile number"; its index
+// (thesis eq. 2.2/2.5) depends on the colour radix.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tilesets/tile.hpp"
+
+namespace tilekit {
+
+class TileSet {
+ public:
+  TileSet() = default;
+  // Both factories reject duplicate tiles (InputError). Colour radices default to
+  // max colour + 1 per direction; pass larger ones to declare unused colours.
+  static TileSet wang(std::vector<WangTile> tiles, std::string name = {}, std::string source = {},
+                      std::uint32_t ch = 0, std::uint32_t cv = 0);
+  static TileSet corner(std::vector<CornerTile> tiles, std::string name = {}, std::string source = {},
+                        std::uint32_t c = 0);
+
+  TileKind kind() const { return kind_; }
+  std::size_t size() const { return kind_ == TileKind::Wang ? wang_.size() : corner_.size(); }
+  bool empty() const { return size() == 0; }
+  const std::vector<WangTile>& wang_tiles() const;
+  const std::vector<CornerTile>& corner_tiles() const;
+
+  // Colour radix: N/S edges (ch) and E/W edges (cv) for Wang sets; both equal for corner sets.
+  std::uint32_t horizontal_radix() const { return ch_; }
+  std::uint32_t vertical_radix() const { return cv_; }
+  // Distinct colours actually used, per direction and overall. The thesis reports
+  // Wang sets as max(horizontal, vertical) (e.g. kari-14 is "14/6").
+  std::uint32_t horizontal_colours() const;
+  std::uint32_t vertical_colours() const;
+  std::uint32_t colours() const;
+
+  // Index of tile number k (thesis eq. 2.2 / 2.5, mixed radix for Wang sets).
+  TileIndex index_of(std::size_t k) const;
+  // Tile number of the tile with this index, if the set holds it.
+  std::optional<std::size_t> find_index(TileIndex i) const;
+  // The four colours of tile k in file order: n s w e (Wang) or nw ne sw se (corner).
+  std::vector<Colour> file_colours(std::size_t k) const;
+
+  const std::string& name() const { return name_; }
+  const std::string& source() const { return source_; }
+  void set_name(std::string n) { name_ = std::move(n); }
+  void set_source(std::string s) { source_ = std::move(s); }
+
+ private:
+  void check_distinct() const;
+  TileKind kind_ = TileKind::Wang;
+  std::vector<WangTile> wang_;
+  std::vector<CornerTile> corner_;
+  std::uint32_t ch_ = 0, cv_ = 0;
+  std::string name_, source_;
+};
+
+// Complete sets: every combination of colours (thesis sec. 2.7, Fig. 2.4).
+// Tiles are listed in index order, so tile number == tile index.
+TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv);
+TileSet complete_corner_set(std::uint32_t c);
+
+// Corner set -> equivalent Wang set (thesis sec. 2.9): the pair of corner colours along an
+// edge becomes one edge colour, pair (a, b) -> a*C + b read clockwise from the tile's
+// first corner of that edge (N: nw,ne; E: ne,se; S: sw,se; W: nw,sw), so matching edges
+// get equal colours. The result has C^2 colours and keeps the tile order.
+TileSet corner_to_wang(const TileSet& corner);
+
+// Checks 1 <= C <= 255 for the built-in families; throws InputError naming the parameter.
+void check_colour_count(std::int64_t c, const char* what = "colours");
+
+}  // namespace tilekit

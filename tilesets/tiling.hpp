@@ -1,0 +1,37 @@
+#pragma once
+// A tiling or packing: a grid of tile indices (DESIGN.md conventions: row-major, row 0 at
+// the top/north, column 0 at the left/west; a torus wraps row/column n-1 to 0), and its
+// JSON file format {"kind","colors","rows","cols","torus","cells":[[i,...],...]}.
+#include <cstdint>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "tilesets/tile.hpp"
+
+namespace tilekit {
+
+struct Tiling {
+  TileKind kind = TileKind::Corner;
+  std::uint32_t colours = 0;           // C (the radix of N/S edges for Wang sets)
+  std::uint32_t vertical_colours = 0;  // Wang only: radix of E/W edges; 0 means == colours
+  int rows = 0, cols = 0;
+  bool torus = false;
+  std::vector<TileIndex> cells;        // rows*cols tile indices (thesis eq. 2.2 / 2.5)
+
+  Tiling() = default;
+  Tiling(TileKind k, std::uint32_t c, int r, int cl, bool t)
+      : kind(k), colours(c), rows(r), cols(cl), torus(t), cells(std::size_t(r) * std::size_t(cl), 0) {}
+
+  std::uint32_t ch() const { return colours; }
+  std::uint32_t cv() const { return vertical_colours ? vertical_colours : colours; }
+  TileIndex& at(int r, int c) { return cells[std::size_t(r) * std::size_t(cols) + std::size_t(c)]; }
+  TileIndex at(int r, int c) const { return cells[std::size_t(r) * std::size_t(cols) + std::size_t(c)]; }
+};
+
+nlohmann::json tiling_to_json(const Tiling& t);
+// Throws InputError naming `origin` and the problem.
+Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin);
+Tiling read_tiling_file(const std::string& path);
+
+}  // namespace tilekit

@@ -1,0 +1,106 @@
+#include "tilesets/validator.hpp"
+
+#include <fmt/format.h>
+
+#include <unordered_set>
+
+namespace tilekit {
+
+namespace {
+
+// Local decoding, deliberately not shared with the generators (thesis eq. 2.3 / 2.6).
+struct Digits {
+  std::uint64_t d[4];  // most significant first: N E S W (Wang) or NE SE SW NW (corner)
+};
+
+Digits decode(TileIndex i, std::uint64_t ch, std::uint64_t cv, bool wang) {
+  Digits x{};
+  std::uint64_t v = i;
+  x.d[3] = v % (wang ? cv : ch);
+  v /= (wang ? cv : ch);
+  x.d[2] = v % ch;
+  v /= ch;
+  x.d[1] = v % (wang ? cv : ch);
+  v /= (wang ? cv : ch);
+  x.d[0] = v;
+  return x;
+}
+
+}  // namespace
+
+ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_errors) {
+  ValidationReport rep;
+  std::size_t error_count = 0;
+  auto error = [&](std::string msg) {
+    if (rep.errors.size() < max_errors) rep.errors.push_back(std::move(msg));
+    ++error_count;
+  };
+  const bool wang = t.kind == TileKind::Wang;
+  const std::uint64_t ch = t.ch(), cv = wang ? t.cv() : t.ch();
+  const std::uint64_t ntiles = ch * ch * cv * cv;
+  if (t.rows < 1 || t.cols < 1) {
+    rep.errors.push_back("the grid is empty");
+    return rep;
+  }
+  if (t.cells.size() != std::size_t(t.rows) * std::size_t(t.cols)) {
+    rep.errors.push_back(fmt::format("grid has {} cells, expected {}x{}", t.cells.size(), t.rows, t.cols));
+    return rep;
+  }
+  if (set) {
+    if (set->kind() != t.kind)
+      error(fmt::format("tiling is {} but tile set '{}' is {}", kind_name(t.kind), set->name(), kind_name(set->kind())));
+    if (set->horizontal_radix() > ch || set->vertical_radix() > cv)
+      error(fmt::format("tile set '{}' uses more colours than the tiling's {}", set->name(), ch));
+  }
+  std::unordered_set<TileIndex> members;
+  if (set && error_count == 0)
+    for (std::size_t k = 0; k < set->size(); ++k) {
+      // re-encode the set's tiles under the tiling's radix
+      std::vector<Colour> f = set->file_colours(k);
+      TileIndex idx = wang ? TileIndex(((f[0] * cv + f[3]) * ch + f[1]) * cv + f[2])   // n e s w
+                           : TileIndex(((f[1] * ch + f[3]) * ch + f[2]) * ch + f[0]);  // ne se sw nw
+      members.insert(idx);
+    }
+  std::vector<Digits> dig(t.cells.size());
+  for (int r = 0; r < t.rows; ++r)
+    for (int c = 0; c < t.cols; ++c) {
+      TileIndex i = t.at(r, c);
+      if (i >= ntiles) {
+        error(fmt::format("cell ({},{}): tile index {} is out of range (< {})", r, c, i, ntiles));
+        continue;
+      }
+      if (set && error_count == 0 && !members.count(i))
+        error(fmt::format("cell ({},{}): tile {} is not in tile set '{}'", r, c, i, set->name()));
+      dig[std::size_t(r) * t.cols + c] = decode(i, ch, cv, wang);
+    }
+  if (error_count == 0) {
+    auto cell = [&](int r, int c) -> const Digits& { return dig[std::size_t(r) * t.cols + c]; };
+    for (int r = 0; r < t.rows; ++r)
+      for (int c = 0; c < t.cols; ++c) {
+        const Digits& a = cell(r, c);
+        if (c + 1 < t.cols || t.torus) {
+          const Digits& b = cell(r, (c + 1) % t.cols);
+          // Wang: E(a) == W(b). Corner: NE(a) == NW(b), SE(a) == SW(b).
+          bool ok = wang ? a.d[1] == b.d[3] : (a.d[0] == b.d[3] && a.d[1] == b.d[2]);
+          if (!ok) error(fmt::format("cells ({},{}) and ({},{}) do not match horizontally", r, c, r, (c + 1) % t.cols));
+        }
+        if (r + 1 < t.rows || t.torus) {
+          const Digits& b = cell((r + 1) % t.rows, c);
+          // Wang: S(a) == N(b). Corner: SW(a) == NW(b), SE(a) == NE(b).
+          bool ok = wang ? a.d[2] == b.d[0] : (a.d[2] == b.d[3] && a.d[1] == b.d[0]);
+          if (!ok) error(fmt::format("cells ({},{}) and ({},{}) do not match vertically", r, c, (r + 1) % t.rows, c));
+        }
+      }
+  }
+  rep.valid = error_count == 0;
+  if (rep.valid && t.torus) {
+    const std::size_t expected = set ? set->size() : std::size_t(ntiles);
+    std::unordered_set<TileIndex> seen(t.cells.begin(), t.cells.end());
+    rep.packing = t.cells.size() == expected && seen.size() == expected;
+  }
+  if (error_count > rep.errors.size())
+    rep.errors.push_back(fmt::format("... and {} more errors", error_count - rep.errors.size()));
+  return rep;
+}
+
+}  // namespace tilekit
