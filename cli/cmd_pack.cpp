@@ -7,6 +7,7 @@
 
 #include "checkpoints/checkpoint.hpp"
 #include "cli/command.hpp"
+#include "solver/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/error.hpp"
@@ -77,6 +78,7 @@ std::string grid_text(const Tiling& t) {
 }
 
 void run_pack(const PackArgs& a, const Context& ctx) {
+  SignalCatcher signals;  // from here to the exit code: a signal always ends in exit 3
   TilingProblem problem = make_problem(a);
   SearchOptions o;
   o.mode = parse_mode(a.mode);
@@ -149,8 +151,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     fmt::print("nodes: {}  seconds: {:.3f}\n", r.nodes, r.seconds);
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
-  if (r.interrupted)
-    throw Interrupted(fmt::format("interrupted by signal {}; {}", r.signal,
+  if (r.interrupted || SignalCatcher::caught())
+    throw Interrupted(fmt::format("interrupted by signal {}; {}", SignalCatcher::caught(),
                                   o.checkpoint_path.empty() ? "no checkpoint (use --checkpoint F to resume later)"
                                                             : "checkpoint written to " + o.checkpoint_path +
                                                                   " (continue with --resume " + o.checkpoint_path + ")"));
