@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "checkpoints/checkpoint.hpp"
+#include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
@@ -77,6 +78,48 @@ std::string grid_text(const Tiling& t) {
   return s;
 }
 
+// Stores solutions in the results database in batches; flush() is what the engine calls
+// before each checkpoint, so a checkpoint never covers a solution the database lacks.
+class SolutionSink {
+ public:
+  SolutionSink(ResultsDb& db, std::int64_t run_id, const TilingProblem& p)
+      : db_(db), run_id_(run_id), sym_(PackingSymmetry::for_problem(p)) {}
+  void add(const Tiling& t) {
+    SolutionRecord s;
+    s.run_id = run_id_;
+    s.tiling = t;
+    s.method = "search";
+    s.validated = true;  // solve() validates every solution before emitting it
+    if (sym_) {
+      // The translates of one leaf arrive one after another and share their canonical form.
+      Tiling normal = sym_->normal_form(t);
+      if (normal.cells != last_normal_) {
+        last_normal_ = normal.cells;
+        last_hash_ = solution_hash(sym_->canonical(normal, &last_orbit_));
+      }
+      s.canonical_hash = last_hash_;
+      s.orbit_size = last_orbit_;
+    }
+    batch_.push_back(std::move(s));
+    if (batch_.size() >= 50000) flush();
+  }
+  void flush() {
+    added_ += db_.add_solutions(batch_);
+    batch_.clear();
+  }
+  std::size_t added() const { return added_; }
+
+ private:
+  ResultsDb& db_;
+  std::int64_t run_id_;
+  std::optional<PackingSymmetry> sym_;
+  std::vector<SolutionRecord> batch_;
+  std::vector<TileIndex> last_normal_;
+  std::string last_hash_;
+  std::uint64_t last_orbit_ = 0;
+  std::size_t added_ = 0;
+};
+
 void run_pack(const PackArgs& a, const Context& ctx) {
   SignalCatcher signals;  // from here to the exit code: a signal always ends in exit 3
   TilingProblem problem = make_problem(a);
@@ -93,24 +136,72 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   parse_shard(a.shard, o);
   o.resume_path = a.resume;
   o.checkpoint_path = !a.checkpoint.empty() ? a.checkpoint : a.resume;
-  o.checkpoint_every = a.checkpoint_every >= 0 ? a.checkpoint_every : (o.checkpoint_path.empty() ? 0 : 300);
-  if (a.checkpoint_every < -1 || (a.checkpoint_every < 0 && a.checkpoint_every != -1))
+  if (a.checkpoint_every < 0 && a.checkpoint_every != -1)
     throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.checkpoint_every));
+  o.checkpoint_every = a.checkpoint_every >= 0 ? a.checkpoint_every : (o.checkpoint_path.empty() ? 0 : 300);
   o.progress = !a.quiet;
   o.catch_signals = true;
   o.estimate_probes = o.progress && o.mode != SearchMode::First ? 200 : 0;
   const std::string kind(kind_name(problem.set.kind()));
   const std::uint32_t colours = problem.set.colours();
   o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
+  {  // bad options are exit 2 before the database is touched
+    SearchOptions check = o;
+    check.checkpoint_path.clear(), check.resume_path.clear();
+    search_fingerprint(problem, check);
+  }
 
-  SearchResult r = solve_checkpointed(problem, o);
+  ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
+  RunRecord run;
+  run.command = "pack";
+  run.params = {{"kind", kind},         {"colors", colours},        {"set", problem.set.name()},
+                {"rows", problem.rows}, {"cols", problem.cols},     {"mode", a.mode},
+                {"method", a.method},   {"seed", a.seed},           {"shard", a.shard},
+                {"formulation", a.formulation}, {"ordering", a.ordering}, {"time_limit", a.time_limit},
+                {"checkpoint", o.checkpoint_path}, {"resume", o.resume_path}};
+  run.status = "running";
+  run.threads = o.threads;
+  run.id = db.begin_run(run);
+  SolutionSink sink(db, run.id, problem);
+  if (o.mode != SearchMode::Count) {
+    o.on_solution = [&sink](const Tiling& t) { sink.add(t); };
+    o.flush = [&sink] { sink.flush(); };
+  }
+
+  SearchResult r;
+  std::string method = "search";
+  std::optional<SolutionRecord> hit;
+  const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
+  if (a.method == "auto" && o.mode == SearchMode::First && complete_set)
+    hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
+  if (hit && validate(hit->tiling, &problem.set).packing) {
+    method = "db";
+    r.found.push_back(hit->tiling);
+    r.solutions = 1;
+    r.threads = o.threads;
+  } else {
+    try {
+      r = solve_checkpointed(problem, o);
+      sink.flush();
+    } catch (...) {
+      run.status = "failed";
+      db.finish_run(run);
+      throw;
+    }
+  }
+  run.status = r.interrupted || SignalCatcher::caught() ? "interrupted" : r.complete ? "complete" : "incomplete";
+  run.solutions = r.solutions;
+  run.orbits = r.orbits;
+  run.nodes = r.nodes;
+  run.seconds = r.seconds;
+  db.finish_run(run);
 
   nlohmann::json j = {{"kind", kind},
                       {"colors", colours},
                       {"set", problem.set.name()},
                       {"rows", problem.rows},
                       {"cols", problem.cols},
-                      {"method", "search"},
+                      {"method", method},
                       {"mode", a.mode},
                       {"complete", r.complete},
                       {"solutions", r.solutions},
@@ -123,8 +214,11 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"shard", fmt::format("{}/{}", o.shard_index, o.shard_count)},
                       {"subproblems", r.shard_subproblems},
                       {"subproblems_done", r.subproblems_done},
-                      {"interrupted", r.interrupted},
-                      {"timed_out", r.timed_out}};
+                      {"interrupted", r.interrupted || SignalCatcher::caught() != 0},
+                      {"timed_out", r.timed_out},
+                      {"db", db.path()},
+                      {"run_id", run.id},
+                      {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (!r.found.empty()) {
@@ -143,12 +237,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     }
   }
   emit(ctx, j, [&] {
-    fmt::print("{} C={} {}x{} packing, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind, colours,
-               problem.rows, problem.cols, a.mode, r.complete ? "complete" : "incomplete", r.formulation, r.threads,
-               o.shard_index, o.shard_count);
+    fmt::print("{} C={} {}x{} packing by {}, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind, colours,
+               problem.rows, problem.cols, method, a.mode, r.complete ? "complete" : "incomplete", r.formulation,
+               r.threads, o.shard_index, o.shard_count);
     if (o.mode != SearchMode::First)
       fmt::print("solutions: {}{}\n", r.solutions, r.orbits ? fmt::format(" ({} up to symmetry)", *r.orbits) : "");
-    fmt::print("nodes: {}  seconds: {:.3f}\n", r.nodes, r.seconds);
+    fmt::print("nodes: {}  seconds: {:.3f}  database: {} (run {}, {} new solutions)\n", r.nodes, r.seconds, db.path(),
+               run.id, sink.added());
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
   if (r.interrupted || SignalCatcher::caught())

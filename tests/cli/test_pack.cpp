@@ -6,6 +6,14 @@
 
 using namespace tilekit::test;
 
+namespace {
+// `tilekit pack ARGS` writing to a database of its own, never the user's default one.
+CliResult pack(const std::string& args) {
+  static TempDir db_dir;
+  return run_cli("pack --db " + (db_dir / "results.sqlite") + " " + args);
+}
+}  // namespace
+
 TEST(PackCli, HelpListsTheContractOptions) {
   CliResult r = run_cli("pack --help");
   ASSERT_EQ(r.code, 0);
@@ -16,14 +24,14 @@ TEST(PackCli, HelpListsTheContractOptions) {
 
 TEST(PackCli, CountsTwoColourPackingsWithOneAndTwoThreads) {
   for (const char* threads : {"1", "2"}) {
-    CliResult w = run_cli(std::string("pack --kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
+    CliResult w = pack(std::string("--kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
     ASSERT_EQ(w.code, 0) << w.err;
     auto j = w.json();
     EXPECT_EQ(j["solutions"], 203520);
     EXPECT_EQ(j["complete"], true);
     EXPECT_EQ(j["method"], "search");
     EXPECT_EQ(j["threads"], std::stoi(threads));
-    CliResult c = run_cli(std::string("pack --kind corner --colors 2 --mode count --quiet --json --threads ") + threads);
+    CliResult c = pack(std::string("--kind corner --colors 2 --mode count --quiet --json --threads ") + threads);
     ASSERT_EQ(c.code, 0) << c.err;
     EXPECT_EQ(c.json()["solutions"], 32);
     EXPECT_EQ(c.json()["orbits"], 1);
@@ -34,7 +42,7 @@ TEST(PackCli, FirstPackingsOfThreeColoursPassTheIndependentCheck) {
   TempDir d;
   for (const char* kind : {"corner", "wang"}) {
     std::string out = d / (std::string(kind) + ".json");
-    CliResult r = run_cli(std::string("pack --method search --quiet --json --threads 2 --colors 3 --kind ") + kind +
+    CliResult r = pack(std::string("--method search --quiet --json --threads 2 --colors 3 --kind ") + kind +
                           " --out " + out);
     ASSERT_EQ(r.code, 0) << r.err;
     auto j = r.json();
@@ -47,12 +55,12 @@ TEST(PackCli, FirstPackingsOfThreeColoursPassTheIndependentCheck) {
 }
 
 TEST(PackCli, PacksAnyTileSetWhoseSizeIsTheTorusArea) {
-  CliResult r = run_cli("pack --set complete-wang-2x3 --size 4x9 --quiet --json --threads 1");
+  CliResult r = pack("--set complete-wang-2x3 --size 4x9 --quiet --json --threads 1");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["rows"], 4);
   EXPECT_EQ(r.json()["cols"], 9);
   EXPECT_EQ(r.json()["valid"], true);
-  CliResult bad = run_cli("pack --set complete-wang-2x3 --size 5x7 --quiet");
+  CliResult bad = pack("--set complete-wang-2x3 --size 5x7 --quiet");
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("rows*cols"), std::string::npos) << bad.err;
 }
@@ -69,7 +77,7 @@ TEST(PackCli, BadFlagsAreExit2WithAClearMessage) {
                  Case{"--kind wang --colors 2 --shard 4/4", "--shard must be I/N with 0 <= I < N, got '4/4'"},
                  Case{"--kind wang --colors 2 --formulation pegs", "pegs formulation is for corner tiles"},
                  Case{"--colors 2", "pack needs --kind"}}) {
-    CliResult r = run_cli(std::string("pack --quiet ") + c.args);
+    CliResult r = pack(std::string("--quiet ") + c.args);
     EXPECT_EQ(r.code, 2) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -80,26 +88,26 @@ TEST(PackCli, BadFlagsAreExit2WithAClearMessage) {
 TEST(PackCli, CorruptOrMismatchedCheckpointsAreExit2) {
   TempDir d;
   std::string ck = d / "ck";
-  CliResult r = run_cli("pack --kind wang --colors 2 --mode count --quiet --checkpoint " + ck);
+  CliResult r = pack("--kind wang --colors 2 --mode count --quiet --checkpoint " + ck);
   ASSERT_EQ(r.code, 0) << r.err;
   std::string text = slurp(ck);
   ASSERT_FALSE(text.empty());
-  CliResult again = run_cli("pack --kind wang --colors 2 --mode count --quiet --json --resume " + ck);
+  CliResult again = pack("--kind wang --colors 2 --mode count --quiet --json --resume " + ck);
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_EQ(again.json()["solutions"], 203520);  // a finished checkpoint resumes to the same result
-  CliResult mism = run_cli("pack --kind wang --colors 2 --mode count --seed 7 --quiet --resume " + ck);
+  CliResult mism = pack("--kind wang --colors 2 --mode count --seed 7 --quiet --resume " + ck);
   EXPECT_EQ(mism.code, 2);
   EXPECT_NE(mism.err.find("does not match this search: seed"), std::string::npos) << mism.err;
-  CliResult other = run_cli("pack --kind corner --colors 2 --mode count --quiet --resume " + ck);
+  CliResult other = pack("--kind corner --colors 2 --mode count --quiet --resume " + ck);
   EXPECT_EQ(other.code, 2);
   EXPECT_NE(other.err.find("kind"), std::string::npos) << other.err;
   text[text.size() / 2] ^= 0x20;
   write_text(d / "bad", text);
-  CliResult corrupt = run_cli("pack --kind wang --colors 2 --mode count --quiet --resume " + (d / "bad"));
+  CliResult corrupt = pack("--kind wang --colors 2 --mode count --quiet --resume " + (d / "bad"));
   EXPECT_EQ(corrupt.code, 2);
   EXPECT_NE(corrupt.err.find("corrupt"), std::string::npos) << corrupt.err;
   write_text(d / "short", slurp(ck).substr(0, 40));
-  CliResult truncated = run_cli("pack --kind wang --colors 2 --mode count --quiet --resume " + (d / "short"));
+  CliResult truncated = pack("--kind wang --colors 2 --mode count --quiet --resume " + (d / "short"));
   EXPECT_EQ(truncated.code, 2);
   EXPECT_NE(truncated.err.find("truncated"), std::string::npos) << truncated.err;
 }
@@ -107,7 +115,7 @@ TEST(PackCli, CorruptOrMismatchedCheckpointsAreExit2) {
 TEST(PackCli, ShardsZeroToThreeOfFourSumToTheWhole) {
   long sum = 0;
   for (int i = 0; i < 4; ++i) {
-    CliResult r = run_cli("pack --kind wang --colors 2 --mode count --quiet --json --shard " + std::to_string(i) + "/4");
+    CliResult r = pack("--kind wang --colors 2 --mode count --quiet --json --shard " + std::to_string(i) + "/4");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.json()["shard"], std::to_string(i) + "/4");
     sum += r.json()["solutions"].get<long>();
