@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   cli::add_tileset_commands(app, ctx);
   cli::add_check_command(app, ctx);
   cli::add_pack_command(app, ctx);
+  cli::add_db_commands(app, ctx);
+  cli::add_atlas_commands(app, ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
