@@ -29,5 +29,7 @@ void add_check_command(CLI::App& app, Context& ctx);
 void add_pack_command(CLI::App& app, Context& ctx);
 void add_db_commands(CLI::App& app, Context& ctx);
 void add_atlas_commands(CLI::App& app, Context& ctx);
+void add_tile_command(CLI::App& app, Context& ctx);
+void add_analyze_commands(CLI::App& app, Context& ctx);
 
 }  // namespace tilekit::cli
