@@ -26,5 +26,6 @@ void add_json_flag(CLI::App* cmd, Context& ctx);
 // Command groups, one per cmd_*.cpp.
 void add_tileset_commands(CLI::App& app, Context& ctx);
 void add_check_command(CLI::App& app, Context& ctx);
+void add_cluster_commands(CLI::App& app, Context& ctx);
 
 }  // namespace tilekit::cli
