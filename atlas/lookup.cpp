@@ -7,11 +7,11 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <random>
 
 #include "checkpoints/results_db.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/error.hpp"
+#include "tilesets/lattice_hash.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -86,13 +86,11 @@ AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptio
   throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
 }
 
+// The project's permutation table (thesis 3.4.1, tilesets/lattice_hash.hpp) of size 256, so the
+// shader's `& 255` is the table's modulo.
 std::vector<int> hash_permutation(std::uint64_t seed) {
-  std::vector<int> p(256);
-  for (int i = 0; i < 256; ++i) p[std::size_t(i)] = i;
-  std::mt19937_64 rng(seed);
-  // thesis 3.4: exchange element i with one chosen at random among the first i (+ itself)
-  for (std::size_t i = 1; i < p.size(); ++i) std::swap(p[i], p[std::size_t(rng() % (i + 1))]);
-  return p;
+  const PermutationHash h(256, seed);
+  return std::vector<int>(h.table().begin(), h.table().end());
 }
 
 namespace {

@@ -42,8 +42,7 @@ std::string lookup_c_header(const AtlasLookup& a);
 // `seed` picks the permutation table of the direct stochastic tiling hash (thesis eq. 3.3).
 std::string lookup_glsl(const AtlasLookup& a, std::uint64_t seed);
 
-// The permutation table of size 256 for the hash (thesis 3.4: random exchange of element i
-// with one of the first i elements), from a seeded generator.
+// The permutation table of size 256 for the hash (thesis 3.4.1), from a seed.
 std::vector<int> hash_permutation(std::uint64_t seed);
 
 // CPU reference of the GLSL snippet: the tile that the direct stochastic tiling puts at tile

@@ -19,6 +19,7 @@ nlohmann::json lookup_json(const AtlasLookup& a) {
                       {"colors", a.colours},
                       {"rows", a.rows},
                       {"cols", a.cols},
+                      {"torus", true},
                       {"cells", std::move(cells)},
                       {"positions", std::move(positions)},
                       {"source", a.source},
