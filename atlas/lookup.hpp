@@ -34,10 +34,14 @@ struct LookupOptions {
 // command when neither has one, InputError for C outside 1..255.
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options);
 
-// From a packing (checked: throws InputError if it is not a packing of the complete set).
-AtlasLookup lookup_from_packing(const Tiling& packing, std::string source, std::string how, bool closed_form);
+// From a packing. Throws InputError unless it is a C^2 x C^2 torus holding every tile once and,
+// with `run_validator`, the independent validator accepts it as a packing.
+AtlasLookup lookup_from_packing(const Tiling& packing, std::string source, std::string how, bool closed_form,
+                                bool run_validator = true);
 
 nlohmann::json lookup_json(const AtlasLookup& a);
+// The same JSON object as text, written directly (large atlases print in milliseconds).
+std::string lookup_json_text(const AtlasLookup& a);
 std::string lookup_c_header(const AtlasLookup& a);
 // `seed` picks the permutation table of the direct stochastic tiling hash (thesis eq. 3.3).
 std::string lookup_glsl(const AtlasLookup& a, std::uint64_t seed);

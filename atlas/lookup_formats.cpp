@@ -1,6 +1,7 @@
 // The atlas lookup as JSON, as a C header and as a GLSL snippet.
 #include <fmt/format.h>
 
+#include <charconv>
 #include <nlohmann/json.hpp>
 
 #include "atlas/lookup.hpp"
@@ -27,6 +28,40 @@ nlohmann::json lookup_json(const AtlasLookup& a) {
                       {"closed_form", a.closed_form}};
   if (a.solution_id) j["solution_id"] = a.solution_id;
   return j;
+}
+
+std::string lookup_json_text(const AtlasLookup& a) {
+  // Keys in the order nlohmann::json sorts them, so both forms print the same text; numbers
+  // by std::to_chars (a 65,536-tile atlas prints in about a millisecond).
+  std::string out;
+  out.reserve(a.cells.size() * 16 + 256);
+  char buf[24];
+  auto num = [&](std::int64_t v) {
+    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, end);
+  };
+  out += "{\"cells\":[";
+  for (int r = 0; r < a.rows; ++r) {
+    out += r ? ",[" : "[";
+    for (int c = 0; c < a.cols; ++c) {
+      if (c) out += ',';
+      num(a.cells[std::size_t(r) * std::size_t(a.cols) + std::size_t(c)]);
+    }
+    out += ']';
+  }
+  out += fmt::format("],\"closed_form\":{},\"colors\":{},\"cols\":{},\"how\":{},\"kind\":\"{}\",\"positions\":[",
+                     a.closed_form, a.colours, a.cols, nlohmann::json(a.how).dump(), kind_name(a.kind));
+  for (std::size_t i = 0; i < a.positions.size(); ++i) {
+    out += i ? ",[" : "[";
+    num(a.positions[i].first);
+    out += ',';
+    num(a.positions[i].second);
+    out += ']';
+  }
+  out += fmt::format("],\"rows\":{},", a.rows);
+  if (a.solution_id) out += fmt::format("\"solution_id\":{},", a.solution_id);
+  out += fmt::format("\"source\":{},\"torus\":true}}", nlohmann::json(a.source).dump());
+  return out;
 }
 
 namespace {

@@ -48,8 +48,7 @@ void add_lookup(CLI::App& atlas, Context& ctx) {
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] {
     AtlasLookup l = lookup(a);
-    nlohmann::json j = lookup_json(l);
-    std::string text = format == "json" ? j.dump() + "\n" : format == "c" ? lookup_c_header(l) : lookup_glsl(l, seed);
+    std::string text = format == "json" ? lookup_json_text(l) + "\n" : format == "c" ? lookup_c_header(l) : lookup_glsl(l, seed);
     if (!out.empty()) {
       write_file_atomic(out, text);
       nlohmann::json s = {{"kind", a.kind}, {"colors", l.colours}, {"rows", l.rows}, {"cols", l.cols},
@@ -66,6 +65,7 @@ void add_lookup(CLI::App& atlas, Context& ctx) {
       std::cout.flush();
       return;
     }
+    nlohmann::json j = lookup_json(l);
     j["format"] = format;
     j["text"] = text;
     emit(ctx, j, [] {});

@@ -261,7 +261,15 @@ void add_add(CLI::App& db, Context& ctx) {
       batch.push_back(std::move(s));
     }
     ResultsDb db(a.path());
+    RunRecord run;
+    run.command = "db add";
+    run.params = {{"files", files}, {"method", method}};
+    run.id = db.begin_run(run);
+    for (auto& s : batch) s.run_id = run.id;
     const std::size_t added = db.add_solutions(batch);
+    run.status = "complete";
+    run.solutions = added;
+    db.finish_run(run);
     nlohmann::json hashes = nlohmann::json::array();
     for (const auto& s : batch) hashes.push_back(solution_hash(s.tiling));
     emit(ctx, {{"db", db.path()}, {"files", files.size()}, {"added", added}, {"solution_hashes", hashes}}, [&] {

@@ -177,3 +177,22 @@ TEST(AtlasLookup, GlslSnippetCompilesAsAFragmentShader) {
         << slurp(d / "log.txt");
   }
 }
+
+TEST(AtlasLookup, FastJsonTextEqualsTheJsonObject) {
+  for (auto [kind, c] : {std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}}) {
+    AtlasLookup a = no_db(kind, c);
+    EXPECT_EQ(lookup_json_text(a), lookup_json(a).dump());
+    a.solution_id = 4;
+    a.source = "db";
+    a.how = "solution \"4\" in x";
+    EXPECT_EQ(lookup_json_text(a), lookup_json(a).dump());
+  }
+}
+
+TEST(AtlasLookup, NonPackingsAreRejected) {
+  Tiling t = construct_packing(TileKind::Corner, 3)->tiling;
+  std::swap(t.cells[0], t.cells[1]);  // every tile once, but borders no longer match
+  EXPECT_THROW(lookup_from_packing(t, "db", "", false), InputError);
+  t.cells[0] = t.cells[2];  // a repeated tile
+  EXPECT_THROW(lookup_from_packing(t, "db", "", false, false), InputError);
+}
