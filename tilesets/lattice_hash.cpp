@@ -128,7 +128,7 @@ std::uint32_t ColourHash::colour(std::int64_t x, std::int64_t y) const {
   return reduce_[sum];
 }
 
-void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n) const {
+void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride) const {
   cache.x0 = x0;
   cache.n = n;
   cache.first.resize(comps_.size() * n);
@@ -136,9 +136,12 @@ void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n) const 
     const Component& c = comps_[i];
     std::int64_t r = x0 % std::int64_t(c.n);
     std::uint32_t m = std::uint32_t(r < 0 ? r + c.n : r);
+    std::int64_t step = stride % std::int64_t(c.n);
+    const std::uint32_t st = std::uint32_t(step < 0 ? step + c.n : step);
     for (std::size_t k = 0; k < n; ++k) {
       cache.first[i * n + k] = c.p[m];
-      if (++m == c.n) m = 0;
+      m += st;
+      if (m >= c.n) m -= c.n;
     }
   }
 }

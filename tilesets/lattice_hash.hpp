@@ -103,8 +103,9 @@ class ColourHash {
     std::vector<std::uint32_t> first;  // M*n values P_i[x % N_i], component-major
     std::vector<std::uint32_t> sum;    // scratch
   };
-  void prepare(RowCache& cache, std::int64_t x0, std::size_t n) const;
-  // out[k] = colour(x0 + k, y) for k < n, with the columns of `cache`.
+  // Columns x0, x0 + stride, ..., x0 + (n - 1) stride.
+  void prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride = 1) const;
+  // out[k] = colour(x0 + k stride, y) for k < n, with the columns of `cache`.
   void row(RowCache& cache, std::int64_t y, std::uint16_t* out) const;
 
  private:
