@@ -22,8 +22,9 @@ TileSet compact_wang_set(std::uint32_t c) {
     for (Colour w = 0; w < c; ++w)
       for (Colour k = 0; k < 2; ++k)  // thesis sec. 3.2.1: two tiles per (N, W) pair
         tiles.push_back({n, (n + w + k) % c, (w + k + 1) % c, w});
-  std::sort(tiles.begin(), tiles.end(),
-            [c](const WangTile& a, const WangTile& b) { return wang_index(a, c) < wang_index(b, c); });
+  std::sort(tiles.begin(), tiles.end(), [c](const WangTile& a, const WangTile& b) {
+    return wang_index(a, c) < wang_index(b, c);
+  });
   return TileSet::wang(std::move(tiles), fmt::format("compact-wang-{}", c),
                        "compact Wang set, 2C^2 tiles (Cohen et al. 2003; thesis 3.2.1)", c, c);
 }
@@ -47,8 +48,9 @@ TileSet compact_corner_set(std::uint32_t c) {
       for (Colour sw = 0; sw < c; ++sw)
         for (Colour k = 0; k < 2; ++k)  // thesis sec. 3.2.2: two tiles per (NE, NW, SW) triple
           tiles.push_back({ne, (ne + nw + sw + k) % c, sw, nw});
-  std::sort(tiles.begin(), tiles.end(),
-            [c](const CornerTile& a, const CornerTile& b) { return corner_index(a, c) < corner_index(b, c); });
+  std::sort(tiles.begin(), tiles.end(), [c](const CornerTile& a, const CornerTile& b) {
+    return corner_index(a, c) < corner_index(b, c);
+  });
   return TileSet::corner(std::move(tiles), fmt::format("compact-corner-{}", c),
                          "compact corner set, 2C^3 tiles (thesis 3.2.2)", c);
 }

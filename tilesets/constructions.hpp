@@ -14,8 +14,8 @@
 namespace tilekit {
 
 struct ConstructedPacking {
-  Tiling tiling;    // C^2 x C^2 torus packing of the complete set
-  std::string how;  // e.g. "euler-product", "debruijn-triangular", "product 3x4", "stored"
+  Tiling tiling;      // C^2 x C^2 torus packing of the complete set
+  std::string how;    // e.g. "euler-product", "debruijn-triangular", "product 3x4", "stored"
 };
 
 // nullopt when no construction is known for this kind and C.

@@ -13,9 +13,7 @@ using TileIndex = std::uint32_t;
 
 enum class TileKind { Wang, Corner };
 
-constexpr std::string_view kind_name(TileKind k) {
-  return k == TileKind::Wang ? "wang" : "corner";
-}
+constexpr std::string_view kind_name(TileKind k) { return k == TileKind::Wang ? "wang" : "corner"; }
 
 // A Wang tile: one colour per edge. N and S edges are horizontal (C_h colours),
 // E and W edges are vertical (C_v colours).
@@ -34,9 +32,7 @@ struct CornerTile {
 constexpr TileIndex wang_index(const WangTile& t, std::uint32_t ch, std::uint32_t cv) {
   return ((t.n * cv + t.e) * ch + t.s) * cv + t.w;
 }
-constexpr TileIndex wang_index(const WangTile& t, std::uint32_t c) {
-  return wang_index(t, c, c);
-}
+constexpr TileIndex wang_index(const WangTile& t, std::uint32_t c) { return wang_index(t, c, c); }
 
 // thesis eq. (2.3)/(2.4)
 constexpr WangTile wang_tile(TileIndex i, std::uint32_t ch, std::uint32_t cv) {
@@ -50,9 +46,7 @@ constexpr WangTile wang_tile(TileIndex i, std::uint32_t ch, std::uint32_t cv) {
   t.n = i;
   return t;
 }
-constexpr WangTile wang_tile(TileIndex i, std::uint32_t c) {
-  return wang_tile(i, c, c);
-}
+constexpr WangTile wang_tile(TileIndex i, std::uint32_t c) { return wang_tile(i, c, c); }
 
 // thesis eq. (2.5)
 constexpr TileIndex corner_index(const CornerTile& t, std::uint32_t c) {
@@ -73,8 +67,6 @@ constexpr CornerTile corner_tile(TileIndex i, std::uint32_t c) {
 }
 
 // Number of tiles of the complete set: C^4 (corner) or (C_h C_v)^2 (Wang, thesis sec. 2.7).
-constexpr std::uint64_t complete_size(std::uint64_t ch, std::uint64_t cv) {
-  return ch * ch * cv * cv;
-}
+constexpr std::uint64_t complete_size(std::uint64_t ch, std::uint64_t cv) { return ch * ch * cv * cv; }
 
 }  // namespace tilekit

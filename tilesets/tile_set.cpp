@@ -113,8 +113,7 @@ TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv) {
   check_colour_count(ch, "horizontal colours");
   check_colour_count(cv, "vertical colours");
   const std::uint64_t n = complete_size(ch, cv);
-  if (n > (1u << 26))
-    throw InputError(fmt::format("complete Wang set over {}x{} colours is too large ({} tiles)", ch, cv, n));
+  if (n > (1u << 26)) throw InputError(fmt::format("complete Wang set over {}x{} colours is too large ({} tiles)", ch, cv, n));
   std::vector<WangTile> tiles(n);
   for (TileIndex i = 0; i < n; ++i) tiles[i] = wang_tile(i, ch, cv);
   std::string name = ch == cv ? fmt::format("complete-wang-{}", ch) : fmt::format("complete-wang-{}x{}", ch, cv);
@@ -124,12 +123,10 @@ TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv) {
 TileSet complete_corner_set(std::uint32_t c) {
   check_colour_count(c);
   const std::uint64_t n = complete_size(c, c);
-  if (n > (1u << 26))
-    throw InputError(fmt::format("complete corner set over {} colours is too large ({} tiles)", c, n));
+  if (n > (1u << 26)) throw InputError(fmt::format("complete corner set over {} colours is too large ({} tiles)", c, n));
   std::vector<CornerTile> tiles(n);
   for (TileIndex i = 0; i < n; ++i) tiles[i] = corner_tile(i, c);
-  return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c),
-                         "complete corner set (thesis sec. 2.7)", c);
+  return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c), "complete corner set (thesis sec. 2.7)", c);
 }
 
 TileSet corner_to_wang(const TileSet& corner) {

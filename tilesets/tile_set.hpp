@@ -16,8 +16,8 @@ class TileSet {
   TileSet() = default;
   // Both factories reject duplicate tiles (InputError). Colour radices default to
   // max colour + 1 per direction; pass larger ones to declare unused colours.
-  static TileSet wang(std::vector<WangTile> tiles, std::string name = {}, std::string source = {}, std::uint32_t ch = 0,
-                      std::uint32_t cv = 0);
+  static TileSet wang(std::vector<WangTile> tiles, std::string name = {}, std::string source = {},
+                      std::uint32_t ch = 0, std::uint32_t cv = 0);
   static TileSet corner(std::vector<CornerTile> tiles, std::string name = {}, std::string source = {},
                         std::uint32_t c = 0);
 

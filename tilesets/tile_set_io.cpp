@@ -1,8 +1,8 @@
 #include "tilesets/tile_set_io.hpp"
 
 #include <fcntl.h>
-#include <fmt/format.h>
 #include <sys/stat.h>
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -38,9 +38,7 @@ TileSet make_set(TileKind kind, const std::vector<std::array<std::int64_t, 4>>& 
   return TileSet::corner(std::move(tiles), std::move(name), std::move(source), Colour(declared));
 }
 
-std::string stem_of(const std::string& origin) {
-  return std::filesystem::path(origin).stem().string();
-}
+std::string stem_of(const std::string& origin) { return std::filesystem::path(origin).stem().string(); }
 
 std::int64_t check_colour(std::int64_t v, std::int64_t declared, const std::string& where) {
   if (v < 0) throw InputError(fmt::format("{}: negative colour {}", where, v));
@@ -68,12 +66,9 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     std::smatch m;
     if (std::regex_match(line, m, kind_re)) {
       if (seen_tile) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
-      if (m[1] == "corner")
-        kind = TileKind::Corner;
-      else if (m[1] == "wang")
-        kind = TileKind::Wang;
-      else
-        throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, m[1].str()));
+      if (m[1] == "corner") kind = TileKind::Corner;
+      else if (m[1] == "wang") kind = TileKind::Wang;
+      else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, m[1].str()));
       continue;
     }
     if (std::regex_match(line, m, colours_re)) {
@@ -99,8 +94,7 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     for (int k = 0; k < 4; ++k) {
       std::int64_t v = 0;
       auto [p, ec] = std::from_chars(tok[k].data(), tok[k].data() + tok[k].size(), v);
-      if (ec == std::errc::result_out_of_range)
-        throw InputError(fmt::format("{}: colour '{}' is too large", where, tok[k]));
+      if (ec == std::errc::result_out_of_range) throw InputError(fmt::format("{}: colour '{}' is too large", where, tok[k]));
       if (ec != std::errc() || p != tok[k].data() + tok[k].size())
         throw InputError(fmt::format("{}: '{}' is not a colour (a non-negative integer)", where, tok[k]));
       row[k] = check_colour(v, declared, where);
@@ -126,20 +120,16 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", origin));
   TileKind kind = TileKind::Wang;
   if (j.contains("kind")) {
-    if (j["kind"] == "corner")
-      kind = TileKind::Corner;
-    else if (j["kind"] != "wang")
-      throw InputError(fmt::format("{}: \"kind\" must be \"wang\" or \"corner\"", origin));
+    if (j["kind"] == "corner") kind = TileKind::Corner;
+    else if (j["kind"] != "wang") throw InputError(fmt::format("{}: \"kind\" must be \"wang\" or \"corner\"", origin));
   }
   std::int64_t declared = 0;
   if (j.contains("colors")) {
-    if (!j["colors"].is_number_integer() || j["colors"].get<std::int64_t>() < 1 ||
-        j["colors"].get<std::int64_t>() > 255)
+    if (!j["colors"].is_number_integer() || j["colors"].get<std::int64_t>() < 1 || j["colors"].get<std::int64_t>() > 255)
       throw InputError(fmt::format("{}: \"colors\" must be an integer between 1 and 255", origin));
     declared = j["colors"].get<std::int64_t>();
   }
-  if (!j.contains("tiles") || !j["tiles"].is_array())
-    throw InputError(fmt::format("{}: missing \"tiles\" array", origin));
+  if (!j.contains("tiles") || !j["tiles"].is_array()) throw InputError(fmt::format("{}: missing \"tiles\" array", origin));
   std::vector<std::array<std::int64_t, 4>> rows;
   for (std::size_t k = 0; k < j["tiles"].size(); ++k) {
     const auto& t = j["tiles"][k];
@@ -147,8 +137,7 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
     if (!t.is_array() || t.size() != 4) throw InputError(fmt::format("{}: expected an array of 4 colours", where));
     std::array<std::int64_t, 4> row{};
     for (int c = 0; c < 4; ++c) {
-      if (!t[c].is_number_integer())
-        throw InputError(fmt::format("{}: colour {} is not an integer", where, t[c].dump()));
+      if (!t[c].is_number_integer()) throw InputError(fmt::format("{}: colour {} is not an integer", where, t[c].dump()));
       row[c] = check_colour(t[c].get<std::int64_t>(), declared, where);
     }
     rows.push_back(row);
@@ -194,8 +183,7 @@ std::string format_tile_set_text(const TileSet& set) {
   std::string out;
   if (set.kind() == TileKind::Corner) out += "# kind: corner\n";
   if (!set.source().empty()) out += fmt::format("# source: {}\n", set.source());
-  out += set.kind() == TileKind::Wang ? "# format: n s w e (one tile per line)\n"
-                                      : "# format: nw ne sw se (one tile per line)\n";
+  out += set.kind() == TileKind::Wang ? "# format: n s w e (one tile per line)\n" : "# format: nw ne sw se (one tile per line)\n";
   for (std::size_t k = 0; k < set.size(); ++k) out += fmt::format("{}\n", fmt::join(set.file_colours(k), " "));
   return out;
 }
@@ -224,11 +212,11 @@ std::vector<BuiltinInfo> builtin_tile_sets() {
 }
 
 TileSet resolve_tile_set(const std::string& name) {
-  static const std::regex family_re(
-      R"(^(complete-wang|complete-corner|compact-wang|compact-wang3|compact-corner)-(\d+)$)");
+  static const std::regex family_re(R"(^(complete-wang|complete-corner|compact-wang|compact-wang3|compact-corner)-(\d+)$)");
   static const std::regex mixed_re(R"(^complete-wang-(\d+)x(\d+)$)");
   std::smatch m;
-  if (std::regex_match(name, m, mixed_re)) return complete_wang_set(parse_count(m[1], name), parse_count(m[2], name));
+  if (std::regex_match(name, m, mixed_re))
+    return complete_wang_set(parse_count(m[1], name), parse_count(m[2], name));
   if (std::regex_match(name, m, family_re)) {
     const std::uint32_t c = parse_count(m[2], name);
     const std::string fam = m[1];
@@ -242,8 +230,7 @@ TileSet resolve_tile_set(const std::string& name) {
     if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name));
   std::error_code ec;
   if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
-  throw InputError(
-      fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
+  throw InputError(fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
 }
 
 void write_file_atomic(const std::string& path, std::string_view text) {

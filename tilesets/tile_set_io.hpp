@@ -24,7 +24,7 @@ nlohmann::json tile_set_to_json(const TileSet& set);
 TileSet resolve_tile_set(const std::string& name_or_path);
 
 struct BuiltinInfo {
-  std::string name;  // a name or a pattern such as "complete-corner-C"
+  std::string name;         // a name or a pattern such as "complete-corner-C"
   std::string description;
 };
 std::vector<BuiltinInfo> builtin_tile_sets();

@@ -43,12 +43,9 @@ Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin) {
   };
   Tiling t;
   if (!j.contains("kind") || !j["kind"].is_string()) throw fail("missing \"kind\" (\"wang\" or \"corner\")");
-  if (j["kind"] == "wang")
-    t.kind = TileKind::Wang;
-  else if (j["kind"] == "corner")
-    t.kind = TileKind::Corner;
-  else
-    throw fail(fmt::format("unknown kind {} (expected \"wang\" or \"corner\")", j["kind"].dump()));
+  if (j["kind"] == "wang") t.kind = TileKind::Wang;
+  else if (j["kind"] == "corner") t.kind = TileKind::Corner;
+  else throw fail(fmt::format("unknown kind {} (expected \"wang\" or \"corner\")", j["kind"].dump()));
   if (j.contains("horizontal_colors")) {
     t.colours = std::uint32_t(get_int("horizontal_colors", 1, 1 << 16));
     t.vertical_colours = std::uint32_t(get_int("vertical_colors", 1, 1 << 16));
@@ -62,8 +59,7 @@ Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin) {
   t.torus = j["torus"].get<bool>();
   if (!j.contains("cells") || !j["cells"].is_array()) throw fail("missing \"cells\" array");
   const auto& cells = j["cells"];
-  if (cells.size() != std::size_t(t.rows))
-    throw fail(fmt::format("\"cells\" has {} rows, expected {}", cells.size(), t.rows));
+  if (cells.size() != std::size_t(t.rows)) throw fail(fmt::format("\"cells\" has {} rows, expected {}", cells.size(), t.rows));
   t.cells.reserve(std::size_t(t.rows) * std::size_t(t.cols));
   for (int r = 0; r < t.rows; ++r) {
     const auto& row = cells[std::size_t(r)];

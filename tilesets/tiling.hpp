@@ -17,7 +17,7 @@ struct Tiling {
   std::uint32_t vertical_colours = 0;  // Wang only: radix of E/W edges; 0 means == colours
   int rows = 0, cols = 0;
   bool torus = false;
-  std::vector<TileIndex> cells;  // rows*cols tile indices (thesis eq. 2.2 / 2.5)
+  std::vector<TileIndex> cells;        // rows*cols tile indices (thesis eq. 2.2 / 2.5)
 
   Tiling() = default;
   Tiling(TileKind k, std::uint32_t c, int r, int cl, bool t)

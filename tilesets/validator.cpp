@@ -48,8 +48,7 @@ ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_e
   }
   if (set) {
     if (set->kind() != t.kind)
-      error(
-          fmt::format("tiling is {} but tile set '{}' is {}", kind_name(t.kind), set->name(), kind_name(set->kind())));
+      error(fmt::format("tiling is {} but tile set '{}' is {}", kind_name(t.kind), set->name(), kind_name(set->kind())));
     if (set->horizontal_radix() > ch || set->vertical_radix() > cv)
       error(fmt::format("tile set '{}' uses more colours than the tiling's {}", set->name(), ch));
   }

@@ -11,8 +11,8 @@
 namespace tilekit {
 
 struct ValidationReport {
-  bool valid = false;               // every cell a tile (of the set, if given), every neighbour pair matches
-  bool packing = false;             // valid, a torus, and every tile of the set (or the complete set) exactly once
+  bool valid = false;    // every cell a tile (of the set, if given), every neighbour pair matches
+  bool packing = false;  // valid, a torus, and every tile of the set (or the complete set) exactly once
   std::vector<std::string> errors;  // at most `max_errors`, then a summary line
 };
 
