@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/search_state.hpp"
 #include "tilesets/tile_set.hpp"
 #include "tilesets/tiling.hpp"
 
@@ -40,6 +41,22 @@ struct SearchOptions {
   // Called for every solution in All mode (and for the solution in First mode), one call at a
   // time (never concurrently), with the solution already checked by the validator.
   std::function<void(const Tiling&)> on_solution;
+
+  // ---- extensions (solver owner) ----
+  std::string ordering = "auto";     // "static", "mrv" (most constrained first) or "auto"
+  int restarts = -1;                 // First mode: Luby restarts; -1 auto (on for packings), 0 off, 1 on
+  std::uint64_t restart_base = 0;    // nodes per Luby unit; 0 = auto
+  std::size_t subproblems = 0;       // subproblem target for the split; 0 = auto (1024, at least 64 per shard)
+  std::uint64_t estimate_probes = 0; // Knuth tree-size probes before the search (progress/ETA)
+  bool catch_signals = false;        // SIGTERM/SIGINT/SIGUSR1 stop the search (result.interrupted)
+  bool count_orbits = true;          // Count/All on complete sets: also count orbits
+  std::string title;                 // progress line prefix
+  // Checkpoint I/O, injected because the file format lives in checkpoints/ (which depends on
+  // solver/): use checkpoints/checkpoint.hpp `solve_checkpointed()`, which fills these from
+  // checkpoint_path / resume_path. solve() itself rejects the paths without these hooks.
+  std::function<void(const SearchState&)> save_checkpoint;
+  std::optional<SearchState> resume_state;
+  std::function<void()> flush;       // called before every checkpoint (commit stored solutions)
 };
 
 struct SearchResult {
@@ -52,9 +69,25 @@ struct SearchResult {
   int threads = 1;
   std::string formulation;   // the one actually used
   std::vector<Tiling> found; // First mode: the solution, if any
+
+  // ---- extensions (solver owner) ----
+  bool timed_out = false;           // stopped by time_limit
+  int signal = 0;                   // the signal that interrupted the run
+  std::string ordering;             // the variable ordering actually used
+  std::uint64_t subproblems = 0, shard_subproblems = 0, subproblems_done = 0;
+  std::uint64_t restarts = 0;       // First mode with restarts
+  double estimated_nodes = 0;       // Knuth estimate (when estimate_probes > 0)
+  std::size_t checkpoints = 0;      // checkpoints written by this run
+  double total_seconds = 0;         // including the runs this one resumed
+  std::uint64_t symmetry_order = 0; // |translations x H| used for orbits (0: none)
+  std::string fingerprint;          // what a checkpoint must match to resume this search
 };
 
 // Throws InputError for impossible problems/options (e.g. packing with rows*cols != tiles).
 SearchResult solve(const TilingProblem& problem, const SearchOptions& options);
+
+// The identity of a search for checkpoints: problem, mode, formulation, ordering, seed,
+// restarts and shard (not threads, time limits or checkpoint settings). Throws like solve().
+std::string search_fingerprint(const TilingProblem& problem, const SearchOptions& options);
 
 }  // namespace tilekit

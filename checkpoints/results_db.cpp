@@ -1,0 +1,335 @@
+// Opening, checking, migrating and writing the results database. The order of checks on
+// open is the point of this file: a file that is not Tilekit's, or is damaged, is inspected
+// through a read-only connection first, so that it is never modified (not even its journal
+// mode) before we know it is ours and sound.
+#include "checkpoints/results_db.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "checkpoints/db_rows.hpp"
+#include "checkpoints/db_schema.hpp"
+#include "checkpoints/db_sqlite.hpp"
+#include "tilesets/error.hpp"
+
+namespace tilekit {
+
+using sqlitedb::Statement;
+using sqlitedb::Transaction;
+
+namespace {
+
+enum class FileState { Missing, Fresh, Current, Older };
+
+InputError not_ours(const std::string& path, const std::string& why) {
+  return InputError(fmt::format("{}: not a usable Tilekit results database: {}; the file was left untouched", path, why));
+}
+
+// Read-only inspection of an existing file. Returns Fresh for an empty file (0 bytes, or an
+// SQLite file without tables and without an application id: e.g. one a concurrent process
+// is creating right now), Current/Older for a Tilekit database; throws InputError otherwise.
+FileState inspect(const std::string& path, const DbOpenOptions& opt) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return FileState::Missing;
+  if (!fs::is_regular_file(path, ec)) throw not_ours(path, "not a regular file");
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw not_ours(path, "cannot read its size");
+  if (size == 0) return FileState::Fresh;
+  std::array<char, 16> header{};
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw not_ours(path, "cannot open it for reading");
+    in.read(header.data(), header.size());
+    if (in.gcount() != std::streamsize(header.size()) || std::memcmp(header.data(), "SQLite format 3\0", 16) != 0)
+      throw not_ours(path, "not an SQLite file (corrupt or foreign)");
+  }
+  sqlite3* db = nullptr;
+  int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  struct Closer {
+    sqlite3* d;
+    ~Closer() { sqlite3_close(d); }
+  } closer{db};
+  if (rc != SQLITE_OK) throw not_ours(path, fmt::format("SQLite cannot open it ({})", sqlite3_errstr(rc)));
+  sqlite3_busy_timeout(db, opt.busy_timeout_ms);
+  try {
+    const auto app = sqlitedb::pragma_int(db, "application_id");
+    const auto version = sqlitedb::pragma_int(db, "user_version");
+    Statement tables(db, "SELECT name FROM sqlite_master WHERE type = 'table'");
+    std::vector<std::string> names;
+    while (tables.step()) names.push_back(tables.text(0));
+    if (app == 0 && names.empty() && version == 0) return FileState::Fresh;
+    if (app != ResultsDb::kApplicationId)
+      throw not_ours(path, fmt::format("an SQLite database of another application (application_id {:#x}, {} tables)",
+                                       std::uint32_t(app), names.size()));
+    if (version > ResultsDb::kSchemaVersion)
+      throw not_ours(path, fmt::format("written by a newer Tilekit (schema version {}; this build knows up to {})",
+                                       version, ResultsDb::kSchemaVersion));
+    if (version < 1) throw not_ours(path, "marked as Tilekit's but without a schema version (damaged)");
+    if (version == ResultsDb::kSchemaVersion)
+      for (std::string_view t : dbschema::required_tables())
+        if (std::find(names.begin(), names.end(), t) == names.end())
+          throw not_ours(path, fmt::format("table '{}' is missing (damaged)", t));
+    if (opt.integrity_check) {
+      Statement check(db, "PRAGMA integrity_check(5)");
+      std::vector<std::string> problems;
+      while (check.step())
+        if (check.text(0) != "ok") problems.push_back(check.text(0));
+      if (!problems.empty()) throw not_ours(path, fmt::format("corrupt (integrity_check: {})", problems.front()));
+    }
+    return version == ResultsDb::kSchemaVersion ? FileState::Current : FileState::Older;
+  } catch (const InputError& e) {
+    if (std::string_view(e.what()).starts_with(path + ": not a usable")) throw;
+    throw not_ours(path, fmt::format("corrupt ({})", e.what()));
+  } catch (const std::runtime_error& e) {
+    throw not_ours(path, fmt::format("unreadable ({})", e.what()));
+  }
+}
+
+std::string host_name() {
+  std::array<char, 256> buf{};
+  if (gethostname(buf.data(), buf.size() - 1) != 0) return "";
+  return buf.data();
+}
+
+// A run id unique across machines and processes: host, pid, wall and steady clock, hashed.
+std::string make_run_uid(const RunRecord& run) {
+  const auto wall = std::chrono::system_clock::now().time_since_epoch().count();
+  const auto mono = std::chrono::steady_clock::now().time_since_epoch().count();
+  const std::string seed = fmt::format("{}|{}|{}|{}|{}|{}", host_name(), getpid(), wall, mono, run.command,
+                                       static_cast<const void*>(&run));
+  Tiling t;  // reuse the stable hash over a byte string
+  t.cells.assign(seed.begin(), seed.end());
+  return solution_hash(t) + fmt::format("{:08x}", std::uint32_t(wall ^ (mono >> 7)));
+}
+
+}  // namespace
+
+ResultsDb::ResultsDb(const std::string& path, bool create) : ResultsDb(path, DbOpenOptions{.create = create}) {}
+
+ResultsDb::ResultsDb(const std::string& path, const DbOpenOptions& opt) : path_(path) {
+  if (path.empty()) throw InputError("empty database path");
+  FileState state = inspect(path, opt);
+  if (state == FileState::Missing && !opt.create) throw NotFound(fmt::format("{}: no results database there", path));
+  if (state == FileState::Missing) {
+    std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot create the directory ({})", parent.string(), ec.message()));
+  }
+  const bool needs_write = state == FileState::Missing || state == FileState::Fresh || state == FileState::Older;
+  if (opt.read_only && state == FileState::Older)
+    throw InputError(fmt::format("{}: schema version is older than this build's; open it once with a writing "
+                                 "command (e.g. `tilekit db stats --db {}`) to migrate it",
+                                 path, path));
+  if (opt.read_only && !needs_write) {
+    open_connection(true, opt.busy_timeout_ms);
+    return;
+  }
+  if (opt.read_only && !opt.create) throw NotFound(fmt::format("{}: no results database there", path));
+  open_connection(false, opt.busy_timeout_ms);
+  migrate();
+  if (opt.read_only) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    open_connection(true, opt.busy_timeout_ms);
+  }
+}
+
+ResultsDb::~ResultsDb() { sqlite3_close(db_); }
+
+void ResultsDb::open_connection(bool read_only, int busy_timeout_ms) {
+  const int flags = read_only ? SQLITE_OPEN_READONLY : (SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  int rc = sqlite3_open_v2(path_.c_str(), &db_, flags, nullptr);
+  if (rc != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(fmt::format("{}: cannot open the results database ({})", path_, msg));
+  }
+  read_only_ = read_only;
+  sqlite3_busy_timeout(db_, busy_timeout_ms);
+  sqlite3_extended_result_codes(db_, 1);
+  if (!read_only) {
+    // WAL: readers keep working while a writer runs (only now, after the checks above).
+    sqlitedb::exec(db_, "PRAGMA journal_mode = WAL");
+    sqlitedb::exec(db_, "PRAGMA synchronous = NORMAL");
+  }
+  sqlitedb::exec(db_, "PRAGMA foreign_keys = ON");
+}
+
+void ResultsDb::migrate() {
+  if (sqlitedb::pragma_int(db_, "user_version") == kSchemaVersion &&
+      sqlitedb::pragma_int(db_, "application_id") == kApplicationId)
+    return;
+  Transaction tx(db_);
+  // Re-read under the write lock: a concurrent process may have created the schema meanwhile.
+  const auto app = sqlitedb::pragma_int(db_, "application_id");
+  auto version = sqlitedb::pragma_int(db_, "user_version");
+  if (app != 0 && app != kApplicationId) throw not_ours(path_, "another application wrote to it meanwhile");
+  const auto& steps = dbschema::migrations();
+  for (; version < kSchemaVersion; ++version) sqlitedb::exec(db_, std::string(steps[std::size_t(version)]).c_str());
+  sqlitedb::exec(db_, fmt::format("PRAGMA application_id = {}", kApplicationId).c_str());
+  sqlitedb::exec(db_, fmt::format("PRAGMA user_version = {}", kSchemaVersion).c_str());
+  Statement meta(db_, "INSERT OR REPLACE INTO tilekit_meta(key, value) VALUES ('schema_version', ?1)");
+  meta.bind(1, std::int64_t(kSchemaVersion)).run();
+  tx.commit();
+}
+
+std::string ResultsDb::default_path() {
+  namespace fs = std::filesystem;
+  if (const char* p = std::getenv("TILEKIT_DB"); p && *p) return p;
+  if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return (fs::path(x) / "tilekit" / "results.sqlite").string();
+  const char* home = std::getenv("HOME");
+  fs::path base = home && *home ? fs::path(home) : fs::temp_directory_path();
+  return (base / ".local" / "share" / "tilekit" / "results.sqlite").string();
+}
+
+std::int64_t ResultsDb::begin_run(const RunRecord& run) {
+  Statement s(db_,
+              "INSERT INTO runs(uid, command, params, status, solutions, orbits, nodes, seconds, threads, host, "
+              "version, started_at, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+              "COALESCE(NULLIF(?12, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')), NULLIF(?13, ''))");
+  s.bind(1, run.uid.empty() ? make_run_uid(run) : run.uid)
+      .bind(2, run.command)
+      .bind(3, run.params.is_null() ? std::string("{}") : run.params.dump())
+      .bind(4, run.status.empty() ? std::string("running") : run.status)
+      .bind(5, std::int64_t(run.solutions));
+  if (run.orbits) s.bind(6, std::int64_t(*run.orbits));
+  s.bind(7, std::int64_t(run.nodes))
+      .bind(8, run.seconds)
+      .bind(9, std::int64_t(run.threads))
+      .bind(10, run.host.empty() ? host_name() : run.host)
+      .bind(11, run.version.empty() ? std::string(TILEKIT_VERSION) : run.version)
+      .bind(12, run.started_at)
+      .bind(13, run.finished_at);
+  s.run();
+  return sqlite3_last_insert_rowid(db_);
+}
+
+void ResultsDb::finish_run(const RunRecord& run) {
+  Statement s(db_,
+              "UPDATE runs SET status = ?2, solutions = ?3, orbits = ?4, nodes = ?5, seconds = ?6, threads = ?7, "
+              "finished_at = COALESCE(NULLIF(?8, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')) WHERE id = ?1");
+  s.bind(1, run.id)
+      .bind(2, run.status.empty() ? std::string("complete") : run.status)
+      .bind(3, std::int64_t(run.solutions));
+  if (run.orbits) s.bind(4, std::int64_t(*run.orbits));
+  s.bind(5, std::int64_t(run.nodes)).bind(6, run.seconds).bind(7, std::int64_t(run.threads)).bind(8, run.finished_at);
+  s.run();
+  if (sqlite3_changes(db_) == 0) throw NotFound(fmt::format("{}: no run with id {}", path_, run.id));
+}
+
+bool ResultsDb::add_solution(const SolutionRecord& s) { return add_solutions({s}) == 1; }
+
+std::size_t ResultsDb::add_solutions(const std::vector<SolutionRecord>& batch) {
+  if (batch.empty()) return 0;
+  Transaction tx(db_);
+  Statement ins(db_, dbrows::kInsertSolution);
+  std::size_t added = 0;
+  for (const SolutionRecord& s : batch) {
+    dbrows::bind_solution(ins, s, solution_hash(s.tiling));
+    ins.run();
+    added += std::size_t(sqlite3_changes(db_));
+  }
+  tx.commit();
+  return added;
+}
+
+std::optional<SolutionRecord> ResultsDb::find_solution(TileKind kind, std::uint32_t colours, int rows, int cols) {
+  Statement s(db_, std::string(dbrows::kSelectSolution) +
+                       " WHERE kind = ?1 AND colors = ?2 AND rows = ?3 AND cols = ?4 AND validated = 1 "
+                       "ORDER BY id LIMIT 1");
+  s.bind(1, std::string(kind_name(kind))).bind(2, std::int64_t(colours)).bind(3, std::int64_t(rows)).bind(4, std::int64_t(cols));
+  if (!s.step()) return std::nullopt;
+  return dbrows::read_solution(s, true);
+}
+
+std::int64_t ResultsDb::add_tileset(const std::string& name, TileKind kind, std::uint64_t tiles, std::uint32_t colours,
+                                    const std::string& content_hash, const std::string& source,
+                                    const std::string& text) {
+  Transaction tx(db_);
+  Statement ins(db_,
+                "INSERT OR IGNORE INTO tilesets(name, kind, tiles, colors, content_hash, source, text, created_at) "
+                "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, strftime('%Y-%m-%dT%H:%M:%fZ', 'now'))");
+  ins.bind(1, name)
+      .bind(2, std::string(kind_name(kind)))
+      .bind(3, std::int64_t(tiles))
+      .bind(4, std::int64_t(colours))
+      .bind(5, content_hash)
+      .bind(6, source)
+      .bind(7, text)
+      .run();
+  Statement id(db_, "SELECT id FROM tilesets WHERE name = ?1 AND content_hash = ?2");
+  id.bind(1, name).bind(2, content_hash);
+  if (!id.step()) throw std::runtime_error("tile set row vanished after insert");
+  const auto result = id.int64(0);
+  tx.commit();
+  return result;
+}
+
+std::int64_t ResultsDb::add_conversion(std::int64_t source_set, const std::string& method, std::int64_t result_set,
+                                       std::uint64_t tiles_before, std::uint64_t tiles_after, std::uint32_t colours,
+                                       const std::string& soundness, const nlohmann::json& details) {
+  Transaction tx(db_);
+  for (std::int64_t set : {source_set, result_set}) {
+    Statement q(db_, "SELECT 1 FROM tilesets WHERE id = ?1");
+    q.bind(1, set);
+    if (!q.step()) throw InputError(fmt::format("{}: no tile set with id {} (add it with add_tileset first)", path_, set));
+  }
+  Statement ins(db_,
+                "INSERT INTO conversions(source_set, method, result_set, tiles_before, tiles_after, colors, soundness, "
+                "details, created_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, strftime('%Y-%m-%dT%H:%M:%fZ', 'now')) "
+                "ON CONFLICT(source_set, method, result_set) DO UPDATE SET tiles_before = excluded.tiles_before, "
+                "tiles_after = excluded.tiles_after, colors = excluded.colors, soundness = excluded.soundness, "
+                "details = excluded.details");
+  ins.bind(1, source_set)
+      .bind(2, method)
+      .bind(3, result_set)
+      .bind(4, std::int64_t(tiles_before))
+      .bind(5, std::int64_t(tiles_after))
+      .bind(6, std::int64_t(colours))
+      .bind(7, soundness.empty() ? std::string("unknown") : soundness)
+      .bind(8, details.is_null() ? std::string("{}") : details.dump())
+      .run();
+  Statement id(db_, "SELECT id FROM conversions WHERE source_set = ?1 AND method = ?2 AND result_set = ?3");
+  id.bind(1, source_set).bind(2, method).bind(3, result_set);
+  if (!id.step()) throw std::runtime_error("conversion row vanished after insert");
+  const auto result = id.int64(0);
+  tx.commit();
+  return result;
+}
+
+// FNV-1a over a fixed little-endian serialisation, then the MurmurHash3 finaliser so that
+// nearby inputs spread over all 64 bits.
+std::string solution_hash(const Tiling& t) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  auto mix = [&h](std::uint64_t v, int bytes) {
+    for (int i = 0; i < bytes; ++i) {
+      h ^= (v >> (8 * i)) & 0xff;
+      h *= 0x100000001b3ull;
+    }
+  };
+  mix(t.kind == TileKind::Wang ? 1 : 2, 1);
+  mix(t.colours, 4);
+  if (t.kind == TileKind::Wang && t.cv() != t.ch()) mix(t.cv(), 4);  // mixed radix only
+  mix(std::uint64_t(t.rows), 4);
+  mix(std::uint64_t(t.cols), 4);
+  mix(t.torus ? 1 : 0, 1);
+  for (TileIndex c : t.cells) mix(c, 4);
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ull;
+  h ^= h >> 33;
+  return fmt::format("{:016x}", h);
+}
+
+}  // namespace tilekit

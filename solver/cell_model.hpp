@@ -1,0 +1,61 @@
+#pragma once
+// The tile-per-cell formulation: one variable per grid cell, whose values are the tiles of
+// the set. Works for every problem solve() accepts: Wang or corner sets (a corner tile is a
+// Wang tile whose edge colours are pairs of corner colours, thesis sec. 2.9), torus or
+// bounded rectangle, packing (each tile once) or tiling (tiles repeat).
+//
+// Domains are bitsets over the tiles. A cell's domain is the intersection of the tiles whose
+// edges match each placed neighbour (one precomputed mask per edge and colour) and, for
+// packings, the unused tiles. Forward checking: placing a tile fails at once when a free
+// neighbour's domain becomes empty.
+//
+// Translations of a packing torus are broken by fixing tile 0 at cell (0,0): every packing
+// has exactly one translate with tile 0 there, and no packing is its own translate (each tile
+// occurs once), so each leaf stands for rows*cols packings (multiplicity()).
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "solver/model.hpp"
+#include "solver/solve.hpp"
+
+namespace tilekit {
+
+class CellModel {
+ public:
+  enum class Ordering { Static, MostConstrained };
+  CellModel(const TilingProblem& problem, bool break_translation, Ordering ordering);
+
+  int branch(std::vector<int>& values);
+  bool assign(int cell, int tile);
+  void unassign(int cell, int tile);
+  void set_value_seed(std::uint64_t seed);
+  Tiling tiling() const;
+  std::uint64_t multiplicity() const { return break_translation_ ? std::uint64_t(cells_) : 1; }
+
+  int cells() const { return cells_; }
+  int tiles() const { return tiles_; }
+
+ private:
+  struct Tables;  // immutable, shared by every copy
+  void rebuild_masks();
+  // Writes the domain of `cell` into dom (words_ words); returns its size.
+  int domain(int cell, std::uint64_t* dom) const;
+  bool domain_empty(int cell) const;
+
+  std::shared_ptr<const Tables> t_;
+  int cells_ = 0, tiles_ = 0, words_ = 0;
+  bool break_translation_ = false, packing_ = false;
+  Ordering ordering_;
+  std::vector<int> perm_;             // internal value -> tile number in the set (value order)
+  std::vector<int> label_;            // internal value*4 + dir -> edge label (dir: N E S W)
+  std::vector<std::uint64_t> masks_;  // (dir*labels + label)*words_: values whose dir edge == label
+  std::vector<std::uint64_t> avail_;  // values still usable (packing) or valid (tiling)
+  std::vector<int> tile_;             // cell -> internal value or -1
+  int assigned_ = 0, fixed_ = 0;
+  mutable std::vector<std::uint64_t> scratch_;
+};
+
+static_assert(SearchModel<CellModel>);
+
+}  // namespace tilekit

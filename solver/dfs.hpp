@@ -1,0 +1,113 @@
+#pragma once
+// Depth-first search of one subtree (one subproblem), iterative so that the decision path of
+// the current node is always at hand: that path is what a checkpoint stores, and what
+// `resume` replays to continue exactly where a stopped search left off.
+//
+// Control hooks (inlined; see ParallelSearch for the real ones):
+//   bool at_node(const std::vector<Decision>& path, const SearchCounters& counted)
+//        called on entering every node, before it is counted; false stops the search (the
+//        node at `path` is then the first one not yet explored)
+//   void leaf(const M& model, SearchCounters& counted)   at every solution
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "solver/model.hpp"
+#include "solver/search_state.hpp"
+#include "tilesets/error.hpp"
+
+namespace tilekit {
+
+enum class SubtreeOutcome { Exhausted, Stopped };
+
+template <SearchModel M>
+class SubtreeSearch {
+ public:
+  // Explores the subtree below `prefix` (decisions replayed from the root of `m`), starting at
+  // `resume` when that is longer than the prefix (a path recorded by at_node in an earlier
+  // run). `counted` accumulates. Throws InputError when `resume` does not replay (a checkpoint
+  // from a different search).
+  template <class Control>
+  SubtreeOutcome run(M& m, const std::vector<Decision>& prefix, const std::vector<Decision>& resume,
+                     SearchCounters& counted, Control& ctl) {
+    path_.clear();
+    for (const Decision& d : prefix) {
+      path_.push_back(d);
+      if (!m.assign(d.var, d.value)) throw InputError("subproblem prefix does not replay");
+    }
+    if (!resume.empty() && (resume.size() < prefix.size() || !std::equal(prefix.begin(), prefix.end(), resume.begin())))
+      throw InputError("checkpoint path does not start with its subproblem's prefix");
+    std::size_t d = 0;  // depth of the current node below the prefix
+    for (std::size_t i = prefix.size(); i < resume.size(); ++i, ++d) {
+      ensure(d);
+      int var = m.branch(values_[d]);
+      const auto& vals = values_[d];
+      std::size_t j = 0;
+      while (j < vals.size() && vals[j] != resume[i].value) ++j;
+      if (var != resume[i].var || j == vals.size())
+        throw InputError("checkpoint path does not replay in this search (different problem or options)");
+      frames_[d] = {var, j + 1};
+      path_.push_back(resume[i]);
+      if (!m.assign(var, resume[i].value))
+        throw InputError("checkpoint path does not replay in this search (different problem or options)");
+    }
+    bool entering = true;
+    for (;;) {
+      if (entering) {
+        if (!ctl.at_node(path_, counted)) return SubtreeOutcome::Stopped;
+        ++counted.nodes;
+        ensure(d);
+        int var = m.branch(values_[d]);
+        if (var < 0) {
+          ctl.leaf(m, counted);
+          if (d == 0) return SubtreeOutcome::Exhausted;
+          --d;
+          Decision x = path_.back();
+          path_.pop_back();
+          m.unassign(x.var, x.value);
+        } else {
+          frames_[d] = {var, 0};
+        }
+      }
+      Frame& f = frames_[d];
+      const std::vector<int>& vals = values_[d];
+      entering = false;
+      while (f.next < vals.size()) {
+        int v = vals[f.next++];
+        path_.push_back({f.var, v});
+        if (m.assign(f.var, v)) {
+          entering = true;
+          break;
+        }
+        m.unassign(f.var, v);
+        path_.pop_back();
+      }
+      if (entering) {
+        ++d;
+        continue;
+      }
+      if (d == 0) return SubtreeOutcome::Exhausted;
+      --d;
+      Decision x = path_.back();
+      path_.pop_back();
+      m.unassign(x.var, x.value);
+    }
+  }
+
+ private:
+  struct Frame {
+    int var = 0;
+    std::size_t next = 0;
+  };
+  void ensure(std::size_t d) {
+    if (values_.size() <= d) {
+      values_.resize(d + 1);
+      frames_.resize(d + 1);
+    }
+  }
+  std::vector<std::vector<int>> values_;
+  std::vector<Frame> frames_;
+  std::vector<Decision> path_;
+};
+
+}  // namespace tilekit

@@ -1,0 +1,55 @@
+#pragma once
+// Knuth's estimate of the size of a backtrack tree (D. E. Knuth, "Estimating the efficiency
+// of backtrack programs", Math. Comp. 29, 1975): follow one random root-to-leaf path; with
+// d_i the number of children of the i-th node on it, 1 + d_1 + d_1 d_2 + ... is an unbiased
+// estimate of the number of nodes. Averaging many probes reduces the variance.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "solver/model.hpp"
+
+namespace tilekit {
+
+struct TreeEstimate {
+  double nodes = 0;       // mean over the probes
+  double leaves = 0;      // estimated number of leaves (solutions)
+  std::uint64_t probes = 0;
+};
+
+template <SearchModel M>
+TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t seed) {
+  std::mt19937_64 rng(mix_seed(seed ^ 0x6b6e757468ull));
+  TreeEstimate est;
+  std::vector<int> values, ok;
+  for (std::uint64_t p = 0; p < probes; ++p) {
+    M m = root;
+    double weight = 1, total = 1;
+    for (;;) {
+      int var = m.branch(values);
+      if (var < 0) {
+        est.leaves += weight;
+        break;
+      }
+      ok.clear();
+      for (int v : values) {
+        if (m.assign(var, v)) ok.push_back(v);
+        m.unassign(var, v);
+      }
+      if (ok.empty()) break;
+      weight *= double(ok.size());
+      total += weight;
+      int v = ok[std::uniform_int_distribution<std::size_t>(0, ok.size() - 1)(rng)];
+      m.assign(var, v);
+    }
+    est.nodes += total;
+  }
+  if (probes) {
+    est.nodes /= double(probes);
+    est.leaves /= double(probes);
+  }
+  est.probes = probes;
+  return est;
+}
+
+}  // namespace tilekit

@@ -1,0 +1,48 @@
+#pragma once
+// What the engine needs from a model (Gecode: a model says variables, constraints and
+// branching; the engine searches). Models are value types: every worker thread copies the
+// prototype. Implementations: CellModel (tile per cell, any set), LatticeModel (pegs for
+// corner tiles, edges for Wang tiles); a model over a fundamental domain under an imposed
+// automorphism plugs in the same way.
+//
+//   int  branch(std::vector<int>& values)  // chooses the next variable and writes its
+//                                           // candidate values in search order; -1 when all
+//                                           // variables are assigned (a leaf = a solution);
+//                                           // must be a function of the current assignment
+//                                           // (and the value seed) only, so that a decision
+//                                           // path replays to the same node.
+//   bool assign(int var, int value)         // applies it; false when propagation fails
+//                                           // (the engine still calls unassign)
+//   void unassign(int var, int value)       // undoes the latest assign
+//   void set_value_seed(std::uint64_t seed) // seeded value order (0 = natural order); only
+//                                           // called at the root
+//   Tiling tiling() const                   // at a leaf: the solution
+//   std::uint64_t multiplicity() const      // solutions one leaf stands for (translations
+//                                           // broken by the model)
+#include <concepts>
+#include <cstdint>
+#include <vector>
+
+#include "tilesets/tiling.hpp"
+
+namespace tilekit {
+
+template <class M>
+concept SearchModel = std::copy_constructible<M> && requires(M m, const M cm, std::vector<int>& v, int x) {
+  { m.branch(v) } -> std::convertible_to<int>;
+  { m.assign(x, x) } -> std::convertible_to<bool>;
+  m.unassign(x, x);
+  m.set_value_seed(std::uint64_t{});
+  { cm.tiling() } -> std::convertible_to<Tiling>;
+  { cm.multiplicity() } -> std::convertible_to<std::uint64_t>;
+};
+
+// splitmix64: the project's seeded hash for value orders and restart seeds.
+constexpr std::uint64_t mix_seed(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+}  // namespace tilekit

@@ -1,0 +1,483 @@
+#pragma once
+// The parallel driver: splits a model's search tree into subproblems (decision prefixes at an
+// adaptive depth), runs them on OpenMP threads with dynamic scheduling, and keeps enough
+// state to checkpoint and resume at any moment (Gecode-style recomputation: a running
+// subproblem is just its decision path).
+//
+//  - count/all: every subproblem of this shard is exhausted; counts are sums of per-subproblem
+//    counts, so they do not depend on the thread count or the schedule.
+//  - first: subproblems in DFS order (tiling problems), or, with `restarts`, every thread
+//    runs randomised dives with Luby-sequence node limits (packing problems); the first
+//    solution stops every thread.
+//  - shards: subproblem i belongs to shard i mod N; the subproblem list depends only on the
+//    model and N, so shards 0..N-1 together cover the tree exactly once.
+//  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
+//    and stops the workers on a signal or the time limit (then writes a final checkpoint).
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <fmt/format.h>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "solver/dfs.hpp"
+#include "solver/knuth_estimate.hpp"
+#include "solver/luby.hpp"
+#include "solver/model.hpp"
+#include "solver/search_state.hpp"
+#include "solver/signals.hpp"
+#include "solver/solve.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/progress.hpp"
+
+namespace tilekit {
+
+struct ParallelConfig {
+  SearchMode mode = SearchMode::Count;
+  int threads = 1;
+  std::uint64_t seed = 0;
+  double time_limit = 0;
+  int shard_index = 0, shard_count = 1;
+  double checkpoint_every = 0;
+  bool progress = false;
+  std::string title = "search";
+  bool restarts = false;               // first mode: Luby restarts from the root
+  std::uint64_t restart_base = 2000;   // nodes per Luby unit
+  std::size_t subproblem_target = 1024;
+  std::uint64_t estimate_probes = 0;   // Knuth probes before the search (0 = none)
+  bool poll_signals = false;           // stop on SignalCatcher::caught()
+  std::string fingerprint;
+  std::function<void(const SearchState&)> save;  // empty: no checkpoints
+  const SearchState* resume = nullptr;
+  std::function<void()> flush;         // called before each checkpoint is saved
+};
+
+struct ParallelOutcome {
+  SearchCounters counts;  // finished subproblems + in-flight progress (+ restart nodes)
+  bool complete = false, interrupted = false, timed_out = false, found = false;
+  int signal = 0;
+  double seconds = 0;         // this run
+  double total_seconds = 0;   // including the runs this one resumed
+  std::uint64_t subproblems = 0, shard_subproblems = 0, subproblems_done = 0, restarts = 0;
+  std::size_t checkpoints_written = 0;
+  TreeEstimate estimate;
+};
+
+// A subproblem list is a deterministic function of the model and the target.
+template <SearchModel M>
+std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t target, std::uint64_t& nodes) {
+  std::vector<std::vector<Decision>> level{{}};
+  std::vector<int> values;
+  for (;;) {
+    std::vector<std::vector<Decision>> next;
+    bool expanded = false;
+    for (std::size_t i = 0; i < level.size(); ++i) {
+      if (next.size() + (level.size() - i) >= target) {  // enough: keep the rest unexpanded
+        next.insert(next.end(), level.begin() + std::ptrdiff_t(i), level.end());
+        break;
+      }
+      M m = root;
+      for (const Decision& d : level[i]) m.assign(d.var, d.value);
+      int var = m.branch(values);
+      if (var < 0) {
+        next.push_back(level[i]);
+        continue;
+      }
+      expanded = true;
+      ++nodes;
+      for (int v : values) {
+        if (m.assign(var, v)) {
+          next.push_back(level[i]);
+          next.back().push_back({var, v});
+        }
+        m.unassign(var, v);
+      }
+    }
+    level = std::move(next);
+    if (!expanded || level.size() >= target || level.empty()) return level;
+  }
+}
+
+inline std::uint64_t hash_subproblems(const std::vector<std::vector<Decision>>& subs) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a
+  auto add = [&](std::uint64_t x) {
+    for (int b = 0; b < 8; ++b) h = (h ^ ((x >> (8 * b)) & 0xff)) * 0x100000001b3ull;
+  };
+  for (const auto& s : subs) {
+    add(s.size());
+    for (const Decision& d : s) add(std::uint64_t(std::uint32_t(d.var)) << 32 | std::uint32_t(d.value));
+  }
+  return h;
+}
+
+template <SearchModel M>
+class ParallelSearch {
+ public:
+  using Leaf = std::function<void(const M&, SearchCounters&)>;
+
+  ParallelSearch(const M& root, ParallelConfig cfg, Leaf leaf) : root_(root), cfg_(std::move(cfg)), leaf_(std::move(leaf)) {
+    if (cfg_.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", cfg_.threads));
+  }
+
+  ParallelOutcome run() {
+    start_ = std::chrono::steady_clock::now();
+    ParallelOutcome out;
+    if (cfg_.estimate_probes) out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.seed);
+    estimate_ = out.estimate.nodes;
+    prior_seconds_ = cfg_.resume ? cfg_.resume->seconds : 0;
+    if (cfg_.mode == SearchMode::First && cfg_.restarts) {
+      run_restarts(out);
+    } else {
+      run_subproblems(out);
+    }
+    out.seconds = elapsed();
+    out.total_seconds = prior_seconds_ + out.seconds;
+    out.found = found_.load();
+    out.checkpoints_written = checkpoints_;
+    out.signal = signal_;
+    return out;
+  }
+
+ private:
+  struct Job {
+    std::uint64_t index = 0;
+    std::vector<Decision> resume;
+    SearchCounters counted;
+  };
+  struct Slot {
+    std::mutex mu;
+    bool active = false;
+    InFlightSubproblem snap;
+    std::uint64_t epoch = 0;
+    std::atomic<std::uint64_t> live_nodes{0};
+  };
+  enum Stop : int { kRunning = 0, kFound, kSignal, kTime, kError, kExhausted };
+
+  struct Control {
+    ParallelSearch& s;
+    Slot& slot;
+    std::uint64_t index;
+    std::uint64_t seen_epoch;
+    std::uint64_t node_limit = 0;
+    bool hit_limit = false;
+    bool at_node(const std::vector<Decision>& path, const SearchCounters& c) {
+      if ((c.nodes & 1023) == 0) slot.live_nodes.store(c.nodes, std::memory_order_relaxed);
+      if (s.stop_.load(std::memory_order_relaxed) != kRunning) {
+        publish(path, c, s.epoch_.load());
+        return false;
+      }
+      std::uint64_t e = s.epoch_.load(std::memory_order_relaxed);
+      if (e != seen_epoch) {
+        publish(path, c, e);
+        seen_epoch = e;
+      }
+      if (node_limit && c.nodes >= node_limit) {
+        hit_limit = true;
+        return false;
+      }
+      return true;
+    }
+    void publish(const std::vector<Decision>& path, const SearchCounters& c, std::uint64_t e) {
+      std::lock_guard lock(slot.mu);
+      slot.snap.index = index;
+      slot.snap.path = path;
+      slot.snap.counted = c;
+      slot.epoch = e;
+    }
+    void leaf(const M& m, SearchCounters& c) { s.on_leaf(m, c); }
+  };
+
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  void on_leaf(const M& m, SearchCounters& c) {
+    if (cfg_.mode == SearchMode::First) {
+      if (found_.exchange(true)) return;
+      leaf_(m, c);
+      request_stop(kFound);
+      return;
+    }
+    leaf_(m, c);
+  }
+
+  void request_stop(int why) {
+    int expected = kRunning;
+    stop_.compare_exchange_strong(expected, why);
+  }
+
+  // ---- count / all / first-in-order: subproblems ----
+  void run_subproblems(ParallelOutcome& out) {
+    std::uint64_t split_nodes = 0;
+    subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes);
+    std::uint64_t hash = hash_subproblems(subs_);
+    out.subproblems = subs_.size();
+    finished_.assign(subs_.size(), false);
+    std::vector<Job> jobs;
+    if (const SearchState* r = cfg_.resume) {
+      if (r->subproblem_count != subs_.size() || r->subproblem_hash != hash || r->finished.size() != subs_.size())
+        throw InputError("checkpoint does not match this search: its subproblems differ (different problem or options)");
+      finished_ = r->finished;
+      finished_counts_ = r->finished_counts;
+      for (const InFlightSubproblem& f : r->in_flight) {
+        if (f.index >= subs_.size() || finished_[f.index] || !mine(f.index))
+          throw InputError("checkpoint is inconsistent: an in-flight subproblem is finished or not in this shard");
+        jobs.push_back({f.index, f.path, f.counted});
+      }
+    }
+    for (std::uint64_t i = 0; i < subs_.size(); ++i) {
+      if (!mine(i)) continue;
+      ++out.shard_subproblems;
+      if (finished_[i]) continue;
+      bool inflight = std::any_of(jobs.begin(), jobs.end(), [&](const Job& j) { return j.index == i; });
+      if (!inflight) jobs.push_back({i, {}, {}});
+    }
+    // In first mode keep DFS order; a resumed in-flight job goes where its index says.
+    std::stable_sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.index < b.index; });
+    jobs_ = std::move(jobs);
+    split_nodes_ = split_nodes;
+    shard_total_ = out.shard_subproblems;
+
+    run_workers([this](int tid) { worker_subproblems(tid); });
+
+    out.counts = finished_counts_;
+    out.counts.nodes += split_nodes_;
+    for (auto& s : slots_)
+      if (s->active) {
+        out.counts.solutions += s->snap.counted.solutions;
+        out.counts.orbits += s->snap.counted.orbits;
+        out.counts.nodes += s->snap.counted.nodes;
+      }
+    out.subproblems_done = done_in_shard();
+    finalize(out, out.subproblems_done == out.shard_subproblems);
+  }
+
+  bool mine(std::uint64_t i) const { return i % std::uint64_t(cfg_.shard_count) == std::uint64_t(cfg_.shard_index); }
+
+  std::uint64_t done_in_shard() const {
+    std::uint64_t n = 0;
+    for (std::uint64_t i = 0; i < finished_.size(); ++i) n += mine(i) && finished_[i];
+    return n;
+  }
+
+  void worker_subproblems(int tid) {
+    Slot& slot = *slots_[std::size_t(tid)];
+    SubtreeSearch<M> dfs;
+    for (;;) {
+      Job job;
+      {
+        std::lock_guard lock(mu_);
+        if (next_job_ >= jobs_.size() || stop_.load() != kRunning) return;
+        job = jobs_[next_job_++];
+        std::lock_guard sl(slot.mu);
+        slot.active = true;
+        slot.snap.index = job.index;
+        slot.snap.path = job.resume.empty() ? subs_[job.index] : job.resume;
+        slot.snap.counted = job.counted;
+        slot.epoch = epoch_.load();
+      }
+      Control ctl{*this, slot, job.index, slot.epoch};
+      SearchCounters c = job.counted;
+      M m = root_;
+      SubtreeOutcome o = dfs.run(m, subs_[job.index], job.resume, c, ctl);
+      if (o == SubtreeOutcome::Stopped) return;  // the slot keeps the published snapshot
+      std::lock_guard lock(mu_);
+      finished_[job.index] = true;
+      finished_counts_ += c;
+      std::lock_guard sl(slot.mu);
+      slot.active = false;
+      slot.live_nodes.store(0);
+    }
+  }
+
+  // ---- first mode with restarts ----
+  void run_restarts(ParallelOutcome& out) {
+    if (const SearchState* r = cfg_.resume) {
+      next_restart_ = r->restarts;
+      restart_nodes_ = r->restart_nodes;
+    }
+    run_workers([this](int tid) { worker_restarts(tid); });
+    out.restarts = next_restart_.load();
+    out.counts.nodes = restart_nodes_.load();
+    out.counts.solutions = restart_solutions_.load();
+    finalize(out, stop_.load() == kExhausted);
+  }
+
+  void worker_restarts(int tid) {
+    Slot& slot = *slots_[std::size_t(tid)];
+    SubtreeSearch<M> dfs;
+    while (stop_.load() == kRunning) {
+      std::uint64_t r = next_restart_++;
+      M m = root_;
+      m.set_value_seed(mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
+      Control ctl{*this, slot, 0, epoch_.load()};
+      ctl.node_limit = luby(r + 1) * cfg_.restart_base;
+      SearchCounters c;
+      SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
+      restart_nodes_ += c.nodes;
+      restart_solutions_ += c.solutions;
+      if (o == SubtreeOutcome::Exhausted) request_stop(kExhausted);  // the whole tree, no limit hit
+    }
+  }
+
+  // ---- shared machinery: threads, monitor, checkpoints ----
+  template <class Work>
+  void run_workers(Work work) {
+    int threads = cfg_.threads;
+    slots_.clear();
+    for (int i = 0; i < threads; ++i) slots_.push_back(std::make_unique<Slot>());
+    std::exception_ptr error;
+    std::mutex error_mu;
+    std::atomic<bool> done{false};
+    std::thread monitor([&] { monitor_loop(done); });
+#pragma omp parallel num_threads(threads)
+    {
+      try {
+        work(omp_get_thread_num());
+      } catch (...) {
+        std::lock_guard lock(error_mu);
+        if (!error) error = std::current_exception();
+        request_stop(kError);
+      }
+    }
+    {
+      std::lock_guard lock(monitor_mu_);
+      done = true;
+    }
+    monitor_cv_.notify_all();
+    monitor.join();
+    if (error) std::rethrow_exception(error);
+  }
+
+  void monitor_loop(std::atomic<bool>& done) {
+    ProgressReporter progress(cfg_.title, 0, cfg_.progress, 5.0);
+    auto last_ckpt = std::chrono::steady_clock::now();
+    for (;;) {
+      {
+        std::unique_lock lock(monitor_mu_);
+        monitor_cv_.wait_for(lock, std::chrono::milliseconds(20), [&] { return done.load(); });
+        if (done) break;
+      }
+      if (cfg_.poll_signals && SignalCatcher::caught()) {
+        signal_ = SignalCatcher::caught();
+        request_stop(kSignal);
+      }
+      if (cfg_.time_limit > 0 && elapsed() >= cfg_.time_limit) request_stop(kTime);
+      auto now = std::chrono::steady_clock::now();
+      if (cfg_.save && cfg_.checkpoint_every > 0 && stop_.load() == kRunning &&
+          std::chrono::duration<double>(now - last_ckpt).count() >= cfg_.checkpoint_every) {
+        checkpoint(false);
+        last_ckpt = std::chrono::steady_clock::now();
+      }
+      if (cfg_.progress) report(progress);
+    }
+    if (cfg_.progress) report(progress);
+  }
+
+  void report(ProgressReporter& p) {
+    std::uint64_t live = 0;
+    for (auto& s : slots_) live += s->live_nodes.load(std::memory_order_relaxed);
+    double t = elapsed();
+    if (cfg_.mode == SearchMode::First && cfg_.restarts) {
+      std::uint64_t nodes = restart_nodes_.load() + live;
+      p.update(0, 0, fmt::format("restart {}, {} nodes, {:.3g} nodes/s", next_restart_.load(), nodes,
+                                 t > 0 ? double(nodes) / t : 0.0));
+      return;
+    }
+    std::uint64_t done, nodes;
+    {
+      std::lock_guard lock(mu_);
+      done = done_in_shard();
+      nodes = finished_counts_.nodes + split_nodes_;
+    }
+    nodes += live;
+    std::string est = estimate_ > 0 ? fmt::format(" of ~{:.3g} (Knuth)", estimate_) : "";
+    p.update(double(done), double(shard_total_),
+             fmt::format("{}/{} subproblems, {} nodes{}, {:.3g} nodes/s", done, shard_total_, nodes, est,
+                         t > 0 ? double(nodes) / t : 0.0));
+  }
+
+  // Collects a consistent state: every active worker has published a snapshot for the
+  // current epoch (or finished its subproblem), then writes it after flushing the solutions.
+  void checkpoint(bool final) {
+    if (!cfg_.save) return;
+    if (!final) {
+      std::uint64_t e = ++epoch_;
+      auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      for (;;) {
+        bool all = true;
+        for (auto& s : slots_) {
+          std::lock_guard sl(s->mu);
+          if (s->active && s->epoch != e) all = false;
+        }
+        if (all || stop_.load() != kRunning) break;
+        if (std::chrono::steady_clock::now() > deadline) return;  // try again next period
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+      if (stop_.load() != kRunning) return;  // the final checkpoint follows
+    }
+    SearchState st;
+    st.fingerprint = cfg_.fingerprint;
+    {
+      std::lock_guard lock(mu_);
+      st.subproblem_count = subs_.size();
+      st.subproblem_hash = subs_.empty() ? 0 : hash_subproblems(subs_);
+      st.finished = finished_;
+      st.finished_counts = finished_counts_;
+      for (auto& s : slots_) {
+        std::lock_guard sl(s->mu);
+        if (s->active) st.in_flight.push_back(s->snap);
+      }
+    }
+    st.restarts = next_restart_.load();
+    st.restart_nodes = restart_nodes_.load();
+    st.seconds = prior_seconds_ + elapsed();
+    if (cfg_.flush) cfg_.flush();
+    cfg_.save(st);
+    ++checkpoints_;
+  }
+
+  void finalize(ParallelOutcome& out, bool exhausted) {
+    int why = stop_.load();
+    out.interrupted = why == kSignal;
+    out.timed_out = why == kTime;
+    out.complete = exhausted && why != kFound && why != kSignal && why != kTime && why != kError;
+    if (cfg_.mode == SearchMode::First && cfg_.restarts) out.complete = why == kExhausted;
+    if (cfg_.save) checkpoint(true);
+  }
+
+  M root_;
+  ParallelConfig cfg_;
+  Leaf leaf_;
+  std::chrono::steady_clock::time_point start_;
+  double prior_seconds_ = 0, estimate_ = 0;
+  std::atomic<int> stop_{kRunning};
+  std::atomic<bool> found_{false};
+  std::atomic<std::uint64_t> epoch_{0};
+  int signal_ = 0;
+  std::size_t checkpoints_ = 0;
+
+  std::mutex mu_;  // guards jobs_, next_job_, finished_, finished_counts_ (taken before a slot's mutex)
+  std::vector<std::vector<Decision>> subs_;
+  std::vector<Job> jobs_;
+  std::size_t next_job_ = 0;
+  std::vector<bool> finished_;
+  SearchCounters finished_counts_;
+  std::uint64_t split_nodes_ = 0, shard_total_ = 0;
+  std::vector<std::unique_ptr<Slot>> slots_;
+
+  std::atomic<std::uint64_t> next_restart_{0}, restart_nodes_{0}, restart_solutions_{0};
+
+  std::mutex monitor_mu_;
+  std::condition_variable monitor_cv_;
+};
+
+}  // namespace tilekit

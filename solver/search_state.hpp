@@ -1,0 +1,53 @@
+#pragma once
+// The engine's resumable state (Gecode's recomputation idea): a search is a list of
+// subproblems, each a prefix of decisions; a running subproblem is fully described by its
+// path of decisions from the root. That is all a checkpoint or a shard needs to hold.
+// The on-disk format lives in checkpoints/checkpoint.hpp; this is the in-memory value.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tilekit {
+
+// One decision: variable `var` takes value `value` (model-specific numbering).
+struct Decision {
+  int var = 0, value = 0;
+  bool operator==(const Decision&) const = default;
+};
+
+struct SearchCounters {
+  std::uint64_t solutions = 0;  // leaves times their multiplicity (e.g. torus translations)
+  std::uint64_t orbits = 0;     // leaves that are the canonical member of their orbit
+  std::uint64_t nodes = 0;
+  SearchCounters& operator+=(const SearchCounters& o) {
+    solutions += o.solutions;
+    orbits += o.orbits;
+    nodes += o.nodes;
+    return *this;
+  }
+  bool operator==(const SearchCounters&) const = default;
+};
+
+// A subproblem stopped part-way: the node to explore next (its whole decision path from the
+// root, prefix included) and what was counted in it before that node.
+struct InFlightSubproblem {
+  std::uint64_t index = 0;
+  std::vector<Decision> path;
+  SearchCounters counted;
+};
+
+struct SearchState {
+  // Identity of the run: everything that must match for a resume to give the uninterrupted
+  // result (problem, mode, formulation, ordering, seed, shard). Compared as text.
+  std::string fingerprint;
+  std::uint64_t subproblem_count = 0;  // over all shards
+  std::uint64_t subproblem_hash = 0;   // hash of every subproblem prefix
+  std::vector<bool> finished;          // per subproblem
+  SearchCounters finished_counts;      // sum over finished subproblems
+  std::vector<InFlightSubproblem> in_flight;
+  std::uint64_t restarts = 0;          // first mode with restarts: restarts done so far
+  std::uint64_t restart_nodes = 0;     // nodes spent in those restarts
+  double seconds = 0;                  // wall time spent by earlier runs of this search
+};
+
+}  // namespace tilekit

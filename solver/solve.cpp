@@ -1,0 +1,210 @@
+// solve(): checks a problem and its options, picks a model (formulation) and runs the
+// parallel engine on it; counts solutions and orbits, emits validated solutions.
+#include "solver/solve.hpp"
+
+#include <fmt/format.h>
+
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "solver/cell_model.hpp"
+#include "solver/lattice_model.hpp"
+#include "solver/parallel_search.hpp"
+#include "solver/symmetry.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/validator.hpp"
+
+namespace tilekit {
+
+TilingProblem complete_packing_problem(TileKind kind, std::uint32_t colours) {
+  check_colour_count(colours, "colours");
+  TilingProblem p;
+  p.set = kind == TileKind::Wang ? complete_wang_set(colours, colours) : complete_corner_set(colours);
+  p.rows = p.cols = int(colours * colours);
+  p.torus = true;
+  p.packing = true;
+  return p;
+}
+
+namespace {
+
+struct Plan {
+  std::string formulation, ordering;
+  bool restarts = false;
+  std::uint64_t restart_base = 0;
+  std::size_t subproblems = 0;
+};
+
+const char* mode_name(SearchMode m) {
+  return m == SearchMode::First ? "first" : m == SearchMode::Count ? "count" : "all";
+}
+
+Plan plan(const TilingProblem& p, const SearchOptions& o) {
+  const TileSet& set = p.set;
+  if (set.empty()) throw InputError("the tile set is empty");
+  if (p.rows < 1 || p.cols < 1) throw InputError(fmt::format("the grid must be at least 1x1, got {}x{}", p.rows, p.cols));
+  if (std::int64_t(p.rows) * p.cols > 1 << 22)
+    throw InputError(fmt::format("the grid {}x{} is too large (at most 4194304 cells)", p.rows, p.cols));
+  if (p.packing && std::size_t(p.rows) * std::size_t(p.cols) != set.size())
+    throw InputError(fmt::format("a packing of {} tiles needs rows*cols == {}, got {}x{}", set.size(), set.size(),
+                                 p.rows, p.cols));
+  if (o.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", o.threads));
+  if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count)
+    throw InputError(fmt::format("shard must be I/N with 0 <= I < N, got {}/{}", o.shard_index, o.shard_count));
+  if (o.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.time_limit));
+  if (o.checkpoint_every < 0)
+    throw InputError(fmt::format("checkpoint interval must be >= 0 seconds, got {}", o.checkpoint_every));
+  if (!o.checkpoint_path.empty() && !o.save_checkpoint)
+    throw InputError("checkpoint_path needs checkpoint I/O: use solve_checkpointed() (checkpoints/checkpoint.hpp)");
+  if (!o.resume_path.empty() && !o.resume_state)
+    throw InputError("resume_path needs checkpoint I/O: use solve_checkpointed() (checkpoints/checkpoint.hpp)");
+  Plan pl;
+  const bool wang = set.kind() == TileKind::Wang;
+  pl.formulation = o.formulation;
+  if (pl.formulation == "auto") pl.formulation = "cell";
+  if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
+    throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
+  if (pl.formulation == "pegs" && wang) throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
+  if (pl.formulation == "edges" && !wang) throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
+  pl.ordering = o.ordering;
+  if (pl.ordering == "auto") pl.ordering = "static";
+  if (pl.ordering != "static" && pl.ordering != "mrv")
+    throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
+  if (pl.ordering == "mrv" && pl.formulation != "cell")
+    throw InputError("the mrv ordering needs the cell formulation");
+  pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
+  pl.restart_base = o.restart_base ? o.restart_base : 4 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
+  pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
+  return pl;
+}
+
+std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the tile indices
+  for (std::size_t k = 0; k < p.set.size(); ++k) {
+    TileIndex i = p.set.index_of(k);
+    for (int b = 0; b < 4; ++b) h = (h ^ ((i >> (8 * b)) & 0xff)) * 0x100000001b3ull;
+  }
+  nlohmann::json j = {{"solver", 1},
+                      {"kind", std::string(kind_name(p.set.kind()))},
+                      {"radix", {p.set.horizontal_radix(), p.set.vertical_radix()}},
+                      {"tiles", p.set.size()},
+                      {"tiles_hash", fmt::format("{:016x}", h)},
+                      {"rows", p.rows},
+                      {"cols", p.cols},
+                      {"torus", p.torus},
+                      {"packing", p.packing},
+                      {"mode", mode_name(o.mode)},
+                      {"formulation", pl.formulation},
+                      {"ordering", pl.ordering},
+                      {"seed", o.seed},
+                      {"restarts", pl.restarts},
+                      {"subproblems", pl.subproblems},
+                      {"shard", {o.shard_index, o.shard_count}}};
+  if (pl.restarts) j["restart_base"] = pl.restart_base;
+  return j.dump();
+}
+
+template <SearchModel M>
+SearchResult run_model(const M& root, const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+  SearchResult res;
+  res.formulation = pl.formulation;
+  res.ordering = pl.ordering;
+  res.threads = o.threads;
+  res.fingerprint = fingerprint(p, o, pl);
+  if (o.resume_state && o.resume_state->fingerprint != res.fingerprint)
+    throw InputError("checkpoint does not match this search (different problem, mode, seed, formulation or shard)");
+
+  std::optional<PackingSymmetry> sym;
+  const bool translations = root.multiplicity() > 1;
+  if (o.mode != SearchMode::First && o.count_orbits && translations) sym = PackingSymmetry::for_problem(p);
+  if (sym) res.symmetry_order = sym->full_order();
+
+  std::mutex emit_mu;
+  auto emit = [&](const Tiling& t) {
+    ValidationReport rep = validate(t, &p.set);
+    if (!rep.valid || (p.packing && p.torus && !rep.packing))
+      throw std::logic_error("the solver produced a solution the validator rejects: " +
+                             (rep.errors.empty() ? std::string("not a packing") : rep.errors.front()));
+    if (o.on_solution) o.on_solution(t);
+  };
+  auto leaf = [&](const M& m, SearchCounters& c) {
+    c.solutions += m.multiplicity();
+    if (o.mode == SearchMode::Count && !sym) return;
+    Tiling t = m.tiling();
+    if (sym && sym->is_canonical(t.cells)) ++c.orbits;
+    if (o.mode == SearchMode::Count) return;
+    std::lock_guard lock(emit_mu);
+    if (o.mode == SearchMode::First) {
+      emit(t);
+      res.found.push_back(t);
+    } else if (translations) {
+      for (int r = 0; r < t.rows; ++r)
+        for (int col = 0; col < t.cols; ++col) emit(translate(t, r, col));
+    } else {
+      emit(t);
+    }
+  };
+
+  ParallelConfig cfg;
+  cfg.mode = o.mode;
+  cfg.threads = o.threads;
+  cfg.seed = o.seed;
+  cfg.time_limit = o.time_limit;
+  cfg.shard_index = o.shard_index;
+  cfg.shard_count = o.shard_count;
+  cfg.checkpoint_every = o.checkpoint_every;
+  cfg.progress = o.progress;
+  cfg.title = o.title.empty() ? std::string("search") : o.title;
+  cfg.restarts = pl.restarts;
+  cfg.restart_base = pl.restart_base;
+  cfg.subproblem_target = pl.subproblems;
+  cfg.estimate_probes = o.estimate_probes;
+  cfg.poll_signals = o.catch_signals;
+  cfg.fingerprint = res.fingerprint;
+  cfg.save = o.save_checkpoint;
+  cfg.resume = o.resume_state ? &*o.resume_state : nullptr;
+  cfg.flush = [&] {
+    std::lock_guard lock(emit_mu);
+    if (o.flush) o.flush();
+  };
+  M start = root;
+  if (o.seed && !pl.restarts) start.set_value_seed(o.seed);
+  ParallelSearch<M> search(start, cfg, leaf);
+  ParallelOutcome out = search.run();
+
+  res.complete = out.complete;
+  res.interrupted = out.interrupted;
+  res.timed_out = out.timed_out;
+  res.signal = out.signal;
+  res.solutions = o.mode == SearchMode::First ? res.found.size() : out.counts.solutions;
+  if (sym) res.orbits = out.counts.orbits;
+  res.nodes = out.counts.nodes;
+  res.seconds = out.seconds;
+  res.total_seconds = out.total_seconds;
+  res.subproblems = out.subproblems;
+  res.shard_subproblems = out.shard_subproblems;
+  res.subproblems_done = out.subproblems_done;
+  res.restarts = out.restarts;
+  res.estimated_nodes = out.estimate.nodes;
+  res.checkpoints = out.checkpoints_written;
+  return res;
+}
+
+}  // namespace
+
+std::string search_fingerprint(const TilingProblem& problem, const SearchOptions& options) {
+  return fingerprint(problem, options, plan(problem, options));
+}
+
+SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
+  Plan pl = plan(problem, options);
+  std::optional<SignalCatcher> signals;
+  if (options.catch_signals) signals.emplace();
+  if (pl.formulation == "cell") {
+    auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
+    return run_model(CellModel(problem, true, ord), problem, options, pl);
+  }
+  return run_model(LatticeModel(problem, true), problem, options, pl);
+}
+
+}  // namespace tilekit

@@ -1,0 +1,154 @@
+// Imposed automorphism groups (issue 7): spec parsing, the rules a packing group must obey, and
+// first solutions that pass the independent validator and are invariant under the group.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "solver/impose_solve.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/validator.hpp"
+
+namespace tilekit {
+namespace {
+
+std::string input_error(TileKind kind, std::uint32_t c, const std::string& spec) {
+  try {
+    TilingProblem p = complete_packing(kind, c);
+    build_group(p, spec);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ImposeSpec, ParsesSeveralGeneratorsListAndCycleNotation) {
+  GroupSpec s = parse_group_spec("t=0,8:pi=1,0,3,2; t=8,0:pi=(0 2)(1,3)");
+  ASSERT_EQ(s.generators.size(), 2u);
+  EXPECT_EQ(s.generators[0].dc, 8);
+  EXPECT_EQ(s.generators[1].dr, 8);
+  EXPECT_EQ(s.generators[1].pi.resolve(4, "pi"), (std::vector<Colour>{2, 3, 0, 1}));
+  TilingProblem p = complete_packing(TileKind::Corner, 4);
+  ImposedGroup g = build_group(p, "t=0,8:pi=1,0,3,2;t=8,0:pi=(0 2)(1,3)");
+  EXPECT_EQ(g.order(), 4u);  // Klein four-group: (0,8), (8,0), (8,8) and the identity
+  EXPECT_EQ(g.spec_text(), "t=0,8:pi=1,0,3,2;t=8,0:pi=2,3,0,1");
+  EXPECT_EQ(g.to_json()["order"], 4);
+}
+
+TEST(ImposeSpec, MalformedSpecsAreInputErrors) {
+  for (std::string bad : {"", "t=0", "t=0,4", "x=1", "t=0,4:pi=1,2,3", "t=0,4:pi=1,1,2,3", "t=0,4:pi=1,2,3,9",
+                          "t=a,4:pi=1,2,3,0", "t=0,4:pi=(0 1", "t=0,4:pi=1,2,3,0:pih=1,2,3,0"}) {
+    EXPECT_NE(input_error(TileKind::Corner, 4, bad), "") << "accepted: '" << bad << "'";
+  }
+}
+
+TEST(ImposeGroupRules, TranslationOrderMustMatchPermutationOrder) {
+  std::string msg = input_error(TileKind::Corner, 4, "t=0,4:pi=1,0,3,2");
+  EXPECT_NE(msg.find("order 4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("order 2"), std::string::npos) << msg;
+}
+
+TEST(ImposeGroupRules, PermutationWithFixedPointIsRejectedForCornerPackings) {
+  std::string msg = input_error(TileKind::Corner, 4, "t=0,8:pi=1,0,2,3");
+  EXPECT_NE(msg.find("fixes colour 2"), std::string::npos) << msg;
+}
+
+TEST(ImposeGroupRules, ProductReachingIdentityPermutationIsRejected) {
+  // (0,2) and (2,0) each swap the colours, so their product (2,2) fixes every tile.
+  std::string msg = input_error(TileKind::Corner, 2, "t=0,2:pi=1,0;t=2,0:pi=1,0");
+  EXPECT_NE(msg.find("group element t=2,2"), std::string::npos) << msg;
+}
+
+TEST(ImposeGroupRules, WangNeedsOneFixedPointFreeDirection) {
+  EXPECT_EQ(input_error(TileKind::Wang, 4, "t=0,8:pih=1,0,3,2"), "");  // vertical identity is fine
+  std::string msg = input_error(TileKind::Wang, 4, "t=0,8:pih=1,0,2,3:piv=0,1,3,2");
+  EXPECT_NE(msg.find("its own image"), std::string::npos) << msg;
+  EXPECT_NE(input_error(TileKind::Corner, 4, "t=0,8:pih=1,0,3,2"), "");  // pih is Wang-only
+}
+
+TEST(ImposeGroupRules, InconsistentGeneratorsAreRejected) {
+  std::string msg = input_error(TileKind::Corner, 4, "t=0,8:pi=1,0,3,2;t=0,8:pi=2,3,0,1");
+  EXPECT_NE(msg.find("inconsistent"), std::string::npos) << msg;
+}
+
+void expect_symmetric_packing(TileKind kind, std::uint32_t c, const std::string& spec, int threads) {
+  SearchOptions o;
+  o.threads = threads;
+  o.seed = 7;
+  o.time_limit = 60;
+  TilingProblem p = complete_packing(kind, c);
+  ImposedGroup g = build_group(p, spec);
+  SymmetricResult r = solve_symmetric(p, g, o);
+  ASSERT_EQ(r.result.found.size(), 1u) << spec;
+  const Tiling& t = r.result.found[0];
+  ValidationReport rep = validate(t);
+  EXPECT_TRUE(rep.valid);
+  EXPECT_TRUE(rep.packing);
+  EXPECT_TRUE(g.is_invariant(t));
+  // The invariance check can fail: swapping two cells breaks it.
+  Tiling broken = t;
+  std::swap(broken.at(0, 0), broken.at(1, 1));
+  EXPECT_FALSE(g.is_invariant(broken));
+  EXPECT_EQ(r.group["spec"], g.spec_text());
+}
+
+TEST(ImposeFirst, CornerPackingsUnderCyclicGroupsValidateAndAreInvariant) {
+  expect_symmetric_packing(TileKind::Corner, 3, "t=0,3:pi=1,2,0", 1);
+  expect_symmetric_packing(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", 2);
+  expect_symmetric_packing(TileKind::Corner, 4, "t=4,0:pi=(0 3 2 1)", 2);
+}
+
+TEST(ImposeFirst, WangPackingsUnderImposedGroupsValidateAndAreInvariant) {
+  expect_symmetric_packing(TileKind::Wang, 3, "t=0,3:pi=1,2,0", 1);
+  expect_symmetric_packing(TileKind::Wang, 4, "t=0,4:pi=1,2,3,0", 2);
+  expect_symmetric_packing(TileKind::Wang, 4, "t=0,4:pih=1,2,3,0;t=4,0:piv=1,2,3,0", 2);
+}
+
+TEST(ImposeFirst, SameSeedAndOneThreadGiveTheSameSolution) {
+  SearchOptions o;
+  o.seed = 3;
+  auto a = solve_symmetric(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
+  auto b = solve_symmetric(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
+  ASSERT_EQ(a.result.found.size(), 1u);
+  ASSERT_EQ(b.result.found.size(), 1u);
+  EXPECT_EQ(a.result.found[0].cells, b.result.found[0].cells);
+}
+
+TEST(ImposeFirst, EmptySubspaceIsReportedCompleteWithoutSolution) {
+  // A first-mode run agrees with Count: it finds a solution exactly when one exists, and when
+  // none does it exhausts the subspace and says `complete`.
+  SearchOptions count;
+  count.mode = SearchMode::Count;
+  for (std::string spec : {"t=0,2:pi=1,0", "t=2,2:pi=1,0"}) {
+    auto n = solve_symmetric(TileKind::Corner, 2, spec, count).result.solutions;
+    SearchOptions first;
+    auto r = solve_symmetric(TileKind::Corner, 2, spec, first);
+    EXPECT_EQ(r.result.solutions, n > 0 ? 1u : 0u) << spec;
+    if (n == 0) {
+      EXPECT_TRUE(r.result.complete) << spec;
+    }
+  }
+}
+
+TEST(ImposeTiling, PeriodicTilingOfASetWithRepeatsAllowed) {
+  // Tiling mode (tiles may repeat): a 2-colour corner tiling of a 2x4 torus invariant under a
+  // column shift by 2 that swaps the colours.
+  TilingProblem p;
+  p.set = complete_corner_set(2);
+  p.rows = 2;
+  p.cols = 4;
+  p.torus = true;
+  p.packing = false;
+  ImposedGroup g = build_group(p, "t=0,2:pi=1,0");
+  SearchOptions o;
+  auto r = solve_symmetric(p, g, o);
+  ASSERT_EQ(r.result.found.size(), 1u);
+  EXPECT_TRUE(validate(r.result.found[0]).valid);
+  EXPECT_TRUE(g.is_invariant(r.result.found[0]));
+  SearchOptions count;
+  count.mode = SearchMode::Count;
+  // 2x4 pegs, a fundamental domain of 2x2 free pegs: 16 tilings, every colouring allowed.
+  EXPECT_EQ(solve_symmetric(p, g, count).result.solutions, 16u);
+}
+
+}  // namespace
+}  // namespace tilekit
