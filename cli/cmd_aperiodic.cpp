@@ -112,6 +112,7 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   conv->callback([&ctx] { run_convert(ctx, ca); });
 
   add_aperiodic_table_command(ap, ctx);
+  add_aperiodic_verify_command(ap, ctx);
 }
 
 }  // namespace tilekit::cli
