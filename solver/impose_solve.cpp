@@ -11,6 +11,7 @@
 
 #include "solver/impose_model.hpp"
 #include "solver/impose_search.hpp"
+#include "solver/luby.hpp"
 #include "tilesets/error.hpp"
 #include "tilesets/validator.hpp"
 
@@ -75,6 +76,7 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     SymmetricSearchConfig cfg;
     cfg.random_values = false;
     cfg.most_constrained = control.most_constrained;
+    cfg.pattern_sizes = control.pattern_sizes;
     SymmetricSearch search(model, cfg);
     std::function<void(const std::vector<int>&)> each = [&](const std::vector<int>& values) {
       if (options.mode == SearchMode::All || options.on_solution) {
@@ -101,6 +103,7 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     SymmetricSearchConfig cfg;
     cfg.seed = options.seed * 1000003ULL + std::uint64_t(tid);
     cfg.most_constrained = control.most_constrained;
+    cfg.pattern_sizes = control.pattern_sizes;
     SymmetricSearch search(model, cfg);
     // Polls `found`; the external stop flag is folded into it by the monitor below.
     std::uint64_t last_nodes = 0;
