@@ -8,7 +8,7 @@
 //   build/bench_impose --portfolio corner:6 --threads 1 --time-limit 3000 [--stats F]
 //                                            the --method auto portfolio, one JSON line with every
 //                                            candidate's tries, nodes and seconds
-//   --patterns MASK (bit k: size-k pattern counts, default 4), --static (no MCF), --luby-unit N
+//   --sat (CNF + cadical instead of the DFS), --patterns MASK (bit k: size-k pattern counts, default 4), --static (no MCF), --luby-unit N
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
       else if (a == "--stats") stats = next();
       else if (a == "--patterns") ctl.pattern_sizes = std::stoi(next());
       else if (a == "--static") ctl.most_constrained = false;
+      else if (a == "--sat") ctl.sat = true;
       else if (a == "--luby-unit") ctl.luby_unit = std::stoull(next());
       else throw InputError("unknown argument " + a);
     }

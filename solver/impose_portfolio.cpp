@@ -237,8 +237,9 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
     specs = candidate_groups(kind, colours);
     if (portfolio.include_plain) specs.push_back(kPlainSearch);
   }
+  auto group_part = [](const std::string& s) { return s.rfind("sat:", 0) == 0 ? s.substr(4) : s; };
   for (auto& s : specs)
-    if (s != kPlainSearch) build_group(problem, s);  // a bad user-given candidate is an InputError
+    if (s != kPlainSearch) build_group(problem, group_part(s));  // a bad user-given candidate is an InputError
   specs = stats.order(kind, colours, specs);
 
   const auto deadline = options.time_limit > 0
@@ -273,7 +274,8 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
         } else {
           SymmetricControl ctl;
           ctl.stop = &found;
-          SymmetricResult sr = solve_symmetric(problem, build_group(problem, spec), o, ctl);
+          ctl.sat = spec.rfind("sat:", 0) == 0;
+          SymmetricResult sr = solve_symmetric(problem, build_group(problem, group_part(spec)), o, ctl);
           r = std::move(sr.result);
           group = std::move(sr.group);
         }

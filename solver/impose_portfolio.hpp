@@ -57,7 +57,9 @@ class PortfolioStats {
 struct PortfolioOptions {
   std::string stats_path;           // "" = PortfolioStats::default_path(); "-" = do not persist
   double first_slice = 0.25;        // seconds per candidate in round 0; doubles each round
-  std::vector<std::string> specs;   // candidates to use ("plain" = solve()); empty = default list
+  // Candidates to use: group specs, "plain" (= solve()), "sat:SPEC" (the group's subspace as CNF
+  // for cadical, impose_sat.hpp). Empty = candidate_groups() plus "plain".
+  std::vector<std::string> specs;
   bool include_plain = true;        // add the plain search when specs is empty
 };
 

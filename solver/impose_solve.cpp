@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/impose_model.hpp"
+#include "solver/impose_sat.hpp"
 #include "solver/impose_search.hpp"
 #include "solver/luby.hpp"
 #include "tilesets/error.hpp"
@@ -88,6 +89,22 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     res.complete = outcome == SymmetricSearch::Outcome::Exhausted;
     res.solutions = search.solutions();
     res.nodes = search.nodes();
+    res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return out;
+  }
+
+  if (control.sat) {
+    // The same subspace as CNF for cadical (impose_sat.hpp); one solver process.
+    double limit = options.time_limit > 0 ? options.time_limit : 1e6;
+    SatOutcome sat = solve_symmetric_sat(model, limit, options.seed);
+    res.formulation = "sat-" + res.formulation;
+    res.threads = 1;
+    if (sat.status == SatOutcome::Status::Satisfiable) {
+      res.found.push_back(checked(model, group, problem.set, sat.values));
+      res.solutions = 1;
+      if (options.on_solution) options.on_solution(res.found.back());
+    }
+    res.complete = sat.status == SatOutcome::Status::Unsatisfiable;
     res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return out;
   }

@@ -22,6 +22,7 @@ struct SymmetricControl {
   bool most_constrained = true;             // MCF branching (else scanline order)
   bool restarts = true;                     // First mode: Luby restarts (else one DFS)
   int pattern_sizes = 1 << 2;               // partial-pattern counts (SymmetricSearchConfig)
+  bool sat = false;                         // First mode: CNF + cadical instead of the DFS
 };
 
 struct SymmetricResult {
