@@ -188,3 +188,21 @@ TEST(CliDb, AddStoresOnlyValidTilings) {
   EXPECT_EQ(ok.json()["added"], 1);
   EXPECT_EQ(run_cli("db add " + q(d / "ok.json") + " --json --db " + q(d / "r.sqlite")).json()["added"], 0);
 }
+
+TEST(CliDb, TwoSolverRunsAppendingConcurrentlyLoseNothing) {
+  TempDir d;
+  // The two shards of the C=2 corner enumeration (32 packings) write to one database at once.
+  const std::string db = q(d / "r.sqlite");
+  auto shard = [&](int i) {
+    return std::string(TILEKIT_BINARY) + " pack --kind corner --colors 2 --mode all --threads 1 --quiet --shard " +
+           std::to_string(i) + "/2 --db " + db + " --json > " + q(d / ("s" + std::to_string(i) + ".json"));
+  };
+  CliResult r = run_cli("--version >/dev/null; " + shard(0) + " & " + shard(1) + " & wait %1 && wait %2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto s0 = nlohmann::json::parse(slurp(d / "s0.json")), s1 = nlohmann::json::parse(slurp(d / "s1.json"));
+  EXPECT_EQ(s0["solutions"].get<int>() + s1["solutions"].get<int>(), 32);
+  CliResult st = run_cli("db stats --json --db " + db);
+  ASSERT_EQ(st.code, 0) << st.err;
+  EXPECT_EQ(st.json()["solutions"], 32);
+  EXPECT_EQ(st.json()["runs"], 2);
+}

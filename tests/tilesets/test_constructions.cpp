@@ -132,3 +132,14 @@ TEST(Constructions, EvenCornerPackingsFromTheStoredTwoAreValid) {
   auto avail = constructible_colours(TileKind::Corner, 16);
   EXPECT_EQ(avail, (std::vector<std::uint32_t>{1, 2, 3, 5, 6, 7, 9, 10, 11, 13, 14, 15}));
 }
+
+TEST(Constructions, FourAndTwelveColourCornerPackingsOnceFourIsStored) {
+  if (!stored_packing(TileKind::Corner, 4))
+    GTEST_SKIP() << "no tilesets/data/packing-corner-4.json yet (scripts/stored-packings.sh 4 once pack finds one)";
+  for (std::uint32_t c : {4u, 12u}) {
+    auto p = construct_packing(TileKind::Corner, c);
+    ASSERT_TRUE(p) << c;
+    EXPECT_TRUE(validate(p->tiling).packing) << c;
+    if (c == 4) expect_positions_agree(p->tiling);
+  }
+}
