@@ -14,6 +14,7 @@
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
 #include "tilesets/error.hpp"
+#include "tilesets/progress.hpp"
 
 namespace tilekit {
 
@@ -24,7 +25,7 @@ namespace {
 // Inserts records into the target, remapping the source's ids to the target's.
 class MergeSink {
  public:
-  MergeSink(sqlite3* db, bool distinct_orbits, MergeReport& report)
+  MergeSink(sqlite3* db, bool distinct_orbits, MergeReport& report, ProgressReporter& progress)
       : db_(db),
         run_ins_(db,
                  "INSERT OR IGNORE INTO runs(uid, command, params, status, solutions, orbits, nodes, seconds, threads, "
@@ -41,7 +42,8 @@ class MergeSink {
                   "colors, soundness, details, created_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, "
                   "COALESCE(NULLIF(?9, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')))"),
         sol_ins_(db, distinct_orbits ? distinct_insert() : std::string(dbrows::kInsertSolution)),
-        report_(report) {}
+        report_(report),
+        progress_(progress) {}
 
   void begin_source() {
     runs_.clear();
@@ -109,6 +111,7 @@ class MergeSink {
     sol_ins_.run();
     report_.solutions += std::uint64_t(sqlite3_changes(db_));
     ++report_.solutions_seen;
+    progress_.add(1);
   }
 
  private:
@@ -125,6 +128,7 @@ class MergeSink {
   sqlite3* db_;
   Statement run_ins_, run_id_, set_ins_, set_id_, conv_ins_, sol_ins_;
   MergeReport& report_;
+  ProgressReporter& progress_;
   std::map<std::int64_t, std::int64_t> runs_, sets_;
 };
 
@@ -196,13 +200,20 @@ void ResultsDb::check_merge_inputs(const std::vector<std::string>& inputs) {
   for (const std::string& p : inputs) open_input(p);
 }
 
-MergeReport ResultsDb::merge(const std::vector<std::string>& inputs, bool distinct_orbits) {
+MergeReport ResultsDb::merge(const std::vector<std::string>& inputs, bool distinct_orbits, bool progress) {
   if (read_only_) throw InputError(fmt::format("{}: opened read-only, cannot merge into it", path_));
   std::vector<Input> opened;
   for (const std::string& p : inputs) opened.push_back(open_input(p));  // all checks before any write
+  std::uint64_t total = 0;
+  for (const Input& in : opened) {
+    if (in.db) total += in.db->stats().solutions;
+    else total += in.doc["solutions"].size();
+  }
+  ProgressReporter reporter(fmt::format("db merge into {}", path_), double(total), progress && total >= 20000);
+  reporter.set_detail("solutions read");
   MergeReport report;
   sqlitedb::Transaction tx(db_);
-  MergeSink sink(db_, distinct_orbits, report);
+  MergeSink sink(db_, distinct_orbits, report, reporter);
   for (const Input& in : opened) {
     sink.begin_source();
     if (in.db) merge_database(*in.db, sink);

@@ -159,7 +159,8 @@ class ResultsDb {
   // matched by uid, tile sets by (name, content_hash), conversions by (source, method,
   // result), solutions by solution_hash, or by canonical_hash too with `distinct_orbits`.
   // Idempotent. Throws InputError (nothing written) for a foreign or corrupt input.
-  MergeReport merge(const std::vector<std::string>& inputs, bool distinct_orbits = false);
+  // `progress`: report on stderr (tilesets/progress.hpp) when the inputs hold many solutions.
+  MergeReport merge(const std::vector<std::string>& inputs, bool distinct_orbits = false, bool progress = false);
   // The checks merge() makes on its inputs, without a target (so a command can refuse bad
   // inputs before it creates the target file).
   static void check_merge_inputs(const std::vector<std::string>& inputs);

@@ -213,15 +213,16 @@ void add_merge(CLI::App& db, Context& ctx) {
   auto* cmd = db.add_subcommand("merge", "Merge databases or JSON exports IN... into OUT (one transaction, idempotent)");
   static std::string out;
   static std::vector<std::string> inputs;
-  static bool distinct = false;
+  static bool distinct = false, quiet = false;
   cmd->add_option("OUT", out, "Target database (created if missing)")->required();
   cmd->add_option("IN", inputs, "Tilekit databases or `db export` JSON files")->required();
   cmd->add_flag("--distinct-orbits", distinct, "Keep one solution per canonical hash (orbit)");
+  cmd->add_flag("--quiet", quiet, "No progress output on stderr (large merges report progress)");
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] {
     ResultsDb::check_merge_inputs(inputs);  // before the target is created
     ResultsDb db(out);
-    MergeReport r = db.merge(inputs, distinct);
+    MergeReport r = db.merge(inputs, distinct, !quiet);
     DbStats s = db.stats();
     nlohmann::json j = {{"db", db.path()},
                         {"inputs", inputs},
