@@ -28,8 +28,12 @@ namespace {
 
 enum class FileState { Missing, Fresh, Current, Older };
 
-InputError not_ours(const std::string& path, const std::string& why) {
-  return InputError(fmt::format("{}: not a usable Tilekit results database: {}; the file was left untouched", path, why));
+// The one error for a file we refuse to use (foreign, corrupt, newer, damaged).
+struct NotOurs : InputError {
+  using InputError::InputError;
+};
+NotOurs not_ours(const std::string& path, const std::string& why) {
+  return NotOurs(fmt::format("{}: not a usable Tilekit results database: {}; the file was left untouched", path, why));
 }
 
 // Read-only inspection of an existing file. Returns Fresh for an empty file (0 bytes, or an
@@ -85,12 +89,40 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
       if (!problems.empty()) throw not_ours(path, fmt::format("corrupt (integrity_check: {})", problems.front()));
     }
     return version == ResultsDb::kSchemaVersion ? FileState::Current : FileState::Older;
-  } catch (const InputError& e) {
-    if (std::string_view(e.what()).starts_with(path + ": not a usable")) throw;
+  } catch (const NotOurs&) {
+    throw;
+  } catch (const InputError& e) {  // SQLITE_CORRUPT / SQLITE_NOTADB while reading
     throw not_ours(path, fmt::format("corrupt ({})", e.what()));
   } catch (const std::runtime_error& e) {
     throw not_ours(path, fmt::format("unreadable ({})", e.what()));
   }
+}
+
+// FNV-1a over bytes, then the MurmurHash3 finaliser so that nearby inputs spread over all
+// 64 bits. Stable across runs and machines.
+struct StableHash {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  void bytes(std::uint64_t v, int n) {
+    for (int i = 0; i < n; ++i) {
+      h ^= (v >> (8 * i)) & 0xff;
+      h *= 0x100000001b3ull;
+    }
+  }
+  std::uint64_t done() const {
+    std::uint64_t x = h;
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdull;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    x ^= x >> 33;
+    return x;
+  }
+};
+
+std::uint64_t stable_hash64(std::string_view text) {
+  StableHash h;
+  for (char c : text) h.bytes(static_cast<unsigned char>(c), 1);
+  return h.done();
 }
 
 std::string host_name() {
@@ -105,9 +137,7 @@ std::string make_run_uid(const RunRecord& run) {
   const auto mono = std::chrono::steady_clock::now().time_since_epoch().count();
   const std::string seed = fmt::format("{}|{}|{}|{}|{}|{}", host_name(), getpid(), wall, mono, run.command,
                                        static_cast<const void*>(&run));
-  Tiling t;  // reuse the stable hash over a byte string
-  t.cells.assign(seed.begin(), seed.end());
-  return solution_hash(t) + fmt::format("{:08x}", std::uint32_t(wall ^ (mono >> 7)));
+  return fmt::format("{:016x}{:08x}", stable_hash64(seed), std::uint32_t(wall ^ (mono >> 7)));
 }
 
 }  // namespace
@@ -307,29 +337,17 @@ std::int64_t ResultsDb::add_conversion(std::int64_t source_set, const std::strin
   return result;
 }
 
-// FNV-1a over a fixed little-endian serialisation, then the MurmurHash3 finaliser so that
-// nearby inputs spread over all 64 bits.
+// StableHash over a fixed little-endian serialisation of the tiling.
 std::string solution_hash(const Tiling& t) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  auto mix = [&h](std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) {
-      h ^= (v >> (8 * i)) & 0xff;
-      h *= 0x100000001b3ull;
-    }
-  };
-  mix(t.kind == TileKind::Wang ? 1 : 2, 1);
-  mix(t.colours, 4);
-  if (t.kind == TileKind::Wang && t.cv() != t.ch()) mix(t.cv(), 4);  // mixed radix only
-  mix(std::uint64_t(t.rows), 4);
-  mix(std::uint64_t(t.cols), 4);
-  mix(t.torus ? 1 : 0, 1);
-  for (TileIndex c : t.cells) mix(c, 4);
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdull;
-  h ^= h >> 33;
-  h *= 0xc4ceb9fe1a85ec53ull;
-  h ^= h >> 33;
-  return fmt::format("{:016x}", h);
+  StableHash h;
+  h.bytes(t.kind == TileKind::Wang ? 1 : 2, 1);
+  h.bytes(t.colours, 4);
+  if (t.kind == TileKind::Wang && t.cv() != t.ch()) h.bytes(t.cv(), 4);  // mixed radix only
+  h.bytes(std::uint64_t(t.rows), 4);
+  h.bytes(std::uint64_t(t.cols), 4);
+  h.bytes(t.torus ? 1 : 0, 1);
+  for (TileIndex c : t.cells) h.bytes(c, 4);
+  return fmt::format("{:016x}", h.done());
 }
 
 }  // namespace tilekit
