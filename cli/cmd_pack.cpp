@@ -11,6 +11,7 @@
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
+#include "tilesets/constructions.hpp"
 #include "tilesets/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -88,7 +89,7 @@ class SolutionSink {
     SolutionRecord s;
     s.run_id = run_id_;
     s.tiling = t;
-    s.method = "search";
+    s.method = method_;
     s.validated = true;  // solve() validates every solution before emitting it
     if (sym_) {
       // The translates of one leaf arrive one after another and share their canonical form.
@@ -108,6 +109,7 @@ class SolutionSink {
     batch_.clear();
   }
   std::size_t added() const { return added_; }
+  void set_method(std::string m) { method_ = std::move(m); }
 
  private:
   ResultsDb& db_;
@@ -118,6 +120,7 @@ class SolutionSink {
   std::string last_hash_;
   std::uint64_t last_orbit_ = 0;
   std::size_t added_ = 0;
+  std::string method_ = "search";
 };
 
 void run_pack(const PackArgs& a, const Context& ctx) {
@@ -127,7 +130,10 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   o.mode = parse_mode(a.mode);
   if (a.method != "auto" && a.method != "search" && a.method != "construct")
     throw InputError(fmt::format("unknown method '{}' (auto, search or construct)", a.method));
-  if (a.method == "construct") throw InputError("--method construct is not available in this build (use search)");
+  if (a.method == "construct" && o.mode != SearchMode::First)
+    throw InputError("--method construct gives one packing: use it with --mode first");
+  if (a.method == "construct" && !a.set.empty())
+    throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
@@ -174,11 +180,30 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
   if (a.method == "auto" && o.mode == SearchMode::First && complete_set)
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
-  if (hit && validate(hit->tiling, &problem.set).packing) {
-    method = "db";
-    r.found.push_back(hit->tiling);
+  std::optional<ConstructedPacking> built;
+  if (!(hit && validate(hit->tiling, &problem.set).packing)) hit.reset();
+  if (!hit && a.set.empty() && o.mode == SearchMode::First && (a.method == "construct" || a.method == "auto")) {
+    built = construct_packing(problem.set.kind(), colours);
+    if (built && !validate(built->tiling, &problem.set).packing)
+      throw std::logic_error("construct_packing() returned a tiling the validator rejects");
+    if (!built && a.method == "construct") {
+      run.status = "failed";
+      db.finish_run(run);
+      throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
+                                 kind, colours));
+    }
+  }
+  if (hit || built) {
+    method = hit ? "db" : "construct";
+    r.found.push_back(hit ? hit->tiling : built->tiling);
     r.solutions = 1;
     r.threads = o.threads;
+    r.complete = false;
+    if (built) {
+      sink.set_method("construct");
+      sink.add(built->tiling);
+      sink.flush();
+    }
   } else {
     try {
       r = solve_checkpointed(problem, o);
@@ -221,6 +246,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
+  if (built) j["construction"] = built->how;
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
     ValidationReport rep = validate(t, &problem.set);

@@ -122,3 +122,28 @@ TEST(PackCli, ShardsZeroToThreeOfFourSumToTheWhole) {
   }
   EXPECT_EQ(sum, 203520);
 }
+
+TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
+  TempDir d;
+  std::string db = "--db " + (d / "r.sqlite") + " --quiet --json --kind corner --colors 3";
+  CliResult c = run_cli("pack --method construct " + db);
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(c.json()["method"], "construct");
+  EXPECT_EQ(c.json()["valid"], true);
+  CliResult a = run_cli("pack --method auto " + db);  // the database now holds one
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(a.json()["method"], "db");
+  EXPECT_EQ(a.json()["cells"], c.json()["cells"]);
+  CliResult s = run_cli("pack --method search --threads 2 " + db);
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_EQ(s.json()["method"], "search");
+  EXPECT_EQ(s.json()["valid"], true);
+  CliResult w = run_cli("pack --method auto --quiet --json --kind wang --colors 5 --db " + (d / "w.sqlite"));
+  ASSERT_EQ(w.code, 0) << w.err;
+  EXPECT_EQ(w.json()["method"], "construct");
+  EXPECT_EQ(w.json()["valid"], true);
+  EXPECT_EQ(w.json()["cells"].size(), 25u);
+  CliResult bad = run_cli("pack --method construct --mode count --kind wang --colors 2 --quiet --db " + (d / "r.sqlite"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--mode first"), std::string::npos) << bad.err;
+}
