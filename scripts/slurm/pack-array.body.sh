@@ -23,7 +23,6 @@ attempt=${SLURM_RESTART_COUNT:-0}
 export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}
 
 dir="$RUN_DIR/shards"
-mkdir -p "$dir"
 ckpt="$dir/shard-$shard.ckpt"
 db="$dir/shard-$shard.sqlite"
 done_file="$dir/shard-$shard.done.json"
@@ -35,6 +34,26 @@ record() {  # record EXIT RESUMED
   printf '{"time":"%s","job":"%s","attempt":%s,"exit":%s,"resumed":%s,"host":"%s"}\n' \
     "$(date -u +%FT%TZ)" "$task" "$attempt" "$1" "$2" "$(hostname -s)" >>"$attempts"
 }
+
+# Slurm's signals may come at any moment, even before tilekit runs: take them from the start.
+pid=""        # tilekit
+ready=false   # tilekit catches USR1 and TERM (an uncaught USR1 would kill it without a checkpoint)
+pending=""    # a signal that came before that, passed on once it does
+warned=false  # USR1 = our wall-time warning; TERM = Slurm ends the job (scancel, requeue, preemption)
+on_signal() {
+  [ "$1" != USR1 ] || warned=true
+  if [ "$ready" = true ]; then
+    say "got SIG$1; asking tilekit (pid $pid) to checkpoint and stop"
+    kill -s "$1" "$pid" 2>/dev/null || true
+  else
+    say "got SIG$1 before tilekit catches signals; passing it on when it does"
+    pending=$1
+  fi
+}
+trap 'on_signal USR1' USR1
+trap 'on_signal TERM' TERM
+
+mkdir -p "$dir"
 
 # A requeue after the shard had finished (or a resubmitted run) must not count it twice.
 if [ -s "$done_file" ]; then
@@ -52,17 +71,30 @@ if [ -s "$ckpt" ]; then
 fi
 say "starting (resume: $resumed, OMP_NUM_THREADS=$OMP_NUM_THREADS): $TILEKIT pack ${args[*]}"
 
+# True once process $1 has handlers for USR1 and TERM (bits 10 and 15 of SigCgt, Linux).
+catches_signals() {
+  local key mask
+  [ -r "/proc/$1/status" ] || return 0  # no /proc: assume it does
+  while read -r key mask; do
+    [ "$key" = SigCgt: ] || continue
+    (((16#$mask & 0x4200) == 0x4200))
+    return
+  done <"/proc/$1/status"
+  return 1
+}
+
 # tilekit runs in the background so that this shell can take Slurm's signals and pass them on.
 "$TILEKIT" pack "${args[@]}" >"$done_file.tmp" &
 pid=$!
-warned=false  # USR1 = our wall-time warning; TERM = Slurm ends the job (scancel, requeue, preemption)
-forward() {
-  say "got SIG$1; asking tilekit (pid $pid) to checkpoint and stop"
-  [ "$1" != USR1 ] || warned=true
-  kill -s "$1" "$pid" 2>/dev/null || true
-}
-trap 'forward USR1' USR1
-trap 'forward TERM' TERM
+for ((tries = 0; tries < 200; tries++)); do
+  if catches_signals "$pid" || ! kill -0 "$pid" 2>/dev/null; then break; fi
+  sleep 0.05
+done
+ready=true
+if [ -n "$pending" ]; then
+  say "passing SIG$pending on to tilekit (pid $pid)"
+  kill -s "$pending" "$pid" 2>/dev/null || true
+fi
 while :; do
   wait "$pid"
   rc=$?
@@ -99,13 +131,15 @@ case $rc in
       exit 3
     fi
     say "checkpointed ($ckpt); requeueing this task to resume"
-    if scontrol requeue "$task"; then
+    # By this task's own job id: the ARRAY_TASK form is refused ("can not be altered now")
+    # while another task of the array waits to restart after its own requeue.
+    if scontrol requeue "$SLURM_JOB_ID"; then
       # Slurm now ends this attempt and queues the next one; wait here until it does.
       trap 'exit 3' TERM
       sleep 300 &
       wait $!
     else
-      say "scontrol requeue $task failed; resubmit the run to go on"
+      say "scontrol requeue $SLURM_JOB_ID failed; resubmit the run to go on"
     fi
     exit 3
     ;;
