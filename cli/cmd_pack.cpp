@@ -2,12 +2,18 @@
 // construction or database lookup, with checkpoints, shards and signals for cluster runs.
 #include <fmt/format.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <thread>
 
 #include "checkpoints/checkpoint.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
+#include "solver/impose_portfolio.hpp"
+#include "solver/impose_solve.hpp"
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
@@ -22,12 +28,12 @@ namespace {
 
 struct PackArgs {
   std::string kind, set, size, method = "auto", mode = "first", checkpoint, resume, db, shard = "0/1";
-  std::string formulation = "auto", ordering = "auto", out;
+  std::string formulation = "auto", ordering = "auto", out, impose;
   std::int64_t colours = 0;
   int threads = 0;
   std::uint64_t seed = 0;
   double checkpoint_every = -1, time_limit = 0;
-  bool quiet = false;
+  bool quiet = false, plain = false;
 };
 
 SearchMode parse_mode(const std::string& m) {
@@ -90,6 +96,7 @@ class SolutionSink {
     s.run_id = run_id_;
     s.tiling = t;
     s.method = method_;
+    s.group = group_;
     s.validated = true;  // solve() validates every solution before emitting it
     if (sym_) {
       // The translates of one leaf arrive one after another and share their canonical form.
@@ -110,6 +117,7 @@ class SolutionSink {
   }
   std::size_t added() const { return added_; }
   void set_method(std::string m) { method_ = std::move(m); }
+  void set_group(nlohmann::json g) { group_ = std::move(g); }
 
  private:
   ResultsDb& db_;
@@ -121,6 +129,7 @@ class SolutionSink {
   std::uint64_t last_orbit_ = 0;
   std::size_t added_ = 0;
   std::string method_ = "search";
+  nlohmann::json group_;
 };
 
 void run_pack(const PackArgs& a, const Context& ctx) {
@@ -134,6 +143,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     throw InputError("--method construct gives one packing: use it with --mode first");
   if (a.method == "construct" && !a.set.empty())
     throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
+  if (!a.impose.empty() && !a.set.empty()) throw InputError("--impose is for the complete sets (--kind and --colors)");
+  if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
+  if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
+  if (!a.impose.empty() && (!a.checkpoint.empty() || !a.resume.empty()))
+    throw InputError("--impose runs are not checkpointed: drop --checkpoint/--resume");
+  if (!a.impose.empty() && a.mode == "all") throw InputError("--impose with --mode all is not supported; use count");
+  if (!a.impose.empty() && a.shard != "0/1") throw InputError("--impose runs are not sharded: drop --shard");
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
@@ -178,11 +194,12 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   std::string method = "search";
   std::optional<SolutionRecord> hit;
   const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
-  if (a.method == "auto" && o.mode == SearchMode::First && complete_set)
+  if (a.method == "auto" && o.mode == SearchMode::First && complete_set && a.impose.empty())
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
   std::optional<ConstructedPacking> built;
   if (!(hit && validate(hit->tiling, &problem.set).packing)) hit.reset();
-  if (!hit && a.set.empty() && o.mode == SearchMode::First && (a.method == "construct" || a.method == "auto")) {
+  if (!hit && a.set.empty() && a.impose.empty() && o.mode == SearchMode::First &&
+      (a.method == "construct" || a.method == "auto")) {
     built = construct_packing(problem.set.kind(), colours);
     if (built && !validate(built->tiling, &problem.set).packing)
       throw std::logic_error("construct_packing() returned a tiling the validator rejects");
@@ -193,6 +210,12 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                                  kind, colours));
     }
   }
+  // The search portfolio (DESIGN.md: plain search plus imposed-automorphism subspaces) answers
+  // first-mode searches of complete sets unless the run must be checkpointable or plain.
+  const bool portfolio = !hit && !built && a.set.empty() && o.mode == SearchMode::First && a.method != "construct" &&
+                         !a.plain && o.checkpoint_path.empty() && o.shard_count == 1 && a.formulation == "auto" &&
+                         a.ordering == "auto";
+  nlohmann::json portfolio_json;
   if (hit || built) {
     method = hit ? "db" : "construct";
     r.found.push_back(hit ? hit->tiling : built->tiling);
@@ -204,6 +227,54 @@ void run_pack(const PackArgs& a, const Context& ctx) {
       sink.add(built->tiling);
       sink.flush();
     }
+  } else if (portfolio || !a.impose.empty()) {
+    // No checkpoints here: a signal ends the run at once, with the run row marked.
+    std::atomic<bool> done{false};
+    std::thread watch([&] {
+      while (!done.load()) {
+        if (SignalCatcher::caught()) {
+          run.status = "interrupted";
+          db.finish_run(run);
+          std::fprintf(stderr, "tilekit: interrupted by signal %d (no checkpoint: imposed-group searches restart)\n",
+                       SignalCatcher::caught());
+          std::_Exit(3);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
+    try {
+      SearchOptions po = o;
+      po.on_solution = nullptr;
+      po.flush = nullptr;
+      if (o.mode == SearchMode::First) {
+        PortfolioOptions popts;
+        if (!a.impose.empty()) popts.specs = {a.impose};
+        PortfolioResult pr = run_portfolio(problem.set.kind(), colours, po, popts);
+        r = pr.result;
+        r.nodes = pr.nodes;
+        r.seconds = pr.seconds;
+        r.threads = o.threads;
+        if (!pr.found) r.found.clear();
+        portfolio_json = {{"winner", pr.spec}, {"group", pr.group}, {"runs", pr.runs}};
+        if (pr.found) {
+          sink.set_group(pr.group);
+          sink.add(r.found.front());
+        }
+      } else {
+        SymmetricResult sr = solve_symmetric(problem.set.kind(), colours, a.impose, po);
+        r = sr.result;
+        portfolio_json = {{"group", sr.group}};
+      }
+      sink.flush();
+    } catch (...) {
+      done = true;
+      watch.join();
+      run.status = "failed";
+      db.finish_run(run);
+      throw;
+    }
+    done = true;
+    watch.join();
   } else {
     try {
       r = solve_checkpointed(problem, o);
@@ -247,6 +318,10 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (built) j["construction"] = built->how;
+  if (!portfolio_json.is_null()) {
+    j["group"] = portfolio_json["group"];
+    if (portfolio_json.contains("winner")) j["portfolio"] = portfolio_json;
+  }
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
     ValidationReport rep = validate(t, &problem.set);
@@ -305,6 +380,8 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
   cmd->add_option("--time-limit", a->time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out, "Write the packing found to this JSON file");
+  cmd->add_option("--impose", a->impose, "Search only packings invariant under this group, e.g. t=0,8:pi=1,0,3,2");
+  cmd->add_flag("--plain", a->plain, "First mode: plain search only (no imposed-group portfolio)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer("Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");

@@ -317,7 +317,9 @@ class ParallelSearch {
     while (stop_.load() == kRunning) {
       std::uint64_t r = next_restart_++;
       M m = root_;
-      m.set_value_seed(mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
+      // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
+      // restart, and every restart of a seeded run, shuffles it.
+      m.set_value_seed(cfg_.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
       Control ctl{*this, slot, 0, epoch_.load()};
       ctl.node_limit = luby(r + 1) * cfg_.restart_base;
       SearchCounters c;

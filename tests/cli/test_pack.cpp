@@ -2,6 +2,8 @@
 // and bad input (exit 2 with one clear line).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit::test;
@@ -10,6 +12,7 @@ namespace {
 // `tilekit pack ARGS` writing to a database of its own, never the user's default one.
 CliResult pack(const std::string& args) {
   static TempDir db_dir;
+  ::setenv("TILEKIT_PORTFOLIO_STATS", (db_dir / "portfolio.json").c_str(), 1);  // not the user's file
   return run_cli("pack --db " + (db_dir / "results.sqlite") + " " + args);
 }
 }  // namespace
@@ -125,6 +128,7 @@ TEST(PackCli, ShardsZeroToThreeOfFourSumToTheWhole) {
 
 TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
   TempDir d;
+  ::setenv("TILEKIT_PORTFOLIO_STATS", (d / "portfolio.json").c_str(), 1);
   std::string db = "--db " + (d / "r.sqlite") + " --quiet --json --kind corner --colors 3";
   CliResult c = run_cli("pack --method construct " + db);
   ASSERT_EQ(c.code, 0) << c.err;
@@ -146,4 +150,23 @@ TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
   CliResult bad = run_cli("pack --method construct --mode count --kind wang --colors 2 --quiet --db " + (d / "r.sqlite"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("--mode first"), std::string::npos) << bad.err;
+}
+
+TEST(PackCli, ImposedGroupFindsAFourColourWangPackingThatValidates) {
+  TempDir d;
+  std::string out = d / "w4.json";
+  CliResult r = pack("--kind wang --colors 4 --impose t=0,8:pi=1,0,3,2 --threads 2 --time-limit 120 --quiet --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  EXPECT_EQ(j["method"], "search");
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_FALSE(j["group"].is_null());
+  CliResult c = run_cli("check " + out + " --set complete-wang-4 --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(c.json()["packing"], true);
+  CliResult bad = pack("--kind wang --colors 4 --impose t=banana --quiet");
+  EXPECT_EQ(bad.code, 2);
+  CliResult mixed = pack("--kind wang --colors 2 --impose t=0,2:pi=1,0 --checkpoint " + (d / "ck") + " --quiet");
+  EXPECT_EQ(mixed.code, 2);
+  EXPECT_NE(mixed.err.find("not checkpointed"), std::string::npos) << mixed.err;
 }
