@@ -338,9 +338,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     }
   }
   emit(ctx, j, [&] {
-    fmt::print("{} C={} {}x{} packing by {}, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind, colours,
-               problem.rows, problem.cols, method, a.mode, r.complete ? "complete" : "incomplete", r.formulation,
-               r.threads, o.shard_index, o.shard_count);
+    if (method == "search")
+      fmt::print("{} C={} {}x{} packing by search, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind,
+                 colours, problem.rows, problem.cols, a.mode, r.complete ? "complete" : "incomplete",
+                 r.formulation.empty() ? "portfolio" : r.formulation, r.threads, o.shard_index, o.shard_count);
+    else
+      fmt::print("{} C={} {}x{} packing from {}{}\n", kind, colours, problem.rows, problem.cols,
+                 method == "db" ? "the database" : "a construction", built ? " (" + built->how + ")" : "");
     if (o.mode != SearchMode::First)
       fmt::print("solutions: {}{}\n", r.solutions, r.orbits ? fmt::format(" ({} up to symmetry)", *r.orbits) : "");
     fmt::print("nodes: {}  seconds: {:.3f}  database: {} (run {}, {} new solutions)\n", r.nodes, r.seconds, db.path(),

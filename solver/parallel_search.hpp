@@ -402,7 +402,9 @@ class ParallelSearch {
     }
     nodes += live;
     std::string est = estimate_ > 0 ? fmt::format(" of ~{:.3g} (Knuth)", estimate_) : "";
-    p.update(double(done), double(shard_total_),
+    // Before the first subproblem finishes, the Knuth estimate is the only yardstick.
+    bool by_nodes = done == 0 && estimate_ > 0 && cfg_.shard_count == 1;
+    p.update(by_nodes ? double(nodes) : double(done), by_nodes ? estimate_ : double(shard_total_),
              fmt::format("{}/{} subproblems, {} nodes{}, {:.3g} nodes/s", done, shard_total_, nodes, est,
                          t > 0 ? double(nodes) / t : 0.0));
   }
