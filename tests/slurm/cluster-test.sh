@@ -142,6 +142,11 @@ merge3=$(submitted_id merge_job "$out3")
 [ -n "$array3" ] && [ -n "$merge3" ] || fatal "no job ids in: $out3"
 log "case 3 queued: array $array3 (1 shard, --time 1), merge $merge3"
 
+# The C=2 Wang orbit count (packings up to symmetry) of one unsharded search, to compare with.
+ORBITS=$("$TK" pack --kind wang --colors 2 --mode count --method search --threads 1 --quiet --json |
+  { grep -o '"orbits":[0-9]*' || true; } | cut -d: -f2)
+[ -n "$ORBITS" ] || fatal "tilekit pack --mode count printed no orbit count"
+
 # ---- 1. one task requeued and one sent USR1 mid-run -------------------------------------------
 run1=$work/wang2
 log "case 1: 4-shard enumeration of the C=2 Wang packings; one task requeued, one sent USR1 mid-run"
@@ -209,12 +214,18 @@ for i in 0 1 2 3; do
   [ "$i" = "$requeued" ] || [ "$i" = "$usr1" ] || check "shard $i ran once and exited 0" \
     test "$(attempt_exits "$run1/shards/shard-$i.attempts")" = 0
 done
-distinct=$(json_number "$run1/merged.json" distinct_solutions)
-check "the merged database holds exactly 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+# db stats: "solutions" = rows, each unique by solution hash; "distinct_solutions" = orbits.
+rows=$(json_number "$run1/merged.json" solutions)
+check "the merged database holds exactly 203520 solutions (got $rows)" test "$rows" = 203520
+check "... 203520 distinct grids, all validated (plain sqlite3: distinct cells, validated rows)" \
+  test "$(sqlite3 "$run1/merged.sqlite" "SELECT COUNT(DISTINCT cells) || ' ' || SUM(validated) FROM solutions
+          WHERE kind = 'wang' AND colors = 2 AND rows = 4 AND cols = 4")" = "203520 203520"
+orbits=$(json_number "$run1/merged.json" distinct_solutions)
+check "... and as many orbits as one unsharded count finds ($orbits vs $ORBITS)" test "$orbits" = "$ORBITS"
 check "the merge job printed the final count" grep -q "final count: 203520 distinct solutions" "$run1"/logs/merge-*.out
-status=$("$TK" cluster status --run-dir "$run1" --json)
+"$TK" cluster status --run-dir "$run1" --json >"$work/status1.json"
 check "cluster status: 4 shards done, 203520 merged" \
-  bash -c "grep -q '\"done\":4' <<<'$status' && grep -q '\"merged_distinct_solutions\":203520' <<<'$status'"
+  bash -c "grep -q '\"done\":4' '$work/status1.json' && grep -q '\"merged_solutions\":203520' '$work/status1.json'"
 log "case 1 took $((SECONDS - t1)) s"
 
 # ---- 2. a shard counted twice changes nothing -------------------------------------------------
@@ -223,15 +234,17 @@ scontrol requeue "$(field "${array}_0" JobId)" || fatal "scontrol requeue of the
 again=$(sbatch --parsable --dependency="afterok:${array}_0" "$run1/merge.sbatch")
 state=$(wait_final "$again")
 check "a second merge ran after the finished shard was requeued ($state)" test "$state" = COMPLETED
-check "the requeued finished shard ended with exit 0 again, without a new search" \
-  test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode) $(tail -n 1 "$run1/shards/shard-0.attempts" | grep -c '"resumed":false')" = "COMPLETED 0:0 1"
-distinct=$(json_number "$run1/merged.json" distinct_solutions)
-check "after the second merge: still 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+check "the requeued finished shard ended with exit 0 again" \
+  test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode)" = "COMPLETED 0:0"
+check "... without searching again (its result was there)" grep -q "already complete" "$run1"/logs/pack-*_0.out
+rows=$(json_number "$run1/merged.json" solutions)
+check "after the second merge: still 203520 solutions (got $rows)" test "$rows" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$run1/merged.json" distinct_solutions)" = "$ORBITS"
 "$TK" db merge "$work/twice.sqlite" "$run1"/shards/shard-{0,1,2,3}.sqlite "$run1/shards/shard-0.sqlite" >/dev/null ||
   fatal "tilekit db merge with a shard listed twice failed"
 "$TK" db stats --db "$work/twice.sqlite" --json >"$work/twice.json"
-check "a merge listing shard 0 twice: 203520 distinct solutions" test "$(json_number "$work/twice.json" distinct_solutions)" = 203520
-check "... and 203520 solution rows" test "$(json_number "$work/twice.json" solutions)" = 203520
+check "a merge listing shard 0 twice holds 203520 solutions" test "$(json_number "$work/twice.json" solutions)" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$work/twice.json" distinct_solutions)" = "$ORBITS"
 
 # ---- 3. checked now ---------------------------------------------------------------------------
 log "case 3: waiting for the wall-time run ($(time_left) s left)"
@@ -243,6 +256,18 @@ check "both attempts of the wall-time shard checkpointed and exited 3 (exits: $e
 check "Slurm sent USR1 before the limit in both attempts" test "$(grep -c "got SIGUSR1" "$log3")" = 2
 check "the first attempt requeued itself" grep -q "attempt 0): checkpointed .*requeueing this task to resume" "$log3"
 check "the second attempt resumed from the checkpoint" last_attempt_resumed "$run3/shards/shard-0.attempts"
+line_number() { { grep -o "\"$2\":[0-9.eE+-]*" <<<"$1" || true; } | head -n 1 | cut -d: -f2; }
+a0=$(sed -n 1p "$run3/shards/shard-0.attempts")
+a1=$(sed -n 2p "$run3/shards/shard-0.attempts")
+T0=$(line_number "$a0" total_seconds) s1=$(line_number "$a1" seconds) T1=$(line_number "$a1" total_seconds)
+check "the second attempt went on from the first: its total time ${T1:-?} s = ${T0:-?} s before + ${s1:-?} s now" \
+  awk -v T0="${T0:-0}" -v s1="${s1:-0}" -v T1="${T1:-0}" 'BEGIN { exit !(T0 > 1 && s1 > 1 && T1 - s1 > T0 - 1 && T1 - s1 < T0 + 1) }'
+S0=$(line_number "$a0" solutions) S1=$(line_number "$a1" solutions)
+check "its count went on from the first's (${S0:-?} then ${S1:-?} solutions)" \
+  awk -v a="${S0:-0}" -v b="${S1:-0}" 'BEGIN { exit !(a > 0 && b > a) }'
+"$TK" cluster status --run-dir "$run3" --json >"$work/status3.json"
+check "cluster status reads the checkpoint's progress (${S1:-?} solutions so far)" \
+  grep -q "\"solutions\":${S1:-x}," "$work/status3.json"
 check "the second attempt stopped at the requeue bound" grep -q "requeue bound (1) is reached" "$log3"
 check "Slurm counted one requeue (Restarts=$(field "${array3}_0" Restarts))" test "$(field "${array3}_0" Restarts)" = 1
 check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" ExitCode))" \
