@@ -5,15 +5,22 @@
 #
 #   bash tests/slurm/cluster-test.sh      # scripts/test.sh runs it after ctest
 #
-# Cases:
-#  1. requeue: the 4-shard array enumerating the 203,520 C=2 Wang packings; one task is
-#     requeued mid-run (scontrol requeue: SIGTERM -> checkpoint -> exit 3 -> resume); the
-#     merge job (afterok) finishes; the merged database holds exactly 203,520 distinct
-#     solutions and every shard task ended with exit 0.
-#  2. twice: a requeue after a shard had finished, a second merge, and a merge that lists a
-#     shard twice change nothing.
-#  3. walltime: a shard with a 1-minute limit gets USR1 before the limit, checkpoints, exits 3,
-#     requeues itself and resumes until it completes.
+# Cases (3 is queued first so that it runs beside 1 and 2):
+#  1. The 4-shard array enumerating the 203,520 C=2 Wang packings. A shard searches for well
+#     under a second, so the test stops (SIGSTOP) one shard's tilekit inside its search and has
+#     Slurm requeue the task (SIGTERM -> checkpoint -> exit 3 -> Slurm requeues -> resume), and
+#     does the same with USR1 to another task's batch script, as --signal=B:USR1 does (USR1 ->
+#     checkpoint -> exit 3 -> the task requeues itself -> resume). The merge job (afterok)
+#     finishes; the merged database holds exactly 203,520 solutions (and as many orbits as an
+#     unsharded count), and every shard task ended COMPLETED with exit 0.
+#  2. A shard counted twice changes nothing: a finished task requeued, a second merge, and a
+#     merge that lists a shard twice.
+#  3. Wall time: one shard of a search far longer than its 1-minute limit (counting the C=3
+#     corner packings). Slurm's USR1 comes before the limit, tilekit checkpoints and exits 3,
+#     the task requeues itself and the next attempt resumes (its counts and time go on from the
+#     first); at the requeue bound (1) the task ends with exit 3.
+#  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
+#     scancel then ends it for good (checkpoint, exit 3, no requeue).
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -275,3 +282,25 @@ check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" Exi
 check "its merge job will never run (afterok not met)" \
   test "$(field "$merge3" Reason)" = DependencyNeverSatisfied
 scancel "$merge3" || true
+
+# ---- 4. resuming a whole run: the same submit again; then scancel ends it for good ------------
+log "case 4: the wall-time run submitted again (resume the whole run), then cancelled"
+out4=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
+  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  fatal "the second cluster submit into $run3 failed"
+array4=$(submitted_id array_job "$out4")
+check "the run directory now records two submissions" grep -q '"submissions":2' <<<"$out4"
+while ! grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out 2>/dev/null &&
+  (($(time_left) > 0)); do sleep 0.5; done
+check "the resubmitted shard resumed from the run's checkpoint" \
+  grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out
+for ((t = 0; t < 100; t++)); do  # let tilekit get into its search before the cancel
+  [ -n "$(searching_tilekits "$run3")" ] && break
+  sleep 0.1
+done
+scancel "$array4" || fatal "scancel $array4 failed"
+state=$(wait_final "${array4}_0")
+check "after scancel the task stays cancelled ($state, Restarts=$(field "${array4}_0" Restarts))" \
+  test "$state $(field "${array4}_0" Restarts)" = "CANCELLED 0"
+check "... and tilekit checkpointed on SIGTERM without requeueing" \
+  grep -q "on SIGTERM; not requeueing" "$run3"/logs/pack-"$array4"_0.out
