@@ -2,6 +2,7 @@
 // Tables 8.1-8.7 and the periodicity search.
 #include <fmt/format.h>
 
+#include "checkpoints/aperiodic_store.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
 #include "tilesets/aperiodic_convert.hpp"
@@ -37,7 +38,7 @@ nlohmann::json prune_json(const PruneReport& r, int radius) {
 namespace {
 
 struct ConvertArgs {
-  std::string set, method, out;
+  std::string set, method, out, db;
   int prune = -1;
   bool merge_centres = false, star_edge = false, list = false;
 };
@@ -49,7 +50,7 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
   Conversion conv = convert(src, m, {a.merge_centres, a.star_edge});
   nlohmann::json j = conversion_json(conv, src.name());
   std::optional<TileSet> result;
-  if (a.prune >= 0 || !a.out.empty() || a.list) {
+  if (a.prune >= 0 || !a.out.empty() || a.list || !a.db.empty()) {
     result = conversion_tile_set(conv, src.name() + "-" + a.method, fmt::format("{} of {} (thesis 8.3/8.4)", a.method, src.name()));
   }
   if (a.prune >= 0) {
@@ -76,6 +77,13 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
   if (!a.out.empty()) {
     write_file_atomic(a.out, format_tile_set_text(*result));
     j["out"] = a.out;
+  }
+  if (!a.db.empty()) {
+    ResultsDb db(a.db);
+    nlohmann::json details = j;
+    details.erase("list");
+    j["conversion_id"] = store_conversion(db, src, *result, a.method, j["soundness"].get<std::string>(), details);
+    j["db"] = a.db;
   }
   emit(ctx, j, [&] {
     fmt::print("{} of {}: {} {} tiles, {} colours", a.method, src.name(), j["tiles"].get<std::size_t>(),
@@ -108,10 +116,12 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   conv->add_flag("--star-edge-colour", ca.star_edge, "subdivision: reuse an edge colour as the star (unverified)");
   conv->add_flag("--list", ca.list, "Include the result's tiles");
   conv->add_option("--out", ca.out, "Write the result as a tile-set file (atomically)");
+  conv->add_option("--db", ca.db, "Store source, result and conversion in this results database");
   add_json_flag(conv, ctx);
   conv->callback([&ctx] { run_convert(ctx, ca); });
 
   add_aperiodic_table_command(ap, ctx);
+  add_aperiodic_verify_command(ap, ctx);
 }
 
 }  // namespace tilekit::cli
