@@ -19,6 +19,13 @@ for ((i = 0; i < SHARDS; i++)); do
     missing+=("$i")
   fi
 done
+incomplete=()
+for ((i = 0; i < SHARDS; i++)); do
+  grep -q '"timed_out":true' "$dir/shard-$i.done.json" 2>/dev/null && incomplete+=("$i")
+done
+if ((${#incomplete[@]})); then
+  echo "tilekit merge: warning: shards ${incomplete[*]} stopped at their --time-limit (timed_out); the count is not final" >&2
+fi
 if ((${#missing[@]})); then
   echo "tilekit merge: shards not complete: ${missing[*]} (see tilekit cluster status --run-dir $RUN_DIR)" >&2
   exit 1

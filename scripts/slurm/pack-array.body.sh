@@ -148,6 +148,20 @@ case $rc in
     fi
     exit 3
     ;;
+  1)
+    # Exit 1 = nothing found. With the shard's search space exhausted ("complete":true, e.g.
+    # --mode first in a shard without a packing) the shard is done all the same.
+    if grep -q '"complete":true' "$done_file.tmp" 2>/dev/null; then
+      mv -f "$done_file.tmp" "$done_file"
+      record 1 "$resumed" "$done_file"
+      say "complete, nothing found in this shard: $(cat "$done_file")"
+      exit 0
+    fi
+    record 1 "$resumed" "$done_file.tmp"
+    rm -f "$done_file.tmp"
+    say "tilekit found nothing and did not finish its search (exit code 1)"
+    exit 1
+    ;;
   *)
     record "$rc" "$resumed" "$done_file.tmp"
     rm -f "$done_file.tmp"
