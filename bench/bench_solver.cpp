@@ -34,7 +34,9 @@ using namespace tilekit;
 
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 double cpu_seconds() {
   rusage u{};
@@ -76,7 +78,8 @@ struct PlainDfs {
   std::vector<char> used;
   std::uint64_t nodes = 0, limit = 0;
   bool first = false, stop = false;
-  explicit PlainDfs(const TileSet& s, int side) : n(side), T(int(s.size())), grid(std::size_t(side * side), -1), used(s.size()) {
+  explicit PlainDfs(const TileSet& s, int side)
+      : n(side), T(int(s.size())), grid(std::size_t(side * side), -1), used(s.size()) {
     for (std::size_t k = 0; k < s.size(); ++k) {
       if (s.kind() == TileKind::Wang) {
         auto t = s.wang_tiles()[k];
@@ -142,11 +145,20 @@ void bench_two_colour_counts() {
         SearchResult r = run(p, SearchMode::Count, 1, f);
         count = r.solutions, nodes = r.nodes;
       });
-      line({{"case", "c2_count"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 1},
-            {"solutions", count}, {"baseline_solutions", base_count}, {"seconds", t.wall}, {"cpu_seconds", t.cpu},
-            {"baseline_seconds", base.wall}, {"baseline_cpu_seconds", base.cpu},
-            {"speedup_vs_baseline_cpu", base.cpu / std::max(t.cpu, 1e-9)}, {"nodes", nodes},
-            {"nodes_per_cpu_s", double(nodes) / std::max(t.cpu, 1e-9)}, {"baseline_nodes", base_nodes}});
+      line({{"case", "c2_count"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 1},
+            {"solutions", count},
+            {"baseline_solutions", base_count},
+            {"seconds", t.wall},
+            {"cpu_seconds", t.cpu},
+            {"baseline_seconds", base.wall},
+            {"baseline_cpu_seconds", base.cpu},
+            {"speedup_vs_baseline_cpu", base.cpu / std::max(t.cpu, 1e-9)},
+            {"nodes", nodes},
+            {"nodes_per_cpu_s", double(nodes) / std::max(t.cpu, 1e-9)},
+            {"baseline_nodes", base_nodes}});
     }
   }
 }
@@ -175,11 +187,24 @@ void bench_three_colour_first() {
       d.first = true, d.limit = 50000000;
       double t0 = now(), c0 = cpu_seconds();
       std::uint64_t bfound = d.dfs(0);
-      line({{"case", "c3_first"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 1}, {"runs", 5},
-            {"validated", found}, {"median_seconds", wall[2]}, {"max_seconds", wall[4]}, {"median_cpu_seconds", cpu[2]},
-            {"max_cpu_seconds", cpu[4]}, {"mean_nodes", nodes / 5},
-            {"seed0_seconds", natural_wall}, {"seed0_cpu_seconds", natural_cpu}, {"seed0_found", !natural.found.empty()}, {"baseline_found", bfound > 0},
-            {"baseline_nodes", d.nodes}, {"baseline_seconds", now() - t0}, {"baseline_cpu_seconds", cpu_seconds() - c0}});
+      line({{"case", "c3_first"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 1},
+            {"runs", 5},
+            {"validated", found},
+            {"median_seconds", wall[2]},
+            {"max_seconds", wall[4]},
+            {"median_cpu_seconds", cpu[2]},
+            {"max_cpu_seconds", cpu[4]},
+            {"mean_nodes", nodes / 5},
+            {"seed0_seconds", natural_wall},
+            {"seed0_cpu_seconds", natural_cpu},
+            {"seed0_found", !natural.found.empty()},
+            {"baseline_found", bfound > 0},
+            {"baseline_nodes", d.nodes},
+            {"baseline_seconds", now() - t0},
+            {"baseline_cpu_seconds", cpu_seconds() - c0}});
     }
   }
 }
@@ -196,9 +221,15 @@ void bench_formulation_counts() {
     for (std::string f : {std::string("cell"), c.lattice}) {
       SearchResult r;
       Timing t = median_time(3, [&] { r = run(p, SearchMode::Count, 1, f); });
-      line({{"case", "formulation_count"}, {"set", c.set}, {"grid", fmt::format("{}x{} torus", c.rows, c.cols)},
-            {"formulation", f}, {"solutions", r.solutions}, {"nodes", r.nodes}, {"seconds", t.wall},
-            {"cpu_seconds", t.cpu}, {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)}});
+      line({{"case", "formulation_count"},
+            {"set", c.set},
+            {"grid", fmt::format("{}x{} torus", c.rows, c.cols)},
+            {"formulation", f},
+            {"solutions", r.solutions},
+            {"nodes", r.nodes},
+            {"seconds", t.wall},
+            {"cpu_seconds", t.cpu},
+            {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)}});
     }
   }
 }
@@ -208,8 +239,13 @@ void knuth_line(const std::string& name, const M& root, std::uint64_t exact) {
   for (std::uint64_t probes : {100, 1000, 10000}) {
     double t0 = now();
     TreeEstimate e = knuth_estimate(root, probes, 1);
-    line({{"case", "knuth_estimate"}, {"problem", name}, {"probes", probes}, {"estimate", e.nodes},
-          {"exact", exact}, {"relative_error", (e.nodes - double(exact)) / double(exact)}, {"seconds", now() - t0}});
+    line({{"case", "knuth_estimate"},
+          {"problem", name},
+          {"probes", probes},
+          {"estimate", e.nodes},
+          {"exact", exact},
+          {"relative_error", (e.nodes - double(exact)) / double(exact)},
+          {"seconds", now() - t0}});
   }
 }
 
@@ -244,8 +280,12 @@ void bench_knuth() {
     CellModel m(p, true, CellModel::Ordering::Static);
     double t0 = now();
     TreeEstimate e = knuth_estimate(m, 10000, 1);
-    line({{"case", "knuth_estimate"}, {"problem", "corner C=3 packings (cell), tree size unknown"}, {"probes", 10000},
-          {"estimate", e.nodes}, {"estimated_solutions", e.leaves * 81}, {"seconds", now() - t0}});
+    line({{"case", "knuth_estimate"},
+          {"problem", "corner C=3 packings (cell), tree size unknown"},
+          {"probes", 10000},
+          {"estimate", e.nodes},
+          {"estimated_solutions", e.leaves * 81},
+          {"seconds", now() - t0}});
   }
 }
 
@@ -283,9 +323,13 @@ void bench_checkpoint_cost() {
   std::sort(plain.begin(), plain.end());
   std::sort(ckpt.begin(), ckpt.end());
   std::sort(fraction.begin(), fraction.end());
-  line({{"case", "checkpoint_cost"}, {"problem", "corner C=2 tilings 5x5 torus, pegs, 1 thread, 4 s runs x5"},
-        {"checkpoint_every", 1.0}, {"checkpoints_written", written}, {"nodes_per_cpu_s_without", plain[2]},
-        {"nodes_per_cpu_s_with", ckpt[2]}, {"throughput_cost", 1 - ckpt[2] / plain[2]},
+  line({{"case", "checkpoint_cost"},
+        {"problem", "corner C=2 tilings 5x5 torus, pegs, 1 thread, 4 s runs x5"},
+        {"checkpoint_every", 1.0},
+        {"checkpoints_written", written},
+        {"nodes_per_cpu_s_without", plain[2]},
+        {"nodes_per_cpu_s_with", ckpt[2]},
+        {"throughput_cost", 1 - ckpt[2] / plain[2]},
         {"checkpoint_time_fraction", fraction[2]}});
 }
 
@@ -305,9 +349,18 @@ void bench_speedup() {
       SearchResult r = solve(p, o);
       double wall = now() - t0;
       if (threads == 1) base = wall;
-      line({{"case", "parallel_speedup"}, {"problem", "corner C=2 tilings 5x5 torus"}, {"formulation", f},
-            {"threads", threads}, {"solutions", r.solutions}, {"seconds", wall}, {"cpu_seconds", cpu_seconds() - c0},
-            {"speedup", base / wall}, {"load_average_1min", [] { double l[1]; return getloadavg(l, 1) == 1 ? l[0] : -1; }()}});
+      line({{"case", "parallel_speedup"},
+            {"problem", "corner C=2 tilings 5x5 torus"},
+            {"formulation", f},
+            {"threads", threads},
+            {"solutions", r.solutions},
+            {"seconds", wall},
+            {"cpu_seconds", cpu_seconds() - c0},
+            {"speedup", base / wall},
+            {"load_average_1min", [] {
+               double l[1];
+               return getloadavg(l, 1) == 1 ? l[0] : -1;
+             }()}});
     }
   }
 }
@@ -319,9 +372,16 @@ void bench_c4(double seconds) {
       double c0 = cpu_seconds();
       SearchResult r = run(p, SearchMode::First, 2, f, 1, seconds);
       bool ok = !r.found.empty() && validate(r.found[0], &p.set).packing;
-      line({{"case", "c4_first_plain_search"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 2},
-            {"time_limit", seconds}, {"found", ok}, {"seconds", r.seconds}, {"cpu_seconds", cpu_seconds() - c0},
-            {"nodes", r.nodes}, {"restarts", r.restarts}});
+      line({{"case", "c4_first_plain_search"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 2},
+            {"time_limit", seconds},
+            {"found", ok},
+            {"seconds", r.seconds},
+            {"cpu_seconds", cpu_seconds() - c0},
+            {"nodes", r.nodes},
+            {"restarts", r.restarts}});
     }
 }
 
@@ -332,11 +392,16 @@ int main(int argc, char** argv) {
   double c4 = 0;
   std::string only;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--speedup")) speedup = true;
-    else if (!std::strcmp(argv[i], "--c4") && i + 1 < argc) c4 = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+    if (!std::strcmp(argv[i], "--speedup"))
+      speedup = true;
+    else if (!std::strcmp(argv[i], "--c4") && i + 1 < argc)
+      c4 = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
     else {
-      fmt::print(stderr, "usage: bench_solver [--speedup] [--c4 SECONDS] [--only c2|c3|formulations|knuth|checkpoint|speedup|c4]\n");
+      fmt::print(
+          stderr,
+          "usage: bench_solver [--speedup] [--c4 SECONDS] [--only c2|c3|formulations|knuth|checkpoint|speedup|c4]\n");
       return 2;
     }
   }

@@ -71,7 +71,8 @@ TilingProblem make_problem(const PackArgs& a) {
     return p;
   }
   if (a.kind.empty()) throw InputError("pack needs --kind corner|wang and --colors C (or --set SET)");
-  if (a.kind != "corner" && a.kind != "wang") throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
+  if (a.kind != "corner" && a.kind != "wang")
+    throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
   check_colour_count(a.colours, "--colors");
   return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
 }
@@ -176,11 +177,20 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
   RunRecord run;
   run.command = "pack";
-  run.params = {{"kind", kind},         {"colors", colours},        {"set", problem.set.name()},
-                {"rows", problem.rows}, {"cols", problem.cols},     {"mode", a.mode},
-                {"method", a.method},   {"seed", a.seed},           {"shard", a.shard},
-                {"formulation", a.formulation}, {"ordering", a.ordering}, {"time_limit", a.time_limit},
-                {"checkpoint", o.checkpoint_path}, {"resume", o.resume_path}};
+  run.params = {{"kind", kind},
+                {"colors", colours},
+                {"set", problem.set.name()},
+                {"rows", problem.rows},
+                {"cols", problem.cols},
+                {"mode", a.mode},
+                {"method", a.method},
+                {"seed", a.seed},
+                {"shard", a.shard},
+                {"formulation", a.formulation},
+                {"ordering", a.ordering},
+                {"time_limit", a.time_limit},
+                {"checkpoint", o.checkpoint_path},
+                {"resume", o.resume_path}};
   run.status = "running";
   run.threads = o.threads;
   run.id = db.begin_run(run);
@@ -193,7 +203,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   SearchResult r;
   std::string method = "search";
   std::optional<SolutionRecord> hit;
-  const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
+  const bool complete_set =
+      problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
   if (a.method == "auto" && o.mode == SearchMode::First && complete_set && a.impose.empty())
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
   std::optional<ConstructedPacking> built;
@@ -206,8 +217,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     if (!built && a.method == "construct") {
       run.status = "failed";
       db.finish_run(run);
-      throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
-                                 kind, colours));
+      throw NotFound(
+          fmt::format("no construction is known for {} packings with {} colours (try --method search)", kind, colours));
     }
   }
   // The search portfolio (DESIGN.md: plain search plus imposed-automorphism subspaces) answers
@@ -352,10 +363,11 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
   if (r.interrupted || SignalCatcher::caught())
-    throw Interrupted(fmt::format("interrupted by signal {}; {}", SignalCatcher::caught(),
-                                  o.checkpoint_path.empty() ? "no checkpoint (use --checkpoint F to resume later)"
-                                                            : "checkpoint written to " + o.checkpoint_path +
-                                                                  " (continue with --resume " + o.checkpoint_path + ")"));
+    throw Interrupted(fmt::format(
+        "interrupted by signal {}; {}", SignalCatcher::caught(),
+        o.checkpoint_path.empty()
+            ? "no checkpoint (use --checkpoint F to resume later)"
+            : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " + o.checkpoint_path + ")"));
   if (o.mode == SearchMode::First && r.found.empty())
     throw NotFound(r.complete ? "no packing exists (the search space was exhausted)"
                               : "no packing found within the time limit");
@@ -371,14 +383,16 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--colors", a->colours, "Number of colours C (the complete set on the C^2 x C^2 torus)");
   cmd->add_option("--set", a->set, "Pack this tile set instead (built-in name or file)");
   cmd->add_option("--size", a->size, "Torus size ROWSxCOLS for --set (default: square)");
-  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")->capture_default_str();
+  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")
+      ->capture_default_str();
   cmd->add_option("--mode", a->mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", a->seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", a->formulation, "auto, cell, pegs (corner) or edges (Wang)")->capture_default_str();
   cmd->add_option("--ordering", a->ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", a->checkpoint, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", a->checkpoint_every, "Seconds between checkpoints (default 300 with --checkpoint)");
+  cmd->add_option("--checkpoint-every", a->checkpoint_every,
+                  "Seconds between checkpoints (default 300 with --checkpoint)");
   cmd->add_option("--resume", a->resume, "Resume from this checkpoint (and keep checkpointing to it)");
   cmd->add_option("--db", a->db, "Results database");
   cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();

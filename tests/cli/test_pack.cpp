@@ -27,7 +27,8 @@ TEST(PackCli, HelpListsTheContractOptions) {
 
 TEST(PackCli, CountsTwoColourPackingsWithOneAndTwoThreads) {
   for (const char* threads : {"1", "2"}) {
-    CliResult w = pack(std::string("--kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
+    CliResult w =
+        pack(std::string("--kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
     ASSERT_EQ(w.code, 0) << w.err;
     auto j = w.json();
     EXPECT_EQ(j["solutions"], 203520);
@@ -45,8 +46,8 @@ TEST(PackCli, FirstPackingsOfThreeColoursPassTheIndependentCheck) {
   TempDir d;
   for (const char* kind : {"corner", "wang"}) {
     std::string out = d / (std::string(kind) + ".json");
-    CliResult r = pack(std::string("--method search --quiet --json --threads 2 --colors 3 --kind ") + kind +
-                          " --out " + out);
+    CliResult r =
+        pack(std::string("--method search --quiet --json --threads 2 --colors 3 --kind ") + kind + " --out " + out);
     ASSERT_EQ(r.code, 0) << r.err;
     auto j = r.json();
     EXPECT_EQ(j["valid"], true);
@@ -147,7 +148,8 @@ TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
   EXPECT_EQ(w.json()["method"], "construct");
   EXPECT_EQ(w.json()["valid"], true);
   EXPECT_EQ(w.json()["cells"].size(), 25u);
-  CliResult bad = run_cli("pack --method construct --mode count --kind wang --colors 2 --quiet --db " + (d / "r.sqlite"));
+  CliResult bad =
+      run_cli("pack --method construct --mode count --kind wang --colors 2 --quiet --db " + (d / "r.sqlite"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("--mode first"), std::string::npos) << bad.err;
 }
@@ -155,7 +157,8 @@ TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
 TEST(PackCli, ImposedGroupFindsAFourColourWangPackingThatValidates) {
   TempDir d;
   std::string out = d / "w4.json";
-  CliResult r = pack("--kind wang --colors 4 --impose t=0,8:pi=1,0,3,2 --threads 2 --time-limit 120 --quiet --json --out " + out);
+  CliResult r =
+      pack("--kind wang --colors 4 --impose t=0,8:pi=1,0,3,2 --threads 2 --time-limit 120 --quiet --json --out " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = r.json();
   EXPECT_EQ(j["method"], "search");
