@@ -327,6 +327,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"run_id", run.id},
                       {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
+  j["nodes_per_second"] = r.seconds > 0 ? double(r.nodes) / r.seconds : 0.0;
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (built) j["construction"] = built->how;
   if (!portfolio_json.is_null()) {
