@@ -93,6 +93,8 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (tilesets/aperiodic_prune.hpp)");
   cmd->add_option("--db", va.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--progress", va.opts.progress, "Progress on stderr");
+  cmd->add_flag("--no-filter", [](std::int64_t) { va.opts.transducer_filter = false; },
+                "Send every torus shape to the solver (no transducer filter; for comparison)");
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] { run_verify(ctx, va); });
 }
