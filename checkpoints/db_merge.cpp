@@ -192,6 +192,10 @@ void merge_export(const Input& in, MergeSink& sink) {
 
 }  // namespace
 
+void ResultsDb::check_merge_inputs(const std::vector<std::string>& inputs) {
+  for (const std::string& p : inputs) open_input(p);
+}
+
 MergeReport ResultsDb::merge(const std::vector<std::string>& inputs, bool distinct_orbits) {
   if (read_only_) throw InputError(fmt::format("{}: opened read-only, cannot merge into it", path_));
   std::vector<Input> opened;

@@ -160,6 +160,9 @@ class ResultsDb {
   // result), solutions by solution_hash, or by canonical_hash too with `distinct_orbits`.
   // Idempotent. Throws InputError (nothing written) for a foreign or corrupt input.
   MergeReport merge(const std::vector<std::string>& inputs, bool distinct_orbits = false);
+  // The checks merge() makes on its inputs, without a target (so a command can refuse bad
+  // inputs before it creates the target file).
+  static void check_merge_inputs(const std::vector<std::string>& inputs);
 
   const std::string& path() const { return path_; }
   sqlite3* handle() const { return db_; }

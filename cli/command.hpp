@@ -26,6 +26,12 @@ void add_json_flag(CLI::App* cmd, Context& ctx);
 // Command groups, one per cmd_*.cpp.
 void add_tileset_commands(CLI::App& app, Context& ctx);
 void add_check_command(CLI::App& app, Context& ctx);
+void add_pack_command(CLI::App& app, Context& ctx);
+void add_db_commands(CLI::App& app, Context& ctx);
+void add_atlas_commands(CLI::App& app, Context& ctx);
+void add_tile_command(CLI::App& app, Context& ctx);
+void add_analyze_commands(CLI::App& app, Context& ctx);
 void add_aperiodic_commands(CLI::App& app, Context& ctx);
+void add_cluster_commands(CLI::App& app, Context& ctx);
 
 }  // namespace tilekit::cli

@@ -18,7 +18,13 @@ int main(int argc, char** argv) {
              "Run `tilekit COMMAND --help` for a command's options.");
   cli::add_tileset_commands(app, ctx);
   cli::add_check_command(app, ctx);
+  cli::add_pack_command(app, ctx);
+  cli::add_db_commands(app, ctx);
+  cli::add_atlas_commands(app, ctx);
+  cli::add_tile_command(app, ctx);
+  cli::add_analyze_commands(app, ctx);
   cli::add_aperiodic_commands(app, ctx);
+  cli::add_cluster_commands(app, ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -8,6 +8,7 @@
 //        called on entering every node, before it is counted; false stops the search (the
 //        node at `path` is then the first one not yet explored)
 //   void leaf(const M& model, SearchCounters& counted)   at every solution
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -34,6 +35,8 @@ class SubtreeSearch {
       path_.push_back(d);
       if (!m.assign(d.var, d.value)) throw InputError("subproblem prefix does not replay");
     }
+    if (!resume.empty() && (resume.size() < prefix.size() || !std::equal(prefix.begin(), prefix.end(), resume.begin())))
+      throw InputError("checkpoint path does not start with its subproblem's prefix");
     std::size_t d = 0;  // depth of the current node below the prefix
     for (std::size_t i = prefix.size(); i < resume.size(); ++i, ++d) {
       ensure(d);

@@ -6,16 +6,6 @@
 
 namespace tilekit {
 
-std::uint64_t luby(std::uint64_t i) {
-  // Luby, Sinclair, Zuckerman (1993): t_i = 2^(k-1) if i = 2^k - 1, else t_{i - 2^(k-1) + 1}.
-  for (;;) {
-    std::uint64_t k = 1;
-    while ((std::uint64_t(1) << k) - 1 < i) ++k;
-    if ((std::uint64_t(1) << k) - 1 == i) return std::uint64_t(1) << (k - 1);
-    i = i - (std::uint64_t(1) << (k - 1)) + 1;
-  }
-}
-
 SymmetricSearch::SymmetricSearch(const SymmetricModel& model, const SymmetricSearchConfig& config)
     : m_(model), cfg_(config), rng_(config.seed * 0x9E3779B97F4A7C15ULL + 0x2545F4914F6CDD1DULL) {
   const int ns = m_.num_sites;
@@ -50,7 +40,73 @@ SymmetricSearch::SymmetricSearch(const SymmetricModel& model, const SymmetricSea
     occ_start_.push_back(int(occ_.size()));
   }
   stack_.resize(std::size_t(ns) + 1);
+  build_patterns();
   reset();
+}
+
+void SymmetricSearch::build_patterns() {
+  if (!m_.packing) return;
+  const bool wang = m_.kind == TileKind::Wang;
+  auto slot_class = [&](int j) { return wang && (j == 1 || j == 3) ? 1 : 0; };  // Wang E, W: vertical
+  auto radix = [&](int j) { return slot_class(j) ? m_.cv : m_.ch; };
+  auto tile_colours = [&](std::uint32_t t) -> std::array<Colour, 4> {
+    if (wang) {
+      WangTile w = wang_tile(t, m_.ch, m_.cv);
+      return {w.n, w.e, w.s, w.w};
+    }
+    CornerTile c = corner_tile(t, m_.ch);
+    return {c.ne, c.se, c.sw, c.nw};
+  };
+  int classes = 0;
+  std::vector<std::uint32_t> orbit_rep(std::size_t(m_.num_orbits), ~0u);
+  for (std::uint32_t t = 0; t < m_.orbit_of.size(); ++t)
+    if (m_.orbit_of[t] >= 0 && orbit_rep[std::size_t(m_.orbit_of[t])] == ~0u) orbit_rep[std::size_t(m_.orbit_of[t])] = t;
+  for (int mask = 1; mask < 16; ++mask) {
+    int n = std::popcount(unsigned(mask));
+    if (!(cfg_.pattern_sizes >> n & 1) || n > 3) continue;
+    Pattern p;
+    p.mask = mask;
+    std::uint32_t size = 1;
+    for (int j = 0; j < 4; ++j)
+      if (mask >> j & 1) {
+        p.slots[std::size_t(p.n)] = j;
+        p.mul[std::size_t(p.n++)] = size;
+        size *= radix(j);
+      }
+    p.offset = int(pattern_class_.size());
+    // Class of each code: least code over the group's images, numbered compactly.
+    std::vector<int> least(size);
+    for (std::uint32_t code = 0; code < size; ++code) {
+      std::uint32_t best = code;
+      for (std::size_t e = 0; e < m_.group_order; ++e) {
+        std::uint32_t img = 0, rest = code;
+        for (int j = 0; j < p.n; ++j) {
+          std::uint32_t r = radix(p.slots[std::size_t(j)]);
+          Colour c = rest % r;
+          rest /= r;
+          img += p.mul[std::size_t(j)] * m_.perm_tables[e * 2 + std::size_t(slot_class(p.slots[std::size_t(j)]))][c];
+        }
+        best = std::min(best, img);
+      }
+      least[code] = int(best);
+    }
+    std::vector<int> id(size, -1);
+    for (std::uint32_t code = 0; code < size; ++code) {
+      int& k = id[std::size_t(least[code])];
+      if (k < 0) k = classes++;
+      pattern_class_.push_back(k);
+    }
+    avail_init_.resize(std::size_t(classes), 0);
+    for (std::uint32_t t : orbit_rep) {
+      auto col = tile_colours(t);
+      std::uint32_t code = 0;
+      for (int j = 0; j < p.n; ++j) code += p.mul[std::size_t(j)] * col[std::size_t(p.slots[std::size_t(j)])];
+      ++avail_init_[std::size_t(pattern_class_[std::size_t(p.offset) + code])];
+    }
+    patterns_.push_back(p);
+  }
+  avail_.resize(avail_init_.size());
+  demand_.resize(avail_init_.size());
 }
 
 void SymmetricSearch::reset() {
@@ -60,7 +116,8 @@ void SymmetricSearch::reset() {
   tight_cnt_.assign(std::size_t(m_.num_sites), 0);
   tight_pos_.assign(std::size_t(m_.num_sites), -1);
   tight_list_.clear();
-  trail_.clear();
+  std::copy(avail_init_.begin(), avail_init_.end(), avail_.begin());
+  std::fill(demand_.begin(), demand_.end(), 0);
   assigned_ = 0;
   for (int c = 0; c < int(m_.cells.size()); ++c) {
     int u = lone_unassigned(c);  // a cell whose four slots are one site (tiny tori)
@@ -105,49 +162,115 @@ int SymmetricSearch::lone_unassigned(int cell) const {
   return lone;
 }
 
-bool SymmetricSearch::assign(int site, int v) {
-  val_[std::size_t(site)] = v;
-  ++assigned_;
+std::uint32_t SymmetricSearch::tile_of(int cell) const {
+  std::uint32_t idx = 0;
+  const int base = cell * 4;
+  for (int j = 0; j < 4; ++j)
+    idx += slot_weight_[std::size_t(base + j)] *
+           slot_perm_[std::size_t(base + j)][val_[std::size_t(slot_site_[std::size_t(base + j)])]];
+  return idx;
+}
+
+int SymmetricSearch::pattern_key(int cell, const Pattern& p) const {
+  int code = 0;
+  for (int j = 0; j < p.n; ++j) {
+    int slot = cell * 4 + p.slots[j];
+    code += int(p.mul[j]) * slot_perm_[std::size_t(slot)][val_[std::size_t(slot_site_[std::size_t(slot)])]];
+  }
+  return pattern_class_[std::size_t(p.offset + code)];
+}
+
+bool SymmetricSearch::pattern_assigned(int cell, const Pattern& p) const {
+  for (int j = 0; j < p.n; ++j)
+    if (val_[std::size_t(slot_site_[std::size_t(cell * 4 + p.slots[j])])] < 0) return false;
+  return true;
+}
+
+int SymmetricSearch::site_slots(int cell, int site) const {
+  int mask = 0;
+  for (int j = 0; j < 4; ++j)
+    if (slot_site_[std::size_t(cell * 4 + j)] == site) mask |= 1 << j;
+  return mask;
+}
+
+// Applies one occurrence of a just-assigned site; revert_occurrence() is its exact inverse.
+// Returns false when a partial-pattern count now exceeds the unused orbits with that pattern
+// (the state is still fully applied, so the caller reverts it).
+bool SymmetricSearch::apply_occurrence(int site, const Occurrence& o) {
   bool ok = true;
-  for (int k = occ_start_[std::size_t(site)]; k < occ_start_[std::size_t(site) + 1]; ++k) {
-    const auto& o = occ_[std::size_t(k)];
-    int after = (cu_[std::size_t(o.cell)] -= o.mult);
-    if (after == 0) {
-      tight_remove(site);
-      if (!ok) continue;
-      std::uint32_t idx = 0;
-      const int base = o.cell * 4;
-      for (int j = 0; j < 4; ++j)
-        idx += slot_weight_[std::size_t(base + j)] *
-               slot_perm_[std::size_t(base + j)][val_[std::size_t(slot_site_[std::size_t(base + j)])]];
-      int orbit = m_.orbit_of[idx];
-      if (orbit < 0 || (m_.packing && used_[std::size_t(orbit)])) {
-        ok = false;
-        continue;
+  int after = (cu_[std::size_t(o.cell)] -= o.mult);
+  int mine = patterns_.empty() ? 0 : site_slots(o.cell, site);
+  if (after == 0) {
+    tight_remove(site);
+    if (m_.packing) {
+      used_[std::size_t(m_.orbit_of[tile_of(o.cell)])] = 1;
+      for (const auto& p : patterns_) {
+        int key = pattern_key(o.cell, p);
+        if (!(p.mask & mine)) --demand_[std::size_t(key)];
+        if (--avail_[std::size_t(key)] < demand_[std::size_t(key)]) ok = false;
       }
-      if (m_.packing) {
-        used_[std::size_t(orbit)] = 1;
-        trail_.push_back(orbit);
-      }
-    } else {
-      int u = lone_unassigned(o.cell);
-      if (u >= 0) tight_add(u);
+    }
+  } else {
+    int u = lone_unassigned(o.cell);
+    if (u >= 0) tight_add(u);
+    for (const auto& p : patterns_) {
+      if (!(p.mask & mine) || !pattern_assigned(o.cell, p)) continue;
+      int key = pattern_key(o.cell, p);
+      if (++demand_[std::size_t(key)] > avail_[std::size_t(key)]) ok = false;
     }
   }
   return ok;
 }
 
-void SymmetricSearch::unassign(int site) {
-  for (int k = occ_start_[std::size_t(site) + 1] - 1; k >= occ_start_[std::size_t(site)]; --k) {
-    const auto& o = occ_[std::size_t(k)];
-    if (cu_[std::size_t(o.cell)] == 0) {
-      tight_add(site);
-    } else {
-      int u = lone_unassigned(o.cell);
-      if (u >= 0) tight_remove(u);
+void SymmetricSearch::revert_occurrence(int site, const Occurrence& o) {
+  int mine = patterns_.empty() ? 0 : site_slots(o.cell, site);
+  if (cu_[std::size_t(o.cell)] == 0) {
+    if (m_.packing) {
+      for (const auto& p : patterns_) {
+        int key = pattern_key(o.cell, p);
+        if (!(p.mask & mine)) ++demand_[std::size_t(key)];
+        ++avail_[std::size_t(key)];
+      }
+      used_[std::size_t(m_.orbit_of[tile_of(o.cell)])] = 0;
     }
-    cu_[std::size_t(o.cell)] += o.mult;
+    tight_add(site);
+  } else {
+    int u = lone_unassigned(o.cell);
+    if (u >= 0) tight_remove(u);
+    for (const auto& p : patterns_) {
+      if (!(p.mask & mine) || !pattern_assigned(o.cell, p)) continue;
+      --demand_[std::size_t(pattern_key(o.cell, p))];
+    }
   }
+  cu_[std::size_t(o.cell)] += o.mult;
+}
+
+bool SymmetricSearch::assign(int site, int v) {
+  val_[std::size_t(site)] = v;
+  ++assigned_;
+  const int first = occ_start_[std::size_t(site)], last = occ_start_[std::size_t(site) + 1];
+  for (int k = first; k < last; ++k) {
+    const auto& o = occ_[std::size_t(k)];
+    bool ok = true;
+    if (cu_[std::size_t(o.cell)] == o.mult) {
+      // This occurrence completes the cell: its tile orbit must be usable and unused.
+      int orbit = m_.orbit_of[tile_of(o.cell)];
+      ok = orbit >= 0 && !(m_.packing && used_[std::size_t(orbit)]);
+    }
+    if (ok) ok = apply_occurrence(site, o) ? true : (revert_occurrence(site, o), false);
+    if (!ok) {
+      for (int j = k - 1; j >= first; --j) revert_occurrence(site, occ_[std::size_t(j)]);
+      val_[std::size_t(site)] = -1;
+      --assigned_;
+      return false;
+    }
+  }
+  return true;
+}
+
+void SymmetricSearch::unassign(int site) {
+  for (int k = occ_start_[std::size_t(site) + 1] - 1; k >= occ_start_[std::size_t(site)]; --k)
+    revert_occurrence(site, occ_[std::size_t(k)]);
   val_[std::size_t(site)] = -1;
   --assigned_;
 }
@@ -217,7 +340,6 @@ bool SymmetricSearch::select(Frame& f) {
   f.n = 0;
   f.i = 0;
   f.assigned = false;
-  f.trail_mark = std::uint32_t(trail_.size());
   for (std::uint64_t rest = best_mask; rest; rest &= rest - 1) f.vals[f.n++] = std::uint8_t(std::countr_zero(rest));
   if (cfg_.random_values)
     for (int i = f.n - 1; i > 0; --i) std::swap(f.vals[i], f.vals[next_random() % std::uint64_t(i + 1)]);
@@ -236,10 +358,6 @@ SymmetricSearch::Outcome SymmetricSearch::run(std::uint64_t node_limit, const st
     Frame& f = stack_[std::size_t(depth)];
     if (f.assigned) {
       unassign(f.site);
-      while (trail_.size() > f.trail_mark) {
-        used_[std::size_t(trail_.back())] = 0;
-        trail_.pop_back();
-      }
       f.assigned = false;
     }
     if (f.i == f.n) {
@@ -254,8 +372,8 @@ SymmetricSearch::Outcome SymmetricSearch::run(std::uint64_t node_limit, const st
       if (std::chrono::steady_clock::now() >= deadline) return Outcome::Stopped;
     }
     if (node_limit && nodes_ - start_nodes >= node_limit) return Outcome::NodeLimit;
+    if (!assign(f.site, v)) continue;  // assign() undid itself
     f.assigned = true;
-    if (!assign(f.site, v)) continue;  // unassigned at the top of the loop
     if (assigned_ == m_.num_sites) {
       ++solutions_;
       if (!each) return Outcome::Solution;

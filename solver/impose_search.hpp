@@ -9,6 +9,7 @@
 // fewest values (most-constrained-first; ties by scanline order), values in a seeded random
 // order, and first-solution runs restart after a Luby-sequence node budget (Luby, Sinclair and
 // Zuckerman 1993), as the prototype of DESIGN.md did with plain restarts.
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -22,6 +23,7 @@ namespace tilekit {
 struct SymmetricSearchConfig {
   bool random_values = true;  // seeded random value order (else ascending)
   bool most_constrained = true;  // MCF among tight sites (else scanline order)
+  int pattern_sizes = 1 << 2;  // bit k: slot subsets of size k (1..3) get demand/avail counts
   std::uint64_t seed = 0;
 };
 
@@ -51,12 +53,29 @@ class SymmetricSearch {
     int site = -1;
     int n = 0, i = 0;
     bool assigned = false;
-    std::uint32_t trail_mark = 0;
     std::uint8_t vals[64];
   };
 
+  // Partial patterns (slot subsets of a cell): demand_ counts incomplete representative cells
+  // whose pattern is assigned, avail_ the unused tile orbits with that pattern, per class of the
+  // pattern under G. demand <= avail must hold (pigeonhole; "counts of unused windows per
+  // partial pattern").
+  struct Pattern {
+    int n = 0;
+    int mask = 0;             // slots of the pattern
+    std::array<int, 3> slots{};
+    std::array<std::uint32_t, 3> mul{};
+    int offset = 0;           // into pattern_class_
+  };
   void reset();
   bool assign(int site, int v);
+  bool apply_occurrence(int site, const Occurrence& o);
+  void revert_occurrence(int site, const Occurrence& o);
+  std::uint32_t tile_of(int cell) const;
+  int pattern_key(int cell, const Pattern& p) const;
+  bool pattern_assigned(int cell, const Pattern& p) const;
+  int site_slots(int cell, int site) const;
+  void build_patterns();
   void unassign(int site);
   bool select(Frame& f);
   std::uint64_t cell_mask(int cell, int site, std::uint64_t mask) const;
@@ -78,13 +97,12 @@ class SymmetricSearch {
   std::vector<int> cu_;  // unassigned slots per cell
   std::vector<std::uint8_t> used_;
   std::vector<int> tight_cnt_, tight_list_, tight_pos_;
-  std::vector<int> trail_;
+  std::vector<Pattern> patterns_;
+  std::vector<int> pattern_class_;  // offset + code -> class index (into avail_/demand_)
+  std::vector<int> avail_init_, avail_, demand_;
   std::vector<Frame> stack_;
   int assigned_ = 0;
   std::uint64_t nodes_ = 0, solutions_ = 0;
 };
-
-// Luby sequence 1,1,2,1,1,2,4,1,1,2,... (i >= 1).
-std::uint64_t luby(std::uint64_t i);
 
 }  // namespace tilekit

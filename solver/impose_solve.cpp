@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "solver/impose_model.hpp"
+#include "solver/impose_sat.hpp"
 #include "solver/impose_search.hpp"
+#include "solver/luby.hpp"
 #include "tilesets/error.hpp"
 #include "tilesets/validator.hpp"
 
@@ -75,6 +77,7 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     SymmetricSearchConfig cfg;
     cfg.random_values = false;
     cfg.most_constrained = control.most_constrained;
+    cfg.pattern_sizes = control.pattern_sizes;
     SymmetricSearch search(model, cfg);
     std::function<void(const std::vector<int>&)> each = [&](const std::vector<int>& values) {
       if (options.mode == SearchMode::All || options.on_solution) {
@@ -90,6 +93,22 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     return out;
   }
 
+  if (control.sat) {
+    // The same subspace as CNF for cadical (impose_sat.hpp); one solver process.
+    double limit = options.time_limit > 0 ? options.time_limit : 1e6;
+    SatOutcome sat = solve_symmetric_sat(model, limit, options.seed);
+    res.formulation = "sat-" + res.formulation;
+    res.threads = 1;
+    if (sat.status == SatOutcome::Status::Satisfiable) {
+      res.found.push_back(checked(model, group, problem.set, sat.values));
+      res.solutions = 1;
+      if (options.on_solution) options.on_solution(res.found.back());
+    }
+    res.complete = sat.status == SatOutcome::Status::Unsatisfiable;
+    res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return out;
+  }
+
   // First mode: independent seeded restarting searches, first found wins.
   std::atomic<bool> found{false};
   std::atomic<std::uint64_t> nodes{0}, restarts{0};
@@ -101,6 +120,7 @@ SymmetricResult solve_symmetric(const TilingProblem& problem, const ImposedGroup
     SymmetricSearchConfig cfg;
     cfg.seed = options.seed * 1000003ULL + std::uint64_t(tid);
     cfg.most_constrained = control.most_constrained;
+    cfg.pattern_sizes = control.pattern_sizes;
     SymmetricSearch search(model, cfg);
     // Polls `found`; the external stop flag is folded into it by the monitor below.
     std::uint64_t last_nodes = 0;

@@ -21,6 +21,8 @@ struct SymmetricControl {
   std::uint64_t luby_unit = 0;              // nodes per Luby unit; 0 = automatic
   bool most_constrained = true;             // MCF branching (else scanline order)
   bool restarts = true;                     // First mode: Luby restarts (else one DFS)
+  int pattern_sizes = 1 << 2;               // partial-pattern counts (SymmetricSearchConfig)
+  bool sat = false;                         // First mode: CNF + cadical instead of the DFS
 };
 
 struct SymmetricResult {

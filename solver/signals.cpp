@@ -11,9 +11,11 @@ static_assert(std::atomic<int>::is_always_lock_free);
 extern "C" void on_stop_signal(int sig) { g_caught.store(sig, std::memory_order_relaxed); }
 constexpr int kSignals[] = {SIGTERM, SIGINT, SIGUSR1};
 struct sigaction g_previous[3];
+std::atomic<int> g_depth{0};  // nested catchers: only the outermost installs and restores
 }  // namespace
 
 SignalCatcher::SignalCatcher() {
+  if (g_depth++ > 0) return;
   g_caught.store(0);
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
@@ -22,6 +24,7 @@ SignalCatcher::SignalCatcher() {
 }
 
 SignalCatcher::~SignalCatcher() {
+  if (--g_depth > 0) return;
   for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
 }
 

@@ -6,8 +6,10 @@ namespace tilekit {
 
 class SignalCatcher {
  public:
-  SignalCatcher();   // installs the handlers (and clears the flag)
-  ~SignalCatcher();  // restores the previous handlers
+  // Installs the handlers and clears the flag; a catcher made while another is alive (e.g.
+  // solve() inside a command that catches signals itself) only joins it.
+  SignalCatcher();
+  ~SignalCatcher();  // the outermost one restores the previous handlers
   SignalCatcher(const SignalCatcher&) = delete;
   SignalCatcher& operator=(const SignalCatcher&) = delete;
   // The signal number caught since construction, or 0.

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "solver/impose_sat.hpp"
 #include "solver/impose_solve.hpp"
 #include "tilesets/error.hpp"
 #include "tilesets/validator.hpp"
@@ -148,6 +149,40 @@ TEST(ImposeTiling, PeriodicTilingOfASetWithRepeatsAllowed) {
   count.mode = SearchMode::Count;
   // 2x4 pegs, a fundamental domain of 2x2 free pegs: 16 tilings, every colouring allowed.
   EXPECT_EQ(solve_symmetric(p, g, count).result.solutions, 16u);
+}
+
+}  // namespace
+}  // namespace tilekit
+
+namespace tilekit {
+namespace {
+
+TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
+  if (!sat_solver_available()) GTEST_SKIP() << "cadical not installed (scripts/setup.sh installs it)";
+  for (auto [kind, spec] : {std::pair{TileKind::Corner, "t=0,3:pi=1,2,0"}, std::pair{TileKind::Wang, "t=0,3:pi=1,2,0"}}) {
+    TilingProblem p = complete_packing(kind, 3);
+    ImposedGroup g = build_group(p, spec);
+    SearchOptions o;
+    o.time_limit = 60;
+    SymmetricControl ctl;
+    ctl.sat = true;
+    auto r = solve_symmetric(p, g, o, ctl);
+    ASSERT_EQ(r.result.found.size(), 1u) << spec;
+    EXPECT_TRUE(validate(r.result.found[0]).packing);
+    EXPECT_TRUE(g.is_invariant(r.result.found[0]));
+    EXPECT_EQ(r.result.formulation.rfind("sat-", 0), 0u);
+  }
+  // An empty subspace is proved empty: C=2 corner groups whose brute-force count is 0.
+  for (std::string spec : {"t=0,2:pi=1,0", "t=2,2:pi=1,0"}) {
+    SearchOptions count;
+    count.mode = SearchMode::Count;
+    if (solve_symmetric(TileKind::Corner, 2, spec, count).result.solutions != 0) continue;
+    SymmetricControl ctl;
+    ctl.sat = true;
+    auto r = solve_symmetric(TileKind::Corner, 2, spec, SearchOptions{}, ctl);
+    EXPECT_TRUE(r.result.complete) << spec;
+    EXPECT_TRUE(r.result.found.empty()) << spec;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,293 @@
+// tilekit cluster submit|status: a sharded `tilekit pack` as a Slurm job array (issue 6).
+// submit writes pack-array.sbatch, merge.sbatch and submit.sh into the run directory and
+// queues them (sbatch); status reads the run directory (no Slurm needed) and shows each
+// shard's attempts, checkpoint and result, and the merged count.
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli/cluster_scripts.hpp"
+#include "cli/command.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/tile_set_io.hpp"
+
+namespace tilekit::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct SubmitOptions {
+  std::string kind, method, mode = "all", run_dir, tilekit, job_name, sbatch = "sbatch";
+  int colors = 0;
+  std::string seed;
+  std::vector<std::string> pack_extra;
+  bool dry_run = false;
+  int signal_seconds = 0;  // 0 = default_signal_seconds(--time)
+  std::string merge_time;  // "" = --time
+  ClusterPlan plan;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream b;
+  b << in.rdbuf();
+  return b.str();
+}
+
+std::optional<nlohmann::json> read_json(const fs::path& p) {
+  if (!fs::exists(p)) return std::nullopt;
+  try {
+    return nlohmann::json::parse(read_text(p));
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
+}
+
+ClusterPlan make_plan(SubmitOptions& o) {
+  ClusterPlan p = o.plan;
+  if (o.kind != "wang" && o.kind != "corner") throw InputError("--kind must be wang or corner");
+  if (o.colors < 1) throw InputError("--colors must be at least 1");
+  p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
+  if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
+  p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
+  if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
+  for (const auto& a : o.pack_extra) {
+    for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json"})
+      if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
+        throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
+    p.pack_args.push_back(a);
+  }
+  if (o.run_dir.empty()) o.run_dir = fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
+  p.run_dir = fs::absolute(o.run_dir).lexically_normal().string();
+  if (p.run_dir.size() > 1 && p.run_dir.back() == '/') p.run_dir.pop_back();
+  p.tilekit = o.tilekit.empty() ? fs::canonical("/proc/self/exe").string() : fs::absolute(o.tilekit).string();
+  p.job_name = o.job_name.empty() ? fmt::format("tk-{}{}", o.kind, o.colors) : o.job_name;
+  p.merge_time = o.merge_time.empty() ? p.time : o.merge_time;
+  p.signal_seconds = o.signal_seconds > 0 ? o.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
+  check_plan(p);
+  return p;
+}
+
+nlohmann::json run_record(const ClusterPlan& p) {
+  return {{"format", "tilekit-cluster-run"}, {"version", 1},         {"tilekit", p.tilekit},
+          {"shards", p.shards},              {"pack_args", p.pack_args}, {"cpus_per_task", p.cpus_per_task},
+          {"time", p.time},                  {"signal_seconds", p.signal_seconds},
+          {"max_requeues", p.max_requeues},  {"checkpoint_every", p.checkpoint_every},
+          {"partition", p.partition},        {"submissions", nlohmann::json::array()}};
+}
+
+// Runs `command` through the shell; returns its stdout, or throws with `what` on failure.
+std::string run_capture(const std::string& command, const std::string& what) {
+  FILE* f = ::popen(command.c_str(), "r");
+  if (!f) throw InputError(fmt::format("{}: cannot run '{}'", what, command));
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, f)) out.append(buf, n);
+  int status = ::pclose(f);
+  int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  if (code == 127) throw NotFound(fmt::format("{}: '{}' not found (not a Slurm host? --dry-run prints the scripts)", what, command));
+  if (code != 0) throw InputError(fmt::format("{}: '{}' failed with exit code {}", what, command, code));
+  return out;
+}
+
+std::string sbatch(const std::string& sbatch_cmd, const std::vector<std::string>& args) {
+  std::string cmd = shell_quote(sbatch_cmd) + " --parsable";
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  std::string out = run_capture(cmd, "sbatch");
+  std::string id = out.substr(0, out.find_first_of(";\n"));
+  if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    throw InputError(fmt::format("sbatch printed '{}', not a job id", out));
+  return id;
+}
+
+void write_script(const fs::path& path, const std::string& text) {
+  write_file_atomic(path.string(), text);
+  fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                  fs::perm_options::add);
+}
+
+void submit(const Context& ctx, SubmitOptions& o) {
+  ClusterPlan p = make_plan(o);
+  const std::vector<std::pair<std::string, std::string>> scripts = {
+      {"pack-array.sbatch", pack_array_script(p)}, {"merge.sbatch", merge_script(p)}, {"submit.sh", submit_script(p)}};
+  fs::path dir(p.run_dir);
+  if (o.dry_run) {
+    nlohmann::json js = nlohmann::json::object();
+    for (const auto& [name, text] : scripts) js[(dir / name).string()] = text;
+    emit(ctx, {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"scripts", js}}, [&] {
+      for (const auto& [name, text] : scripts) fmt::print("==> {} <==\n{}\n", (dir / name).string(), text);
+      fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
+    });
+    return;
+  }
+
+  // A run directory holds one run: resubmitting the same run resumes it, another is refused.
+  nlohmann::json record = run_record(p);
+  if (auto old = read_json(dir / "run.json")) {
+    for (const char* key : {"shards", "pack_args"})
+      if ((*old)[key] != record[key])
+        throw InputError(fmt::format("{} holds a different run ({}: {} vs {}); pick another --run-dir",
+                                     p.run_dir, key, (*old)[key].dump(), record[key].dump()));
+    record["submissions"] = (*old).value("submissions", nlohmann::json::array());
+  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+    throw InputError(fmt::format("{} exists and is not a Tilekit run directory", p.run_dir));
+  }
+  fs::create_directories(dir / "shards");
+  fs::create_directories(dir / "logs");
+  for (const auto& [name, text] : scripts) write_script(dir / name, text);
+  write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
+
+  std::string array = sbatch(o.sbatch, {(dir / "pack-array.sbatch").string()});
+  std::string merge = sbatch(o.sbatch, {"--dependency=afterok:" + array, (dir / "merge.sbatch").string()});
+  auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char when[32];
+  std::strftime(when, sizeof when, "%FT%TZ", std::gmtime(&now));
+  record["submissions"].push_back({{"array_job", array}, {"merge_job", merge}, {"time", when}});
+  write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
+  emit(ctx, {{"run_dir", p.run_dir}, {"shards", p.shards}, {"array_job", array}, {"merge_job", merge},
+             {"submissions", record["submissions"].size()}},
+       [&] {
+         fmt::print("submitted {} shards to Slurm: array job {}, merge job {} (afterok:{})\n", p.shards,
+                    array, merge, array);
+         fmt::print("run directory: {}\nprogress: tilekit cluster status --run-dir {}\n", p.run_dir,
+                    shell_quote(p.run_dir));
+       });
+}
+
+// Per-shard state from the files the job script writes (pack-array.body.sh).
+nlohmann::json shard_status(const fs::path& shards, int i) {
+  auto f = [&](const char* ext) { return shards / fmt::format("shard-{}{}", i, ext); };
+  nlohmann::json s = {{"shard", i}};
+  int attempts = 0, interrupted = 0;
+  nlohmann::json last_exit = nullptr;
+  std::ifstream in(f(".attempts"));
+  for (std::string line; std::getline(in, line);) {
+    try {
+      auto a = nlohmann::json::parse(line);
+      ++attempts;
+      if (a.value("exit", -1) == 3) ++interrupted;
+      last_exit = a["exit"];
+    } catch (const nlohmann::json::exception&) {  // a line cut short by a kill: skip it
+    }
+  }
+  s["attempts"] = attempts;
+  s["checkpointed_exits"] = interrupted;
+  s["last_exit"] = last_exit;
+  auto done = read_json(f(".done.json"));
+  bool has_ckpt = fs::exists(f(".ckpt"));
+  s["state"] = done ? "done" : has_ckpt ? "checkpointed" : attempts || fs::exists(f(".sqlite")) ? "started" : "pending";
+  s["solutions"] = done ? done->value("solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr);
+  s["complete"] = done ? done->value("complete", nlohmann::json(nullptr)) : nlohmann::json(nullptr);
+  if (has_ckpt) {
+    auto age = fs::file_time_type::clock::now() - fs::last_write_time(f(".ckpt"));
+    s["checkpoint_age_seconds"] = std::chrono::duration_cast<std::chrono::seconds>(age).count();
+    s["checkpoint_bytes"] = fs::file_size(f(".ckpt"));
+  } else {
+    s["checkpoint_age_seconds"] = nullptr;
+  }
+  return s;
+}
+
+void status(const Context& ctx, const std::string& run_dir_arg) {
+  fs::path dir = fs::absolute(run_dir_arg);
+  auto run = read_json(dir / "run.json");
+  if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", dir.string()));
+  int shards = run->value("shards", 0);
+  if (shards < 1) throw InputError(fmt::format("{}/run.json: bad shard count", dir.string()));
+  nlohmann::json list = nlohmann::json::array();
+  std::map<std::string, int> counts;
+  std::uint64_t sum = 0;
+  for (int i = 0; i < shards; ++i) {
+    auto s = shard_status(dir / "shards", i);
+    counts[s["state"].get<std::string>()]++;
+    if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
+    list.push_back(s);
+  }
+  auto merged = read_json(dir / "merged.json");
+  nlohmann::json j = {{"run_dir", dir.string()},
+                      {"shards", shards},
+                      {"pack_args", (*run)["pack_args"]},
+                      {"done", counts["done"]},
+                      {"checkpointed", counts["checkpointed"]},
+                      {"started", counts["started"]},
+                      {"pending", counts["pending"]},
+                      {"solutions_in_done_shards", sum},
+                      {"merged_distinct_solutions",
+                       merged ? merged->value("distinct_solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr)},
+                      {"submissions", run->value("submissions", nlohmann::json::array())},
+                      {"per_shard", list}};
+  emit(ctx, j, [&] {
+    std::string args;
+    for (const auto& a : (*run)["pack_args"]) args += " " + a.get<std::string>();
+    fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n",
+               dir.string(), args, shards, counts["done"], counts["checkpointed"], counts["started"],
+               counts["pending"]);
+    fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", "shard", "state", "attempts", "exit 3s",
+               "last exit", "solutions", "checkpoint");
+    for (const auto& s : list) {
+      std::string ck = s["checkpoint_age_seconds"].is_null()
+                           ? "-"
+                           : fmt::format("written {} s ago", s["checkpoint_age_seconds"].get<long>());
+      fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", s["shard"].get<int>(), s["state"].get<std::string>(),
+                 s["attempts"].get<int>(), s["checkpointed_exits"].get<int>(),
+                 s["last_exit"].is_null() ? "-" : s["last_exit"].dump(),
+                 s["solutions"].is_null() ? "-" : s["solutions"].dump(), ck);
+    }
+    fmt::print("solutions in done shards: {}\n", sum);
+    if (j["merged_distinct_solutions"].is_null())
+      fmt::print("merged: not yet (the merge job runs when every shard ended with exit 0)\n");
+    else
+      fmt::print("merged: {} distinct solutions in {}\n", j["merged_distinct_solutions"].dump(),
+                 (dir / "merged.sqlite").string());
+  });
+}
+
+}  // namespace
+
+void add_cluster_commands(CLI::App& app, Context& ctx) {
+  auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array");
+  cluster->require_subcommand(1);
+
+  static SubmitOptions o;
+  auto* sub = cluster->add_subcommand(
+      "submit",
+      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
+  sub->add_option("--kind", o.kind, "Tile kind: wang or corner")->required();
+  sub->add_option("--colors", o.colors, "Number of colours C")->required();
+  sub->add_option("--method", o.method, "Passed to pack: auto, search or construct");
+  sub->add_option("--mode", o.mode, "Passed to pack: first, count or all")->capture_default_str();
+  sub->add_option("--seed", o.seed, "Passed to pack");
+  sub->add_option("--pack-arg", o.pack_extra, "Another `tilekit pack` argument for every shard (repeatable)");
+  sub->add_option("--shards", o.plan.shards, "Number of shards = array tasks")->required();
+  sub->add_option("--cpus-per-task", o.plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
+  sub->add_option("--time", o.plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")
+      ->capture_default_str();
+  sub->add_option("--partition", o.plan.partition, "Slurm partition (default: the cluster's)");
+  sub->add_option("--checkpoint-every", o.plan.checkpoint_every, "Seconds between checkpoints")->capture_default_str();
+  sub->add_option("--signal-seconds", o.signal_seconds,
+                  "USR1 this many seconds before the wall-time limit (default: 120, at most half the limit)");
+  sub->add_option("--max-requeues", o.plan.max_requeues, "Most requeues of one shard task")->capture_default_str();
+  sub->add_option("--merge-time", o.merge_time, "Wall time of the merge job (default: --time)");
+  sub->add_option("--run-dir", o.run_dir,
+                  "Run directory on the shared filesystem (default: ./tilekit-run-KINDC-MODE)");
+  sub->add_option("--job-name", o.job_name, "Slurm job name (default: tk-KINDC)");
+  sub->add_option("--tilekit", o.tilekit, "The tilekit binary the jobs run (default: this one)");
+  sub->add_option("--sbatch-arg", o.plan.sbatch_args, "Another #SBATCH directive, e.g. --account=NAME (repeatable)");
+  sub->add_option("--sbatch", o.sbatch, "The sbatch command")->capture_default_str();
+  sub->add_flag("--dry-run", o.dry_run, "Print the scripts; write and queue nothing");
+  add_json_flag(sub, ctx);
+  sub->callback([&ctx] { submit(ctx, o); });
+
+  static std::string run_dir;
+  auto* st = cluster->add_subcommand("status", "Per-shard progress of a run, read from its run directory");
+  st->add_option("--run-dir", run_dir, "The run directory given to submit")->required();
+  add_json_flag(st, ctx);
+  st->callback([&ctx] { status(ctx, run_dir); });
+}
+
+}  // namespace tilekit::cli

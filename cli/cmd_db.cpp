@@ -1,0 +1,286 @@
+// tilekit db list|stats|show ID|export|merge OUT IN...|add FILE...: the results database.
+// Reading commands open the database read-only (readers work while a writer runs); with no
+// --db they use the per-user default, created on first use.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "checkpoints/db_rows.hpp"
+#include "checkpoints/results_db.hpp"
+#include "cli/command.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/tile_set_io.hpp"
+#include "tilesets/validator.hpp"
+
+namespace tilekit::cli {
+
+namespace {
+
+struct DbArgs {
+  std::string db;  // "" = ResultsDb::default_path()
+  std::string path() const { return db.empty() ? ResultsDb::default_path() : db; }
+};
+
+void add_db_option(CLI::App* cmd, DbArgs& a) {
+  cmd->add_option("--db", a.db, "Results database file (default: $TILEKIT_DB, else the per-user data directory)");
+}
+
+// Read-only; a missing default database is created (embedded default), a missing explicit
+// one is "not found" (exit 1) rather than silently created from a typo.
+std::unique_ptr<ResultsDb> open_for_reading(const DbArgs& a) {
+  return std::make_unique<ResultsDb>(a.path(), DbOpenOptions{.create = a.db.empty(), .read_only = true});
+}
+
+nlohmann::json stats_json(const DbStats& s) {
+  return {{"runs", s.runs},
+          {"solutions", s.solutions},
+          {"distinct_solutions", s.distinct_solutions},
+          {"tilesets", s.tilesets},
+          {"conversions", s.conversions}};
+}
+
+const std::vector<std::string> kTables = {"solutions", "runs", "tilesets", "conversions"};
+
+void add_list(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("list", "List stored solutions (or runs, tile sets, conversions), newest last");
+  static DbArgs a;
+  static std::string table = "solutions", kind;
+  static std::uint32_t colours = 0;
+  static std::int64_t run_id = 0;
+  static std::size_t limit = 50, offset = 0;
+  add_db_option(cmd, a);
+  cmd->add_option("--table", table, "solutions, runs, tilesets or conversions")
+      ->check(CLI::IsMember(kTables))
+      ->capture_default_str();
+  cmd->add_option("--kind", kind, "Only solutions of this kind")->check(CLI::IsMember({"wang", "corner"}));
+  cmd->add_option("--colors", colours, "Only solutions over this many colours");
+  cmd->add_option("--run", run_id, "Only solutions of this run id");
+  cmd->add_option("--limit", limit, "At most this many rows (0 = all)")->capture_default_str();
+  cmd->add_option("--offset", offset, "Skip this many rows");
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    auto db = open_for_reading(a);
+    nlohmann::json rows = nlohmann::json::array();
+    std::vector<std::string> lines;
+    if (table == "solutions") {
+      SolutionFilter f;
+      if (!kind.empty()) f.kind = kind == "wang" ? TileKind::Wang : TileKind::Corner;
+      f.colours = colours;
+      f.run_id = run_id;
+      f.limit = limit;
+      f.offset = offset;
+      for (const SolutionRecord& s : db->list_solutions(f)) {
+        rows.push_back(dbrows::to_json(s, false));
+        lines.push_back(fmt::format("{:>6}  {:<6} C={:<3} {}x{}  {:<10} {}  {}{}", s.id, kind_name(s.tiling.kind),
+                                    s.tiling.colours, s.tiling.rows, s.tiling.cols, s.method, s.solution_hash,
+                                    s.validated ? "validated" : "unvalidated",
+                                    s.canonical_hash.empty() ? "" : "  orbit " + s.canonical_hash));
+      }
+    } else if (table == "runs") {
+      for (const RunRecord& r : db->list_runs(limit, offset)) {
+        rows.push_back(dbrows::to_json(r));
+        lines.push_back(fmt::format("{:>6}  {:<16} {:<11} {} solutions  {:.3f} s  {} threads  {}  {}", r.id, r.command,
+                                    r.status, r.solutions, r.seconds, r.threads, r.started_at, r.params.dump()));
+      }
+    } else if (table == "tilesets") {
+      for (const TilesetRecord& t : db->list_tilesets(limit, offset)) {
+        rows.push_back(dbrows::to_json(t));
+        lines.push_back(fmt::format("{:>6}  {:<28} {:<6} {} tiles  {} colours  {}", t.id, t.name, t.kind, t.tiles,
+                                    t.colours, t.source));
+      }
+    } else {
+      for (const ConversionRecord& c : db->list_conversions(limit, offset)) {
+        rows.push_back(dbrows::to_json(c));
+        lines.push_back(fmt::format("{:>6}  set {} --{}--> set {}  {} -> {} tiles  {} colours  {}", c.id,
+                                    c.source_set, c.method, c.result_set, c.tiles_before, c.tiles_after, c.colours,
+                                    c.soundness));
+      }
+    }
+    emit(ctx, {{"db", db->path()}, {"table", table}, {"rows", rows}}, [&] {
+      fmt::print("{} ({}: {} shown)\n", db->path(), table, lines.size());
+      for (auto& l : lines) fmt::print("{}\n", l);
+    });
+  });
+}
+
+void add_stats(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("stats", "Count runs, solutions (and distinct orbits), tile sets, conversions");
+  static DbArgs a;
+  add_db_option(cmd, a);
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    auto db = open_for_reading(a);
+    DbStats s = db->stats();
+    nlohmann::json j = stats_json(s);
+    j["db"] = db->path();
+    emit(ctx, j, [&] {
+      fmt::print("{}\n  runs: {}\n  solutions: {} ({} distinct up to symmetry)\n  tile sets: {}\n  conversions: {}\n",
+                 db->path(), s.runs, s.solutions, s.distinct_solutions, s.tilesets, s.conversions);
+    });
+  });
+}
+
+void add_show(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("show", "Show one stored row by id (a solution unless --table says otherwise)");
+  static DbArgs a;
+  static std::int64_t id = 0;
+  static std::string table = "solutions";
+  cmd->add_option("ID", id, "Row id (see `tilekit db list`)")->required();
+  cmd->add_option("--table", table, "solutions, runs, tilesets or conversions")
+      ->check(CLI::IsMember(kTables))
+      ->capture_default_str();
+  add_db_option(cmd, a);
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    auto db = open_for_reading(a);
+    auto missing = [&] { return NotFound(fmt::format("{}: no row {} in table {}", db->path(), id, table)); };
+    if (table == "solutions") {
+      auto s = db->solution(id);
+      if (!s) throw missing();
+      nlohmann::json j = dbrows::to_json(*s, true);
+      if (auto r = s->run_id ? db->run(s->run_id) : std::nullopt) j["run"] = dbrows::to_json(*r);
+      emit(ctx, j, [&] {
+        fmt::print("solution {}: {} C={} {}x{} {} ({}{}), hash {}{}\n", s->id, kind_name(s->tiling.kind),
+                   s->tiling.colours, s->tiling.rows, s->tiling.cols, s->tiling.torus ? "torus" : "bounded", s->method,
+                   s->validated ? ", validated" : "", s->solution_hash,
+                   s->canonical_hash.empty() ? "" : ", orbit " + s->canonical_hash);
+        for (int r = 0; r < s->tiling.rows; ++r) {
+          for (int c = 0; c < s->tiling.cols; ++c) fmt::print("{}{}", c ? " " : "  ", s->tiling.at(r, c));
+          fmt::print("\n");
+        }
+      });
+    } else if (table == "runs") {
+      auto r = db->run(id);
+      if (!r) throw missing();
+      nlohmann::json j = dbrows::to_json(*r);
+      emit(ctx, j, [&] { fmt::print("{}\n", j.dump(2)); });
+    } else if (table == "tilesets") {
+      auto t = db->tileset(id);
+      if (!t) throw missing();
+      nlohmann::json j = dbrows::to_json(*t);
+      emit(ctx, j, [&] {
+        fmt::print("tile set {}: {} ({} {} tiles, {} colours, {})\n{}", t->id, t->name, t->tiles, t->kind, t->colours,
+                   t->source, t->text);
+      });
+    } else {
+      auto c = db->conversion(id);
+      if (!c) throw missing();
+      nlohmann::json j = dbrows::to_json(*c);
+      emit(ctx, j, [&] { fmt::print("{}\n", j.dump(2)); });
+    }
+  });
+}
+
+void add_export(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("export", "Export the database as one JSON document, or one table as CSV");
+  static DbArgs a;
+  static std::string format = "json", table = "solutions", out;
+  add_db_option(cmd, a);
+  cmd->add_option("--format", format, "json (everything) or csv (one table)")
+      ->check(CLI::IsMember({"json", "csv"}))
+      ->capture_default_str();
+  cmd->add_option("--table", table, "Table for CSV: solutions, runs, tilesets or conversions")
+      ->check(CLI::IsMember(kTables))
+      ->capture_default_str();
+  cmd->add_option("--out", out, "Write to this file (atomically) instead of stdout");
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    if (ctx.json && format == "csv" && out.empty())
+      throw InputError("--json with --format csv needs --out FILE (stdout would not be one JSON object)");
+    auto db = open_for_reading(a);
+    if (out.empty()) {
+      if (format == "json") db->export_json(std::cout);
+      else db->export_csv(std::cout, table);
+      std::cout.flush();
+      return;
+    }
+    std::ostringstream text;
+    if (format == "json") db->export_json(text);
+    else db->export_csv(text, table);
+    write_file_atomic(out, text.str());
+    DbStats s = db->stats();
+    nlohmann::json j = stats_json(s);
+    j["db"] = db->path();
+    j["out"] = out;
+    j["format"] = format;
+    if (format == "csv") j["table"] = table;
+    emit(ctx, j, [&] { fmt::print("exported {} ({}) to {}\n", db->path(), format == "csv" ? table : "all", out); });
+  });
+}
+
+void add_merge(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("merge", "Merge databases or JSON exports IN... into OUT (one transaction, idempotent)");
+  static std::string out;
+  static std::vector<std::string> inputs;
+  static bool distinct = false;
+  cmd->add_option("OUT", out, "Target database (created if missing)")->required();
+  cmd->add_option("IN", inputs, "Tilekit databases or `db export` JSON files")->required();
+  cmd->add_flag("--distinct-orbits", distinct, "Keep one solution per canonical hash (orbit)");
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    ResultsDb::check_merge_inputs(inputs);  // before the target is created
+    ResultsDb db(out);
+    MergeReport r = db.merge(inputs, distinct);
+    DbStats s = db.stats();
+    nlohmann::json j = {{"db", db.path()},
+                        {"inputs", inputs},
+                        {"added", {{"runs", r.runs}, {"solutions", r.solutions}, {"tilesets", r.tilesets},
+                                   {"conversions", r.conversions}}},
+                        {"solutions_read", r.solutions_seen},
+                        {"total", stats_json(s)}};
+    emit(ctx, j, [&] {
+      fmt::print("merged {} input(s) into {}: {} new solutions (of {} read), {} new runs, {} new tile sets, {} new "
+                 "conversions; now {} solutions\n",
+                 inputs.size(), db.path(), r.solutions, r.solutions_seen, r.runs, r.tilesets, r.conversions,
+                 s.solutions);
+    });
+  });
+}
+
+void add_add(CLI::App& db, Context& ctx) {
+  auto* cmd = db.add_subcommand("add", "Validate tiling/packing files and store them as solutions");
+  static DbArgs a;
+  static std::vector<std::string> files;
+  static std::string method = "import";
+  cmd->add_option("FILE", files, "Tiling/packing JSON files (the `tilekit check` format)")->required();
+  cmd->add_option("--method", method, "Method recorded with each solution")->capture_default_str();
+  add_db_option(cmd, a);
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    std::vector<SolutionRecord> batch;
+    for (const std::string& f : files) {  // every file checked before anything is written
+      SolutionRecord s;
+      s.tiling = read_tiling_file(f);
+      ValidationReport rep = validate(s.tiling);
+      if (!rep.valid)
+        throw InputError(fmt::format("{}: not a valid tiling ({}); nothing stored", f,
+                                     rep.errors.empty() ? "invalid" : rep.errors.front()));
+      s.method = method;
+      s.validated = true;
+      batch.push_back(std::move(s));
+    }
+    ResultsDb db(a.path());
+    const std::size_t added = db.add_solutions(batch);
+    nlohmann::json hashes = nlohmann::json::array();
+    for (const auto& s : batch) hashes.push_back(solution_hash(s.tiling));
+    emit(ctx, {{"db", db.path()}, {"files", files.size()}, {"added", added}, {"solution_hashes", hashes}}, [&] {
+      fmt::print("{}: stored {} new solution(s) of {} file(s)\n", db.path(), added, files.size());
+    });
+  });
+}
+
+}  // namespace
+
+void add_db_commands(CLI::App& app, Context& ctx) {
+  auto* db = app.add_subcommand("db", "Query and maintain the SQLite results database");
+  db->require_subcommand(1);
+  add_list(*db, ctx);
+  add_stats(*db, ctx);
+  add_show(*db, ctx);
+  add_export(*db, ctx);
+  add_merge(*db, ctx);
+  add_add(*db, ctx);
+}
+
+}  // namespace tilekit::cli

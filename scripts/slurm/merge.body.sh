@@ -1,0 +1,33 @@
+# ---- body of the merge job (scripts/slurm/merge.body.sh) ----
+# Expects, set above by `tilekit cluster submit`: TILEKIT, RUN_DIR and SHARDS.
+# Runs after the whole shard array succeeded (--dependency=afterok:ARRAY): merges the shard
+# databases into RUN_DIR/merged.sqlite, writes `tilekit db stats --json` to RUN_DIR/merged.json
+# and prints the final count. Solutions are unique by hash, so merging again (or a shard
+# counted twice) changes nothing.
+set -euo pipefail
+
+dir="$RUN_DIR/shards"
+inputs=()
+missing=()
+sum=0
+for ((i = 0; i < SHARDS; i++)); do
+  if [ -s "$dir/shard-$i.done.json" ] && [ -s "$dir/shard-$i.sqlite" ]; then
+    inputs+=("$dir/shard-$i.sqlite")
+    n=$(grep -o '"solutions":[0-9]*' "$dir/shard-$i.done.json" | head -n 1 | cut -d: -f2)
+    sum=$((sum + ${n:-0}))
+  else
+    missing+=("$i")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "tilekit merge: shards not complete: ${missing[*]} (see tilekit cluster status --run-dir $RUN_DIR)" >&2
+  exit 1
+fi
+
+"$TILEKIT" db merge "$RUN_DIR/merged.sqlite" "${inputs[@]}"
+"$TILEKIT" db stats --db "$RUN_DIR/merged.sqlite" --json >"$RUN_DIR/merged.json.tmp"
+mv -f "$RUN_DIR/merged.json.tmp" "$RUN_DIR/merged.json"
+distinct=$(grep -o '"distinct_solutions":[0-9]*' "$RUN_DIR/merged.json" | cut -d: -f2)
+echo "tilekit merge: $SHARDS shards merged into $RUN_DIR/merged.sqlite"
+echo "tilekit merge: shard counts add up to $sum"
+echo "final count: ${distinct:-?} distinct solutions"

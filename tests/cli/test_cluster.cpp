@@ -1,0 +1,149 @@
+// `tilekit cluster submit|status` without a Slurm: the scripts it writes (--dry-run) and the
+// progress it reads. The real-Slurm run is tests/slurm/cluster-test.sh.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "cli/cluster_scripts.hpp"
+#include "tests/cli_runner.hpp"
+#include "tilesets/error.hpp"
+
+namespace tilekit {
+namespace {
+using test::run_cli;
+using test::TempDir;
+using test::write_text;
+
+TEST(SlurmTime, ParsesEverySbatchFormat) {
+  EXPECT_EQ(cli::parse_slurm_time("90"), 90 * 60);
+  EXPECT_EQ(cli::parse_slurm_time("1:30"), 90);
+  EXPECT_EQ(cli::parse_slurm_time("2:00:05"), 7205);
+  EXPECT_EQ(cli::parse_slurm_time("2-12"), 2 * 86400 + 12 * 3600);
+  EXPECT_EQ(cli::parse_slurm_time("1-0:30"), 86400 + 1800);
+  EXPECT_EQ(cli::parse_slurm_time("1-00:00:07"), 86407);
+  for (const char* bad : {"", "x", "0", "1:2:3:4", "-5", "UNLIMITED", "1-", "1h"})
+    EXPECT_THROW(cli::parse_slurm_time(bad), InputError) << bad;
+}
+
+TEST(SlurmTime, SignalLeadIsTwoMinutesAtMostHalfTheLimit) {
+  EXPECT_EQ(cli::default_signal_seconds(3600), 120);
+  EXPECT_EQ(cli::default_signal_seconds(60), 30);
+}
+
+TEST(ShellQuote, QuotesOnlyWhatBashWouldSplit) {
+  EXPECT_EQ(cli::shell_quote("--colors"), "--colors");
+  EXPECT_EQ(cli::shell_quote("/a b/c"), "'/a b/c'");
+  EXPECT_EQ(cli::shell_quote("it's"), "'it'\\''s'");
+  EXPECT_EQ(cli::shell_quote(""), "''");
+}
+
+TEST(ClusterSubmit, DryRunPrintsScriptsWithACommentOnEveryDirectiveAndWritesNothing) {
+  TempDir d;
+  auto r = run_cli("cluster submit --kind wang --colors 2 --shards 4 --cpus-per-task 3 --time 2:00:00 "
+                   "--partition long --run-dir " + d / "run" + " --dry-run --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  EXPECT_TRUE(j["dry_run"].get<bool>());
+  ASSERT_EQ(j["scripts"].size(), 3u);
+  std::string array = j["scripts"][d / "run/pack-array.sbatch"];
+  std::string merge = j["scripts"][d / "run/merge.sbatch"];
+  std::string submit = j["scripts"][d / "run/submit.sh"];
+  for (const char* directive : {"#SBATCH --array=0-3 ", "#SBATCH --cpus-per-task=3 ", "#SBATCH --time=2:00:00 ",
+                                "#SBATCH --signal=B:USR1@120 ", "#SBATCH --requeue ", "#SBATCH --partition=long "})
+    EXPECT_NE(array.find(directive), std::string::npos) << directive;
+  EXPECT_NE(array.find("PACK_ARGS=(--kind wang --colors 2 --mode all)"), std::string::npos);
+  EXPECT_NE(array.find("OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK"), std::string::npos);
+  EXPECT_NE(array.find("scontrol requeue"), std::string::npos);
+  EXPECT_NE(merge.find("db merge"), std::string::npos);
+  EXPECT_NE(submit.find("--dependency=afterok:"), std::string::npos);
+  // Every #SBATCH line carries a comment saying what it is for.
+  std::regex commented(R"(^#SBATCH --\S+ +# \S.*$)");
+  int directives = 0;
+  for (const std::string& text : {array, merge}) {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("#SBATCH", 0) == 0) {
+        ++directives;
+        EXPECT_TRUE(std::regex_match(line, commented)) << line;
+      }
+  }
+  EXPECT_GE(directives, 15);
+  // bash accepts all three, and nothing was written.
+  for (const std::string& text : {array, merge, submit}) {
+    write_text(d / "check.sh", text);
+    EXPECT_EQ(std::system(("bash -n " + d / "check.sh").c_str()), 0);
+  }
+  EXPECT_FALSE(std::filesystem::exists(d / "run"));
+}
+
+TEST(ClusterSubmit, HumanDryRunNamesEachScript) {
+  TempDir d;
+  auto r = run_cli("cluster submit --kind corner --colors 3 --shards 2 --run-dir " + d / "r" + " --dry-run");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("==> " + d / "r/pack-array.sbatch <=="), std::string::npos);
+  EXPECT_NE(r.out.find("#SBATCH --array=0-1"), std::string::npos);
+}
+
+TEST(ClusterSubmit, BadInputIsExitTwo) {
+  TempDir d;
+  std::string base = "cluster submit --kind wang --colors 2 --dry-run --run-dir " + d / "r";
+  EXPECT_EQ(run_cli(base + " --shards 0").code, 2);
+  EXPECT_EQ(run_cli(base + " --shards 2 --time soon").code, 2);
+  EXPECT_EQ(run_cli(base + " --shards 2 --time 1 --signal-seconds 60").code, 2);
+  EXPECT_EQ(run_cli(base + " --shards 2 --pack-arg=--db=x.sqlite").code, 2);
+  EXPECT_EQ(run_cli("cluster submit --kind hex --colors 2 --shards 2 --dry-run").code, 2);
+  EXPECT_EQ(run_cli("cluster submit --kind wang --colors 2 --shards 2 --dry-run --run-dir '" + d / "a b" + "'").code, 2);
+}
+
+TEST(ClusterSubmit, WithoutSbatchItIsNotFoundAndSaysSo) {
+  TempDir d;
+  auto r = run_cli("cluster submit --kind wang --colors 2 --shards 2 --run-dir " + d / "r" +
+                   " --sbatch /nonexistent/sbatch");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("not found"), std::string::npos) << r.err;
+}
+
+TEST(ClusterSubmit, RefusesARunDirectoryHoldingAnotherRun) {
+  TempDir d;
+  std::filesystem::create_directories(d / "r");
+  write_text(d / "r/run.json", R"({"shards": 3, "pack_args": ["--kind","wang","--colors","2","--mode","all"]})");
+  auto r = run_cli("cluster submit --kind wang --colors 2 --shards 4 --run-dir " + d / "r" + " --sbatch /bin/false");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("different run"), std::string::npos) << r.err;
+}
+
+TEST(ClusterStatus, ReadsEachShardsAttemptsResultAndTheMergedCount) {
+  TempDir d;
+  std::filesystem::create_directories(d / "r/shards");
+  write_text(d / "r/run.json", R"({"shards": 3, "pack_args": ["--kind","wang","--colors","2"]})");
+  write_text(d / "r/shards/shard-0.attempts",
+             "{\"attempt\":0,\"exit\":3,\"resumed\":false}\n{\"attempt\":1,\"exit\":0,\"resumed\":true}\n");
+  write_text(d / "r/shards/shard-0.done.json", R"({"solutions": 7, "complete": true})");
+  write_text(d / "r/shards/shard-1.attempts", "{\"attempt\":0,\"exit\":3,\"resumed\":false}\n{\"attem");
+  write_text(d / "r/shards/shard-1.ckpt", "x");
+  write_text(d / "r/merged.json", R"({"distinct_solutions": 7})");
+  auto r = run_cli("cluster status --run-dir " + d / "r" + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  EXPECT_EQ(j["done"], 1);
+  EXPECT_EQ(j["checkpointed"], 1);
+  EXPECT_EQ(j["pending"], 1);
+  EXPECT_EQ(j["solutions_in_done_shards"], 7);
+  EXPECT_EQ(j["merged_distinct_solutions"], 7);
+  auto s = j["per_shard"];
+  EXPECT_EQ(s[0]["attempts"], 2);
+  EXPECT_EQ(s[0]["checkpointed_exits"], 1);
+  EXPECT_EQ(s[0]["last_exit"], 0);
+  EXPECT_EQ(s[1]["attempts"], 1);  // the line cut short by a kill is skipped
+  EXPECT_EQ(s[1]["state"], "checkpointed");
+  EXPECT_EQ(s[2]["state"], "pending");
+}
+
+TEST(ClusterStatus, NoRunDirectoryIsNotFound) {
+  TempDir d;
+  EXPECT_EQ(run_cli("cluster status --run-dir " + d / "none").code, 1);
+}
+
+}  // namespace
+}  // namespace tilekit

@@ -1,0 +1,252 @@
+#!/usr/bin/env bash
+# End-to-end test of `tilekit cluster` on a real Slurm (issue 6). Needs root and a built
+# build/tilekit; installs slurm-wlm and munge if missing and starts a single-node Slurm
+# (scripts/slurm/local-slurm.sh) in a temporary directory, stopped by PID when the test ends.
+#
+#   bash tests/slurm/cluster-test.sh      # scripts/test.sh runs it after ctest
+#
+# Cases:
+#  1. requeue: the 4-shard array enumerating the 203,520 C=2 Wang packings; one task is
+#     requeued mid-run (scontrol requeue: SIGTERM -> checkpoint -> exit 3 -> resume); the
+#     merge job (afterok) finishes; the merged database holds exactly 203,520 distinct
+#     solutions and every shard task ended with exit 0.
+#  2. twice: a requeue after a shard had finished, a second merge, and a merge that lists a
+#     shard twice change nothing.
+#  3. walltime: a shard with a 1-minute limit gets USR1 before the limit, checkpoints, exits 3,
+#     requeues itself and resumes until it completes.
+# Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+TK=${TILEKIT_BINARY:-$root/build/tilekit}
+SLURM=$root/scripts/slurm/local-slurm.sh
+DEADLINE=$((SECONDS + ${TILEKIT_SLURM_TEST_BUDGET:-280}))  # whole test < 5 minutes
+passed=0
+failed=0
+
+log() { echo "slurm-test: $*"; }
+check() {  # check DESCRIPTION COMMAND...
+  local what=$1
+  shift
+  if "$@"; then
+    passed=$((passed + 1))
+    log "ok:   $what"
+  else
+    failed=$((failed + 1))
+    log "FAIL: $what"
+  fi
+}
+fatal() {
+  log "FATAL: $*"
+  failed=$((failed + 1))
+  exit 1
+}
+
+[ "$(id -u)" -eq 0 ] || fatal "needs root (it starts munged, slurmctld and slurmd)"
+[ -x "$TK" ] || fatal "$TK is not built (run scripts/build.sh)"
+"$SLURM" install
+
+work=$(mktemp -d /tmp/tilekit-slurm-test.XXXXXX)
+finish() {
+  local rc=$?
+  if ((failed > 0 || rc != 0)); then
+    for f in "$work"/slurm/log/slurmctld.log "$work"/slurm/log/slurmd.log "$work"/*/logs/*.out; do
+      [ -f "$f" ] && { echo "---- $f (last 25 lines)"; tail -n 25 "$f"; }
+    done
+  fi
+  "$SLURM" stop "$work/slurm" || true
+  rm -rf "$work"
+  echo "$passed passed, $failed failed"
+  ((failed == 0 && rc == 0)) || exit 1
+}
+trap finish EXIT
+"$SLURM" start "$work/slurm" || fatal "Slurm did not start"
+# shellcheck disable=SC1091
+source "$work/slurm/env"
+
+# ---- helpers ----------------------------------------------------------------------------------
+# Field $2 of job $1 as `scontrol show job` prints it (e.g. JobState, ExitCode, Restarts).
+field() {
+  scontrol -o show job "$1" 2>/dev/null | head -n 1 | tr ' ' '\n' | awk -v k="$2" 'index($0, k "=") == 1 {
+    print substr($0, length(k) + 2); exit }'
+}
+time_left() { echo $((DEADLINE - SECONDS)); }
+# Waits until job $1 reaches a final state and prints it; prints NEVER(...) when its dependency
+# can never be met and TEST-TIMEOUT(...) on the test's deadline.
+wait_final() {
+  local state reason
+  while :; do
+    state=$(field "$1" JobState)
+    reason=$(field "$1" Reason)
+    case $state in
+      COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | BOOT_FAIL | DEADLINE | PREEMPTED)
+        echo "$state"
+        return 0 ;;
+    esac
+    [ "$reason" != DependencyNeverSatisfied ] || { echo "NEVER($reason)"; return 0; }
+    (($(time_left) > 0)) || { echo "TEST-TIMEOUT($state)"; return 0; }
+    sleep 1
+  done
+}
+submitted_id() { { grep -o "\"$1\":\"[0-9]*\"" <<<"$2" || true; } | { grep -o '[0-9][0-9]*' || true; }; }
+json_number() { { grep -o "\"$2\":[0-9]*" "$1" 2>/dev/null || true; } | head -n 1 | cut -d: -f2; }
+attempt_exits() { { grep -o '"exit":[0-9]*' "$1" 2>/dev/null || true; } | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
+last_attempt_resumed() { tail -n 1 "$1" | grep -q '"resumed":true'; }
+# Bit $2 (a mask) of field $3 (SigCgt, SigPnd, ShdPnd) in /proc/$1/status.
+proc_mask() {
+  local key mask
+  while read -r key mask; do
+    [ "$key" = "$3:" ] && { (((16#$mask & $2) == $2)); return; }
+  done <"/proc/$1/status"
+  return 1
+}
+USR1_BIT=0x200 TERM_BIT=0x4000
+TK_EXE=$(readlink -f "$TK")
+# "PID SHARD" of each tilekit of run directory $1 that already catches USR1 and TERM (so it is
+# inside its search, where a signal means checkpoint and exit 3). Only shell builtins: a shard
+# searches for well under a second, so this must be quick.
+searching_tilekits() {
+  local d i shard ckpt args
+  for d in /proc/[0-9]*; do
+    [ "$d/exe" -ef "$TK_EXE" ] || continue
+    mapfile -d '' args <"$d/cmdline" 2>/dev/null || continue
+    shard="" ckpt=""
+    for ((i = 0; i + 1 < ${#args[@]}; i++)); do
+      case ${args[i]} in --shard) shard=${args[i + 1]%/*} ;; --checkpoint) ckpt=${args[i + 1]} ;; esac
+    done
+    [[ "$ckpt" == "$1/shards/"* ]] || continue
+    proc_mask "${d#/proc/}" $((USR1_BIT | TERM_BIT)) SigCgt 2>/dev/null && echo "${d#/proc/} $shard"
+  done
+}
+# Waits (up to 10 s) until stopped process $1 has signal bit $2 pending, then lets it go on.
+# (Slurm's requeue sends SIGCONT itself before SIGTERM; then the process may be gone already.)
+continue_with_pending() {
+  local t
+  for ((t = 0; t < 200; t++)); do
+    [ -e "/proc/$1" ] || return 0
+    if proc_mask "$1" "$2" ShdPnd 2>/dev/null || proc_mask "$1" "$2" SigPnd 2>/dev/null; then break; fi
+    sleep 0.05
+  done
+  kill -CONT "$1" 2>/dev/null || true
+}
+
+# ---- 3 (queued first, checked last): wall-time limit -> USR1 -> checkpoint -> exit 3 -> requeue ----
+# Counting the C=3 corner packings takes far longer than any attempt, so every attempt ends at
+# its 1-minute limit: USR1 (50 s, to 60 s more, before it), checkpoint, exit 3, self-requeue;
+# the second attempt resumes and is stopped the same way, and then the requeue bound (1) ends it.
+run3=$work/walltime
+out3=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
+  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  fatal "cluster submit (wall time) failed"
+array3=$(submitted_id array_job "$out3")
+merge3=$(submitted_id merge_job "$out3")
+[ -n "$array3" ] && [ -n "$merge3" ] || fatal "no job ids in: $out3"
+log "case 3 queued: array $array3 (1 shard, --time 1), merge $merge3"
+
+# ---- 1. one task requeued and one sent USR1 mid-run -------------------------------------------
+run1=$work/wang2
+log "case 1: 4-shard enumeration of the C=2 Wang packings; one task requeued, one sent USR1 mid-run"
+t1=$SECONDS
+out=$("$TK" cluster submit --kind wang --colors 2 --mode all --method search --shards 4 --cpus-per-task 1 \
+  --time 10 --checkpoint-every 1 --run-dir "$run1" --json) || fatal "cluster submit failed"
+array=$(submitted_id array_job "$out")
+merge=$(submitted_id merge_job "$out")
+[ -n "$array" ] && [ -n "$merge" ] || fatal "no job ids in: $out"
+check "the merge job waits for the whole array (afterok)" \
+  test "$(field "$merge" Dependency)" = "afterok:${array}_*(unfulfilled)"
+
+# A C=2 shard searches for about a second, too short to hit by timing. So the test stops (SIGSTOP)
+# a shard's tilekit once it is inside its search, has Slurm signal it, and lets it go on.
+requeued="" usr1="" next_look=0
+while { [ -z "$requeued" ] || [ -z "$usr1" ]; } && (($(time_left) > 0)); do
+  pid="" shard=""
+  while read -r p s; do
+    [ "$s" = "$requeued" ] || { pid=$p shard=$s; break; }
+  done < <(searching_tilekits "$run1")
+  if [ -z "$pid" ]; then
+    if ((SECONDS >= next_look)); then  # once a second: is any shard left to catch?
+      [ "$(field "$merge" Reason)" = Dependency ] || break
+      next_look=$((SECONDS + 1))
+    fi
+    sleep 0.01
+    continue
+  fi
+  kill -STOP "$pid"
+  # Signal the task by its own job id: Slurm refuses the ARRAY_TASK form ("can not be altered
+  # now") while another task of the array waits to restart after a requeue.
+  jid=$(field "${array}_$shard" JobId)
+  if [ -z "$requeued" ]; then
+    requeued=$shard
+    log "shard $shard's tilekit (pid $pid) stopped mid-search; scontrol requeue $jid (${array}_$shard)"
+    scontrol requeue "$jid" || fatal "scontrol requeue $jid failed"
+    continue_with_pending "$pid" $TERM_BIT
+  else
+    usr1=$shard
+    log "shard $shard's tilekit (pid $pid) stopped mid-search; USR1 to the batch script of $jid (as --signal=B:USR1 does)"
+    scancel --batch --signal=USR1 "$jid" || fatal "scancel --signal=USR1 $jid failed"
+    continue_with_pending "$pid" $USR1_BIT
+  fi
+done
+[ -n "$requeued" ] && [ -n "$usr1" ] || fatal "could not catch two shards mid-search (caught: '$requeued' '$usr1')"
+
+state=$(wait_final "$merge")
+check "the merge job completed (state $state)" test "$state" = COMPLETED
+check "the merge job exited 0" test "$(field "$merge" ExitCode)" = 0:0
+for i in 0 1 2 3; do
+  check "shard task $i ended COMPLETED with exit 0 ($(field "${array}_$i" JobState) $(field "${array}_$i" ExitCode))" \
+    test "$(field "${array}_$i" JobState) $(field "${array}_$i" ExitCode)" = "COMPLETED 0:0"
+done
+for i in "$requeued" "$usr1"; do
+  exits=$(attempt_exits "$run1/shards/shard-$i.attempts")
+  check "shard $i checkpointed and exited 3, then resumed and exited 0 (exits: $exits)" test "$exits" = "3 0"
+  check "shard $i's last attempt resumed from its checkpoint" last_attempt_resumed "$run1/shards/shard-$i.attempts"
+  check "Slurm counted shard $i's requeue (Restarts=$(field "${array}_$i" Restarts))" \
+    test "$(field "${array}_$i" Restarts)" -ge 1
+done
+check "the shard stopped by scontrol requeue did not requeue itself" \
+  grep -q "on SIGTERM; not requeueing" "$run1"/logs/pack-*_"$requeued".out
+check "the shard sent USR1 requeued itself" grep -q "requeueing this task to resume" "$run1"/logs/pack-*_"$usr1".out
+for i in 0 1 2 3; do
+  [ "$i" = "$requeued" ] || [ "$i" = "$usr1" ] || check "shard $i ran once and exited 0" \
+    test "$(attempt_exits "$run1/shards/shard-$i.attempts")" = 0
+done
+distinct=$(json_number "$run1/merged.json" distinct_solutions)
+check "the merged database holds exactly 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+check "the merge job printed the final count" grep -q "final count: 203520 distinct solutions" "$run1"/logs/merge-*.out
+status=$("$TK" cluster status --run-dir "$run1" --json)
+check "cluster status: 4 shards done, 203520 merged" \
+  bash -c "grep -q '\"done\":4' <<<'$status' && grep -q '\"merged_distinct_solutions\":203520' <<<'$status'"
+log "case 1 took $((SECONDS - t1)) s"
+
+# ---- 2. a shard counted twice changes nothing -------------------------------------------------
+log "case 2: a finished shard requeued, merged again, and listed twice in a merge"
+scontrol requeue "$(field "${array}_0" JobId)" || fatal "scontrol requeue of the finished task ${array}_0 failed"
+again=$(sbatch --parsable --dependency="afterok:${array}_0" "$run1/merge.sbatch")
+state=$(wait_final "$again")
+check "a second merge ran after the finished shard was requeued ($state)" test "$state" = COMPLETED
+check "the requeued finished shard ended with exit 0 again, without a new search" \
+  test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode) $(tail -n 1 "$run1/shards/shard-0.attempts" | grep -c '"resumed":false')" = "COMPLETED 0:0 1"
+distinct=$(json_number "$run1/merged.json" distinct_solutions)
+check "after the second merge: still 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+"$TK" db merge "$work/twice.sqlite" "$run1"/shards/shard-{0,1,2,3}.sqlite "$run1/shards/shard-0.sqlite" >/dev/null ||
+  fatal "tilekit db merge with a shard listed twice failed"
+"$TK" db stats --db "$work/twice.sqlite" --json >"$work/twice.json"
+check "a merge listing shard 0 twice: 203520 distinct solutions" test "$(json_number "$work/twice.json" distinct_solutions)" = 203520
+check "... and 203520 solution rows" test "$(json_number "$work/twice.json" solutions)" = 203520
+
+# ---- 3. checked now ---------------------------------------------------------------------------
+log "case 3: waiting for the wall-time run ($(time_left) s left)"
+state=$(wait_final "${array3}_0")
+log3=$(ls "$run3"/logs/pack-*_0.out 2>/dev/null | head -n 1)
+log3=${log3:-/dev/null}
+exits=$(attempt_exits "$run3/shards/shard-0.attempts")
+check "both attempts of the wall-time shard checkpointed and exited 3 (exits: $exits)" test "$exits" = "3 3"
+check "Slurm sent USR1 before the limit in both attempts" test "$(grep -c "got SIGUSR1" "$log3")" = 2
+check "the first attempt requeued itself" grep -q "attempt 0): checkpointed .*requeueing this task to resume" "$log3"
+check "the second attempt resumed from the checkpoint" last_attempt_resumed "$run3/shards/shard-0.attempts"
+check "the second attempt stopped at the requeue bound" grep -q "requeue bound (1) is reached" "$log3"
+check "Slurm counted one requeue (Restarts=$(field "${array3}_0" Restarts))" test "$(field "${array3}_0" Restarts)" = 1
+check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" ExitCode))" \
+  test "$state $(field "${array3}_0" ExitCode)" = "FAILED 3:0"
+check "its merge job will never run (afterok not met)" \
+  test "$(field "$merge3" Reason)" = DependencyNeverSatisfied
+scancel "$merge3" || true
