@@ -47,9 +47,16 @@ void run_verify(const Context& ctx, const VerifyArgs& a) {
     set = prune(set, a.prune, &rep);
     set.set_name(fmt::format("{}-pruned{}", name, a.prune));
     pruned = prune_json(rep, a.prune);
-    if (set.empty()) throw InputError(fmt::format("pruning removed every tile of '{}': it tiles nothing", name));
   }
-  VerifyResult r = verify_tile_set(set, a.opts);
+  VerifyResult r;
+  if (set.empty()) {
+    // Surround pruning keeps every tiling of the plane and SCC pruning keeps tileability:
+    // nothing left means the set does not tile the plane.
+    r.verdict = "cannot-tile";
+    r.threads = 0;
+  } else {
+    r = verify_tile_set(set, a.opts);
+  }
   nlohmann::json j = verify_json(r);
   j["set"] = set.name();
   j["kind"] = std::string(kind_name(set.kind()));

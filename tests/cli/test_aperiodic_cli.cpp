@@ -124,6 +124,11 @@ TEST(AperiodicVerifyCli, ASetThatTilesNoSquareIsCannotTile) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["verdict"], "cannot-tile");
   EXPECT_EQ(r.json()["largest_square"], 1);
+  // Pruning alone removes its only tile (no tile above it can match): cannot-tile as well.
+  auto pruned = run_cli("aperiodic verify " + d / "row.tiles" + " --prune 1 --json");
+  ASSERT_EQ(pruned.code, 0) << pruned.err;
+  EXPECT_EQ(pruned.json()["verdict"], "cannot-tile");
+  EXPECT_EQ(pruned.json()["pruned"]["after"], 0);
 }
 
 TEST(AperiodicTableCli, ReproducesTable81AndExplainsEveryDifference) {
