@@ -62,7 +62,8 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
     j["horizontal_colors"] = result->horizontal_colours();
     j["vertical_colors"] = result->vertical_colours();
     std::string why;
-    Soundness sp = pruned_soundness(src.wang_tiles(), conv, result->corner_tiles(), &why);
+    Soundness sp = after_pruning(pruned_soundness(src.wang_tiles(), conv, result->corner_tiles(), &why), rep);
+    if (why.empty() && sp != conv.soundness) why = "pruning removed tiles outside the transducer SCCs: tilings still lift";
     if (sp != conv.soundness) {
       j["soundness"] = soundness_name(sp);
       j["argument"] = why;
