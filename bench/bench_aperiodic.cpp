@@ -1,6 +1,8 @@
 // Benchmarks of the aperiodic engine (BENCHMARKS.md): one JSON line per case.
 //   bench_aperiodic tables            Tables 8.1-8.7 recomputed (median of 3 runs)
-//   bench_aperiodic verify SET P      verify --max-period P (median of 3 runs)
+//   bench_aperiodic verify SET P      verify --max-period P (median of 3 runs); SET may be
+//                                     METHOD:NAME, e.g. diagonal:kari-14 (the converted set);
+//                                     baselines: 1 thread, and the solver alone (no filter)
 //   bench_aperiodic shapes SET P      per-formulation solve() time of the P x P torus
 #include <fmt/format.h>
 #include <omp.h>
@@ -12,6 +14,7 @@
 
 #include "checkpoints/aperiodic_verify.hpp"
 #include "solver/solve.hpp"
+#include "tilesets/aperiodic_convert.hpp"
 #include "tilesets/aperiodic_table.hpp"
 #include "tilesets/tile_set_io.hpp"
 
@@ -46,18 +49,37 @@ int main(int argc, char** argv) {
                "\n",
                full, base, largest, cores);
   } else if (what == "verify" && argc > 3) {
-    TileSet set = resolve_tile_set(argv[2]);
+    std::string name = argv[2];
+    TileSet set;
+    if (auto colon = name.find(':'); colon != std::string::npos) {
+      TileSet src = resolve_tile_set(name.substr(colon + 1));
+      set = conversion_tile_set(convert(src, parse_method(name.substr(0, colon))), name, "");
+    } else {
+      set = resolve_tile_set(name);
+    }
     VerifyOptions o;
     o.max_period = std::stoi(argv[3]);
     VerifyResult r;
     double s = median_seconds(3, [&] { r = verify_tile_set(set, o); });
     VerifyOptions one = o;
     one.threads = 1;
-    VerifyResult r1;
-    double s1 = median_seconds(1, [&] { r1 = verify_tile_set(set, one); });
-    fmt::print(R"({{"case":"verify","set":"{}","tiles":{},"max_period":{},"verdict":"{}","nodes":{},"seconds":{:.4f},"threads":{},"baseline":"1 thread","baseline_seconds":{:.4f},"cores":{}}})"
+    double s1 = median_seconds(3, [&] { verify_tile_set(set, one); });
+    fmt::print(R"({{"case":"verify","set":"{}","tiles":{},"max_period":{},"verdict":"{}","nodes":{},"shapes_excluded":{},"seconds":{:.4f},"threads":{},"baseline":"1 thread","baseline_seconds":{:.4f},"cores":{}}})"
                "\n",
-               argv[2], set.size(), o.max_period, r.verdict, r.nodes, s, r.threads, s1, cores);
+               name, set.size(), o.max_period, r.verdict, r.nodes, r.shapes_excluded, s, r.threads, s1, cores);
+    if (argc > 4) {  // solver alone, up to this period (it grows fast: see BENCHMARKS.md)
+      VerifyOptions nf = o;
+      nf.max_period = std::stoi(argv[4]);
+      nf.transducer_filter = false;
+      VerifyOptions f = o;
+      f.max_period = nf.max_period;
+      VerifyResult rn, rf;
+      double sn = median_seconds(1, [&] { rn = verify_tile_set(set, nf); });
+      double sf = median_seconds(3, [&] { rf = verify_tile_set(set, f); });
+      fmt::print(R"J({{"case":"verify-filter-vs-solver","set":"{}","max_period":{},"seconds":{:.4f},"verdict":"{}","baseline":"solver only (no transducer filter)","baseline_seconds":{:.4f},"baseline_nodes":{},"baseline_verdict":"{}","cores":{}}})J"
+                 "\n",
+                 name, nf.max_period, sf, rf.verdict, sn, rn.nodes, rn.verdict, cores);
+    }
   } else if (what == "shapes" && argc > 3) {
     TileSet set = resolve_tile_set(argv[2]);
     int p = std::stoi(argv[3]);

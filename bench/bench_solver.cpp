@@ -5,6 +5,8 @@
 //   build/bench_solver            all cases except the long ones
 //   build/bench_solver --speedup  also the 2-thread speed-up on a count of >= 10 s
 //   build/bench_solver --c4 SEC   also plain search for C=4 corner and Wang packings, SEC each
+//   build/bench_solver --only NAME one group: c2, c3, formulations, knuth, checkpoint, speedup, c4
+// (the CMake target is bench_bench_solver: build/bench_bench_solver)
 #include <fmt/format.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -32,7 +34,9 @@ using namespace tilekit;
 
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 double cpu_seconds() {
   rusage u{};
@@ -74,7 +78,8 @@ struct PlainDfs {
   std::vector<char> used;
   std::uint64_t nodes = 0, limit = 0;
   bool first = false, stop = false;
-  explicit PlainDfs(const TileSet& s, int side) : n(side), T(int(s.size())), grid(std::size_t(side * side), -1), used(s.size()) {
+  explicit PlainDfs(const TileSet& s, int side)
+      : n(side), T(int(s.size())), grid(std::size_t(side * side), -1), used(s.size()) {
     for (std::size_t k = 0; k < s.size(); ++k) {
       if (s.kind() == TileKind::Wang) {
         auto t = s.wang_tiles()[k];
@@ -140,11 +145,20 @@ void bench_two_colour_counts() {
         SearchResult r = run(p, SearchMode::Count, 1, f);
         count = r.solutions, nodes = r.nodes;
       });
-      line({{"case", "c2_count"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 1},
-            {"solutions", count}, {"baseline_solutions", base_count}, {"seconds", t.wall}, {"cpu_seconds", t.cpu},
-            {"baseline_seconds", base.wall}, {"baseline_cpu_seconds", base.cpu},
-            {"speedup_vs_baseline_cpu", base.cpu / std::max(t.cpu, 1e-9)}, {"nodes", nodes},
-            {"nodes_per_cpu_s", double(nodes) / std::max(t.cpu, 1e-9)}, {"baseline_nodes", base_nodes}});
+      line({{"case", "c2_count"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 1},
+            {"solutions", count},
+            {"baseline_solutions", base_count},
+            {"seconds", t.wall},
+            {"cpu_seconds", t.cpu},
+            {"baseline_seconds", base.wall},
+            {"baseline_cpu_seconds", base.cpu},
+            {"speedup_vs_baseline_cpu", base.cpu / std::max(t.cpu, 1e-9)},
+            {"nodes", nodes},
+            {"nodes_per_cpu_s", double(nodes) / std::max(t.cpu, 1e-9)},
+            {"baseline_nodes", base_nodes}});
     }
   }
 }
@@ -155,7 +169,7 @@ void bench_three_colour_first() {
     for (std::string f : {"cell", k == TileKind::Wang ? "edges" : "pegs"}) {
       std::vector<double> wall, cpu;
       std::uint64_t nodes = 0, found = 0;
-      for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      for (std::uint64_t seed = 1; seed <= 5; ++seed) {  // seed 0 (natural order first) is timed below
         double t0 = now(), c0 = cpu_seconds();
         SearchResult r = run(p, SearchMode::First, 1, f, seed, 30);
         wall.push_back(now() - t0);
@@ -165,15 +179,32 @@ void bench_three_colour_first() {
       }
       std::sort(wall.begin(), wall.end());
       std::sort(cpu.begin(), cpu.end());
-      // The baseline on the same problem, capped at 2e8 nodes.
+      double n0 = now(), nc0 = cpu_seconds();
+      SearchResult natural = run(p, SearchMode::First, 1, f, 0, 30);
+      double natural_wall = now() - n0, natural_cpu = cpu_seconds() - nc0;
+      // The baseline on the same problem, capped at 5e7 nodes.
       PlainDfs d(p.set, 9);
-      d.first = true, d.limit = 200000000;
+      d.first = true, d.limit = 50000000;
       double t0 = now(), c0 = cpu_seconds();
       std::uint64_t bfound = d.dfs(0);
-      line({{"case", "c3_first"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 1}, {"runs", 5},
-            {"validated", found}, {"median_seconds", wall[2]}, {"max_seconds", wall[4]}, {"median_cpu_seconds", cpu[2]},
-            {"max_cpu_seconds", cpu[4]}, {"mean_nodes", nodes / 5}, {"baseline_found", bfound > 0},
-            {"baseline_nodes", d.nodes}, {"baseline_seconds", now() - t0}, {"baseline_cpu_seconds", cpu_seconds() - c0}});
+      line({{"case", "c3_first"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 1},
+            {"runs", 5},
+            {"validated", found},
+            {"median_seconds", wall[2]},
+            {"max_seconds", wall[4]},
+            {"median_cpu_seconds", cpu[2]},
+            {"max_cpu_seconds", cpu[4]},
+            {"mean_nodes", nodes / 5},
+            {"seed0_seconds", natural_wall},
+            {"seed0_cpu_seconds", natural_cpu},
+            {"seed0_found", !natural.found.empty()},
+            {"baseline_found", bfound > 0},
+            {"baseline_nodes", d.nodes},
+            {"baseline_seconds", now() - t0},
+            {"baseline_cpu_seconds", cpu_seconds() - c0}});
     }
   }
 }
@@ -190,9 +221,15 @@ void bench_formulation_counts() {
     for (std::string f : {std::string("cell"), c.lattice}) {
       SearchResult r;
       Timing t = median_time(3, [&] { r = run(p, SearchMode::Count, 1, f); });
-      line({{"case", "formulation_count"}, {"set", c.set}, {"grid", fmt::format("{}x{} torus", c.rows, c.cols)},
-            {"formulation", f}, {"solutions", r.solutions}, {"nodes", r.nodes}, {"seconds", t.wall},
-            {"cpu_seconds", t.cpu}, {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)}});
+      line({{"case", "formulation_count"},
+            {"set", c.set},
+            {"grid", fmt::format("{}x{} torus", c.rows, c.cols)},
+            {"formulation", f},
+            {"solutions", r.solutions},
+            {"nodes", r.nodes},
+            {"seconds", t.wall},
+            {"cpu_seconds", t.cpu},
+            {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)}});
     }
   }
 }
@@ -202,8 +239,13 @@ void knuth_line(const std::string& name, const M& root, std::uint64_t exact) {
   for (std::uint64_t probes : {100, 1000, 10000}) {
     double t0 = now();
     TreeEstimate e = knuth_estimate(root, probes, 1);
-    line({{"case", "knuth_estimate"}, {"problem", name}, {"probes", probes}, {"estimate", e.nodes},
-          {"exact", exact}, {"relative_error", (e.nodes - double(exact)) / double(exact)}, {"seconds", now() - t0}});
+    line({{"case", "knuth_estimate"},
+          {"problem", name},
+          {"probes", probes},
+          {"estimate", e.nodes},
+          {"exact", exact},
+          {"relative_error", (e.nodes - double(exact)) / double(exact)},
+          {"seconds", now() - t0}});
   }
 }
 
@@ -238,52 +280,87 @@ void bench_knuth() {
     CellModel m(p, true, CellModel::Ordering::Static);
     double t0 = now();
     TreeEstimate e = knuth_estimate(m, 10000, 1);
-    line({{"case", "knuth_estimate"}, {"problem", "corner C=3 packings (cell), tree size unknown"}, {"probes", 10000},
-          {"estimate", e.nodes}, {"estimated_solutions", e.leaves * 81}, {"seconds", now() - t0}});
+    line({{"case", "knuth_estimate"},
+          {"problem", "corner C=3 packings (cell), tree size unknown"},
+          {"probes", 10000},
+          {"estimate", e.nodes},
+          {"estimated_solutions", e.leaves * 81},
+          {"seconds", now() - t0}});
   }
 }
 
 void bench_checkpoint_cost() {
-  // Corner C=2 tilings of the 5x5 torus (2^25), pegs, 1 thread, 4 s runs: no checkpoints
-  // versus a checkpoint every second; throughput in nodes per CPU second.
+  // Corner C=2 tilings of the 5x5 torus (2^25), pegs, 1 thread, 4 s runs, alternating: no
+  // checkpoints versus a checkpoint every second. Reported: throughput (nodes per CPU second,
+  // medians of 5) and the time spent encoding and writing checkpoints (which runs on the
+  // monitor thread, not the workers) as a fraction of the run.
   TilingProblem p = tilings("complete-corner-2", 5, 5);
   std::string path = (std::filesystem::temp_directory_path() / fmt::format("bench-ckpt-{}", ::getpid())).string();
-  std::vector<double> plain, ckpt;
+  std::vector<double> plain, ckpt, fraction;
   std::size_t written = 0;
-  for (int rep = 0; rep < 3; ++rep)
+  for (int rep = 0; rep < 5; ++rep)
     for (double every : {0.0, 1.0}) {
       SearchOptions o;
       o.mode = SearchMode::Count;
       o.formulation = "pegs";
       o.time_limit = 4;
-      if (every > 0) o.checkpoint_path = path, o.checkpoint_every = every;
-      double c0 = cpu_seconds();
-      SearchResult r = solve_checkpointed(p, o);
+      double in_ckpt = 0;
+      if (every > 0) {
+        o.checkpoint_every = every;
+        o.save_checkpoint = [&](const SearchState& st) {
+          double t0 = now();
+          write_checkpoint(path, st);
+          in_ckpt += now() - t0;
+        };
+      }
+      double c0 = cpu_seconds(), t0 = now();
+      SearchResult r = solve(p, o);
       double rate = double(r.nodes) / std::max(cpu_seconds() - c0, 1e-9);
       (every > 0 ? ckpt : plain).push_back(rate);
-      if (every > 0) written += r.checkpoints;
+      if (every > 0) written += r.checkpoints, fraction.push_back(in_ckpt / (now() - t0));
     }
   std::filesystem::remove(path);
   std::sort(plain.begin(), plain.end());
   std::sort(ckpt.begin(), ckpt.end());
-  line({{"case", "checkpoint_cost"}, {"problem", "corner C=2 tilings 5x5 torus, pegs, 1 thread, 4 s runs"},
-        {"checkpoint_every", 1.0}, {"checkpoints_written", written}, {"nodes_per_cpu_s_without", plain[1]},
-        {"nodes_per_cpu_s_with", ckpt[1]}, {"throughput_cost", 1 - ckpt[1] / plain[1]}});
+  std::sort(fraction.begin(), fraction.end());
+  line({{"case", "checkpoint_cost"},
+        {"problem", "corner C=2 tilings 5x5 torus, pegs, 1 thread, 4 s runs x5"},
+        {"checkpoint_every", 1.0},
+        {"checkpoints_written", written},
+        {"nodes_per_cpu_s_without", plain[2]},
+        {"nodes_per_cpu_s_with", ckpt[2]},
+        {"throughput_cost", 1 - ckpt[2] / plain[2]},
+        {"checkpoint_time_fraction", fraction[2]}});
 }
 
 void bench_speedup() {
-  // Corner C=2 tilings of the 5x5 torus: exactly 2^25 solutions.
+  // Corner C=2 tilings of the 5x5 torus: exactly 2^25 solutions; the cell model with static
+  // order visits 267M nodes (about 10 CPU seconds).
   TilingProblem p = tilings("complete-corner-2", 5, 5);
-  for (std::string f : {"pegs"}) {
+  for (std::string f : {"cell"}) {
     double base = 0;
     for (int threads : {1, 2}) {
+      SearchOptions o;
+      o.mode = SearchMode::Count;
+      o.threads = threads;
+      o.formulation = f;
+      o.ordering = "static";
       double t0 = now(), c0 = cpu_seconds();
-      SearchResult r = run(p, SearchMode::Count, threads, f);
+      SearchResult r = solve(p, o);
       double wall = now() - t0;
       if (threads == 1) base = wall;
-      line({{"case", "parallel_speedup"}, {"problem", "corner C=2 tilings 5x5 torus"}, {"formulation", f},
-            {"threads", threads}, {"solutions", r.solutions}, {"seconds", wall}, {"cpu_seconds", cpu_seconds() - c0},
-            {"speedup", base / wall}, {"load_average_1min", [] { double l[1]; return getloadavg(l, 1) == 1 ? l[0] : -1; }()}});
+      line({{"case", "parallel_speedup"},
+            {"problem", "corner C=2 tilings 5x5 torus"},
+            {"formulation", f},
+            {"threads", threads},
+            {"solutions", r.solutions},
+            {"seconds", wall},
+            {"cpu_seconds", cpu_seconds() - c0},
+            {"speedup", base / wall},
+            {"load_average_1min", [] {
+               double l[1];
+               return getloadavg(l, 1) == 1 ? l[0] : -1;
+             }()}});
     }
   }
 }
@@ -295,9 +372,16 @@ void bench_c4(double seconds) {
       double c0 = cpu_seconds();
       SearchResult r = run(p, SearchMode::First, 2, f, 1, seconds);
       bool ok = !r.found.empty() && validate(r.found[0], &p.set).packing;
-      line({{"case", "c4_first_plain_search"}, {"kind", kind_name(k)}, {"formulation", f}, {"threads", 2},
-            {"time_limit", seconds}, {"found", ok}, {"seconds", r.seconds}, {"cpu_seconds", cpu_seconds() - c0},
-            {"nodes", r.nodes}, {"restarts", r.restarts}});
+      line({{"case", "c4_first_plain_search"},
+            {"kind", kind_name(k)},
+            {"formulation", f},
+            {"threads", 2},
+            {"time_limit", seconds},
+            {"found", ok},
+            {"seconds", r.seconds},
+            {"cpu_seconds", cpu_seconds() - c0},
+            {"nodes", r.nodes},
+            {"restarts", r.restarts}});
     }
 }
 
@@ -306,19 +390,27 @@ void bench_c4(double seconds) {
 int main(int argc, char** argv) {
   bool speedup = false;
   double c4 = 0;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--speedup")) speedup = true;
-    else if (!std::strcmp(argv[i], "--c4") && i + 1 < argc) c4 = std::atof(argv[++i]);
+    if (!std::strcmp(argv[i], "--speedup"))
+      speedup = true;
+    else if (!std::strcmp(argv[i], "--c4") && i + 1 < argc)
+      c4 = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
     else {
-      fmt::print(stderr, "usage: bench_solver [--speedup] [--c4 SECONDS]\n");
+      fmt::print(
+          stderr,
+          "usage: bench_solver [--speedup] [--c4 SECONDS] [--only c2|c3|formulations|knuth|checkpoint|speedup|c4]\n");
       return 2;
     }
   }
-  bench_two_colour_counts();
-  bench_three_colour_first();
-  bench_formulation_counts();
-  bench_knuth();
-  bench_checkpoint_cost();
-  if (speedup) bench_speedup();
-  if (c4 > 0) bench_c4(c4);
+  auto want = [&](const char* name) { return only.empty() || only == name; };
+  if (want("c2")) bench_two_colour_counts();
+  if (want("c3")) bench_three_colour_first();
+  if (want("formulations")) bench_formulation_counts();
+  if (want("knuth")) bench_knuth();
+  if (want("checkpoint")) bench_checkpoint_cost();
+  if ((speedup && only.empty()) || only == "speedup") bench_speedup();
+  if (c4 > 0 && (only.empty() || only == "c4")) bench_c4(c4);
 }

@@ -59,79 +59,97 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   res.threads = opts.threads > 0 ? opts.threads : omp_get_max_threads();
 
   // Torus shapes, smallest area first (ties: fewer rows first), so the first witness found
-  // in this order is one of least area.
-  // Row/column transducer filter (tilesets/aperiodic_rows.hpp): a horizontal period q needs
-  // q-periodic rows that stack forever; a vertical period p likewise for columns.
-  const std::vector<WangTile> as_wang =
-      set.kind() == TileKind::Wang ? set.wang_tiles() : corner_to_wang(set).wang_tiles();
+  // in this order is one of least area. Phase A sends the small shapes (area <= 16) straight
+  // to the solver: periodic sets usually show a small period, and these searches are cheap.
+  // Phase B runs the row/column transducer filter (tilesets/aperiodic_rows.hpp: a
+  // horizontal period q needs q-periodic rows that stack forever, a vertical period p the
+  // same for columns) and sends only the surviving larger shapes to the solver.
   const int P = opts.max_period;
-  std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
-  auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
-#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-  for (int q = P; q >= 1; --q) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true);
-  // Columns matter only when some horizontal period survived.
-  bool any_row = false;
-  for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
-  if (any_row) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-    for (int p = P; p >= 1; --p) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false);
-  }
-  for (int q = 1; q <= P; ++q) {
-    res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);
-    res.periodic_cols.push_back(col_info[std::size_t(q)].enumerated ? col_info[std::size_t(q)].rows : 0);
-    if (excluded(row_info[std::size_t(q)])) res.excluded_cols.push_back(q);
-    if (excluded(col_info[std::size_t(q)])) res.excluded_rows.push_back(q);
-  }
-  std::vector<std::pair<int, int>> shapes;
+  constexpr int kSmallArea = 16;
+  auto by_area = [](auto x, auto y) { return x.first * x.second < y.first * y.second; };
+  std::vector<std::pair<int, int>> small, large;
   for (int p = 1; p <= P; ++p)
-    for (int q = 1; q <= P; ++q) {
-      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)])) {
-        ++res.shapes_excluded;
-        continue;
-      }
-      shapes.emplace_back(p, q);
-    }
-  std::stable_sort(shapes.begin(), shapes.end(),
-                   [](auto a, auto b) { return a.first * a.second < b.first * b.second; });
+    for (int q = 1; q <= P; ++q) (p * q <= kSmallArea ? small : large).emplace_back(p, q);
+  std::stable_sort(small.begin(), small.end(), by_area);
+  std::stable_sort(large.begin(), large.end(), by_area);
 
-  std::vector<Outcome> outcomes(shapes.size());
-  std::atomic<std::size_t> best{shapes.size()};  // index of the earliest shape with a witness
   std::atomic<std::uint64_t> nodes{0};
-  std::mutex err_mutex;
-  std::string error;
-  ProgressReporter progress(fmt::format("verify {}", set.name()), double(shapes.size()), opts.progress);
+  std::vector<std::pair<int, int>> shapes;  // the searched shapes of the deciding phase
+  std::vector<Outcome> outcomes;
+  std::size_t best_index = 0;
+  auto search_shapes = [&](const std::vector<std::pair<int, int>>& list) {
+    shapes = list;
+    outcomes.assign(list.size(), Outcome{});
+    std::atomic<std::size_t> best{list.size()};  // index of the earliest shape with a witness
+    std::mutex err_mutex;
+    std::string error;
+    ProgressReporter progress(fmt::format("verify {}", set.name()), double(list.size()), opts.progress);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-  for (std::size_t k = 0; k < shapes.size(); ++k) {
-    if (k > best.load()) continue;  // a smaller witness is already known
-    try {
-      outcomes[k] = search(set, shapes[k].first, shapes[k].second, true, opts.time_limit);
-      nodes += outcomes[k].nodes;
-      if (outcomes[k].found) {
-        std::size_t cur = best.load();
-        while (k < cur && !best.compare_exchange_weak(cur, k)) {
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (k > best.load()) continue;  // a smaller witness is already known
+      try {
+        outcomes[k] = search(set, list[k].first, list[k].second, true, opts.time_limit);
+        nodes += outcomes[k].nodes;
+        if (outcomes[k].found) {
+          std::size_t cur = best.load();
+          while (k < cur && !best.compare_exchange_weak(cur, k)) {
+          }
         }
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(err_mutex);
+        error = e.what();
       }
-    } catch (const std::exception& e) {
-      std::lock_guard<std::mutex> lock(err_mutex);
-      error = e.what();
+      progress.add(1);
     }
-    progress.add(1);
-  }
-  progress.finish();
-  if (!error.empty()) throw InputError(error);
-  res.nodes = nodes.load();
-  for (std::size_t k = 0; k < shapes.size() && k <= best.load(); ++k) {
-    ++res.shapes_searched;
-    if (!outcomes[k].complete && k < best.load()) ++res.shapes_incomplete;
-  }
+    progress.finish();
+    if (!error.empty()) throw InputError(error);
+    best_index = best.load();
+    for (std::size_t k = 0; k < list.size() && k <= best_index; ++k) {
+      ++res.shapes_searched;
+      if (!outcomes[k].complete && k < best_index) ++res.shapes_incomplete;
+    }
+    return best_index < list.size();
+  };
 
-  if (best.load() < shapes.size()) {
-    const Outcome& o = outcomes[best.load()];
+  bool found = search_shapes(small);
+  if (!found && !large.empty()) {
+    const std::vector<WangTile> as_wang =
+        set.kind() == TileKind::Wang ? set.wang_tiles() : corner_to_wang(set).wang_tiles();
+    std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
+    auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
+    if (opts.transducer_filter) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
+      for (int q = P; q >= 1; --q) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true);
+    }
+    // Columns matter only when some horizontal period survived.
+    bool any_row = false;
+    for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
+    if (any_row && opts.transducer_filter) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
+      for (int p = P; p >= 1; --p) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false);
+    }
+    for (int q = 1; q <= P; ++q) {
+      res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);
+      res.periodic_cols.push_back(col_info[std::size_t(q)].enumerated ? col_info[std::size_t(q)].rows : 0);
+      if (excluded(row_info[std::size_t(q)])) res.excluded_cols.push_back(q);
+      if (excluded(col_info[std::size_t(q)])) res.excluded_rows.push_back(q);
+    }
+    std::vector<std::pair<int, int>> rest;
+    for (auto [p, q] : large) {
+      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)])) ++res.shapes_excluded;
+      else rest.emplace_back(p, q);
+    }
+    found = search_shapes(rest);
+  }
+  res.nodes = nodes.load();
+
+  if (found) {
+    const Outcome& o = outcomes[best_index];
     // Independent check of the witness before it is reported.
     ValidationReport rep = validate(*o.tiling, &set);
     if (!rep.valid) throw std::runtime_error("solver returned an invalid periodic tiling: " + rep.errors.front());
     res.verdict = "periodic";
-    res.period = shapes[best.load()];
+    res.period = shapes[best_index];
     res.witness_tiling = o.tiling;
     std::map<TileIndex, std::int64_t> number;
     for (std::size_t k = 0; k < set.size(); ++k) number[set.index_of(k)] = std::int64_t(k);

@@ -5,9 +5,10 @@
 //     first). A hit proves periodicity and is the witness;
 //   - a tiling of the n x n square (bounded model, n = max_square): failure proves that the
 //     set tiles nothing that large, hence not the plane ("cannot-tile").
-// Before searching, the row/column transducer filter (tilesets/aperiodic_rows.hpp) rules
-// out every shape whose horizontal or vertical period admits no infinite stack of
-// periodic rows; only the remaining shapes go to the solver.
+// Shapes of area <= 16 go straight to the solver. For the larger ones the row/column
+// transducer filter (tilesets/aperiodic_rows.hpp) first rules out every shape whose
+// horizontal or vertical period admits no infinite stack of periodic rows; only the
+// remaining shapes go to the solver.
 // Verdicts: periodic (witness), cannot-tile (largest tileable square), no-period-up-to P,
 // or inconclusive when a time limit stopped a search before it was exhausted.
 #include <cstdint>
@@ -26,6 +27,7 @@ struct VerifyOptions {
   int threads = 0;         // 0: all (OpenMP); the torus shapes are searched in parallel
   double time_limit = 0;   // seconds per search (0: none); a hit leaves the result incomplete
   bool progress = false;
+  bool transducer_filter = true;  // false: every shape goes to the solver (baseline)
 };
 
 struct VerifyResult {

@@ -89,8 +89,8 @@ SearchState decode_checkpoint(std::string_view text, const std::string& origin) 
     throw bad("not a Tilekit checkpoint file");
   std::string version(text.substr(kMagic.size() + 1, eol1 - kMagic.size() - 1));
   if (version != std::to_string(kCheckpointVersion))
-    throw bad(fmt::format("format version {} is not supported (this build reads version {})", version,
-                          kCheckpointVersion));
+    throw bad(
+        fmt::format("format version {} is not supported (this build reads version {})", version, kCheckpointVersion));
   auto eol2 = text.find('\n', eol1 + 1);
   if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
   std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));

@@ -72,10 +72,11 @@ Check check_cell(const std::string& source, ConversionMethod m, const std::strin
   VerifyOptions vo;
   vo.max_period = a.max_period;
   c.plain = verify_tile_set(set, vo);
-  TileSet pr = prune(set, a.prune);
+  PruneReport rep;
+  TileSet pr = prune(set, a.prune, &rep);
   c.pruned_tiles = pr.size();
-  c.soundness = pruned_soundness(src.wang_tiles(), conv, pr.corner_tiles());
-  if (c.soundness == Soundness::Lifts && conv.soundness == Soundness::Conjugate) c.soundness = Soundness::Conjugate;
+  // The soundness of the chain to the pruned set (the verdicts cover both forms).
+  c.soundness = after_pruning(pruned_soundness(src.wang_tiles(), conv, pr.corner_tiles()), rep);
   c.pruned = pr.empty() ? VerifyResult{} : verify_tile_set(pr, vo);
   const bool periodic = c.plain.period || c.pruned.period;
   const bool sound = c.soundness == Soundness::Conjugate || c.soundness == Soundness::Lifts;

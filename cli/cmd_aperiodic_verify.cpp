@@ -47,9 +47,16 @@ void run_verify(const Context& ctx, const VerifyArgs& a) {
     set = prune(set, a.prune, &rep);
     set.set_name(fmt::format("{}-pruned{}", name, a.prune));
     pruned = prune_json(rep, a.prune);
-    if (set.empty()) throw InputError(fmt::format("pruning removed every tile of '{}': it tiles nothing", name));
   }
-  VerifyResult r = verify_tile_set(set, a.opts);
+  VerifyResult r;
+  if (set.empty()) {
+    // Surround pruning keeps every tiling of the plane and SCC pruning keeps tileability:
+    // nothing left means the set does not tile the plane.
+    r.verdict = "cannot-tile";
+    r.threads = 0;
+  } else {
+    r = verify_tile_set(set, a.opts);
+  }
   nlohmann::json j = verify_json(r);
   j["set"] = set.name();
   j["kind"] = std::string(kind_name(set.kind()));
@@ -93,6 +100,8 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (tilesets/aperiodic_prune.hpp)");
   cmd->add_option("--db", va.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--progress", va.opts.progress, "Progress on stderr");
+  cmd->add_flag("--no-filter", [](std::int64_t) { va.opts.transducer_filter = false; },
+                "Send every torus shape to the solver (no transducer filter; for comparison)");
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] { run_verify(ctx, va); });
 }

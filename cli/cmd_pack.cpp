@@ -2,15 +2,22 @@
 // construction or database lookup, with checkpoints, shards and signals for cluster runs.
 #include <fmt/format.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <thread>
 
 #include "checkpoints/checkpoint.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
+#include "solver/impose_portfolio.hpp"
+#include "solver/impose_solve.hpp"
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
+#include "tilesets/constructions.hpp"
 #include "tilesets/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -21,12 +28,12 @@ namespace {
 
 struct PackArgs {
   std::string kind, set, size, method = "auto", mode = "first", checkpoint, resume, db, shard = "0/1";
-  std::string formulation = "auto", ordering = "auto", out;
+  std::string formulation = "auto", ordering = "auto", out, impose;
   std::int64_t colours = 0;
   int threads = 0;
   std::uint64_t seed = 0;
   double checkpoint_every = -1, time_limit = 0;
-  bool quiet = false;
+  bool quiet = false, plain = false;
 };
 
 SearchMode parse_mode(const std::string& m) {
@@ -64,7 +71,8 @@ TilingProblem make_problem(const PackArgs& a) {
     return p;
   }
   if (a.kind.empty()) throw InputError("pack needs --kind corner|wang and --colors C (or --set SET)");
-  if (a.kind != "corner" && a.kind != "wang") throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
+  if (a.kind != "corner" && a.kind != "wang")
+    throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
   check_colour_count(a.colours, "--colors");
   return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
 }
@@ -88,7 +96,8 @@ class SolutionSink {
     SolutionRecord s;
     s.run_id = run_id_;
     s.tiling = t;
-    s.method = "search";
+    s.method = method_;
+    s.group = group_;
     s.validated = true;  // solve() validates every solution before emitting it
     if (sym_) {
       // The translates of one leaf arrive one after another and share their canonical form.
@@ -108,6 +117,8 @@ class SolutionSink {
     batch_.clear();
   }
   std::size_t added() const { return added_; }
+  void set_method(std::string m) { method_ = std::move(m); }
+  void set_group(nlohmann::json g) { group_ = std::move(g); }
 
  private:
   ResultsDb& db_;
@@ -118,6 +129,8 @@ class SolutionSink {
   std::string last_hash_;
   std::uint64_t last_orbit_ = 0;
   std::size_t added_ = 0;
+  std::string method_ = "search";
+  nlohmann::json group_;
 };
 
 void run_pack(const PackArgs& a, const Context& ctx) {
@@ -127,7 +140,17 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   o.mode = parse_mode(a.mode);
   if (a.method != "auto" && a.method != "search" && a.method != "construct")
     throw InputError(fmt::format("unknown method '{}' (auto, search or construct)", a.method));
-  if (a.method == "construct") throw InputError("--method construct is not available in this build (use search)");
+  if (a.method == "construct" && o.mode != SearchMode::First)
+    throw InputError("--method construct gives one packing: use it with --mode first");
+  if (a.method == "construct" && !a.set.empty())
+    throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
+  if (!a.impose.empty() && !a.set.empty()) throw InputError("--impose is for the complete sets (--kind and --colors)");
+  if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
+  if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
+  if (!a.impose.empty() && (!a.checkpoint.empty() || !a.resume.empty()))
+    throw InputError("--impose runs are not checkpointed: drop --checkpoint/--resume");
+  if (!a.impose.empty() && a.mode == "all") throw InputError("--impose with --mode all is not supported; use count");
+  if (!a.impose.empty() && a.shard != "0/1") throw InputError("--impose runs are not sharded: drop --shard");
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
@@ -154,11 +177,20 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
   RunRecord run;
   run.command = "pack";
-  run.params = {{"kind", kind},         {"colors", colours},        {"set", problem.set.name()},
-                {"rows", problem.rows}, {"cols", problem.cols},     {"mode", a.mode},
-                {"method", a.method},   {"seed", a.seed},           {"shard", a.shard},
-                {"formulation", a.formulation}, {"ordering", a.ordering}, {"time_limit", a.time_limit},
-                {"checkpoint", o.checkpoint_path}, {"resume", o.resume_path}};
+  run.params = {{"kind", kind},
+                {"colors", colours},
+                {"set", problem.set.name()},
+                {"rows", problem.rows},
+                {"cols", problem.cols},
+                {"mode", a.mode},
+                {"method", a.method},
+                {"seed", a.seed},
+                {"shard", a.shard},
+                {"formulation", a.formulation},
+                {"ordering", a.ordering},
+                {"time_limit", a.time_limit},
+                {"checkpoint", o.checkpoint_path},
+                {"resume", o.resume_path}};
   run.status = "running";
   run.threads = o.threads;
   run.id = db.begin_run(run);
@@ -171,14 +203,89 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   SearchResult r;
   std::string method = "search";
   std::optional<SolutionRecord> hit;
-  const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
-  if (a.method == "auto" && o.mode == SearchMode::First && complete_set)
+  const bool complete_set =
+      problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
+  if (a.method == "auto" && o.mode == SearchMode::First && complete_set && a.impose.empty())
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
-  if (hit && validate(hit->tiling, &problem.set).packing) {
-    method = "db";
-    r.found.push_back(hit->tiling);
+  std::optional<ConstructedPacking> built;
+  if (!(hit && validate(hit->tiling, &problem.set).packing)) hit.reset();
+  if (!hit && a.set.empty() && a.impose.empty() && o.mode == SearchMode::First &&
+      (a.method == "construct" || a.method == "auto")) {
+    built = construct_packing(problem.set.kind(), colours);
+    if (built && !validate(built->tiling, &problem.set).packing)
+      throw std::logic_error("construct_packing() returned a tiling the validator rejects");
+    if (!built && a.method == "construct") {
+      run.status = "failed";
+      db.finish_run(run);
+      throw NotFound(
+          fmt::format("no construction is known for {} packings with {} colours (try --method search)", kind, colours));
+    }
+  }
+  // The search portfolio (DESIGN.md: plain search plus imposed-automorphism subspaces) answers
+  // first-mode searches of complete sets unless the run must be checkpointable or plain.
+  const bool portfolio = !hit && !built && a.set.empty() && o.mode == SearchMode::First && a.method != "construct" &&
+                         !a.plain && o.checkpoint_path.empty() && o.shard_count == 1 && a.formulation == "auto" &&
+                         a.ordering == "auto";
+  nlohmann::json portfolio_json;
+  if (hit || built) {
+    method = hit ? "db" : "construct";
+    r.found.push_back(hit ? hit->tiling : built->tiling);
     r.solutions = 1;
     r.threads = o.threads;
+    r.complete = false;
+    if (built) {
+      sink.set_method("construct");
+      sink.add(built->tiling);
+      sink.flush();
+    }
+  } else if (portfolio || !a.impose.empty()) {
+    // No checkpoints here: a signal ends the run at once, with the run row marked.
+    std::atomic<bool> done{false};
+    std::thread watch([&] {
+      while (!done.load()) {
+        if (SignalCatcher::caught()) {
+          run.status = "interrupted";
+          db.finish_run(run);
+          std::fprintf(stderr, "tilekit: interrupted by signal %d (no checkpoint: imposed-group searches restart)\n",
+                       SignalCatcher::caught());
+          std::_Exit(3);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
+    try {
+      SearchOptions po = o;
+      po.on_solution = nullptr;
+      po.flush = nullptr;
+      if (o.mode == SearchMode::First) {
+        PortfolioOptions popts;
+        if (!a.impose.empty()) popts.specs = {a.impose};
+        PortfolioResult pr = run_portfolio(problem.set.kind(), colours, po, popts);
+        r = pr.result;
+        r.nodes = pr.nodes;
+        r.seconds = pr.seconds;
+        r.threads = o.threads;
+        if (!pr.found) r.found.clear();
+        portfolio_json = {{"winner", pr.spec}, {"group", pr.group}, {"runs", pr.runs}};
+        if (pr.found) {
+          sink.set_group(pr.group);
+          sink.add(r.found.front());
+        }
+      } else {
+        SymmetricResult sr = solve_symmetric(problem.set.kind(), colours, a.impose, po);
+        r = sr.result;
+        portfolio_json = {{"group", sr.group}};
+      }
+      sink.flush();
+    } catch (...) {
+      done = true;
+      watch.join();
+      run.status = "failed";
+      db.finish_run(run);
+      throw;
+    }
+    done = true;
+    watch.join();
   } else {
     try {
       r = solve_checkpointed(problem, o);
@@ -220,7 +327,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"run_id", run.id},
                       {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
+  j["nodes_per_second"] = r.seconds > 0 ? double(r.nodes) / r.seconds : 0.0;
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
+  if (built) j["construction"] = built->how;
+  if (!portfolio_json.is_null()) {
+    j["group"] = portfolio_json["group"];
+    if (portfolio_json.contains("winner")) j["portfolio"] = portfolio_json;
+  }
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
     ValidationReport rep = validate(t, &problem.set);
@@ -237,9 +350,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     }
   }
   emit(ctx, j, [&] {
-    fmt::print("{} C={} {}x{} packing by {}, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind, colours,
-               problem.rows, problem.cols, method, a.mode, r.complete ? "complete" : "incomplete", r.formulation,
-               r.threads, o.shard_index, o.shard_count);
+    if (method == "search")
+      fmt::print("{} C={} {}x{} packing by search, mode {}, {} ({} formulation, {} threads, shard {}/{})\n", kind,
+                 colours, problem.rows, problem.cols, a.mode, r.complete ? "complete" : "incomplete",
+                 r.formulation.empty() ? "portfolio" : r.formulation, r.threads, o.shard_index, o.shard_count);
+    else
+      fmt::print("{} C={} {}x{} packing from {}{}\n", kind, colours, problem.rows, problem.cols,
+                 method == "db" ? "the database" : "a construction", built ? " (" + built->how + ")" : "");
     if (o.mode != SearchMode::First)
       fmt::print("solutions: {}{}\n", r.solutions, r.orbits ? fmt::format(" ({} up to symmetry)", *r.orbits) : "");
     fmt::print("nodes: {}  seconds: {:.3f}  database: {} (run {}, {} new solutions)\n", r.nodes, r.seconds, db.path(),
@@ -247,10 +364,11 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
   if (r.interrupted || SignalCatcher::caught())
-    throw Interrupted(fmt::format("interrupted by signal {}; {}", SignalCatcher::caught(),
-                                  o.checkpoint_path.empty() ? "no checkpoint (use --checkpoint F to resume later)"
-                                                            : "checkpoint written to " + o.checkpoint_path +
-                                                                  " (continue with --resume " + o.checkpoint_path + ")"));
+    throw Interrupted(fmt::format(
+        "interrupted by signal {}; {}", SignalCatcher::caught(),
+        o.checkpoint_path.empty()
+            ? "no checkpoint (use --checkpoint F to resume later)"
+            : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " + o.checkpoint_path + ")"));
   if (o.mode == SearchMode::First && r.found.empty())
     throw NotFound(r.complete ? "no packing exists (the search space was exhausted)"
                               : "no packing found within the time limit");
@@ -266,19 +384,23 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--colors", a->colours, "Number of colours C (the complete set on the C^2 x C^2 torus)");
   cmd->add_option("--set", a->set, "Pack this tile set instead (built-in name or file)");
   cmd->add_option("--size", a->size, "Torus size ROWSxCOLS for --set (default: square)");
-  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")->capture_default_str();
+  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")
+      ->capture_default_str();
   cmd->add_option("--mode", a->mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", a->seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", a->formulation, "auto, cell, pegs (corner) or edges (Wang)")->capture_default_str();
   cmd->add_option("--ordering", a->ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", a->checkpoint, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", a->checkpoint_every, "Seconds between checkpoints (default 300 with --checkpoint)");
+  cmd->add_option("--checkpoint-every", a->checkpoint_every,
+                  "Seconds between checkpoints (default 300 with --checkpoint)");
   cmd->add_option("--resume", a->resume, "Resume from this checkpoint (and keep checkpointing to it)");
   cmd->add_option("--db", a->db, "Results database");
   cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
   cmd->add_option("--time-limit", a->time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out, "Write the packing found to this JSON file");
+  cmd->add_option("--impose", a->impose, "Search only packings invariant under this group, e.g. t=0,8:pi=1,0,3,2");
+  cmd->add_flag("--plain", a->plain, "First mode: plain search only (no imposed-group portfolio)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer("Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");

@@ -11,7 +11,9 @@ namespace tilekit {
 
 namespace {
 constexpr int kN = 0, kE = 1, kS = 2, kW = 3;
-constexpr int opposite(int d) { return (d + 2) & 3; }
+constexpr int opposite(int d) {
+  return (d + 2) & 3;
+}
 }  // namespace
 
 struct CellModel::Tables {
@@ -23,8 +25,7 @@ struct CellModel::Tables {
   std::vector<char> self_ok;    // tile number -> fits next to itself where the torus is 1 wide
 };
 
-CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering ordering)
-    : ordering_(ordering) {
+CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering ordering) : ordering_(ordering) {
   auto t = std::make_shared<Tables>();
   t->problem = p;
   t->rows = p.rows;

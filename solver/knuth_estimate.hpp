@@ -12,8 +12,8 @@
 namespace tilekit {
 
 struct TreeEstimate {
-  double nodes = 0;       // mean over the probes
-  double leaves = 0;      // estimated number of leaves (solutions)
+  double nodes = 0;   // mean over the probes
+  double leaves = 0;  // estimated number of leaves (solutions)
   std::uint64_t probes = 0;
 };
 

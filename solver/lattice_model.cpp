@@ -9,12 +9,12 @@ namespace tilekit {
 struct LatticeModel::Tables {
   TilingProblem problem;
   int vars = 0, max_radix = 0;
-  std::vector<int> radix;                   // var -> number of colours
+  std::vector<int> radix;                     // var -> number of colours
   std::vector<std::array<int, 4>> cell_vars;  // cell -> its four variables, in index digit order
   std::array<int, 4> digit_radix{};
-  std::vector<int> allowed;                 // tile index -> tile number in the set, or -1
+  std::vector<int> allowed;                     // tile index -> tile number in the set, or -1
   std::vector<int> var_cells_start, var_cells;  // CSR: var -> cells containing it
-  std::vector<int> order;                   // branching order of the free variables
+  std::vector<int> order;                       // branching order of the free variables
 };
 
 LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {

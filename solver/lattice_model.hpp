@@ -33,7 +33,7 @@ class LatticeModel {
 
  private:
   struct Tables;
-  int cell_index(int cell) const;  // all four colours assigned
+  int cell_index(int cell) const;        // all four colours assigned
   bool cell_has_option(int cell) const;  // exactly one colour free
 
   std::shared_ptr<const Tables> t_;

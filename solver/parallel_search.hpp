@@ -13,6 +13,7 @@
 //    model and N, so shards 0..N-1 together cover the tree exactly once.
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -21,7 +22,6 @@
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
-#include <fmt/format.h>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -49,23 +49,23 @@ struct ParallelConfig {
   double checkpoint_every = 0;
   bool progress = false;
   std::string title = "search";
-  bool restarts = false;               // first mode: Luby restarts from the root
-  std::uint64_t restart_base = 2000;   // nodes per Luby unit
+  bool restarts = false;              // first mode: Luby restarts from the root
+  std::uint64_t restart_base = 2000;  // nodes per Luby unit
   std::size_t subproblem_target = 1024;
-  std::uint64_t estimate_probes = 0;   // Knuth probes before the search (0 = none)
-  bool poll_signals = false;           // stop on SignalCatcher::caught()
+  std::uint64_t estimate_probes = 0;  // Knuth probes before the search (0 = none)
+  bool poll_signals = false;          // stop on SignalCatcher::caught()
   std::string fingerprint;
   std::function<void(const SearchState&)> save;  // empty: no checkpoints
   const SearchState* resume = nullptr;
-  std::function<void()> flush;         // called before each checkpoint is saved
+  std::function<void()> flush;  // called before each checkpoint is saved
 };
 
 struct ParallelOutcome {
   SearchCounters counts;  // finished subproblems + in-flight progress (+ restart nodes)
   bool complete = false, interrupted = false, timed_out = false, found = false;
   int signal = 0;
-  double seconds = 0;         // this run
-  double total_seconds = 0;   // including the runs this one resumed
+  double seconds = 0;        // this run
+  double total_seconds = 0;  // including the runs this one resumed
   std::uint64_t subproblems = 0, shard_subproblems = 0, subproblems_done = 0, restarts = 0;
   std::size_t checkpoints_written = 0;
   TreeEstimate estimate;
@@ -123,7 +123,8 @@ class ParallelSearch {
  public:
   using Leaf = std::function<void(const M&, SearchCounters&)>;
 
-  ParallelSearch(const M& root, ParallelConfig cfg, Leaf leaf) : root_(root), cfg_(std::move(cfg)), leaf_(std::move(leaf)) {
+  ParallelSearch(const M& root, ParallelConfig cfg, Leaf leaf)
+      : root_(root), cfg_(std::move(cfg)), leaf_(std::move(leaf)) {
     if (cfg_.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", cfg_.threads));
   }
 
@@ -195,9 +196,7 @@ class ParallelSearch {
     void leaf(const M& m, SearchCounters& c) { s.on_leaf(m, c); }
   };
 
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
+  double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
   void on_leaf(const M& m, SearchCounters& c) {
     if (cfg_.mode == SearchMode::First) {
@@ -224,7 +223,8 @@ class ParallelSearch {
     std::vector<Job> jobs;
     if (const SearchState* r = cfg_.resume) {
       if (r->subproblem_count != subs_.size() || r->subproblem_hash != hash || r->finished.size() != subs_.size())
-        throw InputError("checkpoint does not match this search: its subproblems differ (different problem or options)");
+        throw InputError(
+            "checkpoint does not match this search: its subproblems differ (different problem or options)");
       finished_ = r->finished;
       finished_counts_ = r->finished_counts;
       for (const InFlightSubproblem& f : r->in_flight) {
@@ -317,7 +317,9 @@ class ParallelSearch {
     while (stop_.load() == kRunning) {
       std::uint64_t r = next_restart_++;
       M m = root_;
-      m.set_value_seed(mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
+      // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
+      // restart, and every restart of a seeded run, shuffles it.
+      m.set_value_seed(cfg_.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
       Control ctl{*this, slot, 0, epoch_.load()};
       ctl.node_limit = luby(r + 1) * cfg_.restart_base;
       SearchCounters c;
@@ -388,8 +390,9 @@ class ParallelSearch {
     double t = elapsed();
     if (cfg_.mode == SearchMode::First && cfg_.restarts) {
       std::uint64_t nodes = restart_nodes_.load() + live;
-      p.update(0, 0, fmt::format("restart {}, {} nodes, {:.3g} nodes/s", next_restart_.load(), nodes,
-                                 t > 0 ? double(nodes) / t : 0.0));
+      p.update(0, 0,
+               fmt::format("restart {}, {} nodes, {:.3g} nodes/s", next_restart_.load(), nodes,
+                           t > 0 ? double(nodes) / t : 0.0));
       return;
     }
     std::uint64_t done, nodes;
@@ -400,7 +403,9 @@ class ParallelSearch {
     }
     nodes += live;
     std::string est = estimate_ > 0 ? fmt::format(" of ~{:.3g} (Knuth)", estimate_) : "";
-    p.update(double(done), double(shard_total_),
+    // Before the first subproblem finishes, the Knuth estimate is the only yardstick.
+    bool by_nodes = done == 0 && estimate_ > 0 && cfg_.shard_count == 1;
+    p.update(by_nodes ? double(nodes) : double(done), by_nodes ? estimate_ : double(shard_total_),
              fmt::format("{}/{} subproblems, {} nodes{}, {:.3g} nodes/s", done, shard_total_, nodes, est,
                          t > 0 ? double(nodes) / t : 0.0));
   }

@@ -45,9 +45,9 @@ struct SearchState {
   std::vector<bool> finished;          // per subproblem
   SearchCounters finished_counts;      // sum over finished subproblems
   std::vector<InFlightSubproblem> in_flight;
-  std::uint64_t restarts = 0;          // first mode with restarts: restarts done so far
-  std::uint64_t restart_nodes = 0;     // nodes spent in those restarts
-  double seconds = 0;                  // wall time spent by earlier runs of this search
+  std::uint64_t restarts = 0;       // first mode with restarts: restarts done so far
+  std::uint64_t restart_nodes = 0;  // nodes spent in those restarts
+  double seconds = 0;               // wall time spent by earlier runs of this search
 };
 
 }  // namespace tilekit

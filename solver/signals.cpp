@@ -8,7 +8,9 @@ namespace tilekit {
 namespace {
 std::atomic<int> g_caught{0};  // written only by the handler (async-signal-safe)
 static_assert(std::atomic<int>::is_always_lock_free);
-extern "C" void on_stop_signal(int sig) { g_caught.store(sig, std::memory_order_relaxed); }
+extern "C" void on_stop_signal(int sig) {
+  g_caught.store(sig, std::memory_order_relaxed);
+}
 constexpr int kSignals[] = {SIGTERM, SIGINT, SIGUSR1};
 struct sigaction g_previous[3];
 std::atomic<int> g_depth{0};  // nested catchers: only the outermost installs and restores
@@ -28,6 +30,8 @@ SignalCatcher::~SignalCatcher() {
   for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
 }
 
-int SignalCatcher::caught() { return g_caught.load(std::memory_order_relaxed); }
+int SignalCatcher::caught() {
+  return g_caught.load(std::memory_order_relaxed);
+}
 
 }  // namespace tilekit

@@ -42,12 +42,13 @@ const char* mode_name(SearchMode m) {
 Plan plan(const TilingProblem& p, const SearchOptions& o) {
   const TileSet& set = p.set;
   if (set.empty()) throw InputError("the tile set is empty");
-  if (p.rows < 1 || p.cols < 1) throw InputError(fmt::format("the grid must be at least 1x1, got {}x{}", p.rows, p.cols));
+  if (p.rows < 1 || p.cols < 1)
+    throw InputError(fmt::format("the grid must be at least 1x1, got {}x{}", p.rows, p.cols));
   if (std::int64_t(p.rows) * p.cols > 1 << 22)
     throw InputError(fmt::format("the grid {}x{} is too large (at most 4194304 cells)", p.rows, p.cols));
   if (p.packing && std::size_t(p.rows) * std::size_t(p.cols) != set.size())
-    throw InputError(fmt::format("a packing of {} tiles needs rows*cols == {}, got {}x{}", set.size(), set.size(),
-                                 p.rows, p.cols));
+    throw InputError(
+        fmt::format("a packing of {} tiles needs rows*cols == {}, got {}x{}", set.size(), set.size(), p.rows, p.cols));
   if (o.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", o.threads));
   if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count)
     throw InputError(fmt::format("shard must be I/N with 0 <= I < N, got {}/{}", o.shard_index, o.shard_count));
@@ -68,16 +69,17 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (pl.formulation == "auto") pl.formulation = "cell";
   if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
     throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
-  if (pl.formulation == "pegs" && wang) throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
-  if (pl.formulation == "edges" && !wang) throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
+  if (pl.formulation == "pegs" && wang)
+    throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
+  if (pl.formulation == "edges" && !wang)
+    throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
   pl.ordering = o.ordering;
   // Static scanline order is cheapest per node for packings; most constrained first is
   // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
   if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
-  if (pl.ordering == "mrv" && pl.formulation != "cell")
-    throw InputError("the mrv ordering needs the cell formulation");
+  if (pl.ordering == "mrv" && pl.formulation != "cell") throw InputError("the mrv ordering needs the cell formulation");
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));

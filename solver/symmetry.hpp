@@ -25,9 +25,9 @@ class PackingSymmetry {
  public:
   // The group for `problem`, or nullopt when it is not a packing of a complete set on a torus,
   // or when H would have more than `max_order` elements.
-  static std::optional<PackingSymmetry> for_problem(const TilingProblem& problem, std::size_t max_order = 200000);
+  static std::optional<PackingSymmetry> for_problem(const TilingProblem& problem, std::size_t max_order = 10000);
 
-  std::size_t order() const { return tile_maps_.size(); }            // |H|
+  std::size_t order() const { return tile_maps_.size(); }                       // |H|
   std::uint64_t full_order() const { return order() * std::uint64_t(cells_); }  // |T x H|
 
   // `cells` must be in normal form. True when no image under H is smaller; `stabiliser`

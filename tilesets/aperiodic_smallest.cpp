@@ -63,7 +63,7 @@ std::vector<Candidate> aperiodic_corner_candidates(int prune_radius) {
       if (rep.after == rep.before) continue;
       pr.set.set_name(fmt::format("{}-pruned{}", cand.set.name(), prune_radius));
       std::string why;
-      pr.soundness = pruned_soundness(src.wang_tiles(), c, pr.set.corner_tiles(), &why);
+      pr.soundness = after_pruning(pruned_soundness(src.wang_tiles(), c, pr.set.corner_tiles(), &why), rep);
       pr.tiles = pr.set.size();
       pr.colours = pr.set.colours();
       pr.chain.push_back({fmt::format("prune R={}", prune_radius), pr.tiles, pr.colours, "corner", "prune",

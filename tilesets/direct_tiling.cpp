@@ -112,7 +112,12 @@ Tiling DirectCompactWangTiling::generate(int rows, int cols, std::int64_t x0, st
 // ---- thesis sec. 3.3.2.3: one hash at the tile edges ----------------------------------------
 
 DirectEdgeWangTiling::DirectEdgeWangTiling(std::uint32_t ch, std::uint32_t cv, HashKind kind, std::uint64_t seed)
-    : ch_(ch), cv_(cv), h_(kind, std::lcm(ch, cv), seed) {}
+    : ch_(ch), cv_(cv), h_(kind, std::lcm(ch, cv), seed) {
+  for (std::uint32_t v = 0; v < h_.colours(); ++v) {
+    mod_h_.push_back(std::uint16_t(v % ch));
+    mod_v_.push_back(std::uint16_t(v % cv));
+  }
+}
 
 TileIndex DirectEdgeWangTiling::tile(std::int64_t x, std::int64_t y) const {
   // thesis sec. 3.3.2.3 (rows growing south): N = h(2x+1, 2y), E = h(2x+2, 2y+1),
@@ -137,8 +142,7 @@ void DirectEdgeWangTiling::fill(std::int64_t x0, std::int64_t y0, int rows, int 
     h_.row(odd, 2 * (y0 + r) + 2, south.data());
     TileIndex* o = out + std::size_t(r) * std::size_t(cols);
     for (std::size_t k = 0; k < n; ++k) {
-      const WangTile t{std::uint32_t(north[k] % ch_), std::uint32_t(middle[k + 1] % cv_), std::uint32_t(south[k] % ch_),
-                       std::uint32_t(middle[k] % cv_)};
+      const WangTile t{mod_h_[north[k]], mod_v_[middle[k + 1]], mod_h_[south[k]], mod_v_[middle[k]]};
       o[k] = wang_index(t, ch_, cv_);
     }
     north.swap(south);

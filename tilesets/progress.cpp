@@ -18,7 +18,9 @@ ProgressReporter::ProgressReporter(std::string title, double total, bool enabled
       start_(std::chrono::steady_clock::now()),
       last_print_(start_) {}
 
-ProgressReporter::~ProgressReporter() { finish(); }
+ProgressReporter::~ProgressReporter() {
+  finish();
+}
 
 void ProgressReporter::add(double work) {
   if (!enabled_) return;

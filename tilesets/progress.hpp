@@ -24,15 +24,15 @@ class ProgressReporter {
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
 
-  void add(double work = 1);        // done += work
-  void set(double done);            // done = work
+  void add(double work = 1);  // done += work
+  void set(double done);      // done = work
   void set_total(double total);
   void set_detail(std::string detail);
   // Sets done/total and detail at once and redraws if due (for monitors that poll counters).
   void update(double done, double total, std::string detail);
-  void finish();                    // final line (bar at its last state) and a newline
+  void finish();  // final line (bar at its last state) and a newline
 
-  double elapsed() const;           // seconds since construction
+  double elapsed() const;  // seconds since construction
   // Estimated seconds left from the fraction done so far; negative when unknown.
   double eta() const;
 

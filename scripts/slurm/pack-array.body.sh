@@ -6,7 +6,8 @@
 #   RUN_DIR/shards/shard-I.ckpt       checkpoint (written every CHECKPOINT_EVERY s and on a signal)
 #   RUN_DIR/shards/shard-I.sqlite     its own SQLite database (never shared between tasks:
 #                                     SQLite over NFS is not safe for concurrent writers)
-#   RUN_DIR/shards/shard-I.attempts   one JSON line per attempt (exit code, resumed or not)
+#   RUN_DIR/shards/shard-I.attempts   one JSON line per attempt: exit code, resumed or not, and
+#                                     tilekit's counts (total_seconds includes earlier attempts)
 #   RUN_DIR/shards/shard-I.done.json  `tilekit pack --json` output once the shard is complete
 # Signals: Slurm sends USR1 to this script (--signal=B:USR1@S) S seconds before the wall-time
 # kill; it is forwarded to tilekit, which writes its checkpoint and exits 3. The task then
@@ -30,9 +31,13 @@ attempts="$dir/shard-$shard.attempts"
 
 say() { printf '%s tilekit shard %s/%s (task %s, attempt %s): %s\n' "$(date -u +%FT%TZ)" \
   "$shard" "$SHARDS" "$task" "$attempt" "$*"; }
-record() {  # record EXIT RESUMED
-  printf '{"time":"%s","job":"%s","attempt":%s,"exit":%s,"resumed":%s,"host":"%s"}\n' \
-    "$(date -u +%FT%TZ)" "$task" "$attempt" "$1" "$2" "$(hostname -s)" >>"$attempts"
+# A number from tilekit's one-line JSON result $2 (null if absent).
+number() { local v; v=$(grep -o "\"$1\":[0-9.eE+-]*" "$2" 2>/dev/null | head -n 1 | cut -d: -f2); echo "${v:-null}"; }
+record() {  # record EXIT RESUMED [RESULT_JSON]: one line per attempt in shard-I.attempts
+  local r=${3:-/dev/null}
+  printf '{"time":"%s","job":"%s","attempt":%s,"exit":%s,"resumed":%s,"host":"%s","solutions":%s,"nodes":%s,"seconds":%s,"total_seconds":%s}\n' \
+    "$(date -u +%FT%TZ)" "$task" "$attempt" "$1" "$2" "$(hostname -s)" "$(number solutions "$r")" \
+    "$(number nodes "$r")" "$(number seconds "$r")" "$(number total_seconds "$r")" >>"$attempts"
 }
 
 # Slurm's signals may come at any moment, even before tilekit runs: take them from the start.
@@ -113,13 +118,13 @@ trap - USR1 TERM
 case $rc in
   0)
     mv -f "$done_file.tmp" "$done_file"
-    record 0 "$resumed"
+    record 0 "$resumed" "$done_file"
     say "complete: $(cat "$done_file")"
     exit 0
     ;;
   3)
+    record 3 "$resumed" "$done_file.tmp"
     rm -f "$done_file.tmp"
-    record 3 "$resumed"
     if [ "$warned" != true ]; then
       # Not our warning: Slurm is ending this job (a requeue or preemption brings it back by
       # itself; after scancel it must stay cancelled), so do not requeue it here.
@@ -143,9 +148,23 @@ case $rc in
     fi
     exit 3
     ;;
-  *)
+  1)
+    # Exit 1 = nothing found. With the shard's search space exhausted ("complete":true, e.g.
+    # --mode first in a shard without a packing) the shard is done all the same.
+    if grep -q '"complete":true' "$done_file.tmp" 2>/dev/null; then
+      mv -f "$done_file.tmp" "$done_file"
+      record 1 "$resumed" "$done_file"
+      say "complete, nothing found in this shard: $(cat "$done_file")"
+      exit 0
+    fi
+    record 1 "$resumed" "$done_file.tmp"
     rm -f "$done_file.tmp"
-    record "$rc" "$resumed"
+    say "tilekit found nothing and did not finish its search (exit code 1)"
+    exit 1
+    ;;
+  *)
+    record "$rc" "$resumed" "$done_file.tmp"
+    rm -f "$done_file.tmp"
     say "tilekit failed with exit code $rc"
     exit "$rc"
     ;;

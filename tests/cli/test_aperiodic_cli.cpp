@@ -65,6 +65,22 @@ TEST(AperiodicConvertCli, WritesTheResultAndTheDatabaseRows) {
   EXPECT_EQ(stats.tilesets, 2u);
 }
 
+TEST(AperiodicConvertCli, VerifyRelabelsAPeriodicResultAndStoresTheLabel) {
+  TempDir d;
+  auto r = run_cli("aperiodic convert ammann-gs-16 --method horizontal --verify 4 --db " + d / "r.db" + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  EXPECT_EQ(j["soundness"], "periodic");  // the thesis' Fig. 8.6 set
+  EXPECT_EQ(j["verify"]["verdict"], "periodic");
+  tilekit::ResultsDb db(d / "r.db", false);
+  auto conv = db.list_conversions();
+  ASSERT_EQ(conv.size(), 1u);
+  EXPECT_EQ(conv[0].soundness, "periodic");
+  auto ok = run_cli("aperiodic convert kari-14 --method vertical --verify 4 --json");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_EQ(ok.json()["soundness"], "conjugate");
+}
+
 TEST(AperiodicCli, BadInputExitsWithCode2AndAClearMessage) {
   TempDir d;
   write_text(d / "empty.tiles", "# no tiles\n");
@@ -124,6 +140,11 @@ TEST(AperiodicVerifyCli, ASetThatTilesNoSquareIsCannotTile) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["verdict"], "cannot-tile");
   EXPECT_EQ(r.json()["largest_square"], 1);
+  // Pruning alone removes its only tile (no tile above it can match): cannot-tile as well.
+  auto pruned = run_cli("aperiodic verify " + d / "row.tiles" + " --prune 1 --json");
+  ASSERT_EQ(pruned.code, 0) << pruned.err;
+  EXPECT_EQ(pruned.json()["verdict"], "cannot-tile");
+  EXPECT_EQ(pruned.json()["pruned"]["after"], 0);
 }
 
 TEST(AperiodicTableCli, ReproducesTable81AndExplainsEveryDifference) {

@@ -2,6 +2,8 @@
 // and bad input (exit 2 with one clear line).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit::test;
@@ -10,6 +12,7 @@ namespace {
 // `tilekit pack ARGS` writing to a database of its own, never the user's default one.
 CliResult pack(const std::string& args) {
   static TempDir db_dir;
+  ::setenv("TILEKIT_PORTFOLIO_STATS", (db_dir / "portfolio.json").c_str(), 1);  // not the user's file
   return run_cli("pack --db " + (db_dir / "results.sqlite") + " " + args);
 }
 }  // namespace
@@ -24,7 +27,8 @@ TEST(PackCli, HelpListsTheContractOptions) {
 
 TEST(PackCli, CountsTwoColourPackingsWithOneAndTwoThreads) {
   for (const char* threads : {"1", "2"}) {
-    CliResult w = pack(std::string("--kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
+    CliResult w =
+        pack(std::string("--kind wang --colors 2 --mode count --method search --quiet --json --threads ") + threads);
     ASSERT_EQ(w.code, 0) << w.err;
     auto j = w.json();
     EXPECT_EQ(j["solutions"], 203520);
@@ -42,8 +46,8 @@ TEST(PackCli, FirstPackingsOfThreeColoursPassTheIndependentCheck) {
   TempDir d;
   for (const char* kind : {"corner", "wang"}) {
     std::string out = d / (std::string(kind) + ".json");
-    CliResult r = pack(std::string("--method search --quiet --json --threads 2 --colors 3 --kind ") + kind +
-                          " --out " + out);
+    CliResult r =
+        pack(std::string("--method search --quiet --json --threads 2 --colors 3 --kind ") + kind + " --out " + out);
     ASSERT_EQ(r.code, 0) << r.err;
     auto j = r.json();
     EXPECT_EQ(j["valid"], true);
@@ -121,4 +125,51 @@ TEST(PackCli, ShardsZeroToThreeOfFourSumToTheWhole) {
     sum += r.json()["solutions"].get<long>();
   }
   EXPECT_EQ(sum, 203520);
+}
+
+TEST(PackCli, MethodsSayWhichAnsweredAndEachPackingValidates) {
+  TempDir d;
+  ::setenv("TILEKIT_PORTFOLIO_STATS", (d / "portfolio.json").c_str(), 1);
+  std::string db = "--db " + (d / "r.sqlite") + " --quiet --json --kind corner --colors 3";
+  CliResult c = run_cli("pack --method construct " + db);
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(c.json()["method"], "construct");
+  EXPECT_EQ(c.json()["valid"], true);
+  CliResult a = run_cli("pack --method auto " + db);  // the database now holds one
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(a.json()["method"], "db");
+  EXPECT_EQ(a.json()["cells"], c.json()["cells"]);
+  CliResult s = run_cli("pack --method search --threads 2 " + db);
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_EQ(s.json()["method"], "search");
+  EXPECT_EQ(s.json()["valid"], true);
+  CliResult w = run_cli("pack --method auto --quiet --json --kind wang --colors 5 --db " + (d / "w.sqlite"));
+  ASSERT_EQ(w.code, 0) << w.err;
+  EXPECT_EQ(w.json()["method"], "construct");
+  EXPECT_EQ(w.json()["valid"], true);
+  EXPECT_EQ(w.json()["cells"].size(), 25u);
+  CliResult bad =
+      run_cli("pack --method construct --mode count --kind wang --colors 2 --quiet --db " + (d / "r.sqlite"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--mode first"), std::string::npos) << bad.err;
+}
+
+TEST(PackCli, ImposedGroupFindsAFourColourWangPackingThatValidates) {
+  TempDir d;
+  std::string out = d / "w4.json";
+  CliResult r =
+      pack("--kind wang --colors 4 --impose t=0,8:pi=1,0,3,2 --threads 2 --time-limit 120 --quiet --json --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  EXPECT_EQ(j["method"], "search");
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_FALSE(j["group"].is_null());
+  CliResult c = run_cli("check " + out + " --set complete-wang-4 --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(c.json()["packing"], true);
+  CliResult bad = pack("--kind wang --colors 4 --impose t=banana --quiet");
+  EXPECT_EQ(bad.code, 2);
+  CliResult mixed = pack("--kind wang --colors 2 --impose t=0,2:pi=1,0 --checkpoint " + (d / "ck") + " --quiet");
+  EXPECT_EQ(mixed.code, 2);
+  EXPECT_NE(mixed.err.find("not checkpointed"), std::string::npos) << mixed.err;
 }

@@ -3,9 +3,9 @@
 // solutions in the database; SIGTERM ends each run with exit code 3 and a checkpoint.
 #include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sqlite3.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sqlite3.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -47,9 +47,10 @@ int wait_exit(pid_t pid) {
 }
 
 std::vector<std::string> enumeration_args(const std::string& ck, const std::string& db) {
-  std::vector<std::string> a{"pack", "--kind", "wang", "--colors", "2", "--mode", "all", "--method", "search",
-                             "--threads", "2", "--checkpoint-every", "0.1", "--checkpoint", ck, "--db", db,
-                             "--quiet", "--json"};
+  std::vector<std::string> a{"pack",  "--kind",       "wang",   "--colors",  "2", "--mode",
+                             "all",   "--method",     "search", "--threads", "2", "--checkpoint-every",
+                             "0.1",   "--checkpoint", ck,       "--db",      db,  "--quiet",
+                             "--json"};
   if (fs::exists(ck)) a.insert(a.end(), {"--resume", ck});
   return a;
 }
@@ -71,7 +72,9 @@ void expect_final_run_and_database(const std::vector<std::string>& args, const s
   EXPECT_EQ(st.solutions, 203520u);
   EXPECT_EQ(st.distinct_solutions, 538u);  // the db counts orbits (canonical hashes) as distinct
   sqlite3_stmt* q = nullptr;
-  ASSERT_EQ(sqlite3_prepare_v2(rdb.handle(), "SELECT COUNT(DISTINCT solution_hash), COUNT(*) FROM solutions", -1, &q, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_prepare_v2(rdb.handle(), "SELECT COUNT(DISTINCT solution_hash), COUNT(*) FROM solutions", -1, &q,
+                               nullptr),
+            SQLITE_OK);
   ASSERT_EQ(sqlite3_step(q), SQLITE_ROW);
   EXPECT_EQ(sqlite3_column_int64(q, 0), 203520);
   EXPECT_EQ(sqlite3_column_int64(q, 1), 203520);

@@ -57,9 +57,9 @@ TEST(PackSignals, SigtermAndSigusr1WriteACheckpointAndExit3AndResumeContinues) {
   TempDir d;
   std::string ck = d / "ck";
   // A search far too large to finish: the 36-tile complete 2x3-colour Wang set on a 6x6 torus.
-  std::vector<std::string> args{"pack", "--set", "complete-wang-2x3", "--mode", "count", "--threads", "2",
-                                "--quiet", "--json", "--checkpoint", ck, "--checkpoint-every", "0.05",
-                                "--db", d / "db.sqlite"};
+  std::vector<std::string> args{
+      "pack",         "--set", "complete-wang-2x3",  "--mode", "count", "--threads",    "2", "--quiet", "--json",
+      "--checkpoint", ck,      "--checkpoint-every", "0.05",   "--db",  d / "db.sqlite"};
   std::mt19937 rng(42);
   std::uint64_t last_nodes = 0;
   for (int round = 0; round < 3; ++round) {

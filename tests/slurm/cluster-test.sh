@@ -5,15 +5,22 @@
 #
 #   bash tests/slurm/cluster-test.sh      # scripts/test.sh runs it after ctest
 #
-# Cases:
-#  1. requeue: the 4-shard array enumerating the 203,520 C=2 Wang packings; one task is
-#     requeued mid-run (scontrol requeue: SIGTERM -> checkpoint -> exit 3 -> resume); the
-#     merge job (afterok) finishes; the merged database holds exactly 203,520 distinct
-#     solutions and every shard task ended with exit 0.
-#  2. twice: a requeue after a shard had finished, a second merge, and a merge that lists a
-#     shard twice change nothing.
-#  3. walltime: a shard with a 1-minute limit gets USR1 before the limit, checkpoints, exits 3,
-#     requeues itself and resumes until it completes.
+# Cases (3 is queued first so that it runs beside 1 and 2):
+#  1. The 4-shard array enumerating the 203,520 C=2 Wang packings. A shard searches for well
+#     under a second, so the test stops (SIGSTOP) one shard's tilekit inside its search and has
+#     Slurm requeue the task (SIGTERM -> checkpoint -> exit 3 -> Slurm requeues -> resume), and
+#     does the same with USR1 to another task's batch script, as --signal=B:USR1 does (USR1 ->
+#     checkpoint -> exit 3 -> the task requeues itself -> resume). The merge job (afterok)
+#     finishes; the merged database holds exactly 203,520 solutions (and as many orbits as an
+#     unsharded count), and every shard task ended COMPLETED with exit 0.
+#  2. A shard counted twice changes nothing: a finished task requeued, a second merge, and a
+#     merge that lists a shard twice.
+#  3. Wall time: one shard of a search far longer than its 1-minute limit (counting the C=3
+#     corner packings). Slurm's USR1 comes before the limit, tilekit checkpoints and exits 3,
+#     the task requeues itself and the next attempt resumes (its counts and time go on from the
+#     first); at the requeue bound (1) the task ends with exit 3.
+#  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
+#     scancel then ends it for good (checkpoint, exit 3, no requeue).
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -142,6 +149,11 @@ merge3=$(submitted_id merge_job "$out3")
 [ -n "$array3" ] && [ -n "$merge3" ] || fatal "no job ids in: $out3"
 log "case 3 queued: array $array3 (1 shard, --time 1), merge $merge3"
 
+# The C=2 Wang orbit count (packings up to symmetry) of one unsharded search, to compare with.
+ORBITS=$("$TK" pack --kind wang --colors 2 --mode count --method search --threads 1 --quiet --json |
+  { grep -o '"orbits":[0-9]*' || true; } | cut -d: -f2)
+[ -n "$ORBITS" ] || fatal "tilekit pack --mode count printed no orbit count"
+
 # ---- 1. one task requeued and one sent USR1 mid-run -------------------------------------------
 run1=$work/wang2
 log "case 1: 4-shard enumeration of the C=2 Wang packings; one task requeued, one sent USR1 mid-run"
@@ -209,12 +221,18 @@ for i in 0 1 2 3; do
   [ "$i" = "$requeued" ] || [ "$i" = "$usr1" ] || check "shard $i ran once and exited 0" \
     test "$(attempt_exits "$run1/shards/shard-$i.attempts")" = 0
 done
-distinct=$(json_number "$run1/merged.json" distinct_solutions)
-check "the merged database holds exactly 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+# db stats: "solutions" = rows, each unique by solution hash; "distinct_solutions" = orbits.
+rows=$(json_number "$run1/merged.json" solutions)
+check "the merged database holds exactly 203520 solutions (got $rows)" test "$rows" = 203520
+check "... 203520 distinct grids, all validated (plain sqlite3: distinct cells, validated rows)" \
+  test "$(sqlite3 "$run1/merged.sqlite" "SELECT COUNT(DISTINCT cells) || ' ' || SUM(validated) FROM solutions
+          WHERE kind = 'wang' AND colors = 2 AND rows = 4 AND cols = 4")" = "203520 203520"
+orbits=$(json_number "$run1/merged.json" distinct_solutions)
+check "... and as many orbits as one unsharded count finds ($orbits vs $ORBITS)" test "$orbits" = "$ORBITS"
 check "the merge job printed the final count" grep -q "final count: 203520 distinct solutions" "$run1"/logs/merge-*.out
-status=$("$TK" cluster status --run-dir "$run1" --json)
+"$TK" cluster status --run-dir "$run1" --json >"$work/status1.json"
 check "cluster status: 4 shards done, 203520 merged" \
-  bash -c "grep -q '\"done\":4' <<<'$status' && grep -q '\"merged_distinct_solutions\":203520' <<<'$status'"
+  bash -c "grep -q '\"done\":4' '$work/status1.json' && grep -q '\"merged_solutions\":203520' '$work/status1.json'"
 log "case 1 took $((SECONDS - t1)) s"
 
 # ---- 2. a shard counted twice changes nothing -------------------------------------------------
@@ -223,15 +241,17 @@ scontrol requeue "$(field "${array}_0" JobId)" || fatal "scontrol requeue of the
 again=$(sbatch --parsable --dependency="afterok:${array}_0" "$run1/merge.sbatch")
 state=$(wait_final "$again")
 check "a second merge ran after the finished shard was requeued ($state)" test "$state" = COMPLETED
-check "the requeued finished shard ended with exit 0 again, without a new search" \
-  test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode) $(tail -n 1 "$run1/shards/shard-0.attempts" | grep -c '"resumed":false')" = "COMPLETED 0:0 1"
-distinct=$(json_number "$run1/merged.json" distinct_solutions)
-check "after the second merge: still 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
+check "the requeued finished shard ended with exit 0 again" \
+  test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode)" = "COMPLETED 0:0"
+check "... without searching again (its result was there)" grep -q "already complete" "$run1"/logs/pack-*_0.out
+rows=$(json_number "$run1/merged.json" solutions)
+check "after the second merge: still 203520 solutions (got $rows)" test "$rows" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$run1/merged.json" distinct_solutions)" = "$ORBITS"
 "$TK" db merge "$work/twice.sqlite" "$run1"/shards/shard-{0,1,2,3}.sqlite "$run1/shards/shard-0.sqlite" >/dev/null ||
   fatal "tilekit db merge with a shard listed twice failed"
 "$TK" db stats --db "$work/twice.sqlite" --json >"$work/twice.json"
-check "a merge listing shard 0 twice: 203520 distinct solutions" test "$(json_number "$work/twice.json" distinct_solutions)" = 203520
-check "... and 203520 solution rows" test "$(json_number "$work/twice.json" solutions)" = 203520
+check "a merge listing shard 0 twice holds 203520 solutions" test "$(json_number "$work/twice.json" solutions)" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$work/twice.json" distinct_solutions)" = "$ORBITS"
 
 # ---- 3. checked now ---------------------------------------------------------------------------
 log "case 3: waiting for the wall-time run ($(time_left) s left)"
@@ -243,6 +263,18 @@ check "both attempts of the wall-time shard checkpointed and exited 3 (exits: $e
 check "Slurm sent USR1 before the limit in both attempts" test "$(grep -c "got SIGUSR1" "$log3")" = 2
 check "the first attempt requeued itself" grep -q "attempt 0): checkpointed .*requeueing this task to resume" "$log3"
 check "the second attempt resumed from the checkpoint" last_attempt_resumed "$run3/shards/shard-0.attempts"
+line_number() { { grep -o "\"$2\":[0-9.eE+-]*" <<<"$1" || true; } | head -n 1 | cut -d: -f2; }
+a0=$(sed -n 1p "$run3/shards/shard-0.attempts")
+a1=$(sed -n 2p "$run3/shards/shard-0.attempts")
+T0=$(line_number "$a0" total_seconds) s1=$(line_number "$a1" seconds) T1=$(line_number "$a1" total_seconds)
+check "the second attempt went on from the first: its total time ${T1:-?} s = ${T0:-?} s before + ${s1:-?} s now" \
+  awk -v T0="${T0:-0}" -v s1="${s1:-0}" -v T1="${T1:-0}" 'BEGIN { exit !(T0 > 1 && s1 > 1 && T1 - s1 > T0 - 1 && T1 - s1 < T0 + 1) }'
+S0=$(line_number "$a0" solutions) S1=$(line_number "$a1" solutions)
+check "its count went on from the first's (${S0:-?} then ${S1:-?} solutions)" \
+  awk -v a="${S0:-0}" -v b="${S1:-0}" 'BEGIN { exit !(a > 0 && b > a) }'
+"$TK" cluster status --run-dir "$run3" --json >"$work/status3.json"
+check "cluster status reads the checkpoint's progress (${S1:-?} solutions so far)" \
+  grep -q "\"solutions\":${S1:-x}," "$work/status3.json"
 check "the second attempt stopped at the requeue bound" grep -q "requeue bound (1) is reached" "$log3"
 check "Slurm counted one requeue (Restarts=$(field "${array3}_0" Restarts))" test "$(field "${array3}_0" Restarts)" = 1
 check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" ExitCode))" \
@@ -250,3 +282,25 @@ check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" Exi
 check "its merge job will never run (afterok not met)" \
   test "$(field "$merge3" Reason)" = DependencyNeverSatisfied
 scancel "$merge3" || true
+
+# ---- 4. resuming a whole run: the same submit again; then scancel ends it for good ------------
+log "case 4: the wall-time run submitted again (resume the whole run), then cancelled"
+out4=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
+  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  fatal "the second cluster submit into $run3 failed"
+array4=$(submitted_id array_job "$out4")
+check "the run directory now records two submissions" grep -q '"submissions":2' <<<"$out4"
+while ! grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out 2>/dev/null &&
+  (($(time_left) > 0)); do sleep 0.5; done
+check "the resubmitted shard resumed from the run's checkpoint" \
+  grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out
+for ((t = 0; t < 100; t++)); do  # let tilekit get into its search before the cancel
+  [ -n "$(searching_tilekits "$run3")" ] && break
+  sleep 0.1
+done
+scancel "$array4" || fatal "scancel $array4 failed"
+state=$(wait_final "${array4}_0")
+check "after scancel the task stays cancelled ($state, Restarts=$(field "${array4}_0" Restarts))" \
+  test "$state $(field "${array4}_0" Restarts)" = "CANCELLED 0"
+check "... and tilekit checkpointed on SIGTERM without requeueing" \
+  grep -q "on SIGTERM; not requeueing" "$run3"/logs/pack-"$array4"_0.out

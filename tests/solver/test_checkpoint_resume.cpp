@@ -135,7 +135,13 @@ TEST(Resume, AllModeAcrossInterruptionsEmitsEveryPackingAndCountsExactly) {
   EXPECT_GT(slices, 1);
   EXPECT_EQ(r.solutions, 203520u);
   EXPECT_EQ(seen.size(), 203520u);
-  EXPECT_EQ(r.orbits, solve(p, [] { SearchOptions c; c.mode = SearchMode::Count; return c; }()).orbits);
+  EXPECT_EQ(r.orbits, solve(p,
+                            [] {
+                              SearchOptions c;
+                              c.mode = SearchMode::Count;
+                              return c;
+                            }())
+                          .orbits);
 }
 
 TEST(Resume, MismatchedParametersAreRejectedNamingTheDifference) {
@@ -153,8 +159,9 @@ TEST(Resume, MismatchedParametersAreRejectedNamingTheDifference) {
   other.resume_path = o.checkpoint_path;
   other.seed = 5;
   EXPECT_NE(expect_input_error([&] { solve_checkpointed(p, other); }).find("seed"), std::string::npos);
-  EXPECT_NE(expect_input_error([&] { solve_checkpointed(complete_packing_problem(TileKind::Corner, 2), other); })
-                .find("does not match"),
+  EXPECT_NE(expect_input_error([&] {
+              solve_checkpointed(complete_packing_problem(TileKind::Corner, 2), other);
+            }).find("does not match"),
             std::string::npos);
 }
 

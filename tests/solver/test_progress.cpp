@@ -1,11 +1,11 @@
 // The shared progress reporter: log lines on a non-terminal stderr, nothing when disabled.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <functional>
-#include <fcntl.h>
 
 #include "tests/cli_runner.hpp"
 #include "tilesets/progress.hpp"

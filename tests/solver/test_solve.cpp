@@ -112,11 +112,12 @@ TEST(FirstMode, ThreeColourPackingsValidate) {
 
 TEST(Tilings, CountsOfCompleteSetsOnSmallGridsAreColourChoices) {
   // Complete sets: every colouring of the pegs (corner) or edges (Wang) is a tiling.
-  EXPECT_EQ(run(tiling_problem("complete-corner-2", 2, 2, true), SearchMode::Count).solutions, 16u);      // 2^4 pegs
-  EXPECT_EQ(run(tiling_problem("complete-corner-2", 2, 2, false), SearchMode::Count).solutions, 512u);    // 2^9 pegs
-  EXPECT_EQ(run(tiling_problem("complete-wang-2", 2, 3, true), SearchMode::Count, 2).solutions, 4096u);   // 2^12 edges
+  EXPECT_EQ(run(tiling_problem("complete-corner-2", 2, 2, true), SearchMode::Count).solutions, 16u);     // 2^4 pegs
+  EXPECT_EQ(run(tiling_problem("complete-corner-2", 2, 2, false), SearchMode::Count).solutions, 512u);   // 2^9 pegs
+  EXPECT_EQ(run(tiling_problem("complete-wang-2", 2, 3, true), SearchMode::Count, 2).solutions, 4096u);  // 2^12 edges
   EXPECT_EQ(run(tiling_problem("complete-wang-2", 2, 3, true), SearchMode::Count, 1, "edges").solutions, 4096u);
-  EXPECT_EQ(run(tiling_problem("complete-corner-2", 1, 3, true), SearchMode::Count, 1, "pegs").solutions, 8u);  // 1 row: 2^3
+  EXPECT_EQ(run(tiling_problem("complete-corner-2", 1, 3, true), SearchMode::Count, 1, "pegs").solutions,
+            8u);  // 1 row: 2^3
   EXPECT_EQ(run(tiling_problem("complete-corner-2", 1, 3, true), SearchMode::Count).solutions, 8u);
 }
 
