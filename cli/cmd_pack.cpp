@@ -2,12 +2,15 @@
 // construction or database lookup, with checkpoints, shards and signals for cluster runs.
 #include <fmt/format.h>
 
+#include <atomic>
 #include <memory>
 #include <thread>
 
 #include "checkpoints/checkpoint.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
+#include "solver/impose_portfolio.hpp"
+#include "solver/impose_solve.hpp"
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
@@ -22,6 +25,8 @@ namespace {
 struct PackArgs {
   std::string kind, set, size, method = "auto", mode = "first", checkpoint, resume, db, shard = "0/1";
   std::string formulation = "auto", ordering = "auto", out;
+  std::string impose, portfolio_stats;  // issue 7: imposed group; portfolio statistics file
+  bool portfolio_report = false;
   std::int64_t colours = 0;
   int threads = 0;
   std::uint64_t seed = 0;
@@ -90,6 +95,7 @@ class SolutionSink {
     s.tiling = t;
     s.method = "search";
     s.validated = true;  // solve() validates every solution before emitting it
+    s.group = group;
     if (sym_) {
       // The translates of one leaf arrive one after another and share their canonical form.
       Tiling normal = sym_->normal_form(t);
@@ -108,6 +114,7 @@ class SolutionSink {
     batch_.clear();
   }
   std::size_t added() const { return added_; }
+  nlohmann::json group;  // the imposed group of the solutions added from now on (null: none)
 
  private:
   ResultsDb& db_;
@@ -120,7 +127,28 @@ class SolutionSink {
   std::size_t added_ = 0;
 };
 
+// --portfolio-report: the per-group statistics that order the --method auto portfolio.
+void print_portfolio_report(const PackArgs& a, const Context& ctx) {
+  std::string path = a.portfolio_stats.empty() ? PortfolioStats::default_path() : a.portfolio_stats;
+  nlohmann::json rows = nlohmann::json::array();
+  const nlohmann::json report = PortfolioStats::load(path).report();
+  for (const auto& row : report["groups"]) {
+    if (!a.kind.empty() && row["kind"] != a.kind) continue;
+    if (a.colours && row["colors"] != a.colours) continue;
+    rows.push_back(row);
+  }
+  emit(ctx, {{"stats", path}, {"groups", rows}}, [&] {
+    fmt::print("portfolio statistics: {}\n", path);
+    fmt::print("{:<7} {:>3} {:>6} {:>9} {:>10}  {}\n", "kind", "C", "tries", "successes", "median_s", "group");
+    for (const auto& r : rows)
+      fmt::print("{:<7} {:>3} {:>6} {:>9} {:>10.3f}  {}\n", r["kind"].get<std::string>(), r["colors"].get<int>(),
+                 r["tries"].get<std::uint64_t>(), r["successes"].get<std::uint64_t>(), r["median_seconds"].get<double>(),
+                 r["group"].get<std::string>());
+  });
+}
+
 void run_pack(const PackArgs& a, const Context& ctx) {
+  if (a.portfolio_report) return print_portfolio_report(a, ctx);
   SignalCatcher signals;  // from here to the exit code: a signal always ends in exit 3
   TilingProblem problem = make_problem(a);
   SearchOptions o;
@@ -144,6 +172,21 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   o.estimate_probes = o.progress && o.mode != SearchMode::First ? 200 : 0;
   const std::string kind(kind_name(problem.set.kind()));
   const std::uint32_t colours = problem.set.colours();
+  // --impose: search only the packings invariant under the group (bad groups are exit 2 here).
+  std::optional<ImposedGroup> imposed;
+  if (!a.impose.empty()) {
+    if (!o.checkpoint_path.empty() || !o.resume_path.empty() || o.shard_count != 1)
+      throw InputError("--impose does not support --checkpoint, --resume or --shard");
+    imposed = build_group(problem, a.impose);
+  }
+  const bool complete_set_problem =
+      problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix()) &&
+      problem.rows == int(colours * colours) && problem.cols == problem.rows;
+  // The portfolio (plain search + imposed groups, first found wins) answers first-mode searches
+  // of complete sets unless the engine is pinned by a formulation, ordering, checkpoint or shard.
+  const bool use_portfolio = !imposed && o.mode == SearchMode::First && a.method != "construct" &&
+                             complete_set_problem && a.formulation == "auto" && a.ordering == "auto" &&
+                             o.checkpoint_path.empty() && o.resume_path.empty() && o.shard_count == 1;
   o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
   {  // bad options are exit 2 before the database is touched
     SearchOptions check = o;
@@ -158,7 +201,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                 {"rows", problem.rows}, {"cols", problem.cols},     {"mode", a.mode},
                 {"method", a.method},   {"seed", a.seed},           {"shard", a.shard},
                 {"formulation", a.formulation}, {"ordering", a.ordering}, {"time_limit", a.time_limit},
-                {"checkpoint", o.checkpoint_path}, {"resume", o.resume_path}};
+                {"checkpoint", o.checkpoint_path}, {"resume", o.resume_path}, {"impose", a.impose}};
   run.status = "running";
   run.threads = o.threads;
   run.id = db.begin_run(run);
@@ -170,6 +213,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
 
   SearchResult r;
   std::string method = "search";
+  nlohmann::json group_json = nullptr, portfolio_json = nullptr;
   std::optional<SolutionRecord> hit;
   const bool complete_set = problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
   if (a.method == "auto" && o.mode == SearchMode::First && complete_set)
@@ -181,7 +225,51 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     r.threads = o.threads;
   } else {
     try {
-      r = solve_checkpointed(problem, o);
+      // Signals stop the imposed searches and the portfolio through this flag.
+      std::atomic<bool> stop{false}, done{false};
+      std::thread watcher;
+      if (imposed || use_portfolio)
+        watcher = std::thread([&] {
+          while (!done.load()) {
+            if (SignalCatcher::caught()) stop = true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          }
+        });
+      struct Join {
+        std::atomic<bool>& done;
+        std::thread& t;
+        ~Join() {
+          done = true;
+          if (t.joinable()) t.join();
+        }
+      } join{done, watcher};
+      if (imposed) {
+        sink.group = imposed->to_json();
+        group_json = sink.group;
+        SymmetricControl ctl;
+        ctl.stop = &stop;
+        r = solve_symmetric(problem, *imposed, o, ctl).result;
+        r.interrupted = stop.load();
+      } else if (use_portfolio) {
+        PortfolioOptions po;
+        po.stats_path = a.portfolio_stats;
+        po.stop = &stop;
+        SearchOptions po_opts = o;
+        po_opts.on_solution = nullptr;
+        PortfolioResult pr = run_portfolio(problem.set.kind(), colours, po_opts, po);
+        r = pr.result;
+        r.nodes = pr.nodes;
+        r.seconds = pr.seconds;
+        r.threads = o.threads;
+        r.interrupted = stop.load();
+        portfolio_json = {{"winner", pr.found ? nlohmann::json(pr.spec) : nlohmann::json(nullptr)},
+                          {"runs", pr.runs}};
+        group_json = pr.group;
+        sink.group = pr.group;
+        if (pr.found) sink.add(pr.result.found.front());
+      } else {
+        r = solve_checkpointed(problem, o);
+      }
       sink.flush();
     } catch (...) {
       run.status = "failed";
@@ -220,6 +308,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"run_id", run.id},
                       {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
+  j["group"] = group_json;
+  if (!portfolio_json.is_null()) j["portfolio"] = portfolio_json;
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
@@ -244,6 +334,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
       fmt::print("solutions: {}{}\n", r.solutions, r.orbits ? fmt::format(" ({} up to symmetry)", *r.orbits) : "");
     fmt::print("nodes: {}  seconds: {:.3f}  database: {} (run {}, {} new solutions)\n", r.nodes, r.seconds, db.path(),
                run.id, sink.added());
+    if (!group_json.is_null()) fmt::print("imposed group: {} (order {})\n", group_json["spec"].get<std::string>(),
+                                          group_json["order"].get<int>());
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
   if (r.interrupted || SignalCatcher::caught())
@@ -252,7 +344,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                                                             : "checkpoint written to " + o.checkpoint_path +
                                                                   " (continue with --resume " + o.checkpoint_path + ")"));
   if (o.mode == SearchMode::First && r.found.empty())
-    throw NotFound(r.complete ? "no packing exists (the search space was exhausted)"
+    throw NotFound(r.complete ? (imposed ? "no packing is invariant under the imposed group (its subspace was exhausted)"
+                                         : "no packing exists (the search space was exhausted)")
                               : "no packing found within the time limit");
 }
 
@@ -279,6 +372,13 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
   cmd->add_option("--time-limit", a->time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out, "Write the packing found to this JSON file");
+  cmd->add_option("--impose", a->impose,
+                  "Search only packings invariant under this group: generators 't=DR,DC:pi=P0,P1,...' separated "
+                  "by ';' (Wang: pih=/piv= per edge direction; cycles like pi=(0 1)(2 3) also work)");
+  cmd->add_flag("--portfolio-report", a->portfolio_report,
+                "Print the per-group statistics (tries, successes, median time) that order the auto portfolio");
+  cmd->add_option("--portfolio-stats", a->portfolio_stats,
+                  "Portfolio statistics file (default $TILEKIT_PORTFOLIO_STATS or ~/.local/share/tilekit/portfolio-stats.json)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer("Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");

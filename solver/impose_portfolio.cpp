@@ -306,8 +306,17 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
       found = true;
     }
   };
+  std::atomic<int> running{options.threads};
   std::vector<std::thread> pool;
-  for (int i = 0; i < options.threads; ++i) pool.emplace_back(worker);
+  for (int i = 0; i < options.threads; ++i)
+    pool.emplace_back([&] {
+      worker();
+      --running;
+    });
+  while (running.load() > 0) {  // fold an external stop into first-found-wins
+    if (portfolio.stop && portfolio.stop->load()) found = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   for (auto& th : pool) th.join();
   if (failure) std::rethrow_exception(failure);
 
