@@ -12,6 +12,7 @@ threads=${3:-2}
 shift $(( $# < 3 ? $# : 3 ))
 cases=("$@")
 ((${#cases[@]})) || cases=(corner:4 wang:4 corner:5 wang:5)
+# TMPDIR picks where the database and statistics live (e.g. TMPDIR=/dev/shm to take disk fsyncs out).
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 median() { sort -g | awk '{a[NR]=$1} END {printf "%.4f", a[int((NR+1)/2)]}'; }
@@ -36,7 +37,7 @@ for c in "${cases[@]}"; do
     python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["valid"]; print(j["portfolio"]["winner"])' \
       "$tmp/out.json" >>"$tmp/groups"
   done
-  printf '{"bench":"impose-cli","kind":"%s","colors":%s,"threads":%s,"cores":%s,"runs":%s,"median_seconds":%s,"max_seconds":%s,"baseline_process_start_seconds":%s,"winners":"%s"}\n' \
-    "$kind" "$colours" "$threads" "$(nproc)" "$reps" "$(median <"$tmp/times")" "$(maxv <"$tmp/times")" "$base" \
+  printf '{"bench":"impose-cli","tmpdir":"%s","kind":"%s","colors":%s,"threads":%s,"cores":%s,"runs":%s,"median_seconds":%s,"max_seconds":%s,"baseline_process_start_seconds":%s,"winners":"%s"}\n' \
+    "$(dirname "$tmp")" "$kind" "$colours" "$threads" "$(nproc)" "$reps" "$(median <"$tmp/times")" "$(maxv <"$tmp/times")" "$base" \
     "$(sort "$tmp/groups" | uniq -c | awk '{printf "%s%s x%s", (NR>1?"; ":""), $2, $1}')"
 done
