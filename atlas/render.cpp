@@ -14,8 +14,8 @@ namespace tilekit::atlas {
 
 namespace {
 
-constexpr int kMaxSide = 16384;  // largest picture side in pixels
-constexpr int kSamples = 4;      // supersampling per pixel side (PNG)
+constexpr int kMaxSide = 8192;  // largest picture side in pixels (an RGB raster of 200 MB)
+constexpr int kSamples = 4;     // supersampling per pixel side (PNG)
 
 int auto_tile_px(int rows, int cols, int preferred) {
   const int longest = std::max(rows, cols);
@@ -127,14 +127,27 @@ Picture draw_tile_set(const TileSet& set, const RenderOptions& opt) {
   return p;
 }
 
-Picture draw_tiling(const Tiling& t, const RenderOptions& opt) {
+namespace {
+
+Picture tiling_frame(int rows, int cols, const RenderOptions& opt) {
   Picture p;
-  p.rows = t.rows;
-  p.cols = t.cols;
+  p.rows = rows;
+  p.cols = cols;
   p.tile_px = opt.tile_px > 0 ? opt.tile_px : auto_tile_px(p.rows, p.cols, 32);
   p.gap = 0;
   p.borders = opt.borders;
   check_size(p);
+  return p;
+}
+
+}  // namespace
+
+void check_tiling_picture(int rows, int cols, const RenderOptions& opt) {
+  tiling_frame(rows, cols, opt);
+}
+
+Picture draw_tiling(const Tiling& t, const RenderOptions& opt) {
+  Picture p = tiling_frame(t.rows, t.cols, opt);
   const std::uint32_t ch = t.ch(), cv = t.kind == TileKind::Wang ? t.cv() : t.ch();
   const std::uint64_t limit = std::uint64_t(ch) * ch * cv * cv;
   p.tiles.reserve(t.cells.size());

@@ -54,6 +54,8 @@ struct Picture {
 Picture draw_tile_set(const TileSet& set, const RenderOptions& opt = {});
 // A tiling or packing, tiles edge to edge.
 Picture draw_tiling(const Tiling& tiling, const RenderOptions& opt = {});
+// Throws the InputError draw_tiling would for a rows x cols tiling that is too large to draw.
+void check_tiling_picture(int rows, int cols, const RenderOptions& opt = {});
 
 std::string to_svg(const Picture& p);
 std::string to_png(const Picture& p);  // the encoded PNG file

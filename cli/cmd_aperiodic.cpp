@@ -2,6 +2,7 @@
 // Tables 8.1-8.7 and the periodicity search.
 #include <fmt/format.h>
 
+#include "checkpoints/aperiodic_store.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
 #include "tilesets/aperiodic_convert.hpp"
@@ -37,8 +38,8 @@ nlohmann::json prune_json(const PruneReport& r, int radius) {
 namespace {
 
 struct ConvertArgs {
-  std::string set, method, out;
-  int prune = -1;
+  std::string set, method, out, db;
+  int prune = -1, verify = 0;
   bool merge_centres = false, star_edge = false, list = false;
 };
 
@@ -49,7 +50,7 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
   Conversion conv = convert(src, m, {a.merge_centres, a.star_edge});
   nlohmann::json j = conversion_json(conv, src.name());
   std::optional<TileSet> result;
-  if (a.prune >= 0 || !a.out.empty() || a.list) {
+  if (a.prune >= 0 || !a.out.empty() || a.list || !a.db.empty() || a.verify > 0) {
     result = conversion_tile_set(conv, src.name() + "-" + a.method, fmt::format("{} of {} (thesis 8.3/8.4)", a.method, src.name()));
   }
   if (a.prune >= 0) {
@@ -61,11 +62,24 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
     j["horizontal_colors"] = result->horizontal_colours();
     j["vertical_colors"] = result->vertical_colours();
     std::string why;
-    Soundness sp = pruned_soundness(src.wang_tiles(), conv, result->corner_tiles(), &why);
+    Soundness sp = after_pruning(pruned_soundness(src.wang_tiles(), conv, result->corner_tiles(), &why), rep);
+    if (why.empty() && sp != conv.soundness) why = "pruning removed tiles outside the transducer SCCs: tilings still lift";
     if (sp != conv.soundness) {
       j["soundness"] = soundness_name(sp);
       j["argument"] = why;
       conv.argument = why;
+    }
+  }
+  if (a.verify > 0) {
+    // A periodic tiling found by the search overrides any other label (DESIGN.md).
+    VerifyOptions vo;
+    vo.max_period = a.verify;
+    VerifyResult v = verify_tile_set(*result, vo);
+    j["verify"] = verify_json(v);
+    if (v.period) {
+      j["soundness"] = soundness_name(Soundness::Periodic);
+      j["argument"] = fmt::format("a {}x{} torus tiling was found", v.period->first, v.period->second);
+      conv.argument = j["argument"].get<std::string>();
     }
   }
   if (a.list) {
@@ -77,6 +91,13 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
     write_file_atomic(a.out, format_tile_set_text(*result));
     j["out"] = a.out;
   }
+  if (!a.db.empty()) {
+    ResultsDb db(a.db);
+    nlohmann::json details = j;
+    details.erase("list");
+    j["conversion_id"] = store_conversion(db, src, *result, a.method, j["soundness"].get<std::string>(), details);
+    j["db"] = a.db;
+  }
   emit(ctx, j, [&] {
     fmt::print("{} of {}: {} {} tiles, {} colours", a.method, src.name(), j["tiles"].get<std::size_t>(),
                j["kind"].get<std::string>(), j["colors"].get<std::uint32_t>());
@@ -86,6 +107,7 @@ void run_convert(const Context& ctx, const ConvertArgs& a) {
       fmt::print("pruned (radius {}): {} -> {} tiles ({} by surround, {} by transducer SCC)\n", a.prune,
                  j["pruned"]["before"].get<std::size_t>(), j["pruned"]["after"].get<std::size_t>(),
                  j["pruned"]["removed_by_surround"].get<std::size_t>(), j["pruned"]["removed_by_scc"].get<std::size_t>());
+    if (j.contains("verify")) fmt::print("verify (max period {}): {}\n", a.verify, j["verify"]["verdict"].get<std::string>());
     if (!a.out.empty()) fmt::print("written to {}\n", a.out);
     if (a.list) fmt::print("{}", format_tile_set_text(*result));
   });
@@ -108,10 +130,14 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   conv->add_flag("--star-edge-colour", ca.star_edge, "subdivision: reuse an edge colour as the star (unverified)");
   conv->add_flag("--list", ca.list, "Include the result's tiles");
   conv->add_option("--out", ca.out, "Write the result as a tile-set file (atomically)");
+  conv->add_option("--verify", ca.verify, "Also run verify on the result up to this period (label periodic if found)")
+      ->check(CLI::Range(1, 64));
+  conv->add_option("--db", ca.db, "Store source, result and conversion in this results database");
   add_json_flag(conv, ctx);
   conv->callback([&ctx] { run_convert(ctx, ca); });
 
   add_aperiodic_table_command(ap, ctx);
+  add_aperiodic_verify_command(ap, ctx);
 }
 
 }  // namespace tilekit::cli

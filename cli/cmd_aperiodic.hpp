@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "checkpoints/aperiodic_verify.hpp"
 #include "cli/command.hpp"
 #include "tilesets/aperiodic_convert.hpp"
 #include "tilesets/aperiodic_prune.hpp"
@@ -13,6 +14,8 @@ namespace tilekit::cli {
 //  argument[, white, black]}
 nlohmann::json conversion_json(const Conversion& c, const std::string& source_name);
 nlohmann::json prune_json(const PruneReport& r, int radius);
+
+nlohmann::json verify_json(const VerifyResult& r);
 
 void add_aperiodic_table_command(CLI::App* aperiodic, Context& ctx);
 void add_aperiodic_verify_command(CLI::App* aperiodic, Context& ctx);

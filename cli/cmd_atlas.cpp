@@ -1,7 +1,123 @@
-// tilekit atlas lookup|build (placeholder registration filled in below).
+// tilekit atlas lookup|build: packings as texture atlases (thesis 5.4).
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "atlas/atlas_image.hpp"
+#include "atlas/lookup.hpp"
+#include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
-void add_atlas_commands(CLI::App& app, Context& ctx);
+
+namespace {
+
+struct PackingArgs {
+  std::string kind = "corner";
+  std::uint32_t colours = 0;
+  std::string db;
+  bool no_db = false;
+};
+
+void add_packing_options(CLI::App* cmd, PackingArgs& a) {
+  cmd->add_option("--kind", a.kind, "corner or wang")->check(CLI::IsMember({"corner", "wang"}))->capture_default_str();
+  cmd->add_option("--colors", a.colours, "Number of colours C (the atlas is C^2 x C^2 tiles)")->required();
+  cmd->add_option("--db", a.db, "Results database to look in first (default: the per-user one, if it exists)");
+  cmd->add_flag("--no-db", a.no_db, "Do not look in any database (constructions only)");
 }
-namespace tilekit::cli { void add_atlas_commands(CLI::App&, Context&) {} }
+
+AtlasLookup lookup(const PackingArgs& a) {
+  LookupOptions o;
+  if (!a.no_db) o.db_path = a.db.empty() ? ResultsDb::default_path() : a.db;
+  return atlas_lookup(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, o);
+}
+
+void add_lookup(CLI::App& atlas, Context& ctx) {
+  auto* cmd = atlas.add_subcommand("lookup", "A packing as an atlas layout and its inverse: JSON, C header or GLSL");
+  static PackingArgs a;
+  static std::string format = "json", out;
+  static std::uint64_t seed = 1;
+  add_packing_options(cmd, a);
+  cmd->add_option("--format", format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
+      ->check(CLI::IsMember({"json", "c", "glsl"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", seed, "Seed of the hash permutation table in the GLSL snippet")->capture_default_str();
+  cmd->add_option("--out", out, "Write the lookup to this file (atomically) instead of stdout");
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    AtlasLookup l = lookup(a);
+    nlohmann::json j = lookup_json(l);
+    std::string text = format == "json" ? j.dump() + "\n" : format == "c" ? lookup_c_header(l) : lookup_glsl(l, seed);
+    if (!out.empty()) {
+      write_file_atomic(out, text);
+      nlohmann::json s = {{"kind", a.kind}, {"colors", l.colours}, {"rows", l.rows}, {"cols", l.cols},
+                          {"source", l.source}, {"how", l.how}, {"closed_form", l.closed_form},
+                          {"format", format}, {"out", out}};
+      emit(ctx, s, [&] {
+        fmt::print("{} packing over {} colours ({}: {}) written as {} to {}\n", a.kind, l.colours, l.source, l.how,
+                   format, out);
+      });
+      return;
+    }
+    if (format == "json" || !ctx.json) {
+      std::cout << text;
+      std::cout.flush();
+      return;
+    }
+    j["format"] = format;
+    j["text"] = text;
+    emit(ctx, j, [] {});
+  });
+}
+
+void add_build(CLI::App& atlas, Context& ctx) {
+  auto* cmd = atlas.add_subcommand(
+      "build", "Build an atlas PNG from tile images named by tile index, or from generated colour-blend tiles");
+  static PackingArgs a;
+  static std::string tiles_dir, out;
+  static int tile_size = 32;
+  add_packing_options(cmd, a);
+  cmd->add_option("--tiles", tiles_dir, "Folder of tile images named by tile index (e.g. 0.png ... 80.png)");
+  cmd->add_option("--tile-size", tile_size, "Pixels per generated tile (without --tiles)")->capture_default_str();
+  cmd->add_option("--out", out, "Atlas PNG to write")->required();
+  add_json_flag(cmd, ctx);
+  cmd->callback([&ctx] {
+    AtlasLookup l = lookup(a);
+    RgbaImage img = tiles_dir.empty() ? atlas_from_generated_tiles(l, tile_size) : atlas_from_tile_images(l, tiles_dir);
+    const int size = img.width / l.cols;
+    SeamReport seams = measure_seams(img, size);
+    write_png(out, img);
+    nlohmann::json j = {{"out", out},
+                        {"kind", a.kind},
+                        {"colors", l.colours},
+                        {"rows", l.rows},
+                        {"cols", l.cols},
+                        {"tile_size", size},
+                        {"width", img.width},
+                        {"height", img.height},
+                        {"tiles", tiles_dir.empty() ? "generated" : tiles_dir},
+                        {"source", l.source},
+                        {"how", l.how},
+                        {"seam_jump", seams.seam_jump},
+                        {"interior_jump", seams.interior_jump}};
+    emit(ctx, j, [&] {
+      fmt::print("{}: {}x{} atlas of {} {} tiles over {} colours ({} {}x{} tiles, packing from {}: {})\n", out,
+                 img.width, img.height, l.cells.size(), a.kind, l.colours, l.rows, l.cols, size, l.source, l.how);
+      fmt::print("largest colour step across tile borders {} (inside tiles {})\n", seams.seam_jump,
+                 seams.interior_jump);
+    });
+  });
+}
+
+}  // namespace
+
+void add_atlas_commands(CLI::App& app, Context& ctx) {
+  auto* atlas = app.add_subcommand("atlas", "Packings as texture atlases: lookup tables and atlas images");
+  atlas->require_subcommand(1);
+  add_lookup(*atlas, ctx);
+  add_build(*atlas, ctx);
+}
+
+}  // namespace tilekit::cli

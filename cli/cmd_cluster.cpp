@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "checkpoints/checkpoint.hpp"
 #include "cli/cluster_scripts.hpp"
 #include "cli/command.hpp"
 #include "tilesets/error.hpp"
@@ -159,8 +160,30 @@ void submit(const Context& ctx, SubmitOptions& o) {
        });
 }
 
+// Progress of shard i of n from its checkpoint: subproblem k belongs to shard k mod n
+// (solver/parallel_search.hpp); counts are those of finished subproblems plus the part of the
+// in-flight ones explored so far. null (with a reason) when the file cannot be read.
+nlohmann::json checkpoint_progress(const fs::path& file, int i, int n) {
+  SearchState st;
+  try {
+    st = read_checkpoint(file.string());
+  } catch (const std::exception& e) {
+    return {{"error", e.what()}};
+  }
+  std::uint64_t mine = 0, done = 0;
+  for (std::uint64_t k = std::uint64_t(i); k < st.subproblem_count; k += std::uint64_t(n)) {
+    ++mine;
+    if (k < st.finished.size() && st.finished[k]) ++done;
+  }
+  SearchCounters c = st.finished_counts;
+  for (const auto& f : st.in_flight) c += f.counted;
+  return {{"subproblems", mine},     {"subproblems_done", done},
+          {"solutions", c.solutions}, {"nodes", c.nodes},
+          {"seconds", st.seconds},    {"fraction", mine ? double(done) / double(mine) : 0.0}};
+}
+
 // Per-shard state from the files the job script writes (pack-array.body.sh).
-nlohmann::json shard_status(const fs::path& shards, int i) {
+nlohmann::json shard_status(const fs::path& shards, int i, int n) {
   auto f = [&](const char* ext) { return shards / fmt::format("shard-{}{}", i, ext); };
   nlohmann::json s = {{"shard", i}};
   int attempts = 0, interrupted = 0;
@@ -186,9 +209,10 @@ nlohmann::json shard_status(const fs::path& shards, int i) {
   if (has_ckpt) {
     auto age = fs::file_time_type::clock::now() - fs::last_write_time(f(".ckpt"));
     s["checkpoint_age_seconds"] = std::chrono::duration_cast<std::chrono::seconds>(age).count();
-    s["checkpoint_bytes"] = fs::file_size(f(".ckpt"));
+    s["progress"] = checkpoint_progress(f(".ckpt"), i, n);
   } else {
     s["checkpoint_age_seconds"] = nullptr;
+    s["progress"] = nullptr;
   }
   return s;
 }
@@ -203,7 +227,7 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
   for (int i = 0; i < shards; ++i) {
-    auto s = shard_status(dir / "shards", i);
+    auto s = shard_status(dir / "shards", i, shards);
     counts[s["state"].get<std::string>()]++;
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);
@@ -217,7 +241,11 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
                       {"started", counts["started"]},
                       {"pending", counts["pending"]},
                       {"solutions_in_done_shards", sum},
-                      {"merged_distinct_solutions",
+                      // From merged.json (`db stats`): solutions stored, each once, and how many
+                      // of them differ up to symmetry.
+                      {"merged_solutions",
+                       merged ? merged->value("solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr)},
+                      {"merged_orbits",
                        merged ? merged->value("distinct_solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr)},
                       {"submissions", run->value("submissions", nlohmann::json::array())},
                       {"per_shard", list}};
@@ -228,22 +256,29 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
                dir.string(), args, shards, counts["done"], counts["checkpointed"], counts["started"],
                counts["pending"]);
     fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", "shard", "state", "attempts", "exit 3s",
-               "last exit", "solutions", "checkpoint");
+               "last exit", "solutions", "checkpoint (progress so far)");
     for (const auto& s : list) {
-      std::string ck = s["checkpoint_age_seconds"].is_null()
-                           ? "-"
-                           : fmt::format("written {} s ago", s["checkpoint_age_seconds"].get<long>());
+      std::string ck = "-";
+      if (!s["checkpoint_age_seconds"].is_null()) {
+        const auto& p = s["progress"];
+        ck = p.contains("error")
+                 ? fmt::format("unreadable: {}", p["error"].get<std::string>())
+                 : fmt::format("{}/{} subproblems ({:.1f}%), {} solutions, {} nodes; written {} s ago",
+                               p["subproblems_done"].get<std::uint64_t>(), p["subproblems"].get<std::uint64_t>(),
+                               100 * p["fraction"].get<double>(), p["solutions"].get<std::uint64_t>(),
+                               p["nodes"].get<std::uint64_t>(), s["checkpoint_age_seconds"].get<long>());
+      }
       fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", s["shard"].get<int>(), s["state"].get<std::string>(),
                  s["attempts"].get<int>(), s["checkpointed_exits"].get<int>(),
                  s["last_exit"].is_null() ? "-" : s["last_exit"].dump(),
                  s["solutions"].is_null() ? "-" : s["solutions"].dump(), ck);
     }
     fmt::print("solutions in done shards: {}\n", sum);
-    if (j["merged_distinct_solutions"].is_null())
+    if (j["merged_solutions"].is_null())
       fmt::print("merged: not yet (the merge job runs when every shard ended with exit 0)\n");
     else
-      fmt::print("merged: {} distinct solutions in {}\n", j["merged_distinct_solutions"].dump(),
-                 (dir / "merged.sqlite").string());
+      fmt::print("merged: {} distinct solutions ({} up to symmetry) in {}\n", j["merged_solutions"].dump(),
+                 j["merged_orbits"].dump(), (dir / "merged.sqlite").string());
   });
 }
 

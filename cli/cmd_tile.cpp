@@ -69,6 +69,7 @@ void add_tile_command(CLI::App& app, Context& ctx) {
     req.algo = parse_tiling_algo(a.algo);
     req.hash = parse_hash_kind(a.hash);
     req.seed = a.seed;
+    if (atlas::is_picture_path(a.out)) atlas::check_tiling_picture(req.rows, req.cols, {a.tile_px, a.borders});
     if (!a.map.empty()) {
       if (req.algo != TilingAlgo::Controlled) throw InputError("--map only applies to --algo controlled");
       req.map = read_probability_map(a.map);

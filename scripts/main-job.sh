@@ -1,6 +1,76 @@
 #!/usr/bin/env bash
 # The main job on the embedded default. Grows with the product (see README.md).
+# Gets a corner packing for an atlas (database hit, else a construction, else a search),
+# checks it with the independent validator, stores it in the per-user results database,
+# writes the atlas lookup (JSON, C header, GLSL) and the atlas picture, and says where
+# everything went and how to query it.
+#   TILEKIT_MAIN_COLORS  colours of the corner packing (default 6 = 2 x 3: stored x closed form)
+#   TILEKIT_MAIN_OUT     output folder (default: out/main-job in the repository)
+#   TILEKIT_DB           results database (default: the per-user data directory)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tk="$root/build/tilekit"
-"$tk" tileset show complete-corner-3
+
+C=${TILEKIT_MAIN_COLORS:-6}
+out=${TILEKIT_MAIN_OUT:-$root/out/main-job}
+mkdir -p "$out"
+
+# Step: a 3-colour corner tiling by the direct stochastic algorithm (thesis sec. 3.3.1),
+# validated, written as a tiling file and drawn as SVG and PNG.
+demo_corner_tiling() {
+  mkdir -p "$out"
+  local base="$out/corner-tiling-3"
+  "$tk" tile --set complete-corner-3 --algo direct --size 16x16 --seed 1 --out "$base.json"
+  "$tk" check "$base.json" --set complete-corner-3 >/dev/null
+  "$tk" tile --set complete-corner-3 --algo direct --size 16x16 --seed 1 --out "$base.svg" >/dev/null
+  "$tk" tile --set complete-corner-3 --algo direct --size 16x16 --seed 1 --out "$base.png" >/dev/null
+  echo "main job: 3-colour corner tiling (direct, 16x16, seed 1) written to:"
+  echo "  $base.json (tiling file, checked by \`tilekit check\`)"
+  echo "  $base.svg"
+  echo "  $base.png"
+}
+
+echo "== 0. a tiling to look at"
+demo_corner_tiling
+db=$("$tk" db stats --json | sed -n 's/.*"db":"\([^"]*\)".*/\1/p')
+packing="$out/packing-corner-$C.json"
+echo
+echo "== 1. corner packing over $C colours (database, else construction, else search)"
+if ! "$tk" atlas lookup --kind corner --colors "$C" --db "$db" --out "$packing"; then
+  echo "no stored or constructible packing: searching (stored in $db by pack)"
+  "$tk" pack --kind corner --colors "$C" --method search --db "$db" --time-limit "${TILEKIT_MAIN_SEARCH_SECONDS:-600}" \
+    --out "$packing"
+  "$tk" atlas lookup --kind corner --colors "$C" --db "$db" --out "$packing"
+fi
+echo
+echo "== 2. independent validator"
+"$tk" check "$packing"
+echo
+echo "== 3. store it in the results database"
+source=$(grep -o '"source":"[a-z]*"' "$packing" | cut -d'"' -f4)
+how=$(grep -o '"how":"[^"]*"' "$packing" | cut -d'"' -f4)
+echo "the packing came from: $source ($how)"
+"$tk" db add "$packing" --method "$source" --db "$db"
+id=$("$tk" db list --kind corner --colors "$C" --limit 0 --json --db "$db" |
+  grep -o "\"id\":[0-9]*" | tail -1 | cut -d: -f2)
+echo
+echo "== 4. atlas lookup tables and picture"
+"$tk" atlas lookup --kind corner --colors "$C" --db "$db" --format c --out "$out/atlas-corner-$C.h"
+"$tk" atlas lookup --kind corner --colors "$C" --db "$db" --format glsl --out "$out/atlas-corner-$C.glsl"
+"$tk" atlas build --kind corner --colors "$C" --db "$db" --tile-size 24 --out "$out/atlas-corner-$C.png"
+echo
+echo "== 5. the results database"
+"$tk" db stats --db "$db"
+cat <<EOF
+
+Where everything went:
+  packing (tiling JSON)   $packing
+  C header / GLSL         $out/atlas-corner-$C.h, $out/atlas-corner-$C.glsl
+  atlas picture           $out/atlas-corner-$C.png
+  results database        $db (solution $id)
+How to query it:
+  $tk db list --db '$db'
+  $tk db show $id --db '$db' --json
+  $tk db export --format csv --db '$db'
+  sqlite3 '$db' "SELECT id, kind, colors, rows, cols, method, validated FROM solutions"
+EOF

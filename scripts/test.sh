@@ -1,8 +1,14 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite (ctest).
+# Sets up, builds and runs the whole test suite: ctest, then the end-to-end test against a real
+# single-node Slurm (tests/slurm/cluster-test.sh; needs root, about 2-3 minutes). Set
+# TILEKIT_SKIP_SLURM=1 to leave the Slurm test out (it then says so).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh"
-cd "$root/build"
-ctest --output-on-failure -j "$(nproc)" "$@"
+(cd "$root/build" && ctest --output-on-failure -j "$(nproc)" "$@")
+if [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then
+  echo "test.sh: the real-Slurm test was SKIPPED (TILEKIT_SKIP_SLURM=1)" >&2
+else
+  bash "$root/tests/slurm/cluster-test.sh"
+fi

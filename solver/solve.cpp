@@ -61,19 +61,25 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   Plan pl;
   const bool wang = set.kind() == TileKind::Wang;
   pl.formulation = o.formulation;
+  // Measured (BENCHMARKS.md, bench_solver): the tile-per-cell model is fastest on every packing
+  // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
+  // unconstrained tilings, where most-constrained-first cell search is close and far more
+  // robust on restrictive (e.g. aperiodic) sets.
   if (pl.formulation == "auto") pl.formulation = "cell";
   if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
     throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
   if (pl.formulation == "pegs" && wang) throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
   if (pl.formulation == "edges" && !wang) throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
   pl.ordering = o.ordering;
-  if (pl.ordering == "auto") pl.ordering = "static";
+  // Static scanline order is cheapest per node for packings; most constrained first is
+  // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
+  if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
   if (pl.ordering == "mrv" && pl.formulation != "cell")
     throw InputError("the mrv ordering needs the cell formulation");
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
-  pl.restart_base = o.restart_base ? o.restart_base : 4 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
+  pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
   return pl;
 }

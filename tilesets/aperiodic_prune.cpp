@@ -89,6 +89,10 @@ std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& w, bool 
   return out;
 }
 
+Soundness after_pruning(Soundness s, const PruneReport& r) {
+  return s == Soundness::Conjugate && r.removed_by_scc > 0 ? Soundness::Lifts : s;
+}
+
 PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius) {
   if (radius < 0) throw InputError(fmt::format("--prune radius must be >= 0, got {}", radius));
   PruneReport rep;

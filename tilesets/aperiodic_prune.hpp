@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "tilesets/aperiodic_convert.hpp"
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {
@@ -36,6 +37,11 @@ std::vector<std::size_t> surroundable(const std::vector<WangTile>& tiles);
 // Tiles whose edge lies in a strongly connected component of the row transducer graph
 // (rows = true) or of the column transducer graph (rows = false).
 std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& tiles, bool rows);
+
+// The label of a pruned conversion result: surround pruning keeps every tiling, so a
+// conjugacy stays one; SCC pruning may drop tilings (never tileability or periodic ones),
+// so a conjugate result becomes `lifts` (its tilings still lift to the source).
+Soundness after_pruning(Soundness s, const PruneReport& r);
 
 PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius);
 // Prunes a Wang or corner set; the result keeps the surviving tiles in their order.

@@ -6,6 +6,7 @@
 #include <array>
 #include <regex>
 
+#include "tilesets/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -154,6 +155,7 @@ const std::vector<TableSource>& table_sources() {
 }
 
 TablesReport compute_tables(const TableOptions& opts) {
+  if (opts.levels < 1) throw InputError(fmt::format("levels must be at least 1, got {}", opts.levels));
   TablesReport rep;
   const auto& sources = table_sources();
   const std::string kMissing = "missing data: the thesis' set is not available";
@@ -183,7 +185,7 @@ TablesReport compute_tables(const TableOptions& opts) {
     t.corner_label = "set";
     t.rows.push_back("Wang 0");
     for (int l = 1; l <= opts.levels; ++l) t.rows.push_back(fmt::format("corner {}", l)), t.rows.push_back(fmt::format("Wang {}", l));
-    t.rows.pop_back();
+    if (opts.levels > 1) t.rows.pop_back();  // end with a corner row, as the thesis (keep Wang 1 for 8.2)
     t.cells.assign(t.rows.size(), std::vector<TableEntry>(sources.size()));
     for (std::size_t si = 0; si < sources.size(); ++si) {
       t.columns.push_back(label(si));

@@ -127,19 +127,35 @@ AliasTable::AliasTable(const double* p, std::uint32_t colours) : u_(colours, 1.0
     }
 }
 
-PositionRandom::PositionRandom(HashKind kind, std::uint64_t seed)
-    : kind_(kind), perm_(256, derive_seed(seed, 11)), long_(LongPeriodHash::thesis_tiling_hash(derive_seed(seed, 12))) {
-  base_ = kind == HashKind::Permutation ? 256.0 : double(long_.range());
+PositionRandom::PositionRandom(HashKind kind, std::uint64_t seed) {
+  if (kind == HashKind::Permutation) {
+    tables_.emplace_back(256, derive_seed(seed, 11));
+    range_ = 256;
+  } else {
+    const LongPeriodHash h = LongPeriodHash::thesis_tiling_hash(derive_seed(seed, 12));
+    tables_ = h.tables();
+    range_ = h.range();  // the final modulo divisor is the first table (size 24)
+  }
   digits_ = 1;
-  for (double span = base_; span < 4294967296.0; span *= base_) ++digits_;
+  for (double span = range_; span < 4294967296.0; span *= range_) ++digits_;
 }
 
 double PositionRandom::operator()(std::int64_t x, std::int64_t y) const {
-  double u = 0, scale = 1.0 / base_;
+  // u = sum_k h(x, y, k) R^-(k+1) with h the 3-D hash of eq. (3.4) / (3.7). The inner part
+  // P_i[(P_i[x % N_i] + y) % N_i] of each table does not depend on k: it is looked up once.
+  std::uint32_t inner[8];
+  const std::size_t m = tables_.size();
+  for (std::size_t i = 0; i < m; ++i) inner[i] = tables_[i](x, y);
+  double u = 0, scale = 1.0 / range_;
   for (int k = 0; k < digits_; ++k) {
-    const std::uint32_t d = kind_ == HashKind::Permutation ? perm_(x, y, k) : long_(x, y, k);  // eq. (3.4) / (3.7)
-    u += d * scale;
-    scale /= base_;
+    std::uint32_t sum = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const PermutationHash& t = tables_[i];
+      const std::uint32_t s = inner[i] + std::uint32_t(k) % t.size();
+      sum += t.table()[s >= t.size() ? s - t.size() : s];
+    }
+    u += double(sum % range_) * scale;
+    scale /= range_;
   }
   return u;
 }

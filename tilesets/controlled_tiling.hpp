@@ -63,13 +63,16 @@ class PositionRandom {
  public:
   PositionRandom(HashKind kind, std::uint64_t seed);
   double operator()(std::int64_t x, std::int64_t y) const;
+  // The hash the digits come from: one 256-entry table (perm) or LongPeriodHash::thesis_tiling_hash,
+  // seeded with derive_seed(seed, 11) or derive_seed(seed, 12).
+  const std::vector<PermutationHash>& tables() const { return tables_; }
+  std::uint32_t range() const { return range_; }
+  int digits() const { return digits_; }
 
  private:
-  HashKind kind_;
-  PermutationHash perm_;
-  LongPeriodHash long_;
+  std::vector<PermutationHash> tables_;
+  std::uint32_t range_;
   int digits_;
-  double base_;
 };
 
 class ControlledColouring {

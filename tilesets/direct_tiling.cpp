@@ -112,7 +112,12 @@ Tiling DirectCompactWangTiling::generate(int rows, int cols, std::int64_t x0, st
 // ---- thesis sec. 3.3.2.3: one hash at the tile edges ----------------------------------------
 
 DirectEdgeWangTiling::DirectEdgeWangTiling(std::uint32_t ch, std::uint32_t cv, HashKind kind, std::uint64_t seed)
-    : ch_(ch), cv_(cv), h_(kind, std::lcm(ch, cv), seed) {}
+    : ch_(ch), cv_(cv), h_(kind, std::lcm(ch, cv), seed) {
+  for (std::uint32_t v = 0; v < h_.colours(); ++v) {
+    mod_h_.push_back(std::uint16_t(v % ch));
+    mod_v_.push_back(std::uint16_t(v % cv));
+  }
+}
 
 TileIndex DirectEdgeWangTiling::tile(std::int64_t x, std::int64_t y) const {
   // thesis sec. 3.3.2.3 (rows growing south): N = h(2x+1, 2y), E = h(2x+2, 2y+1),
@@ -123,22 +128,24 @@ TileIndex DirectEdgeWangTiling::tile(std::int64_t x, std::int64_t y) const {
 }
 
 void DirectEdgeWangTiling::fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) const {
-  const std::size_t n = 2 * std::size_t(cols) + 1;  // dense lattice columns 2x0 .. 2(x0+cols)
-  ColourHash::RowCache cache;
-  h_.prepare(cache, 2 * x0, n);
-  std::vector<std::uint16_t> top(n), mid(n), bottom(n);
-  h_.row(cache, 2 * y0, top.data());
+  // Only the edge midpoints are evaluated (thesis sec. 3.3.2.3: "the remaining five random
+  // colors are ignored"): odd dense columns 2x+1 on the even dense rows (N and S edges, each
+  // row shared by two tile rows) and even dense columns 2x on the odd dense rows (E and W).
+  const std::size_t n = std::size_t(cols);
+  ColourHash::RowCache odd, even;
+  h_.prepare(odd, 2 * x0 + 1, n, 2);
+  h_.prepare(even, 2 * x0, n + 1, 2);
+  std::vector<std::uint16_t> north(n), middle(n + 1), south(n);
+  h_.row(odd, 2 * y0, north.data());
   for (int r = 0; r < rows; ++r) {
-    h_.row(cache, 2 * (y0 + r) + 1, mid.data());
-    h_.row(cache, 2 * (y0 + r) + 2, bottom.data());
+    h_.row(even, 2 * (y0 + r) + 1, middle.data());
+    h_.row(odd, 2 * (y0 + r) + 2, south.data());
     TileIndex* o = out + std::size_t(r) * std::size_t(cols);
-    for (int k = 0; k < cols; ++k) {
-      const std::size_t m = 2 * std::size_t(k) + 1;
-      const WangTile t{std::uint32_t(top[m] % ch_), std::uint32_t(mid[m + 1] % cv_), std::uint32_t(bottom[m] % ch_),
-                       std::uint32_t(mid[m - 1] % cv_)};
+    for (std::size_t k = 0; k < n; ++k) {
+      const WangTile t{mod_h_[north[k]], mod_v_[middle[k + 1]], mod_h_[south[k]], mod_v_[middle[k]]};
       o[k] = wang_index(t, ch_, cv_);
     }
-    top.swap(bottom);
+    north.swap(south);
   }
 }
 

@@ -4,6 +4,7 @@
 // offers tile(x, y) (random access) and fill() (a whole window, each hash evaluated once);
 // both give the same tiles. Coordinates as in lattice_tiling.hpp (rows grow to the south).
 #include <cstdint>
+#include <vector>
 
 #include "tilesets/lattice_hash.hpp"
 #include "tilesets/lattice_tiling.hpp"
@@ -74,6 +75,7 @@ class DirectEdgeWangTiling {
  private:
   std::uint32_t ch_, cv_;
   ColourHash h_;
+  std::vector<std::uint16_t> mod_h_, mod_v_;  // v -> v % C_h, v % C_v for v < lcm(C_h, C_v)
 };
 
 }  // namespace tilekit

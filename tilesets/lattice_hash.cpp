@@ -112,6 +112,8 @@ ColourHash::ColourHash(HashKind kind, std::uint32_t colours, std::uint64_t seed)
   for (const auto& c : comps_) max_sum += c.n - 1;
   reduce_.resize(max_sum + 1);
   for (std::uint64_t s = 0; s <= max_sum; ++s) reduce_[s] = std::uint16_t((s % final_size) % colours);
+  if (comps_.size() == 1)
+    for (std::uint32_t v : comps_[0].p) colour_of_entry_.push_back(reduce_[v]);
 }
 
 std::uint32_t ColourHash::colour(std::int64_t x, std::int64_t y) const {
@@ -126,7 +128,7 @@ std::uint32_t ColourHash::colour(std::int64_t x, std::int64_t y) const {
   return reduce_[sum];
 }
 
-void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n) const {
+void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride) const {
   cache.x0 = x0;
   cache.n = n;
   cache.first.resize(comps_.size() * n);
@@ -134,9 +136,12 @@ void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n) const 
     const Component& c = comps_[i];
     std::int64_t r = x0 % std::int64_t(c.n);
     std::uint32_t m = std::uint32_t(r < 0 ? r + c.n : r);
+    std::int64_t step = stride % std::int64_t(c.n);
+    const std::uint32_t st = std::uint32_t(step < 0 ? step + c.n : step);
     for (std::size_t k = 0; k < n; ++k) {
       cache.first[i * n + k] = c.p[m];
-      if (++m == c.n) m = 0;
+      m += st;
+      if (m >= c.n) m -= c.n;
     }
   }
 }
@@ -148,12 +153,11 @@ void ColourHash::row(RowCache& cache, std::int64_t y, std::uint16_t* out) const 
     std::int64_t r = y % std::int64_t(c.n);
     const std::uint32_t ym = std::uint32_t(r < 0 ? r + c.n : r);
     const std::uint32_t* first = cache.first.data();
-    const std::uint32_t* p = c.p.data();
-    const std::uint16_t* red = reduce_.data();
+    const std::uint16_t* colour = colour_of_entry_.data();
     for (std::size_t k = 0; k < n; ++k) {
       std::uint32_t s = first[k] + ym;
       s = s >= c.n ? s - c.n : s;
-      out[k] = red[p[s]];
+      out[k] = colour[s];
     }
     return;
   }

@@ -92,6 +92,8 @@ class ColourHash {
   HashKind kind() const { return kind_; }
   std::uint32_t colours() const { return colours_; }
   std::uint64_t period() const { return period_; }
+  // The period of every lattice row in x: N for one permutation table, else 0 (too long to use).
+  std::uint64_t x_period() const { return comps_.size() == 1 ? comps_[0].n : 0; }
   std::uint32_t colour(std::int64_t x, std::int64_t y) const;
 
   // Per-row evaluation cache: the columns x0..x0+n-1 it was prepared for.
@@ -101,8 +103,9 @@ class ColourHash {
     std::vector<std::uint32_t> first;  // M*n values P_i[x % N_i], component-major
     std::vector<std::uint32_t> sum;    // scratch
   };
-  void prepare(RowCache& cache, std::int64_t x0, std::size_t n) const;
-  // out[k] = colour(x0 + k, y) for k < n, with the columns of `cache`.
+  // Columns x0, x0 + stride, ..., x0 + (n - 1) stride.
+  void prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride = 1) const;
+  // out[k] = colour(x0 + k stride, y) for k < n, with the columns of `cache`.
   void row(RowCache& cache, std::int64_t y, std::uint16_t* out) const;
 
  private:
@@ -114,7 +117,8 @@ class ColourHash {
   std::uint32_t colours_;
   std::uint64_t period_ = 0;
   std::vector<Component> comps_;
-  std::vector<std::uint16_t> reduce_;  // sum of component values -> (sum % N_j) % C
+  std::vector<std::uint16_t> reduce_;           // sum of component values -> (sum % N_j) % C
+  std::vector<std::uint16_t> colour_of_entry_;  // one table: s -> P[s] % C
 };
 
 }  // namespace tilekit

@@ -12,6 +12,7 @@
 //   std::uint32_t colours() const;  std::uint32_t colour(int64 x, int64 y) const;
 //   struct RowCache;  void prepare(RowCache&, int64 x0, size_t n) const;
 //   void row(RowCache&, int64 y, std::uint16_t* out) const;   // colour(x0 + k, y), k < n
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -30,9 +31,17 @@ TileIndex lattice_corner_tile(const Lattice& h, std::int64_t x, std::int64_t y) 
 
 // The tiles (x0 + c, y0 + r), r < rows, c < cols, into out[r * cols + c]. Every lattice point
 // is evaluated once (two lattice rows live at a time); the result equals lattice_corner_tile.
+// When the lattice rows repeat with a short period p in x (a Lattice with x_period() > 0, e.g.
+// one permutation table, thesis eq. 3.3, period N), each row of tiles repeats too: only its
+// first p tiles are evaluated and the rest of the row is copied from them.
 template <class Lattice>
 void fill_lattice_corner_tiles(const Lattice& h, std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) {
-  const std::size_t n = std::size_t(cols) + 1;
+  int evaluated = cols;
+  if constexpr (requires { h.x_period(); }) {
+    const std::uint64_t p = h.x_period();
+    if (p > 0 && std::uint64_t(cols) > 2 * p) evaluated = int(p);
+  }
+  const std::size_t n = std::size_t(evaluated) + 1;
   typename Lattice::RowCache cache;
   h.prepare(cache, x0, n);
   std::vector<std::uint16_t> north(n), south(n);
@@ -43,8 +52,10 @@ void fill_lattice_corner_tiles(const Lattice& h, std::int64_t x0, std::int64_t y
     TileIndex* o = out + std::size_t(r) * std::size_t(cols);
     const std::uint16_t* nr = north.data();
     const std::uint16_t* sr = south.data();
-    for (int k = 0; k < cols; ++k)
+    for (int k = 0; k < evaluated; ++k)
       o[k] = ((TileIndex(nr[k + 1]) * c + sr[k + 1]) * c + sr[k]) * c + nr[k];  // thesis eq. (2.5)
+    for (int done = evaluated; done < cols; done += std::min(done, cols - done))
+      std::copy_n(o, std::min(done, cols - done), o + done);  // the row repeats with period p
     north.swap(south);
   }
 }

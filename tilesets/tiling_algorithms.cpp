@@ -73,8 +73,8 @@ std::vector<std::string> tiling_algo_names() {
 void check_tiling_size(std::int64_t rows, std::int64_t cols) {
   if (rows < 1 || cols < 1 || rows > 65536 || cols > 65536)
     throw InputError(fmt::format("tiling size must be between 1x1 and 65536x65536, got {}x{}", cols, rows));
-  if (rows * cols > (std::int64_t(1) << 28))
-    throw InputError(fmt::format("tiling of {}x{} tiles is too large (at most 2^28 tiles)", cols, rows));
+  if (rows * cols > (std::int64_t(1) << 24))
+    throw InputError(fmt::format("tiling of {}x{} tiles is too large (at most 2^24 = 4096x4096 tiles)", cols, rows));
 }
 
 Tiling generate_tiling(const TileSet& set, const TilingRequest& req) {

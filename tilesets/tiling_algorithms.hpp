@@ -33,7 +33,8 @@ struct TilingRequest {
   std::optional<ProbabilityMap> map;  // controlled only; default: ProbabilityMap::ramp
 };
 
-// Largest tiling the command makes: 65536 per side and 2^28 tiles in all.
+// Largest tiling the command makes: 65536 per side and 2^24 tiles in all (the validator
+// keeps 32 bytes per cell).
 void check_tiling_size(std::int64_t rows, std::int64_t cols);
 
 // Throws InputError when the algorithm does not fit the set (wrong kind, or a tile it can

@@ -111,8 +111,13 @@ start_cluster() {
   wait_for munged 10 munge --socket="$sock" -n ||
     { show_log "$dir/log/munged.log"; die "munged does not answer on $sock"; }
 
-  local host cpus mem_mib ctld_port slurmd_port
+  local host cpus mem_mib ctld_port slurmd_port ctld_addr="" node_addr=""
   host=$(hostname -s)
+  # A host name that does not resolve gets the loopback address (a single-node cluster).
+  if ! getent hosts "$host" >/dev/null 2>&1; then
+    ctld_addr="(127.0.0.1)"
+    node_addr=" NodeAddr=127.0.0.1"
+  fi
   cpus=$(nproc)
   mem_mib=$(($(awk '/^MemTotal:/ {print $2}' /proc/meminfo) / 1024 - 1024))
   ((mem_mib > 0)) || die "less than 1 GiB of memory"
@@ -122,7 +127,7 @@ start_cluster() {
   cat >"$dir/slurm.conf" <<EOF
 # Minimal single-node Slurm written by scripts/slurm/local-slurm.sh (issue 6).
 ClusterName=tilekit
-SlurmctldHost=$host
+SlurmctldHost=$host$ctld_addr
 SlurmctldPort=$ctld_port
 SlurmdPort=$slurmd_port
 AuthType=auth/munge
@@ -156,7 +161,7 @@ SchedulerParameters=sched_interval=2,bf_interval=5
 MinJobAge=3600
 KillWait=10
 MailProg=/bin/true
-NodeName=$host CPUs=$cpus RealMemory=$mem_mib State=UNKNOWN
+NodeName=$host$node_addr CPUs=$cpus RealMemory=$mem_mib State=UNKNOWN
 PartitionName=main Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
   export SLURM_CONF="$dir/slurm.conf"

@@ -6,7 +6,8 @@
 #   RUN_DIR/shards/shard-I.ckpt       checkpoint (written every CHECKPOINT_EVERY s and on a signal)
 #   RUN_DIR/shards/shard-I.sqlite     its own SQLite database (never shared between tasks:
 #                                     SQLite over NFS is not safe for concurrent writers)
-#   RUN_DIR/shards/shard-I.attempts   one JSON line per attempt (exit code, resumed or not)
+#   RUN_DIR/shards/shard-I.attempts   one JSON line per attempt: exit code, resumed or not, and
+#                                     tilekit's counts (total_seconds includes earlier attempts)
 #   RUN_DIR/shards/shard-I.done.json  `tilekit pack --json` output once the shard is complete
 # Signals: Slurm sends USR1 to this script (--signal=B:USR1@S) S seconds before the wall-time
 # kill; it is forwarded to tilekit, which writes its checkpoint and exits 3. The task then
@@ -23,7 +24,6 @@ attempt=${SLURM_RESTART_COUNT:-0}
 export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}
 
 dir="$RUN_DIR/shards"
-mkdir -p "$dir"
 ckpt="$dir/shard-$shard.ckpt"
 db="$dir/shard-$shard.sqlite"
 done_file="$dir/shard-$shard.done.json"
@@ -31,10 +31,34 @@ attempts="$dir/shard-$shard.attempts"
 
 say() { printf '%s tilekit shard %s/%s (task %s, attempt %s): %s\n' "$(date -u +%FT%TZ)" \
   "$shard" "$SHARDS" "$task" "$attempt" "$*"; }
-record() {  # record EXIT RESUMED
-  printf '{"time":"%s","job":"%s","attempt":%s,"exit":%s,"resumed":%s,"host":"%s"}\n' \
-    "$(date -u +%FT%TZ)" "$task" "$attempt" "$1" "$2" "$(hostname -s)" >>"$attempts"
+# A number from tilekit's one-line JSON result $2 (null if absent).
+number() { local v; v=$(grep -o "\"$1\":[0-9.eE+-]*" "$2" 2>/dev/null | head -n 1 | cut -d: -f2); echo "${v:-null}"; }
+record() {  # record EXIT RESUMED [RESULT_JSON]: one line per attempt in shard-I.attempts
+  local r=${3:-/dev/null}
+  printf '{"time":"%s","job":"%s","attempt":%s,"exit":%s,"resumed":%s,"host":"%s","solutions":%s,"nodes":%s,"seconds":%s,"total_seconds":%s}\n' \
+    "$(date -u +%FT%TZ)" "$task" "$attempt" "$1" "$2" "$(hostname -s)" "$(number solutions "$r")" \
+    "$(number nodes "$r")" "$(number seconds "$r")" "$(number total_seconds "$r")" >>"$attempts"
 }
+
+# Slurm's signals may come at any moment, even before tilekit runs: take them from the start.
+pid=""        # tilekit
+ready=false   # tilekit catches USR1 and TERM (an uncaught USR1 would kill it without a checkpoint)
+pending=""    # a signal that came before that, passed on once it does
+warned=false  # USR1 = our wall-time warning; TERM = Slurm ends the job (scancel, requeue, preemption)
+on_signal() {
+  [ "$1" != USR1 ] || warned=true
+  if [ "$ready" = true ]; then
+    say "got SIG$1; asking tilekit (pid $pid) to checkpoint and stop"
+    kill -s "$1" "$pid" 2>/dev/null || true
+  else
+    say "got SIG$1 before tilekit catches signals; passing it on when it does"
+    pending=$1
+  fi
+}
+trap 'on_signal USR1' USR1
+trap 'on_signal TERM' TERM
+
+mkdir -p "$dir"
 
 # A requeue after the shard had finished (or a resubmitted run) must not count it twice.
 if [ -s "$done_file" ]; then
@@ -52,17 +76,30 @@ if [ -s "$ckpt" ]; then
 fi
 say "starting (resume: $resumed, OMP_NUM_THREADS=$OMP_NUM_THREADS): $TILEKIT pack ${args[*]}"
 
+# True once process $1 has handlers for USR1 and TERM (bits 10 and 15 of SigCgt, Linux).
+catches_signals() {
+  local key mask
+  [ -r "/proc/$1/status" ] || return 0  # no /proc: assume it does
+  while read -r key mask; do
+    [ "$key" = SigCgt: ] || continue
+    (((16#$mask & 0x4200) == 0x4200))
+    return
+  done <"/proc/$1/status"
+  return 1
+}
+
 # tilekit runs in the background so that this shell can take Slurm's signals and pass them on.
 "$TILEKIT" pack "${args[@]}" >"$done_file.tmp" &
 pid=$!
-warned=false  # USR1 = our wall-time warning; TERM = Slurm ends the job (scancel, requeue, preemption)
-forward() {
-  say "got SIG$1; asking tilekit (pid $pid) to checkpoint and stop"
-  [ "$1" != USR1 ] || warned=true
-  kill -s "$1" "$pid" 2>/dev/null || true
-}
-trap 'forward USR1' USR1
-trap 'forward TERM' TERM
+for ((tries = 0; tries < 200; tries++)); do
+  if catches_signals "$pid" || ! kill -0 "$pid" 2>/dev/null; then break; fi
+  sleep 0.05
+done
+ready=true
+if [ -n "$pending" ]; then
+  say "passing SIG$pending on to tilekit (pid $pid)"
+  kill -s "$pending" "$pid" 2>/dev/null || true
+fi
 while :; do
   wait "$pid"
   rc=$?
@@ -81,13 +118,13 @@ trap - USR1 TERM
 case $rc in
   0)
     mv -f "$done_file.tmp" "$done_file"
-    record 0 "$resumed"
+    record 0 "$resumed" "$done_file"
     say "complete: $(cat "$done_file")"
     exit 0
     ;;
   3)
+    record 3 "$resumed" "$done_file.tmp"
     rm -f "$done_file.tmp"
-    record 3 "$resumed"
     if [ "$warned" != true ]; then
       # Not our warning: Slurm is ending this job (a requeue or preemption brings it back by
       # itself; after scancel it must stay cancelled), so do not requeue it here.
@@ -99,19 +136,35 @@ case $rc in
       exit 3
     fi
     say "checkpointed ($ckpt); requeueing this task to resume"
-    if scontrol requeue "$task"; then
+    # By this task's own job id: the ARRAY_TASK form is refused ("can not be altered now")
+    # while another task of the array waits to restart after its own requeue.
+    if scontrol requeue "$SLURM_JOB_ID"; then
       # Slurm now ends this attempt and queues the next one; wait here until it does.
       trap 'exit 3' TERM
       sleep 300 &
       wait $!
     else
-      say "scontrol requeue $task failed; resubmit the run to go on"
+      say "scontrol requeue $SLURM_JOB_ID failed; resubmit the run to go on"
     fi
     exit 3
     ;;
-  *)
+  1)
+    # Exit 1 = nothing found. With the shard's search space exhausted ("complete":true, e.g.
+    # --mode first in a shard without a packing) the shard is done all the same.
+    if grep -q '"complete":true' "$done_file.tmp" 2>/dev/null; then
+      mv -f "$done_file.tmp" "$done_file"
+      record 1 "$resumed" "$done_file"
+      say "complete, nothing found in this shard: $(cat "$done_file")"
+      exit 0
+    fi
+    record 1 "$resumed" "$done_file.tmp"
     rm -f "$done_file.tmp"
-    record "$rc" "$resumed"
+    say "tilekit found nothing and did not finish its search (exit code 1)"
+    exit 1
+    ;;
+  *)
+    record "$rc" "$resumed" "$done_file.tmp"
+    rm -f "$done_file.tmp"
     say "tilekit failed with exit code $rc"
     exit "$rc"
     ;;

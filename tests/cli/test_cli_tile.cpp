@@ -81,6 +81,9 @@ TEST(CliTile, BadInputIsExit2WithOneLineNamingTheProblem) {
   expect_bad_input("tile --set complete-corner-3 --algo direct --size 4by4", "--size must be WxH");
   expect_bad_input("tile --set complete-corner-3 --algo direct --size 0x4", "tiling size must be between");
   expect_bad_input("tile --set complete-corner-3 --algo direct --size 70000x1", "tiling size must be between");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 8192x4096", "too large");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 4096x4096 --tile-size 4 --out " + (d / "big.png"),
+                   "more than 8192 per side");
   expect_bad_input(base + "--algo direct --hash md5", "unknown hash 'md5'");
   expect_bad_input(base + "--algo direct-edge", "makes wang tilings");
   expect_bad_input("tile --set compact-corner-3 --algo direct --size 4x4", "lacks");

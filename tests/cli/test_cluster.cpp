@@ -122,7 +122,7 @@ TEST(ClusterStatus, ReadsEachShardsAttemptsResultAndTheMergedCount) {
   write_text(d / "r/shards/shard-0.done.json", R"({"solutions": 7, "complete": true})");
   write_text(d / "r/shards/shard-1.attempts", "{\"attempt\":0,\"exit\":3,\"resumed\":false}\n{\"attem");
   write_text(d / "r/shards/shard-1.ckpt", "x");
-  write_text(d / "r/merged.json", R"({"distinct_solutions": 7})");
+  write_text(d / "r/merged.json", R"({"solutions": 7, "distinct_solutions": 2})");
   auto r = run_cli("cluster status --run-dir " + d / "r" + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = r.json();
@@ -130,14 +130,34 @@ TEST(ClusterStatus, ReadsEachShardsAttemptsResultAndTheMergedCount) {
   EXPECT_EQ(j["checkpointed"], 1);
   EXPECT_EQ(j["pending"], 1);
   EXPECT_EQ(j["solutions_in_done_shards"], 7);
-  EXPECT_EQ(j["merged_distinct_solutions"], 7);
+  EXPECT_EQ(j["merged_solutions"], 7);
+  EXPECT_EQ(j["merged_orbits"], 2);
   auto s = j["per_shard"];
   EXPECT_EQ(s[0]["attempts"], 2);
   EXPECT_EQ(s[0]["checkpointed_exits"], 1);
   EXPECT_EQ(s[0]["last_exit"], 0);
   EXPECT_EQ(s[1]["attempts"], 1);  // the line cut short by a kill is skipped
   EXPECT_EQ(s[1]["state"], "checkpointed");
+  EXPECT_TRUE(s[1]["progress"].contains("error"));  // "x" is not a checkpoint
   EXPECT_EQ(s[2]["state"], "pending");
+}
+
+TEST(ClusterStatus, ReadsProgressFromARealShardCheckpoint) {
+  TempDir d;
+  std::filesystem::create_directories(d / "r/shards");
+  write_text(d / "r/run.json", R"({"shards": 4, "pack_args": ["--kind","wang","--colors","2","--mode","count"]})");
+  auto pack = run_cli("pack --kind wang --colors 2 --mode count --method search --threads 1 --shard 1/4 --quiet "
+                      "--checkpoint " + d / "r/shards/shard-1.ckpt --json");
+  ASSERT_EQ(pack.code, 0) << pack.err;
+  auto r = run_cli("cluster status --run-dir " + d / "r" + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto p = r.json()["per_shard"][1]["progress"];
+  ASSERT_FALSE(p.contains("error")) << p.dump();
+  EXPECT_EQ(p["subproblems"], pack.json()["subproblems"]);
+  EXPECT_EQ(p["subproblems_done"], p["subproblems"]);  // the final checkpoint of a complete shard
+  EXPECT_EQ(p["solutions"], pack.json()["solutions"]);
+  EXPECT_GT(p["nodes"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(r.json()["per_shard"][0]["progress"], nullptr);
 }
 
 TEST(ClusterStatus, NoRunDirectoryIsNotFound) {

@@ -5,15 +5,22 @@
 #
 #   bash tests/slurm/cluster-test.sh      # scripts/test.sh runs it after ctest
 #
-# Cases:
-#  1. requeue: the 4-shard array enumerating the 203,520 C=2 Wang packings; one task is
-#     requeued mid-run (scontrol requeue: SIGTERM -> checkpoint -> exit 3 -> resume); the
-#     merge job (afterok) finishes; the merged database holds exactly 203,520 distinct
-#     solutions and every shard task ended with exit 0.
-#  2. twice: a requeue after a shard had finished, a second merge, and a merge that lists a
-#     shard twice change nothing.
-#  3. walltime: a shard with a 1-minute limit gets USR1 before the limit, checkpoints, exits 3,
-#     requeues itself and resumes until it completes.
+# Cases (3 is queued first so that it runs beside 1 and 2):
+#  1. The 4-shard array enumerating the 203,520 C=2 Wang packings. A shard searches for well
+#     under a second, so the test stops (SIGSTOP) one shard's tilekit inside its search and has
+#     Slurm requeue the task (SIGTERM -> checkpoint -> exit 3 -> Slurm requeues -> resume), and
+#     does the same with USR1 to another task's batch script, as --signal=B:USR1 does (USR1 ->
+#     checkpoint -> exit 3 -> the task requeues itself -> resume). The merge job (afterok)
+#     finishes; the merged database holds exactly 203,520 solutions (and as many orbits as an
+#     unsharded count), and every shard task ended COMPLETED with exit 0.
+#  2. A shard counted twice changes nothing: a finished task requeued, a second merge, and a
+#     merge that lists a shard twice.
+#  3. Wall time: one shard of a search far longer than its 1-minute limit (counting the C=3
+#     corner packings). Slurm's USR1 comes before the limit, tilekit checkpoints and exits 3,
+#     the task requeues itself and the next attempt resumes (its counts and time go on from the
+#     first); at the requeue bound (1) the task ends with exit 3.
+#  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
+#     scancel then ends it for good (checkpoint, exit 3, no requeue).
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -63,11 +70,15 @@ trap finish EXIT
 # shellcheck disable=SC1091
 source "$work/slurm/env"
 
-# ---- helpers reading Slurm's view of a job --------------------------------------------------
-field() { scontrol -o show job "$1" 2>/dev/null | grep -o " $2=[^ ]*" | head -n 1 | cut -d= -f2-; }
+# ---- helpers ----------------------------------------------------------------------------------
+# Field $2 of job $1 as `scontrol show job` prints it (e.g. JobState, ExitCode, Restarts).
+field() {
+  scontrol -o show job "$1" 2>/dev/null | head -n 1 | tr ' ' '\n' | awk -v k="$2" 'index($0, k "=") == 1 {
+    print substr($0, length(k) + 2); exit }'
+}
 time_left() { echo $((DEADLINE - SECONDS)); }
-# Waits until job $1 reaches a final state; prints it. Fails on the test's deadline or when a
-# dependency can never be satisfied.
+# Waits until job $1 reaches a final state and prints it; prints NEVER(...) when its dependency
+# can never be met and TEST-TIMEOUT(...) on the test's deadline.
 wait_final() {
   local state reason
   while :; do
@@ -79,98 +90,217 @@ wait_final() {
         return 0 ;;
     esac
     [ "$reason" != DependencyNeverSatisfied ] || { echo "NEVER($reason)"; return 0; }
-    (($(time_left) > 0)) || { echo "TIMEOUT-OF-TEST($state)"; return 0; }
+    (($(time_left) > 0)) || { echo "TEST-TIMEOUT($state)"; return 0; }
     sleep 1
   done
 }
-json_field() { grep -o "\"$2\":[^,}]*" "$1" | head -n 1 | cut -d: -f2; }
-attempt_exits() { grep -o '"exit":[0-9]*' "$1" | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
+submitted_id() { { grep -o "\"$1\":\"[0-9]*\"" <<<"$2" || true; } | { grep -o '[0-9][0-9]*' || true; }; }
+json_number() { { grep -o "\"$2\":[0-9]*" "$1" 2>/dev/null || true; } | head -n 1 | cut -d: -f2; }
+attempt_exits() { { grep -o '"exit":[0-9]*' "$1" 2>/dev/null || true; } | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
 last_attempt_resumed() { tail -n 1 "$1" | grep -q '"resumed":true'; }
+# Bit $2 (a mask) of field $3 (SigCgt, SigPnd, ShdPnd) in /proc/$1/status.
+proc_mask() {
+  local key mask
+  while read -r key mask; do
+    [ "$key" = "$3:" ] && { (((16#$mask & $2) == $2)); return; }
+  done <"/proc/$1/status"
+  return 1
+}
+USR1_BIT=0x200 TERM_BIT=0x4000
+TK_EXE=$(readlink -f "$TK")
+# "PID SHARD" of each tilekit of run directory $1 that already catches USR1 and TERM (so it is
+# inside its search, where a signal means checkpoint and exit 3). Only shell builtins: a shard
+# searches for well under a second, so this must be quick.
+searching_tilekits() {
+  local d i shard ckpt args
+  for d in /proc/[0-9]*; do
+    [ "$d/exe" -ef "$TK_EXE" ] || continue
+    mapfile -d '' args <"$d/cmdline" 2>/dev/null || continue
+    shard="" ckpt=""
+    for ((i = 0; i + 1 < ${#args[@]}; i++)); do
+      case ${args[i]} in --shard) shard=${args[i + 1]%/*} ;; --checkpoint) ckpt=${args[i + 1]} ;; esac
+    done
+    [[ "$ckpt" == "$1/shards/"* ]] || continue
+    proc_mask "${d#/proc/}" $((USR1_BIT | TERM_BIT)) SigCgt 2>/dev/null && echo "${d#/proc/} $shard"
+  done
+}
+# Waits (up to 10 s) until stopped process $1 has signal bit $2 pending, then lets it go on.
+# (Slurm's requeue sends SIGCONT itself before SIGTERM; then the process may be gone already.)
+continue_with_pending() {
+  local t
+  for ((t = 0; t < 200; t++)); do
+    [ -e "/proc/$1" ] || return 0
+    if proc_mask "$1" "$2" ShdPnd 2>/dev/null || proc_mask "$1" "$2" SigPnd 2>/dev/null; then break; fi
+    sleep 0.05
+  done
+  kill -CONT "$1" 2>/dev/null || true
+}
 
-# ---- 1. requeue one task mid-run ------------------------------------------------------------
+# ---- 3 (queued first, checked last): wall-time limit -> USR1 -> checkpoint -> exit 3 -> requeue ----
+# Counting the C=3 corner packings takes far longer than any attempt, so every attempt ends at
+# its 1-minute limit: USR1 (50 s, to 60 s more, before it), checkpoint, exit 3, self-requeue;
+# the second attempt resumes and is stopped the same way, and then the requeue bound (1) ends it.
+run3=$work/walltime
+out3=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
+  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  fatal "cluster submit (wall time) failed"
+array3=$(submitted_id array_job "$out3")
+merge3=$(submitted_id merge_job "$out3")
+[ -n "$array3" ] && [ -n "$merge3" ] || fatal "no job ids in: $out3"
+log "case 3 queued: array $array3 (1 shard, --time 1), merge $merge3"
+
+# The C=2 Wang orbit count (packings up to symmetry) of one unsharded search, to compare with.
+ORBITS=$("$TK" pack --kind wang --colors 2 --mode count --method search --threads 1 --quiet --json |
+  { grep -o '"orbits":[0-9]*' || true; } | cut -d: -f2)
+[ -n "$ORBITS" ] || fatal "tilekit pack --mode count printed no orbit count"
+
+# ---- 1. one task requeued and one sent USR1 mid-run -------------------------------------------
 run1=$work/wang2
-log "case 1: 4-shard enumeration of the C=2 Wang packings, one task requeued mid-run"
+log "case 1: 4-shard enumeration of the C=2 Wang packings; one task requeued, one sent USR1 mid-run"
+t1=$SECONDS
 out=$("$TK" cluster submit --kind wang --colors 2 --mode all --method search --shards 4 --cpus-per-task 1 \
   --time 10 --checkpoint-every 1 --run-dir "$run1" --json) || fatal "cluster submit failed"
-array=$(echo "$out" | grep -o '"array_job":"[0-9]*"' | grep -o '[0-9]*')
-merge=$(echo "$out" | grep -o '"merge_job":"[0-9]*"' | grep -o '[0-9]*')
+array=$(submitted_id array_job "$out")
+merge=$(submitted_id merge_job "$out")
 [ -n "$array" ] && [ -n "$merge" ] || fatal "no job ids in: $out"
-check "the merge job depends on the array (afterok)" \
+check "the merge job waits for the whole array (afterok)" \
   test "$(field "$merge" Dependency)" = "afterok:${array}_*(unfulfilled)"
 
-# Requeue the first shard seen running with tilekit mid-run (its checkpoint written, no result).
-victim=""
-while [ -z "$victim" ] && (($(time_left) > 0)); do
-  for i in 0 1 2 3; do
-    if [ "$(field "${array}_$i" JobState)" = RUNNING ] && [ -s "$run1/shards/shard-$i.ckpt" ] &&
-      [ ! -e "$run1/shards/shard-$i.done.json" ]; then
-      victim=$i
-      break
+# A C=2 shard searches for about a second, too short to hit by timing. So the test stops (SIGSTOP)
+# a shard's tilekit once it is inside its search, has Slurm signal it, and lets it go on.
+requeued="" usr1="" next_look=0
+while { [ -z "$requeued" ] || [ -z "$usr1" ]; } && (($(time_left) > 0)); do
+  pid="" shard=""
+  while read -r p s; do
+    [ "$s" = "$requeued" ] || { pid=$p shard=$s; break; }
+  done < <(searching_tilekits "$run1")
+  if [ -z "$pid" ]; then
+    if ((SECONDS >= next_look)); then  # once a second: is any shard left to catch?
+      [ "$(field "$merge" Reason)" = Dependency ] || break
+      next_look=$((SECONDS + 1))
     fi
-  done
-  [ -n "$victim" ] || sleep 0.2
+    sleep 0.01
+    continue
+  fi
+  kill -STOP "$pid"
+  # Signal the task by its own job id: Slurm refuses the ARRAY_TASK form ("can not be altered
+  # now") while another task of the array waits to restart after a requeue.
+  jid=$(field "${array}_$shard" JobId)
+  if [ -z "$requeued" ]; then
+    requeued=$shard
+    log "shard $shard's tilekit (pid $pid) stopped mid-search; scontrol requeue $jid (${array}_$shard)"
+    scontrol requeue "$jid" || fatal "scontrol requeue $jid failed"
+    continue_with_pending "$pid" $TERM_BIT
+  else
+    usr1=$shard
+    log "shard $shard's tilekit (pid $pid) stopped mid-search; USR1 to the batch script of $jid (as --signal=B:USR1 does)"
+    scancel --batch --signal=USR1 "$jid" || fatal "scancel --signal=USR1 $jid failed"
+    continue_with_pending "$pid" $USR1_BIT
+  fi
 done
-[ -n "$victim" ] || fatal "no shard was seen running with a checkpoint"
-log "requeueing task ${array}_$victim mid-run"
-scontrol requeue "${array}_$victim" || fatal "scontrol requeue ${array}_$victim failed"
+[ -n "$requeued" ] && [ -n "$usr1" ] || fatal "could not catch two shards mid-search (caught: '$requeued' '$usr1')"
 
 state=$(wait_final "$merge")
 check "the merge job completed (state $state)" test "$state" = COMPLETED
 check "the merge job exited 0" test "$(field "$merge" ExitCode)" = 0:0
 for i in 0 1 2 3; do
-  check "shard task $i completed with exit 0 ($(field "${array}_$i" JobState) $(field "${array}_$i" ExitCode))" \
+  check "shard task $i ended COMPLETED with exit 0 ($(field "${array}_$i" JobState) $(field "${array}_$i" ExitCode))" \
     test "$(field "${array}_$i" JobState) $(field "${array}_$i" ExitCode)" = "COMPLETED 0:0"
-  check "shard $i's last attempt ended with exit 0" \
-    test "$(attempt_exits "$run1/shards/shard-$i.attempts" | awk '{print $NF}')" = 0
 done
-exits=$(attempt_exits "$run1/shards/shard-$victim.attempts")
-check "the requeued shard $victim checkpointed and exited 3, then 0 (exits: $exits)" test "$exits" = "3 0"
-check "the requeued shard $victim's last attempt resumed from its checkpoint" \
-  last_attempt_resumed "$run1/shards/shard-$victim.attempts"
-check "Slurm counted the requeue (Restarts=$(field "${array}_$victim" Restarts))" \
-  test "$(field "${array}_$victim" Restarts)" -ge 1
-distinct=$(json_field "$run1/merged.json" distinct_solutions)
-check "the merged database holds 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
-check "the merge log prints the final count" grep -q "final count: 203520 distinct solutions" "$run1"/logs/merge-*.out
-status=$("$TK" cluster status --run-dir "$run1" --json)
-check "cluster status: 4 shards done, merged 203520" \
-  bash -c "grep -q '\"done\":4' <<<'$status' && grep -q '\"merged_distinct_solutions\":203520' <<<'$status'"
+for i in "$requeued" "$usr1"; do
+  exits=$(attempt_exits "$run1/shards/shard-$i.attempts")
+  check "shard $i checkpointed and exited 3, then resumed and exited 0 (exits: $exits)" test "$exits" = "3 0"
+  check "shard $i's last attempt resumed from its checkpoint" last_attempt_resumed "$run1/shards/shard-$i.attempts"
+  check "Slurm counted shard $i's requeue (Restarts=$(field "${array}_$i" Restarts))" \
+    test "$(field "${array}_$i" Restarts)" -ge 1
+done
+check "the shard stopped by scontrol requeue did not requeue itself" \
+  grep -q "on SIGTERM; not requeueing" "$run1"/logs/pack-*_"$requeued".out
+check "the shard sent USR1 requeued itself" grep -q "requeueing this task to resume" "$run1"/logs/pack-*_"$usr1".out
+for i in 0 1 2 3; do
+  [ "$i" = "$requeued" ] || [ "$i" = "$usr1" ] || check "shard $i ran once and exited 0" \
+    test "$(attempt_exits "$run1/shards/shard-$i.attempts")" = 0
+done
+# db stats: "solutions" = rows, each unique by solution hash; "distinct_solutions" = orbits.
+rows=$(json_number "$run1/merged.json" solutions)
+check "the merged database holds exactly 203520 solutions (got $rows)" test "$rows" = 203520
+check "... 203520 distinct grids, all validated (plain sqlite3: distinct cells, validated rows)" \
+  test "$(sqlite3 "$run1/merged.sqlite" "SELECT COUNT(DISTINCT cells) || ' ' || SUM(validated) FROM solutions
+          WHERE kind = 'wang' AND colors = 2 AND rows = 4 AND cols = 4")" = "203520 203520"
+orbits=$(json_number "$run1/merged.json" distinct_solutions)
+check "... and as many orbits as one unsharded count finds ($orbits vs $ORBITS)" test "$orbits" = "$ORBITS"
+check "the merge job printed the final count" grep -q "final count: 203520 distinct solutions" "$run1"/logs/merge-*.out
+"$TK" cluster status --run-dir "$run1" --json >"$work/status1.json"
+check "cluster status: 4 shards done, 203520 merged" \
+  bash -c "grep -q '\"done\":4' '$work/status1.json' && grep -q '\"merged_solutions\":203520' '$work/status1.json'"
+log "case 1 took $((SECONDS - t1)) s"
 
-# ---- 2. a shard counted twice changes nothing ------------------------------------------------
+# ---- 2. a shard counted twice changes nothing -------------------------------------------------
 log "case 2: a finished shard requeued, merged again, and listed twice in a merge"
-scontrol requeue "${array}_0" || fatal "scontrol requeue of finished task ${array}_0 failed"
+scontrol requeue "$(field "${array}_0" JobId)" || fatal "scontrol requeue of the finished task ${array}_0 failed"
 again=$(sbatch --parsable --dependency="afterok:${array}_0" "$run1/merge.sbatch")
 state=$(wait_final "$again")
-check "the second merge completed after the requeued shard ($state)" test "$state" = COMPLETED
+check "a second merge ran after the finished shard was requeued ($state)" test "$state" = COMPLETED
 check "the requeued finished shard ended with exit 0 again" \
   test "$(field "${array}_0" JobState) $(field "${array}_0" ExitCode)" = "COMPLETED 0:0"
-distinct=$(json_field "$run1/merged.json" distinct_solutions)
-check "after the second merge: still 203520 distinct solutions (got $distinct)" test "$distinct" = 203520
-"$TK" db merge "$work/twice.sqlite" "$run1"/shards/shard-{0,1,2,3}.sqlite "$run1/shards/shard-0.sqlite" >/dev/null
-twice=$("$TK" db stats --db "$work/twice.sqlite" --json)
-check "a merge listing shard 0 twice holds 203520 distinct solutions" \
-  bash -c "grep -q '\"distinct_solutions\":203520' <<<'$twice'"
-check "... and 203520 solutions in all" bash -c "grep -q '\"solutions\":203520' <<<'$twice'"
+check "... without searching again (its result was there)" grep -q "already complete" "$run1"/logs/pack-*_0.out
+rows=$(json_number "$run1/merged.json" solutions)
+check "after the second merge: still 203520 solutions (got $rows)" test "$rows" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$run1/merged.json" distinct_solutions)" = "$ORBITS"
+"$TK" db merge "$work/twice.sqlite" "$run1"/shards/shard-{0,1,2,3}.sqlite "$run1/shards/shard-0.sqlite" >/dev/null ||
+  fatal "tilekit db merge with a shard listed twice failed"
+"$TK" db stats --db "$work/twice.sqlite" --json >"$work/twice.json"
+check "a merge listing shard 0 twice holds 203520 solutions" test "$(json_number "$work/twice.json" solutions)" = 203520
+check "... and $ORBITS orbits" test "$(json_number "$work/twice.json" distinct_solutions)" = "$ORBITS"
 
-# ---- 3. wall-time limit: USR1 -> checkpoint -> exit 3 -> requeue -> resume -------------------
-run3=$work/walltime
-log "case 3: a shard longer than its 1-minute limit (USR1 at most 50+60 s before it)"
-out=$("$TK" cluster submit --kind wang --colors 2 --mode all --method search --shards 1 --cpus-per-task 1 \
-  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 4 --run-dir "$run3" \
-  --pack-arg=--slow-down --json) || fatal "cluster submit (wall time) failed"
-array3=$(echo "$out" | grep -o '"array_job":"[0-9]*"' | grep -o '[0-9]*')
-merge3=$(echo "$out" | grep -o '"merge_job":"[0-9]*"' | grep -o '[0-9]*')
-state=$(wait_final "$merge3")
-check "the wall-time run's merge completed ($state)" test "$state" = COMPLETED
+# ---- 3. checked now ---------------------------------------------------------------------------
+log "case 3: waiting for the wall-time run ($(time_left) s left)"
+state=$(wait_final "${array3}_0")
+log3=$(ls "$run3"/logs/pack-*_0.out 2>/dev/null | head -n 1)
+log3=${log3:-/dev/null}
 exits=$(attempt_exits "$run3/shards/shard-0.attempts")
-check "the shard was stopped at least once with exit 3 and ended with 0 (exits: $exits)" \
-  bash -c "[[ '$exits' == 3*' 0' ]]"
-check "the shard got USR1 from Slurm before its limit" grep -q "got SIGUSR1" "$run3"/logs/pack-*_0.out
-check "the shard requeued itself" grep -q "requeueing this task to resume" "$run3"/logs/pack-*_0.out
-check "its last attempt resumed from the checkpoint" last_attempt_resumed "$run3/shards/shard-0.attempts"
-check "Slurm counted the requeues (Restarts=$(field "${array3}_0" Restarts))" \
-  test "$(field "${array3}_0" Restarts)" -ge 1
-check "the task ended COMPLETED 0:0" \
-  test "$(field "${array3}_0" JobState) $(field "${array3}_0" ExitCode)" = "COMPLETED 0:0"
-distinct=$(json_field "$run3/merged.json" distinct_solutions)
-check "the resumed single shard found all 203520 solutions (got $distinct)" test "$distinct" = 203520
+check "both attempts of the wall-time shard checkpointed and exited 3 (exits: $exits)" test "$exits" = "3 3"
+check "Slurm sent USR1 before the limit in both attempts" test "$(grep -c "got SIGUSR1" "$log3")" = 2
+check "the first attempt requeued itself" grep -q "attempt 0): checkpointed .*requeueing this task to resume" "$log3"
+check "the second attempt resumed from the checkpoint" last_attempt_resumed "$run3/shards/shard-0.attempts"
+line_number() { { grep -o "\"$2\":[0-9.eE+-]*" <<<"$1" || true; } | head -n 1 | cut -d: -f2; }
+a0=$(sed -n 1p "$run3/shards/shard-0.attempts")
+a1=$(sed -n 2p "$run3/shards/shard-0.attempts")
+T0=$(line_number "$a0" total_seconds) s1=$(line_number "$a1" seconds) T1=$(line_number "$a1" total_seconds)
+check "the second attempt went on from the first: its total time ${T1:-?} s = ${T0:-?} s before + ${s1:-?} s now" \
+  awk -v T0="${T0:-0}" -v s1="${s1:-0}" -v T1="${T1:-0}" 'BEGIN { exit !(T0 > 1 && s1 > 1 && T1 - s1 > T0 - 1 && T1 - s1 < T0 + 1) }'
+S0=$(line_number "$a0" solutions) S1=$(line_number "$a1" solutions)
+check "its count went on from the first's (${S0:-?} then ${S1:-?} solutions)" \
+  awk -v a="${S0:-0}" -v b="${S1:-0}" 'BEGIN { exit !(a > 0 && b > a) }'
+"$TK" cluster status --run-dir "$run3" --json >"$work/status3.json"
+check "cluster status reads the checkpoint's progress (${S1:-?} solutions so far)" \
+  grep -q "\"solutions\":${S1:-x}," "$work/status3.json"
+check "the second attempt stopped at the requeue bound" grep -q "requeue bound (1) is reached" "$log3"
+check "Slurm counted one requeue (Restarts=$(field "${array3}_0" Restarts))" test "$(field "${array3}_0" Restarts)" = 1
+check "the task ended with exit 3 at the bound ($state $(field "${array3}_0" ExitCode))" \
+  test "$state $(field "${array3}_0" ExitCode)" = "FAILED 3:0"
+check "its merge job will never run (afterok not met)" \
+  test "$(field "$merge3" Reason)" = DependencyNeverSatisfied
+scancel "$merge3" || true
+
+# ---- 4. resuming a whole run: the same submit again; then scancel ends it for good ------------
+log "case 4: the wall-time run submitted again (resume the whole run), then cancelled"
+out4=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
+  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  fatal "the second cluster submit into $run3 failed"
+array4=$(submitted_id array_job "$out4")
+check "the run directory now records two submissions" grep -q '"submissions":2' <<<"$out4"
+while ! grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out 2>/dev/null &&
+  (($(time_left) > 0)); do sleep 0.5; done
+check "the resubmitted shard resumed from the run's checkpoint" \
+  grep -q "attempt 0): starting (resume: true" "$run3"/logs/pack-"$array4"_0.out
+for ((t = 0; t < 100; t++)); do  # let tilekit get into its search before the cancel
+  [ -n "$(searching_tilekits "$run3")" ] && break
+  sleep 0.1
+done
+scancel "$array4" || fatal "scancel $array4 failed"
+state=$(wait_final "${array4}_0")
+check "after scancel the task stays cancelled ($state, Restarts=$(field "${array4}_0" Restarts))" \
+  test "$state $(field "${array4}_0" Restarts)" = "CANCELLED 0"
+check "... and tilekit checkpointed on SIGTERM without requeueing" \
+  grep -q "on SIGTERM; not requeueing" "$run3"/logs/pack-"$array4"_0.out

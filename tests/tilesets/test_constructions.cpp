@@ -100,10 +100,35 @@ TEST(Constructions, PowersOfTwoWithoutStoredDataAreUnavailable) {
   }
   auto avail = constructible_colours(TileKind::Corner, 16);
   EXPECT_EQ(std::count(avail.begin(), avail.end(), 8u), 0);
-  for (std::uint32_t c : {1u, 3u, 5u, 7u, 9u, 11u, 13u, 15u}) EXPECT_EQ(std::count(avail.begin(), avail.end(), c), 1) << c;
+  for (std::uint32_t c : {1u, 2u, 3u, 5u, 6u, 7u, 9u, 11u, 13u, 15u}) EXPECT_EQ(std::count(avail.begin(), avail.end(), c), 1) << c;
 }
 
 TEST(Constructions, PegsRoundTripThroughTiles) {
   auto pegs = corner_triangular_pegs(5);
   EXPECT_EQ(pegs_of_corner_packing(corner_packing_from_pegs(pegs, 25, 5)), pegs);
+}
+
+TEST(Constructions, TwoColourCornerPackingIsStoredAndValid) {
+  auto stored = stored_packing(TileKind::Corner, 2);
+  ASSERT_TRUE(stored) << "tilesets/data/packing-corner-2.json (scripts/stored-packings.sh) is missing";
+  EXPECT_TRUE(validate(*stored).packing);
+  auto p = construct_packing(TileKind::Corner, 2);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->how, "stored");
+  EXPECT_EQ(p->tiling.cells, stored->cells);
+  expect_positions_agree(p->tiling);
+}
+
+TEST(Constructions, EvenCornerPackingsFromTheStoredTwoAreValid) {
+  // 6 = 2*3, 10 = 2*5, 14 = 2*7: stored C=2 times the odd closed form.
+  for (std::uint32_t c : {6u, 10u, 14u}) {
+    auto p = construct_packing(TileKind::Corner, c);
+    ASSERT_TRUE(p) << c;
+    EXPECT_EQ(p->how.rfind("product 2x", 0), 0u) << p->how;
+    ValidationReport rep = validate(p->tiling);
+    EXPECT_TRUE(rep.packing) << "corner C=" << c << ": " << (rep.errors.empty() ? "" : rep.errors[0]);
+    if (c <= 10) expect_positions_agree(p->tiling);
+  }
+  auto avail = constructible_colours(TileKind::Corner, 16);
+  EXPECT_EQ(avail, (std::vector<std::uint32_t>{1, 2, 3, 5, 6, 7, 9, 10, 11, 13, 14, 15}));
 }

@@ -5,6 +5,7 @@
 
 #include "tilesets/controlled_tiling.hpp"
 #include "tilesets/error.hpp"
+#include "tilesets/random.hpp"
 #include "tilesets/tile_set_reduction.hpp"
 #include "tilesets/validator.hpp"
 
@@ -40,6 +41,24 @@ TEST(PositionRandom, IsUniformAndPerPosition) {
       }
     for (int b : bins) EXPECT_NEAR(b / 40000.0, 0.1, 0.01) << hash_kind_name(kind);
   }
+}
+
+TEST(PositionRandom, DigitsAreTheThreeDimensionalHashOfEq37) {
+  const PositionRandom r(HashKind::LongPeriod, 9);
+  const LongPeriodHash h = LongPeriodHash::thesis_tiling_hash(derive_seed(9, 12));
+  EXPECT_EQ(r.digits(), 7);  // 24^7 >= 2^32 > 24^6
+  for (std::int64_t x : {-7ll, 0ll, 3ll, 1ll << 40})
+    for (std::int64_t y : {-1ll, 0ll, 12345ll}) {
+      double u = 0, scale = 1.0 / 24;
+      for (int k = 0; k < 7; ++k, scale /= 24) u += h(x, y, k) * scale;
+      EXPECT_DOUBLE_EQ(r(x, y), u);
+    }
+  const PositionRandom p(HashKind::Permutation, 9);
+  const PermutationHash t(256, derive_seed(9, 11));
+  EXPECT_EQ(p.digits(), 4);
+  double u = 0, scale = 1.0 / 256;
+  for (int k = 0; k < 4; ++k, scale /= 256) u += t(5, 6, k) * scale;
+  EXPECT_DOUBLE_EQ(p(5, 6), u);
 }
 
 TEST(ControlledTiling, ColourFrequenciesFollowTheMap) {

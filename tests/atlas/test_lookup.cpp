@@ -1,0 +1,179 @@
+#include <gtest/gtest.h>
+
+#include <random>
+#include <regex>
+
+#include "atlas/lookup.hpp"
+#include "checkpoints/results_db.hpp"
+#include "tests/cli_runner.hpp"
+#include "tilesets/constructions.hpp"
+#include "tilesets/error.hpp"
+#include "tilesets/validator.hpp"
+
+using namespace tilekit;
+using namespace tilekit::test;
+
+namespace {
+
+AtlasLookup no_db(TileKind k, std::uint32_t c) { return atlas_lookup(k, c, LookupOptions{}); }
+
+void expect_lookup_consistent(const AtlasLookup& a) {
+  ASSERT_EQ(a.cells.size(), std::size_t(a.rows) * std::size_t(a.cols));
+  ASSERT_EQ(a.positions.size(), a.cells.size());
+  for (std::size_t i = 0; i < a.cells.size(); ++i) {
+    const auto [r, c] = a.positions[a.cells[i]];
+    ASSERT_EQ(std::size_t(r) * std::size_t(a.cols) + std::size_t(c), i) << "tile " << a.cells[i];
+  }
+  if (a.closed_form) {
+    for (TileIndex t = 0; t < a.positions.size(); ++t) ASSERT_EQ(packing_position(a.kind, a.colours, t), a.positions[t]);
+  }
+}
+
+// Runs a shell command, returns its exit status.
+int sh(const std::string& cmd) {
+  int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+}  // namespace
+
+TEST(AtlasLookup, LookupAndInverseAgreeForEveryTile) {
+  for (std::uint32_t c : {1u, 2u, 3u, 5u, 6u, 7u, 10u, 11u}) expect_lookup_consistent(no_db(TileKind::Corner, c));
+  for (std::uint32_t c : {2u, 3u, 4u, 6u}) expect_lookup_consistent(no_db(TileKind::Wang, c));
+}
+
+TEST(AtlasLookup, ConstructionsAreUsedWithoutADatabase) {
+  AtlasLookup a = no_db(TileKind::Corner, 5);
+  EXPECT_EQ(a.source, "construct");
+  EXPECT_EQ(a.how, "debruijn-triangular");
+  EXPECT_TRUE(a.closed_form);
+  EXPECT_EQ(a.rows, 25);
+}
+
+TEST(AtlasLookup, AStoredPackingInTheDatabaseComesFirst) {
+  TempDir d;
+  // A different C=3 packing than the construction: the constructed one shifted by (1, 2).
+  Tiling t = construct_packing(TileKind::Corner, 3)->tiling, shifted = t;
+  for (int r = 0; r < 9; ++r)
+    for (int c = 0; c < 9; ++c) shifted.at(r, c) = t.at((r + 1) % 9, (c + 2) % 9);
+  {
+    ResultsDb db(d / "r.sqlite");
+    SolutionRecord s;
+    s.tiling = shifted;
+    s.method = "search";
+    s.validated = true;
+    db.add_solution(s);
+  }
+  AtlasLookup a = atlas_lookup(TileKind::Corner, 3, LookupOptions{d / "r.sqlite"});
+  EXPECT_EQ(a.source, "db");
+  EXPECT_FALSE(a.closed_form);
+  EXPECT_EQ(a.cells, shifted.cells);
+  expect_lookup_consistent(a);
+  // A database that does not exist is not created by a lookup.
+  EXPECT_EQ(atlas_lookup(TileKind::Corner, 3, LookupOptions{d / "none.sqlite"}).source, "construct");
+  EXPECT_FALSE(std::filesystem::exists(d / "none.sqlite"));
+}
+
+TEST(AtlasLookup, UnavailableColourCountSaysWhatExistsAndHowToSearch) {
+  try {
+    no_db(TileKind::Corner, 8);
+    FAIL() << "C=8 corner should not be available";
+  } catch (const NotFound& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("available C up to 16: 1, "), std::string::npos) << m;
+    EXPECT_NE(m.find("1, 2, 3, 5, 6, 7, 9, 10, 11, 13, 14, 15."), std::string::npos) << m;
+    EXPECT_EQ(m.find(" 8,"), std::string::npos) << m;
+    EXPECT_NE(m.find("tilekit pack --kind corner --colors 8 --method search"), std::string::npos) << m;
+  }
+  EXPECT_THROW(no_db(TileKind::Corner, 0), InputError);
+}
+
+TEST(AtlasLookup, DirectStochasticTilingIsValidAndMapsIntoTheAtlas) {
+  for (auto [kind, c] : {std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 4u}}) {
+    AtlasLookup a = no_db(kind, c);
+    const auto perm = hash_permutation(7);
+    // A 12x12 window of the virtual texture (across negative coordinates) is a valid tiling;
+    // virtual y grows upwards, grid rows downwards.
+    Tiling t(kind, c, 12, 12, false);
+    for (int r = 0; r < 12; ++r)
+      for (int x = -6; x < 6; ++x) t.at(r, x + 6) = virtual_tile(a, perm, x, 5 - r);
+    ValidationReport rep = validate(t);
+    EXPECT_TRUE(rep.valid) << kind_name(kind) << ": " << (rep.errors.empty() ? "" : rep.errors[0]);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> U(-300, 300);
+    for (int i = 0; i < 500; ++i) {
+      const double u = U(rng), v = U(rng);
+      auto [au, av] = virtual_to_atlas(a, perm, u, v);
+      ASSERT_GE(au, 0.0);
+      ASSERT_LT(au, 1.0);
+      ASSERT_GE(av, 0.0);
+      ASSERT_LE(av, 1.0);
+      const int col = int(au * a.cols), row = std::min(int(av * a.rows), a.rows - 1);
+      EXPECT_EQ(a.cells[std::size_t(row * a.cols + col)], virtual_tile(a, perm, std::int64_t(std::floor(u)),
+                                                                       std::int64_t(std::floor(v))));
+    }
+  }
+}
+
+TEST(AtlasLookup, HashPermutationIsASeededPermutation) {
+  auto p = hash_permutation(42), q = hash_permutation(42), r = hash_permutation(43);
+  EXPECT_EQ(p, q);
+  EXPECT_NE(p, r);
+  std::vector<int> sorted = p;
+  std::sort(sorted.begin(), sorted.end());
+  for (int i = 0; i < 256; ++i) ASSERT_EQ(sorted[std::size_t(i)], i);
+}
+
+TEST(AtlasLookup, CHeaderCompilesAndItsTablesAreInverse) {
+  TempDir d;
+  AtlasLookup a = no_db(TileKind::Corner, 5);
+  write_text(d / "atlas.h", lookup_c_header(a));
+  write_text(d / "main.c",
+             "#include \"atlas.h\"\n"
+             "int main(void) {\n"
+             "  for (unsigned t = 0; t < TILEKIT_CORNER_5_TILES; ++t) {\n"
+             "    unsigned r = tilekit_corner_5_positions[t][0], c = tilekit_corner_5_positions[t][1];\n"
+             "    if (tilekit_corner_5_cells[r * TILEKIT_CORNER_5_COLS + c] != t) return 1;\n"
+             "  }\n"
+             "  return TILEKIT_CORNER_5_ROWS == 25 ? 0 : 2;\n"
+             "}\n");
+  ASSERT_EQ(sh("cc -std=c99 -Wall -Werror -o " + (d / "check") + " " + (d / "main.c")), 0);
+  EXPECT_EQ(sh(d / "check"), 0);
+}
+
+// The closed-form part of the GLSL snippet is plain integer code; compiled as C++ with an
+// ivec2 stand-in, it must give the same position as the table for every tile.
+TEST(AtlasLookup, GlslClosedFormRunsAndAgreesWithTheTable) {
+  for (auto [kind, c] : {std::pair{TileKind::Corner, 7u}, std::pair{TileKind::Wang, 5u}}) {
+    TempDir d;
+    AtlasLookup a = no_db(kind, c);
+    ASSERT_TRUE(a.closed_form);
+    const std::string glsl = lookup_glsl(a, 1);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(glsl, m, std::regex("// BEGIN tk_tile_position\n([\\s\\S]*)// END tk_tile_position")));
+    std::string expected;
+    for (const auto& [r, col] : a.positions) expected += std::to_string(r) + " " + std::to_string(col) + "\n";
+    write_text(d / "expected.txt", expected);
+    write_text(d / "main.cpp", "#include <cstdio>\nstruct ivec2 { int x, y; ivec2(int a, int b) : x(a), y(b) {} };\n"
+                               "#define TK_COLORS " + std::to_string(c) + "\n#define TK_COLS " + std::to_string(a.cols) +
+                                   "\n" + m[1].str() +
+                                   "int main() { for (int t = 0; t < " + std::to_string(a.cells.size()) +
+                                   "; ++t) { ivec2 p = tk_tile_position(t); std::printf(\"%d %d\\n\", p.x, p.y); } }\n");
+    ASSERT_EQ(sh("c++ -std=c++17 -o " + (d / "run") + " " + (d / "main.cpp")), 0);
+    ASSERT_EQ(sh(d / "run" + " > " + (d / "got.txt")), 0);
+    EXPECT_TRUE(slurp(d / "got.txt") == expected) << kind_name(kind);
+  }
+}
+
+TEST(AtlasLookup, GlslSnippetCompilesAsAFragmentShader) {
+  ASSERT_EQ(sh("command -v glslangValidator >/dev/null"), 0) << "glslangValidator missing: run scripts/setup.sh";
+  TempDir d;
+  Tiling shifted = construct_packing(TileKind::Corner, 3)->tiling;  // table variant via a db-like packing
+  AtlasLookup table = lookup_from_packing(shifted, "db", "test", false);
+  for (const AtlasLookup& a : {no_db(TileKind::Corner, 5), no_db(TileKind::Wang, 3), table}) {
+    write_text(d / "t.frag", "#version 330 core\nin vec2 uv;\nout vec4 color;\n" + lookup_glsl(a, 9) +
+                                 "void main() { color = vec4(tk_atlas_coord(uv * 64.0), 0.0, 1.0); }\n");
+    EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
+        << slurp(d / "log.txt");
+  }
+}
