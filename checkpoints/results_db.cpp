@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/db_schema.hpp"
@@ -140,6 +141,21 @@ std::string make_run_uid(const RunRecord& run) {
   return fmt::format("{:016x}{:08x}", stable_hash64(seed), std::uint32_t(wall ^ (mono >> 7)));
 }
 
+// Switching a new database to WAL needs a moment of exclusive access, and SQLite answers
+// SQLITE_BUSY at once instead of calling the busy handler when another process holds it (two
+// shards creating one database together). Retry until the busy timeout, then fail as usual.
+void enable_wal(sqlite3* db, int busy_timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(busy_timeout_ms);
+  for (;;) {
+    const int rc = sqlite3_exec(db, "PRAGMA journal_mode = WAL", nullptr, nullptr, nullptr);
+    const int primary = rc & 0xff;
+    if (rc == SQLITE_OK) return;
+    if ((primary != SQLITE_BUSY && primary != SQLITE_LOCKED) || std::chrono::steady_clock::now() > deadline) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  sqlitedb::exec(db, "PRAGMA journal_mode = WAL");  // reports the error with the usual message
+}
+
 }  // namespace
 
 ResultsDb::ResultsDb(const std::string& path, bool create) : ResultsDb(path, DbOpenOptions{.create = create}) {}
@@ -189,7 +205,7 @@ void ResultsDb::open_connection(bool read_only, int busy_timeout_ms) {
   sqlite3_extended_result_codes(db_, 1);
   if (!read_only) {
     // WAL: readers keep working while a writer runs (only now, after the checks above).
-    sqlitedb::exec(db_, "PRAGMA journal_mode = WAL");
+    enable_wal(db_, busy_timeout_ms);
     sqlitedb::exec(db_, "PRAGMA synchronous = NORMAL");
   }
   sqlitedb::exec(db_, "PRAGMA foreign_keys = ON");

@@ -4,8 +4,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <thread>
 
@@ -28,7 +26,9 @@ namespace {
 
 struct PackArgs {
   std::string kind, set, size, method = "auto", mode = "first", checkpoint, resume, db, shard = "0/1";
-  std::string formulation = "auto", ordering = "auto", out, impose;
+  std::string formulation = "auto", ordering = "auto", out;
+  std::string impose, portfolio_stats;  // issue 7: imposed group; portfolio statistics file
+  bool portfolio_report = false;
   std::int64_t colours = 0;
   int threads = 0;
   std::uint64_t seed = 0;
@@ -96,9 +96,9 @@ class SolutionSink {
     SolutionRecord s;
     s.run_id = run_id_;
     s.tiling = t;
-    s.method = method_;
-    s.group = group_;
+    s.method = method;
     s.validated = true;  // solve() validates every solution before emitting it
+    s.group = group;
     if (sym_) {
       // The translates of one leaf arrive one after another and share their canonical form.
       Tiling normal = sym_->normal_form(t);
@@ -117,8 +117,8 @@ class SolutionSink {
     batch_.clear();
   }
   std::size_t added() const { return added_; }
-  void set_method(std::string m) { method_ = std::move(m); }
-  void set_group(nlohmann::json g) { group_ = std::move(g); }
+  nlohmann::json group;          // the imposed group of the solutions added from now on (null: none)
+  std::string method = "search";  // how the solutions added from now on were found
 
  private:
   ResultsDb& db_;
@@ -129,11 +129,30 @@ class SolutionSink {
   std::string last_hash_;
   std::uint64_t last_orbit_ = 0;
   std::size_t added_ = 0;
-  std::string method_ = "search";
-  nlohmann::json group_;
 };
 
+// --portfolio-report: the per-group statistics that order the --method auto portfolio.
+void print_portfolio_report(const PackArgs& a, const Context& ctx) {
+  std::string path = a.portfolio_stats.empty() ? PortfolioStats::default_path() : a.portfolio_stats;
+  nlohmann::json rows = nlohmann::json::array();
+  const nlohmann::json report = PortfolioStats::load(path).report();
+  for (const auto& row : report["groups"]) {
+    if (!a.kind.empty() && row["kind"] != a.kind) continue;
+    if (a.colours && row["colors"] != a.colours) continue;
+    rows.push_back(row);
+  }
+  emit(ctx, {{"stats", path}, {"groups", rows}}, [&] {
+    fmt::print("portfolio statistics: {}\n", path);
+    fmt::print("{:<7} {:>3} {:>6} {:>9} {:>10}  {}\n", "kind", "C", "tries", "successes", "median_s", "group");
+    for (const auto& r : rows)
+      fmt::print("{:<7} {:>3} {:>6} {:>9} {:>10.3f}  {}\n", r["kind"].get<std::string>(), r["colors"].get<int>(),
+                 r["tries"].get<std::uint64_t>(), r["successes"].get<std::uint64_t>(), r["median_seconds"].get<double>(),
+                 r["group"].get<std::string>());
+  });
+}
+
 void run_pack(const PackArgs& a, const Context& ctx) {
+  if (a.portfolio_report) return print_portfolio_report(a, ctx);
   SignalCatcher signals;  // from here to the exit code: a signal always ends in exit 3
   TilingProblem problem = make_problem(a);
   SearchOptions o;
@@ -144,13 +163,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     throw InputError("--method construct gives one packing: use it with --mode first");
   if (a.method == "construct" && !a.set.empty())
     throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
-  if (!a.impose.empty() && !a.set.empty()) throw InputError("--impose is for the complete sets (--kind and --colors)");
   if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
   if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
-  if (!a.impose.empty() && (!a.checkpoint.empty() || !a.resume.empty()))
-    throw InputError("--impose runs are not checkpointed: drop --checkpoint/--resume");
-  if (!a.impose.empty() && a.mode == "all") throw InputError("--impose with --mode all is not supported; use count");
-  if (!a.impose.empty() && a.shard != "0/1") throw InputError("--impose runs are not sharded: drop --shard");
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
@@ -167,6 +181,21 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   o.estimate_probes = o.progress && o.mode != SearchMode::First ? 200 : 0;
   const std::string kind(kind_name(problem.set.kind()));
   const std::uint32_t colours = problem.set.colours();
+  // --impose: search only the packings invariant under the group (bad groups are exit 2 here).
+  std::optional<ImposedGroup> imposed;
+  if (!a.impose.empty()) {
+    if (!o.checkpoint_path.empty() || !o.resume_path.empty() || o.shard_count != 1)
+      throw InputError("--impose runs are not checkpointed or sharded: drop --checkpoint, --resume and --shard");
+    imposed = build_group(problem, a.impose);
+  }
+  const bool complete_set_problem =
+      problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix()) &&
+      problem.rows == int(colours * colours) && problem.cols == problem.rows;
+  // The portfolio (plain search + imposed groups, first found wins) answers first-mode searches
+  // of complete sets unless the engine is pinned by a formulation, ordering, checkpoint or shard.
+  const bool use_portfolio = !imposed && !a.plain && o.mode == SearchMode::First && a.method != "construct" &&
+                             complete_set_problem && a.formulation == "auto" && a.ordering == "auto" &&
+                             o.checkpoint_path.empty() && o.resume_path.empty() && o.shard_count == 1;
   o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
   {  // bad options are exit 2 before the database is touched
     SearchOptions check = o;
@@ -190,7 +219,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                 {"ordering", a.ordering},
                 {"time_limit", a.time_limit},
                 {"checkpoint", o.checkpoint_path},
-                {"resume", o.resume_path}};
+                {"resume", o.resume_path},
+                {"impose", a.impose}};
   run.status = "running";
   run.threads = o.threads;
   run.id = db.begin_run(run);
@@ -202,14 +232,13 @@ void run_pack(const PackArgs& a, const Context& ctx) {
 
   SearchResult r;
   std::string method = "search";
+  nlohmann::json group_json = nullptr, portfolio_json = nullptr;
   std::optional<SolutionRecord> hit;
-  const bool complete_set =
-      problem.set.size() == complete_size(problem.set.horizontal_radix(), problem.set.vertical_radix());
-  if (a.method == "auto" && o.mode == SearchMode::First && complete_set && a.impose.empty())
+  if (a.method == "auto" && o.mode == SearchMode::First && complete_set_problem && !imposed)
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
-  std::optional<ConstructedPacking> built;
   if (!(hit && validate(hit->tiling, &problem.set).packing)) hit.reset();
-  if (!hit && a.set.empty() && a.impose.empty() && o.mode == SearchMode::First &&
+  std::optional<ConstructedPacking> built;
+  if (!hit && a.set.empty() && !imposed && o.mode == SearchMode::First &&
       (a.method == "construct" || a.method == "auto")) {
     built = construct_packing(problem.set.kind(), colours);
     if (built && !validate(built->tiling, &problem.set).packing)
@@ -221,74 +250,63 @@ void run_pack(const PackArgs& a, const Context& ctx) {
           fmt::format("no construction is known for {} packings with {} colours (try --method search)", kind, colours));
     }
   }
-  // The search portfolio (DESIGN.md: plain search plus imposed-automorphism subspaces) answers
-  // first-mode searches of complete sets unless the run must be checkpointable or plain.
-  const bool portfolio = !hit && !built && a.set.empty() && o.mode == SearchMode::First && a.method != "construct" &&
-                         !a.plain && o.checkpoint_path.empty() && o.shard_count == 1 && a.formulation == "auto" &&
-                         a.ordering == "auto";
-  nlohmann::json portfolio_json;
   if (hit || built) {
     method = hit ? "db" : "construct";
     r.found.push_back(hit ? hit->tiling : built->tiling);
     r.solutions = 1;
     r.threads = o.threads;
-    r.complete = false;
     if (built) {
-      sink.set_method("construct");
+      sink.method = "construct";
       sink.add(built->tiling);
       sink.flush();
     }
-  } else if (portfolio || !a.impose.empty()) {
-    // No checkpoints here: a signal ends the run at once, with the run row marked.
-    std::atomic<bool> done{false};
-    std::thread watch([&] {
-      while (!done.load()) {
-        if (SignalCatcher::caught()) {
-          run.status = "interrupted";
-          db.finish_run(run);
-          std::fprintf(stderr, "tilekit: interrupted by signal %d (no checkpoint: imposed-group searches restart)\n",
-                       SignalCatcher::caught());
-          std::_Exit(3);
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      }
-    });
+  } else {
     try {
-      SearchOptions po = o;
-      po.on_solution = nullptr;
-      po.flush = nullptr;
-      if (o.mode == SearchMode::First) {
-        PortfolioOptions popts;
-        if (!a.impose.empty()) popts.specs = {a.impose};
-        PortfolioResult pr = run_portfolio(problem.set.kind(), colours, po, popts);
+      // Signals stop the imposed searches and the portfolio through this flag.
+      std::atomic<bool> stop{false}, done{false};
+      std::thread watcher;
+      if (imposed || use_portfolio)
+        watcher = std::thread([&] {
+          while (!done.load()) {
+            if (SignalCatcher::caught()) stop = true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          }
+        });
+      struct Join {
+        std::atomic<bool>& done;
+        std::thread& t;
+        ~Join() {
+          done = true;
+          if (t.joinable()) t.join();
+        }
+      } join{done, watcher};
+      if (imposed) {
+        sink.group = imposed->to_json();
+        group_json = sink.group;
+        SymmetricControl ctl;
+        ctl.stop = &stop;
+        r = solve_symmetric(problem, *imposed, o, ctl).result;
+        r.interrupted = stop.load();
+      } else if (use_portfolio) {
+        PortfolioOptions po;
+        po.stats_path = a.portfolio_stats;
+        po.stop = &stop;
+        SearchOptions po_opts = o;
+        po_opts.on_solution = nullptr;
+        PortfolioResult pr = run_portfolio(problem.set.kind(), colours, po_opts, po);
         r = pr.result;
         r.nodes = pr.nodes;
         r.seconds = pr.seconds;
         r.threads = o.threads;
-        if (!pr.found) r.found.clear();
-        portfolio_json = {{"winner", pr.spec}, {"group", pr.group}, {"runs", pr.runs}};
-        if (pr.found) {
-          sink.set_group(pr.group);
-          sink.add(r.found.front());
-        }
+        r.interrupted = stop.load();
+        portfolio_json = {{"winner", pr.found ? nlohmann::json(pr.spec) : nlohmann::json(nullptr)},
+                          {"runs", pr.runs}};
+        group_json = pr.group;
+        sink.group = pr.group;
+        if (pr.found) sink.add(pr.result.found.front());
       } else {
-        SymmetricResult sr = solve_symmetric(problem.set.kind(), colours, a.impose, po);
-        r = sr.result;
-        portfolio_json = {{"group", sr.group}};
+        r = solve_checkpointed(problem, o);
       }
-      sink.flush();
-    } catch (...) {
-      done = true;
-      watch.join();
-      run.status = "failed";
-      db.finish_run(run);
-      throw;
-    }
-    done = true;
-    watch.join();
-  } else {
-    try {
-      r = solve_checkpointed(problem, o);
       sink.flush();
     } catch (...) {
       run.status = "failed";
@@ -328,12 +346,10 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                       {"stored", sink.added()}};
   j["orbits"] = r.orbits ? nlohmann::json(*r.orbits) : nlohmann::json(nullptr);
   j["nodes_per_second"] = r.seconds > 0 ? double(r.nodes) / r.seconds : 0.0;
-  if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
+  j["group"] = group_json;
   if (built) j["construction"] = built->how;
-  if (!portfolio_json.is_null()) {
-    j["group"] = portfolio_json["group"];
-    if (portfolio_json.contains("winner")) j["portfolio"] = portfolio_json;
-  }
+  if (!portfolio_json.is_null()) j["portfolio"] = portfolio_json;
+  if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
     ValidationReport rep = validate(t, &problem.set);
@@ -361,16 +377,20 @@ void run_pack(const PackArgs& a, const Context& ctx) {
       fmt::print("solutions: {}{}\n", r.solutions, r.orbits ? fmt::format(" ({} up to symmetry)", *r.orbits) : "");
     fmt::print("nodes: {}  seconds: {:.3f}  database: {} (run {}, {} new solutions)\n", r.nodes, r.seconds, db.path(),
                run.id, sink.added());
+    if (!group_json.is_null()) fmt::print("imposed group: {} (order {})\n", group_json["spec"].get<std::string>(),
+                                          group_json["order"].get<int>());
     if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
   });
   if (r.interrupted || SignalCatcher::caught())
     throw Interrupted(fmt::format(
         "interrupted by signal {}; {}", SignalCatcher::caught(),
-        o.checkpoint_path.empty()
-            ? "no checkpoint (use --checkpoint F to resume later)"
+        imposed || use_portfolio ? std::string("imposed-group searches keep no checkpoint (run again to restart)")
+        : o.checkpoint_path.empty()
+            ? std::string("no checkpoint (use --checkpoint F to resume later)")
             : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " + o.checkpoint_path + ")"));
   if (o.mode == SearchMode::First && r.found.empty())
-    throw NotFound(r.complete ? "no packing exists (the search space was exhausted)"
+    throw NotFound(r.complete ? (imposed ? "no packing is invariant under the imposed group (its subspace was exhausted)"
+                                         : "no packing exists (the search space was exhausted)")
                               : "no packing found within the time limit");
 }
 
@@ -384,23 +404,27 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--colors", a->colours, "Number of colours C (the complete set on the C^2 x C^2 torus)");
   cmd->add_option("--set", a->set, "Pack this tile set instead (built-in name or file)");
   cmd->add_option("--size", a->size, "Torus size ROWSxCOLS for --set (default: square)");
-  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")
-      ->capture_default_str();
+  cmd->add_option("--method", a->method, "auto (database, construction, search), search or construct")->capture_default_str();
   cmd->add_option("--mode", a->mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", a->seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", a->formulation, "auto, cell, pegs (corner) or edges (Wang)")->capture_default_str();
   cmd->add_option("--ordering", a->ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", a->checkpoint, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", a->checkpoint_every,
-                  "Seconds between checkpoints (default 300 with --checkpoint)");
+  cmd->add_option("--checkpoint-every", a->checkpoint_every, "Seconds between checkpoints (default 300 with --checkpoint)");
   cmd->add_option("--resume", a->resume, "Resume from this checkpoint (and keep checkpointing to it)");
   cmd->add_option("--db", a->db, "Results database");
   cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
   cmd->add_option("--time-limit", a->time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out, "Write the packing found to this JSON file");
-  cmd->add_option("--impose", a->impose, "Search only packings invariant under this group, e.g. t=0,8:pi=1,0,3,2");
+  cmd->add_option("--impose", a->impose,
+                  "Search only packings invariant under this group: generators 't=DR,DC:pi=P0,P1,...' separated "
+                  "by ';' (Wang: pih=/piv= per edge direction; cycles like pi=(0 1)(2 3) also work)");
   cmd->add_flag("--plain", a->plain, "First mode: plain search only (no imposed-group portfolio)");
+  cmd->add_flag("--portfolio-report", a->portfolio_report,
+                "Print the per-group statistics (tries, successes, median time) that order the auto portfolio");
+  cmd->add_option("--portfolio-stats", a->portfolio_stats,
+                  "Portfolio statistics file (default $TILEKIT_PORTFOLIO_STATS or ~/.local/share/tilekit/portfolio-stats.json)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer("Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");

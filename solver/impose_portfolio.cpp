@@ -252,6 +252,7 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
   PortfolioStats fresh;  // this run's tries, merged into the file at the end
   std::map<std::string, nlohmann::json> per_spec;
   std::exception_ptr failure;
+  std::set<std::string> exhausted;  // subspaces proved empty: never scheduled again
 
   auto worker = [&] {
     try {
@@ -259,6 +260,11 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
         std::uint64_t task = next_task++;
         std::uint64_t round = task / specs.size();
         const std::string& spec = specs[task % specs.size()];
+        {
+          std::lock_guard<std::mutex> lock(mu);
+          if (exhausted.size() == specs.size()) return;
+          if (exhausted.count(spec)) continue;
+        }
         double slice = portfolio.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(round, 20));
         double left = std::chrono::duration<double>(deadline - Clock::now()).count();
         if (left <= 0) return;
@@ -282,6 +288,7 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
         nodes += r.nodes;
         bool success = !r.found.empty();
         std::lock_guard<std::mutex> lock(mu);
+        if (r.complete && !success) exhausted.insert(spec);
         auto& row = per_spec[spec];
         if (row.is_null()) row = {{"group", spec}, {"tries", 0}, {"nodes", 0}, {"seconds", 0.0}, {"found", false}};
         row["tries"] = row["tries"].get<int>() + 1;
@@ -306,8 +313,17 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
       found = true;
     }
   };
+  std::atomic<int> running{options.threads};
   std::vector<std::thread> pool;
-  for (int i = 0; i < options.threads; ++i) pool.emplace_back(worker);
+  for (int i = 0; i < options.threads; ++i)
+    pool.emplace_back([&] {
+      worker();
+      --running;
+    });
+  while (running.load() > 0) {  // fold an external stop into first-found-wins
+    if (portfolio.stop && portfolio.stop->load()) found = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   for (auto& th : pool) th.join();
   if (failure) std::rethrow_exception(failure);
 

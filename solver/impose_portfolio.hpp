@@ -4,6 +4,7 @@
 // all threads in time slices that double each round, first found wins. Which groups work is
 // learned across runs: per (kind, colours, group) the tries, successes and the median time to a
 // success are kept in a small JSON file and order the next portfolio.
+#include <atomic>
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -61,6 +62,7 @@ struct PortfolioOptions {
   // for cadical, impose_sat.hpp). Empty = candidate_groups() plus "plain".
   std::vector<std::string> specs;
   bool include_plain = true;        // add the plain search when specs is empty
+  const std::atomic<bool>* stop = nullptr;  // external stop (signals): ends the run, nothing found
 };
 
 struct PortfolioResult {

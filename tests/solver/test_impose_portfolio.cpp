@@ -56,6 +56,25 @@ TEST(ImposePortfolio, FindsFourColourCornerAndWangPackingsOnTwoThreads) {
   EXPECT_GE(successes, 2);
 }
 
+TEST(ImposePortfolio, EmptySubspacesAreDroppedAndAnEmptyPortfolioEndsAtOnce) {
+  // No C=2 corner packing is invariant under t=(0,2) or t=(2,0) with the colours swapped (the
+  // brute-force filter in test_impose_counts.cpp); all 32 are invariant under t=(2,2).
+  SearchOptions o;
+  o.threads = 2;
+  o.time_limit = 30;
+  PortfolioOptions p;
+  p.stats_path = "-";
+  p.specs = {"t=0,2:pi=1,0", "t=2,0:pi=1,0"};
+  PortfolioResult none = run_portfolio(TileKind::Corner, 2, o, p);
+  EXPECT_FALSE(none.found);
+  EXPECT_LT(none.seconds, 5.0);
+  p.specs.push_back("t=2,2:pi=1,0");
+  PortfolioResult some = run_portfolio(TileKind::Corner, 2, o, p);
+  ASSERT_TRUE(some.found);
+  EXPECT_EQ(some.spec, "t=2,2:pi=1,0");
+  EXPECT_TRUE(validate(some.result.found[0]).packing);
+}
+
 TEST(ImposePortfolio, StatisticsOrderProvenGroupsFirstAndFailuresLast) {
   PortfolioStats s;
   std::vector<std::string> specs = {"a", "b", "c", "d"};
