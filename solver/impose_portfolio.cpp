@@ -42,7 +42,7 @@ std::string key_of(TileKind kind, std::uint32_t colours, const std::string& spec
 
 bool valid_spec(TileKind kind, std::uint32_t colours, const std::string& spec) {
   try {
-    TilingProblem p = complete_packing(kind, colours);
+    TilingProblem p = complete_packing_problem(kind, colours);
     build_group(p, spec);
     return true;
   } catch (const InputError&) {
@@ -227,7 +227,7 @@ PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const Search
                               const PortfolioOptions& portfolio) {
   if (options.threads < 1) throw InputError("--threads must be at least 1");
   const auto t0 = Clock::now();
-  const TilingProblem problem = complete_packing(kind, colours);
+  const TilingProblem problem = complete_packing_problem(kind, colours);
   const std::string stats_path = portfolio.stats_path.empty() ? PortfolioStats::default_path() : portfolio.stats_path;
   const bool persist = stats_path != "-";
   PortfolioStats stats = persist ? PortfolioStats::load(stats_path) : PortfolioStats{};

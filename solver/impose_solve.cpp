@@ -35,16 +35,6 @@ Tiling checked(const SymmetricModel& model, const ImposedGroup& group, const Til
 
 }  // namespace
 
-TilingProblem complete_packing(TileKind kind, std::uint32_t colours) {
-  check_colour_count(colours, "--colors");
-  TilingProblem p;
-  p.set = kind == TileKind::Wang ? complete_wang_set(colours, colours) : complete_corner_set(colours);
-  p.rows = p.cols = int(colours * colours);
-  p.torus = true;
-  p.packing = true;
-  return p;
-}
-
 ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) {
   return ImposedGroup::build(parse_group_spec(spec), problem.set.kind(), problem.set.horizontal_radix(),
                              problem.set.vertical_radix(), problem.rows, problem.cols, problem.packing);
@@ -52,7 +42,7 @@ ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) 
 
 SymmetricResult solve_symmetric(TileKind kind, std::uint32_t colours, const std::string& spec,
                                 const SearchOptions& options, const SymmetricControl& control) {
-  TilingProblem p = complete_packing(kind, colours);
+  TilingProblem p = complete_packing_problem(kind, colours);
   return solve_symmetric(p, build_group(p, spec), options, control);
 }
 

@@ -43,7 +43,4 @@ SymmetricResult solve_symmetric(TileKind kind, std::uint32_t colours, const std:
 // The group of a spec for a problem (packing rules when problem.packing).
 ImposedGroup build_group(const TilingProblem& problem, const std::string& spec);
 
-// The complete packing problem, built here so this module does not need solve()'s library part.
-TilingProblem complete_packing(TileKind kind, std::uint32_t colours);
-
 }  // namespace tilekit

@@ -74,7 +74,7 @@ std::uint64_t count_of(TileKind kind, const std::string& spec) {
 
 // Count in Count mode, collect in All mode, and compare both with the brute-force filter.
 void expect_matches_filter(TileKind kind, const std::string& spec, const std::vector<Tiling>& all) {
-  TilingProblem p = complete_packing(kind, 2);
+  TilingProblem p = complete_packing_problem(kind, 2);
   ImposedGroup g = build_group(p, spec);
   std::set<std::vector<TileIndex>> expected;
   for (const auto& t : all)

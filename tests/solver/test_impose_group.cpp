@@ -14,7 +14,7 @@ namespace {
 
 std::string input_error(TileKind kind, std::uint32_t c, const std::string& spec) {
   try {
-    TilingProblem p = complete_packing(kind, c);
+    TilingProblem p = complete_packing_problem(kind, c);
     build_group(p, spec);
   } catch (const InputError& e) {
     return e.what();
@@ -28,7 +28,7 @@ TEST(ImposeSpec, ParsesSeveralGeneratorsListAndCycleNotation) {
   EXPECT_EQ(s.generators[0].dc, 8);
   EXPECT_EQ(s.generators[1].dr, 8);
   EXPECT_EQ(s.generators[1].pi.resolve(4, "pi"), (std::vector<Colour>{2, 3, 0, 1}));
-  TilingProblem p = complete_packing(TileKind::Corner, 4);
+  TilingProblem p = complete_packing_problem(TileKind::Corner, 4);
   ImposedGroup g = build_group(p, "t=0,8:pi=1,0,3,2;t=8,0:pi=(0 2)(1,3)");
   EXPECT_EQ(g.order(), 4u);  // Klein four-group: (0,8), (8,0), (8,8) and the identity
   EXPECT_EQ(g.spec_text(), "t=0,8:pi=1,0,3,2;t=8,0:pi=2,3,0,1");
@@ -76,7 +76,7 @@ void expect_symmetric_packing(TileKind kind, std::uint32_t c, const std::string&
   o.threads = threads;
   o.seed = 7;
   o.time_limit = 60;
-  TilingProblem p = complete_packing(kind, c);
+  TilingProblem p = complete_packing_problem(kind, c);
   ImposedGroup g = build_group(p, spec);
   SymmetricResult r = solve_symmetric(p, g, o);
   ASSERT_EQ(r.result.found.size(), 1u) << spec;
@@ -160,7 +160,7 @@ namespace {
 TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
   if (!sat_solver_available()) GTEST_SKIP() << "cadical not installed (scripts/setup.sh installs it)";
   for (auto [kind, spec] : {std::pair{TileKind::Corner, "t=0,3:pi=1,2,0"}, std::pair{TileKind::Wang, "t=0,3:pi=1,2,0"}}) {
-    TilingProblem p = complete_packing(kind, 3);
+    TilingProblem p = complete_packing_problem(kind, 3);
     ImposedGroup g = build_group(p, spec);
     SearchOptions o;
     o.time_limit = 60;

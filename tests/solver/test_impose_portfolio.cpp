@@ -20,8 +20,8 @@ TEST(ImposePortfolio, CandidateGroupsAreValidAndIncludeTheKnownWinners) {
   EXPECT_NE(std::find(wang.begin(), wang.end(), "t=0,8:pi=1,0,3,2"), wang.end());
   // Products of two generators: the Klein four-group on 4 colours.
   EXPECT_NE(std::find(corner.begin(), corner.end(), "t=0,8:pi=1,0,3,2;t=8,0:pi=2,3,0,1"), corner.end());
-  for (const auto& spec : corner) EXPECT_NO_THROW(build_group(complete_packing(TileKind::Corner, 4), spec)) << spec;
-  for (const auto& spec : wang) EXPECT_NO_THROW(build_group(complete_packing(TileKind::Wang, 4), spec)) << spec;
+  for (const auto& spec : corner) EXPECT_NO_THROW(build_group(complete_packing_problem(TileKind::Corner, 4), spec)) << spec;
+  for (const auto& spec : wang) EXPECT_NO_THROW(build_group(complete_packing_problem(TileKind::Wang, 4), spec)) << spec;
   // Odd C: only C-cycles (a fixed-point-free permutation of order k needs k | C).
   for (const auto& spec : candidate_groups(TileKind::Corner, 5)) EXPECT_NE(spec.find("pi=1,2,3,4,0"), std::string::npos);
 }
@@ -40,7 +40,7 @@ void expect_portfolio_finds(TileKind kind, const std::string& stats) {
   EXPECT_TRUE(rep.packing);
   if (r.spec != kPlainSearch) {
     EXPECT_EQ(r.group["spec"], r.spec);
-    EXPECT_TRUE(build_group(complete_packing(kind, 4), r.spec).is_invariant(r.result.found[0]));
+    EXPECT_TRUE(build_group(complete_packing_problem(kind, 4), r.spec).is_invariant(r.result.found[0]));
   }
 }
 
