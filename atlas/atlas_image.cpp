@@ -9,7 +9,7 @@
 #include <map>
 #include <numbers>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 // stb as private, static implementations (no symbols shared with other translation units).

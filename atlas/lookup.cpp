@@ -10,8 +10,8 @@
 
 #include "checkpoints/results_db.hpp"
 #include "tilesets/constructions.hpp"
-#include "tilesets/error.hpp"
-#include "tilesets/lattice_hash.hpp"
+#include "base/error.hpp"
+#include "tiling/lattice_hash.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -100,7 +100,7 @@ AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptio
   throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
 }
 
-// The project's permutation table (thesis 3.4.1, tilesets/lattice_hash.hpp) of size 256, so the
+// The project's permutation table (thesis 3.4.1, tiling/lattice_hash.hpp) of size 256, so the
 // shader's `& 255` is the table's modulo.
 std::vector<int> hash_permutation(std::uint64_t seed) {
   const PermutationHash h(256, seed);

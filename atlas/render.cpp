@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::atlas {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "checkpoints/aperiodic_verify.hpp"
+#include "aperiodic/verify.hpp"
 #include "solver/solve.hpp"
-#include "tilesets/aperiodic_convert.hpp"
-#include "tilesets/aperiodic_table.hpp"
+#include "aperiodic/convert.hpp"
+#include "aperiodic/table.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 using namespace tilekit;

@@ -21,7 +21,7 @@
 
 #include "solver/impose_portfolio.hpp"
 #include "solver/impose_solve.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 using namespace tilekit;
 

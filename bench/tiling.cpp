@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "tilesets/compact_sets.hpp"
-#include "tilesets/controlled_tiling.hpp"
-#include "tilesets/direct_tiling.hpp"
-#include "tilesets/halton_tiling.hpp"
-#include "tilesets/scanline_tiling.hpp"
+#include "tiling/controlled_tiling.hpp"
+#include "tiling/direct_tiling.hpp"
+#include "tiling/halton_tiling.hpp"
+#include "tiling/scanline_tiling.hpp"
 #include "tilesets/tile_set.hpp"
 
 using namespace tilekit;

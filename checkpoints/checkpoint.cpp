@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {

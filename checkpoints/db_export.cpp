@@ -4,7 +4,7 @@
 
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

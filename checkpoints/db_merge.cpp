@@ -13,8 +13,8 @@
 
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
-#include "tilesets/error.hpp"
-#include "tilesets/progress.hpp"
+#include "base/error.hpp"
+#include "base/progress.hpp"
 
 namespace tilekit {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit::dbrows {
 

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <stdexcept>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit::sqlitedb {
 

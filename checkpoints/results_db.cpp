@@ -18,7 +18,7 @@
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/db_schema.hpp"
 #include "checkpoints/db_sqlite.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

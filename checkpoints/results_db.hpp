@@ -159,7 +159,7 @@ class ResultsDb {
   // matched by uid, tile sets by (name, content_hash), conversions by (source, method,
   // result), solutions by solution_hash, or by canonical_hash too with `distinct_orbits`.
   // Idempotent. Throws InputError (nothing written) for a foreign or corrupt input.
-  // `progress`: report on stderr (tilesets/progress.hpp) when the inputs hold many solutions.
+  // `progress`: report on stderr (base/progress.hpp) when the inputs hold many solutions.
   MergeReport merge(const std::vector<std::string>& inputs, bool distinct_orbits = false, bool progress = false);
   // The checks merge() makes on its inputs, without a target (so a command can refuse bad
   // inputs before it creates the target file).

@@ -6,7 +6,7 @@
 #include <regex>
 #include <utility>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit::cli {
 namespace {

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
-#include "tilesets/neighbour_statistics.hpp"
+#include "base/error.hpp"
+#include "tiling/neighbour_statistics.hpp"
 #include "tilesets/tile_set_reduction.hpp"
 
 namespace tilekit::cli {

@@ -2,12 +2,12 @@
 // Tables 8.1-8.7 and the periodicity search.
 #include <fmt/format.h>
 
-#include "checkpoints/aperiodic_store.hpp"
+#include "aperiodic/store.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
-#include "tilesets/aperiodic_convert.hpp"
-#include "tilesets/aperiodic_prune.hpp"
-#include "tilesets/error.hpp"
+#include "aperiodic/convert.hpp"
+#include "aperiodic/prune.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {

@@ -3,10 +3,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "checkpoints/aperiodic_verify.hpp"
+#include "aperiodic/verify.hpp"
 #include "cli/command.hpp"
-#include "tilesets/aperiodic_convert.hpp"
-#include "tilesets/aperiodic_prune.hpp"
+#include "aperiodic/convert.hpp"
+#include "aperiodic/prune.hpp"
 
 namespace tilekit::cli {
 

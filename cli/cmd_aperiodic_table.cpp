@@ -5,10 +5,10 @@
 
 #include <chrono>
 
-#include "checkpoints/aperiodic_verify.hpp"
+#include "aperiodic/verify.hpp"
 #include "cli/cmd_aperiodic.hpp"
-#include "tilesets/aperiodic_smallest.hpp"
-#include "tilesets/aperiodic_table.hpp"
+#include "aperiodic/smallest.hpp"
+#include "aperiodic/table.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {

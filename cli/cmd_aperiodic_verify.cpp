@@ -3,10 +3,10 @@
 
 #include <optional>
 
-#include "checkpoints/aperiodic_store.hpp"
-#include "checkpoints/aperiodic_verify.hpp"
+#include "aperiodic/store.hpp"
+#include "aperiodic/verify.hpp"
 #include "cli/cmd_aperiodic.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -97,7 +97,7 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--max-square", va.opts.max_square, "Also search an N x N square (bounded); 0 = no square search");
   cmd->add_option("--threads", va.opts.threads, "Threads (default: all)");
   cmd->add_option("--time-limit", va.opts.time_limit, "Seconds per search (verdict inconclusive if hit)");
-  cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (tilesets/aperiodic_prune.hpp)");
+  cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
   cmd->add_option("--db", va.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--progress", va.opts.progress, "Progress on stderr");
   cmd->add_flag("--no-filter", [](std::int64_t) { va.opts.transducer_filter = false; },

@@ -7,7 +7,7 @@
 #include "atlas/lookup.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {

@@ -15,7 +15,7 @@
 #include "checkpoints/checkpoint.hpp"
 #include "cli/cluster_scripts.hpp"
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {

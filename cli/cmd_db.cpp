@@ -9,7 +9,7 @@
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 

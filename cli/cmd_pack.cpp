@@ -16,7 +16,7 @@
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/constructions.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 

@@ -10,9 +10,9 @@
 
 #include "atlas/render.hpp"
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
-#include "tilesets/tiling_algorithms.hpp"
+#include "tiling/tiling_algorithms.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit::cli {

@@ -3,7 +3,7 @@
 
 #include "atlas/render.hpp"
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {

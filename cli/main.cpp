@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "cli/command.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 int main(int argc, char** argv) {
   using namespace tilekit;

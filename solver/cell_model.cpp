@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

@@ -14,7 +14,7 @@
 
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

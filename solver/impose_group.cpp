@@ -8,7 +8,7 @@
 #include <numeric>
 #include <utility>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 namespace {

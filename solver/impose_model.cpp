@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "solver/solve.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 namespace {

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 namespace {

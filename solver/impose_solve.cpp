@@ -13,7 +13,7 @@
 #include "solver/impose_sat.hpp"
 #include "solver/impose_search.hpp"
 #include "solver/luby.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {

@@ -35,8 +35,8 @@
 #include "solver/search_state.hpp"
 #include "solver/signals.hpp"
 #include "solver/solve.hpp"
-#include "tilesets/error.hpp"
-#include "tilesets/progress.hpp"
+#include "base/error.hpp"
+#include "base/progress.hpp"
 
 namespace tilekit {
 

@@ -11,7 +11,7 @@
 #include "solver/lattice_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <set>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "tilesets/compact_sets.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/reference_data.hpp"
 
 namespace tilekit {

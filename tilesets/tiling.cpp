@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 

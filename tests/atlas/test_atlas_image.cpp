@@ -6,7 +6,7 @@
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
 #include "tests/cli_runner.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 using namespace tilekit;
 using namespace tilekit::test;

@@ -7,7 +7,7 @@
 #include "checkpoints/results_db.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/constructions.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 using namespace tilekit;

@@ -5,7 +5,7 @@
 #include "atlas/render.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/compact_sets.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 using namespace tilekit;
 using namespace tilekit::atlas;

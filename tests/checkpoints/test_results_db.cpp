@@ -7,7 +7,7 @@
 
 #include "checkpoints/results_db.hpp"
 #include "tests/checkpoints/db_test_util.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 using namespace tilekit;
 using namespace tilekit::test;

@@ -7,7 +7,7 @@
 
 #include "cli/cluster_scripts.hpp"
 #include "tests/cli_runner.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 
 namespace tilekit {
 namespace {

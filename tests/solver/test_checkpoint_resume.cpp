@@ -9,7 +9,7 @@
 #include "solver/knuth_estimate.hpp"
 #include "solver/solve.hpp"
 #include "tests/cli_runner.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 

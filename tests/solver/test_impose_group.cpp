@@ -6,7 +6,7 @@
 
 #include "solver/impose_sat.hpp"
 #include "solver/impose_solve.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {

@@ -7,7 +7,7 @@
 
 #include "../cli_runner.hpp"
 #include "solver/impose_portfolio.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {

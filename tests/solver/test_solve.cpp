@@ -5,7 +5,7 @@
 #include <set>
 
 #include "solver/solve.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 

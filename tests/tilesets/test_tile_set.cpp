@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tilesets/compact_sets.hpp"
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set.hpp"
 #include "tilesets/tile_set_io.hpp"
 

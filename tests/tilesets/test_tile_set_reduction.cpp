@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "tilesets/error.hpp"
+#include "base/error.hpp"
 #include "tilesets/tile_set_reduction.hpp"
 
 using namespace tilekit;

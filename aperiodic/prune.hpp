@@ -1,0 +1,50 @@
+#pragma once
+// Pruning tiles that no tiling of the plane needs (`tilekit aperiodic ... --prune R`).
+//
+// Two filters, repeated until nothing changes:
+//  - surround: a tile survives a round when it is the centre of a 3x3 patch of surviving
+//    tiles; R rounds keep every tile that can be surrounded to radius R (a necessary
+//    condition, exact for R = 1). A tile of a tiling of the plane is surrounded to every
+//    radius, so this filter keeps every tiling of the plane.
+//  - transducer SCC: a row of a tiling is a bi-infinite path in the row transducer graph
+//    (states = E/W colours, one edge per tile; Kari/Culik); a tile whose edge lies in no
+//    strongly connected component (Boost.Graph strong_components) can occur at most once
+//    per row. The same with columns. This filter can remove tilings, but it keeps
+//    tileability and aperiodicity exactly:
+//      * a doubly periodic tiling has periodic rows and columns, i.e. cycles, so it uses
+//        only SCC tiles: the pruned set tiles periodically iff the original does;
+//      * a tiling uses at most K non-SCC tiles per row (K = their number), so a 2N x 2N
+//        square holds at most 2NK of them and, for large N, contains an m x m square free
+//        of them; by compactness the pruned set tiles the plane iff the original does.
+// Corner sets are pruned through their equivalent Wang set (thesis 2.9), tile for tile.
+#include <cstddef>
+#include <vector>
+
+#include "aperiodic/convert.hpp"
+#include "tilesets/tile_set.hpp"
+
+namespace tilekit {
+
+struct PruneReport {
+  std::size_t before = 0, after = 0;
+  std::size_t removed_by_surround = 0, removed_by_scc = 0;
+  int passes = 0;
+  std::vector<std::size_t> kept;  // positions (in the source) of the surviving tiles
+};
+
+// Tiles of `tiles` that are the centre of some 3x3 patch of `tiles` (positions).
+std::vector<std::size_t> surroundable(const std::vector<WangTile>& tiles);
+// Tiles whose edge lies in a strongly connected component of the row transducer graph
+// (rows = true) or of the column transducer graph (rows = false).
+std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& tiles, bool rows);
+
+// The label of a pruned conversion result: surround pruning keeps every tiling, so a
+// conjugacy stays one; SCC pruning may drop tilings (never tileability or periodic ones),
+// so a conjugate result becomes `lifts` (its tilings still lift to the source).
+Soundness after_pruning(Soundness s, const PruneReport& r);
+
+PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius);
+// Prunes a Wang or corner set; the result keeps the surviving tiles in their order.
+TileSet prune(const TileSet& set, int radius, PruneReport* report = nullptr);
+
+}  // namespace tilekit
