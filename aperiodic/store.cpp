@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "base/hash.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -9,9 +10,7 @@ namespace tilekit {
 std::string tile_set_content_hash(const TileSet& set) {
   std::string text = std::string(kind_name(set.kind())) + "\n";
   for (std::size_t k = 0; k < set.size(); ++k) text += fmt::format("{}\n", fmt::join(set.file_colours(k), " "));
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
-  return fmt::format("{:016x}", h);
+  return fmt::format("{:016x}", fnv1a64(text));
 }
 
 std::int64_t store_tile_set(ResultsDb& db, const TileSet& set) {

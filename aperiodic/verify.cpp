@@ -1,7 +1,6 @@
 #include "aperiodic/verify.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <atomic>
@@ -12,6 +11,7 @@
 #include "solver/solve.hpp"
 #include "aperiodic/rows.hpp"
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "tilesets/validator.hpp"
 
@@ -56,7 +56,7 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     throw InputError(fmt::format("--max-square must be between 0 and 256, got {}", opts.max_square));
   auto t0 = std::chrono::steady_clock::now();
   VerifyResult res;
-  res.threads = opts.threads > 0 ? opts.threads : omp_get_max_threads();
+  res.threads = opts.threads > 0 ? opts.threads : default_thread_count();
 
   // Torus shapes, smallest area first (ties: fewer rows first), so the first witness found
   // in this order is one of least area. Phase A sends the small shapes (area <= 16) straight
@@ -84,9 +84,9 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     std::mutex err_mutex;
     std::string error;
     ProgressReporter progress(fmt::format("verify {}", set.name()), double(list.size()), opts.progress);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-    for (std::size_t k = 0; k < list.size(); ++k) {
-      if (k > best.load()) continue;  // a smaller witness is already known
+    parallel_for(std::int64_t(list.size()), res.threads, [&](std::int64_t i) {
+      const std::size_t k = std::size_t(i);
+      if (k > best.load()) return;  // a smaller witness is already known
       try {
         outcomes[k] = search(set, list[k].first, list[k].second, true, opts.time_limit);
         nodes += outcomes[k].nodes;
@@ -100,7 +100,7 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
         error = e.what();
       }
       progress.add(1);
-    }
+    });
     progress.finish();
     if (!error.empty()) throw InputError(error);
     best_index = best.load();
@@ -118,15 +118,19 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
     auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
     if (opts.transducer_filter) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-      for (int q = P; q >= 1; --q) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true);
+      parallel_for(P, res.threads, [&](std::int64_t i) {  // longest period first
+        const int q = P - int(i);
+        row_info[std::size_t(q)] = periodic_rows(as_wang, q, true);
+      });
     }
     // Columns matter only when some horizontal period survived.
     bool any_row = false;
     for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
     if (any_row && opts.transducer_filter) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(res.threads)
-      for (int p = P; p >= 1; --p) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false);
+      parallel_for(P, res.threads, [&](std::int64_t i) {
+        const int p = P - int(i);
+        col_info[std::size_t(p)] = periodic_rows(as_wang, p, false);
+      });
     }
     for (int q = 1; q <= P; ++q) {
       res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);

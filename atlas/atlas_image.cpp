@@ -9,6 +9,7 @@
 #include <map>
 #include <numbers>
 
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 

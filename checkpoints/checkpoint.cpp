@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -16,12 +18,6 @@ namespace tilekit {
 namespace {
 
 constexpr std::string_view kMagic = "TILEKIT-CHECKPOINT";
-
-std::uint64_t fnv1a64(std::string_view s) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ull;
-  return h;
-}
 
 nlohmann::json counters_json(const SearchCounters& c) {
   return {{"solutions", c.solutions}, {"orbits", c.orbits}, {"nodes", c.nodes}};

@@ -19,6 +19,7 @@
 #include "checkpoints/db_schema.hpp"
 #include "checkpoints/db_sqlite.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 
 namespace tilekit {
 
@@ -97,33 +98,6 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
   } catch (const std::runtime_error& e) {
     throw not_ours(path, fmt::format("unreadable ({})", e.what()));
   }
-}
-
-// FNV-1a over bytes, then the MurmurHash3 finaliser so that nearby inputs spread over all
-// 64 bits. Stable across runs and machines.
-struct StableHash {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  void bytes(std::uint64_t v, int n) {
-    for (int i = 0; i < n; ++i) {
-      h ^= (v >> (8 * i)) & 0xff;
-      h *= 0x100000001b3ull;
-    }
-  }
-  std::uint64_t done() const {
-    std::uint64_t x = h;
-    x ^= x >> 33;
-    x *= 0xff51afd7ed558ccdull;
-    x ^= x >> 33;
-    x *= 0xc4ceb9fe1a85ec53ull;
-    x ^= x >> 33;
-    return x;
-  }
-};
-
-std::uint64_t stable_hash64(std::string_view text) {
-  StableHash h;
-  for (char c : text) h.bytes(static_cast<unsigned char>(c), 1);
-  return h.done();
 }
 
 std::string host_name() {
@@ -356,14 +330,14 @@ std::int64_t ResultsDb::add_conversion(std::int64_t source_set, const std::strin
 // StableHash over a fixed little-endian serialisation of the tiling.
 std::string solution_hash(const Tiling& t) {
   StableHash h;
-  h.bytes(t.kind == TileKind::Wang ? 1 : 2, 1);
-  h.bytes(t.colours, 4);
-  if (t.kind == TileKind::Wang && t.cv() != t.ch()) h.bytes(t.cv(), 4);  // mixed radix only
-  h.bytes(std::uint64_t(t.rows), 4);
-  h.bytes(std::uint64_t(t.cols), 4);
-  h.bytes(t.torus ? 1 : 0, 1);
-  for (TileIndex c : t.cells) h.bytes(c, 4);
-  return fmt::format("{:016x}", h.done());
+  h.add(t.kind == TileKind::Wang ? 1 : 2, 1);
+  h.add(t.colours, 4);
+  if (t.kind == TileKind::Wang && t.cv() != t.ch()) h.add(t.cv(), 4);  // mixed radix only
+  h.add(std::uint64_t(t.rows), 4);
+  h.add(std::uint64_t(t.cols), 4);
+  h.add(t.torus ? 1 : 0, 1);
+  for (TileIndex c : t.cells) h.add(c, 4);
+  return fmt::format("{:016x}", h.mixed());
 }
 
 }  // namespace tilekit

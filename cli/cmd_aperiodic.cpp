@@ -2,6 +2,7 @@
 // Tables 8.1-8.7 and the periodicity search.
 #include <fmt/format.h>
 
+#include "base/atomic_file.hpp"
 #include "aperiodic/store.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"

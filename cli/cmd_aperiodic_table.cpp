@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "base/atomic_file.hpp"
 #include "aperiodic/verify.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "aperiodic/smallest.hpp"

@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "base/atomic_file.hpp"
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
 #include "checkpoints/results_db.hpp"

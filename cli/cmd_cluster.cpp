@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/atomic_file.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "cli/cluster_scripts.hpp"
 #include "cli/command.hpp"

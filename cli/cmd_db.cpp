@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/atomic_file.hpp"
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"

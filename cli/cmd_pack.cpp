@@ -7,12 +7,13 @@
 #include <memory>
 #include <thread>
 
+#include "base/atomic_file.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
 #include "solver/impose_portfolio.hpp"
 #include "solver/impose_solve.hpp"
-#include "solver/signals.hpp"
+#include "base/signals.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/constructions.hpp"

@@ -8,6 +8,7 @@
 #include <regex>
 #include <set>
 
+#include "base/atomic_file.hpp"
 #include "atlas/render.hpp"
 #include "cli/command.hpp"
 #include "base/error.hpp"

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/random.hpp"  // mix_seed
 #include "tilesets/tiling.hpp"
 
 namespace tilekit {
@@ -36,13 +37,5 @@ concept SearchModel = std::copy_constructible<M> && requires(M m, const M cm, st
   { cm.tiling() } -> std::convertible_to<Tiling>;
   { cm.multiplicity() } -> std::convertible_to<std::uint64_t>;
 };
-
-// splitmix64: the project's seeded hash for value orders and restart seeds.
-constexpr std::uint64_t mix_seed(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 
 }  // namespace tilekit

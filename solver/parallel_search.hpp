@@ -14,7 +14,6 @@
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <atomic>
@@ -33,9 +32,11 @@
 #include "solver/luby.hpp"
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
-#include "solver/signals.hpp"
+#include "base/signals.hpp"
 #include "solver/solve.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
+#include "base/parallel.hpp"
 #include "base/progress.hpp"
 
 namespace tilekit {
@@ -107,15 +108,12 @@ std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t 
 }
 
 inline std::uint64_t hash_subproblems(const std::vector<std::vector<Decision>>& subs) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a
-  auto add = [&](std::uint64_t x) {
-    for (int b = 0; b < 8; ++b) h = (h ^ ((x >> (8 * b)) & 0xff)) * 0x100000001b3ull;
-  };
+  StableHash h;
   for (const auto& s : subs) {
-    add(s.size());
-    for (const Decision& d : s) add(std::uint64_t(std::uint32_t(d.var)) << 32 | std::uint32_t(d.value));
+    h.add(s.size());
+    for (const Decision& d : s) h.add(std::uint64_t(std::uint32_t(d.var)) << 32 | std::uint32_t(d.value));
   }
-  return h;
+  return h.fnv();
 }
 
 template <SearchModel M>
@@ -160,8 +158,6 @@ class ParallelSearch {
     std::uint64_t epoch = 0;
     std::atomic<std::uint64_t> live_nodes{0};
   };
-  enum Stop : int { kRunning = 0, kFound, kSignal, kTime, kError, kExhausted };
-
   struct Control {
     ParallelSearch& s;
     Slot& slot;
@@ -171,7 +167,7 @@ class ParallelSearch {
     bool hit_limit = false;
     bool at_node(const std::vector<Decision>& path, const SearchCounters& c) {
       if ((c.nodes & 1023) == 0) slot.live_nodes.store(c.nodes, std::memory_order_relaxed);
-      if (s.stop_.load(std::memory_order_relaxed) != kRunning) {
+      if (s.stop_.requested()) {
         publish(path, c, s.epoch_.load());
         return false;
       }
@@ -202,15 +198,10 @@ class ParallelSearch {
     if (cfg_.mode == SearchMode::First) {
       if (found_.exchange(true)) return;
       leaf_(m, c);
-      request_stop(kFound);
+      stop_.request(StopReason::Found);
       return;
     }
     leaf_(m, c);
-  }
-
-  void request_stop(int why) {
-    int expected = kRunning;
-    stop_.compare_exchange_strong(expected, why);
   }
 
   // ---- count / all / first-in-order: subproblems ----
@@ -275,7 +266,7 @@ class ParallelSearch {
       Job job;
       {
         std::lock_guard lock(mu_);
-        if (next_job_ >= jobs_.size() || stop_.load() != kRunning) return;
+        if (next_job_ >= jobs_.size() || stop_.requested()) return;
         job = jobs_[next_job_++];
         std::lock_guard sl(slot.mu);
         slot.active = true;
@@ -308,13 +299,13 @@ class ParallelSearch {
     out.restarts = next_restart_.load();
     out.counts.nodes = restart_nodes_.load();
     out.counts.solutions = restart_solutions_.load();
-    finalize(out, stop_.load() == kExhausted);
+    finalize(out, stop_.reason() == StopReason::Exhausted);
   }
 
   void worker_restarts(int tid) {
     Slot& slot = *slots_[std::size_t(tid)];
     SubtreeSearch<M> dfs;
-    while (stop_.load() == kRunning) {
+    while (!stop_.requested()) {
       std::uint64_t r = next_restart_++;
       M m = root_;
       // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
@@ -326,7 +317,7 @@ class ParallelSearch {
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
       restart_nodes_ += c.nodes;
       restart_solutions_ += c.solutions;
-      if (o == SubtreeOutcome::Exhausted) request_stop(kExhausted);  // the whole tree, no limit hit
+      if (o == SubtreeOutcome::Exhausted) stop_.request(StopReason::Exhausted);  // the whole tree, no limit hit
     }
   }
 
@@ -336,27 +327,22 @@ class ParallelSearch {
     int threads = cfg_.threads;
     slots_.clear();
     for (int i = 0; i < threads; ++i) slots_.push_back(std::make_unique<Slot>());
-    std::exception_ptr error;
-    std::mutex error_mu;
     std::atomic<bool> done{false};
     std::thread monitor([&] { monitor_loop(done); });
-#pragma omp parallel num_threads(threads)
-    {
-      try {
-        work(omp_get_thread_num());
-      } catch (...) {
-        std::lock_guard lock(error_mu);
-        if (!error) error = std::current_exception();
-        request_stop(kError);
+    struct JoinMonitor {  // also when a worker's exception leaves parallel_team
+      ParallelSearch& s;
+      std::atomic<bool>& done;
+      std::thread& monitor;
+      ~JoinMonitor() {
+        {
+          std::lock_guard lock(s.monitor_mu_);
+          done = true;
+        }
+        s.monitor_cv_.notify_all();
+        monitor.join();
       }
-    }
-    {
-      std::lock_guard lock(monitor_mu_);
-      done = true;
-    }
-    monitor_cv_.notify_all();
-    monitor.join();
-    if (error) std::rethrow_exception(error);
+    } join{*this, done, monitor};
+    parallel_team(threads, work, &stop_);
   }
 
   void monitor_loop(std::atomic<bool>& done) {
@@ -370,11 +356,11 @@ class ParallelSearch {
       }
       if (cfg_.poll_signals && SignalCatcher::caught()) {
         signal_ = SignalCatcher::caught();
-        request_stop(kSignal);
+        stop_.request(StopReason::Signal);
       }
-      if (cfg_.time_limit > 0 && elapsed() >= cfg_.time_limit) request_stop(kTime);
+      if (cfg_.time_limit > 0 && elapsed() >= cfg_.time_limit) stop_.request(StopReason::TimeLimit);
       auto now = std::chrono::steady_clock::now();
-      if (cfg_.save && cfg_.checkpoint_every > 0 && stop_.load() == kRunning &&
+      if (cfg_.save && cfg_.checkpoint_every > 0 && !stop_.requested() &&
           std::chrono::duration<double>(now - last_ckpt).count() >= cfg_.checkpoint_every) {
         checkpoint(false);
         last_ckpt = std::chrono::steady_clock::now();
@@ -423,11 +409,11 @@ class ParallelSearch {
           std::lock_guard sl(s->mu);
           if (s->active && s->epoch != e) all = false;
         }
-        if (all || stop_.load() != kRunning) break;
+        if (all || stop_.requested()) break;
         if (std::chrono::steady_clock::now() > deadline) return;  // try again next period
         std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
-      if (stop_.load() != kRunning) return;  // the final checkpoint follows
+      if (stop_.requested()) return;  // the final checkpoint follows
     }
     SearchState st;
     st.fingerprint = cfg_.fingerprint;
@@ -451,11 +437,11 @@ class ParallelSearch {
   }
 
   void finalize(ParallelOutcome& out, bool exhausted) {
-    int why = stop_.load();
-    out.interrupted = why == kSignal;
-    out.timed_out = why == kTime;
-    out.complete = exhausted && why != kFound && why != kSignal && why != kTime && why != kError;
-    if (cfg_.mode == SearchMode::First && cfg_.restarts) out.complete = why == kExhausted;
+    const StopReason why = stop_.reason();
+    out.interrupted = why == StopReason::Signal;
+    out.timed_out = why == StopReason::TimeLimit;
+    out.complete = exhausted && (why == StopReason::None || why == StopReason::Exhausted);
+    if (cfg_.mode == SearchMode::First && cfg_.restarts) out.complete = why == StopReason::Exhausted;
     if (cfg_.save) checkpoint(true);
   }
 
@@ -464,7 +450,7 @@ class ParallelSearch {
   Leaf leaf_;
   std::chrono::steady_clock::time_point start_;
   double prior_seconds_ = 0, estimate_ = 0;
-  std::atomic<int> stop_{kRunning};
+  StopToken stop_;
   std::atomic<bool> found_{false};
   std::atomic<std::uint64_t> epoch_{0};
   int signal_ = 0;

@@ -12,6 +12,7 @@
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
 #include "base/error.hpp"
+#include "base/hash.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -87,16 +88,13 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
 }
 
 std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a over the tile indices
-  for (std::size_t k = 0; k < p.set.size(); ++k) {
-    TileIndex i = p.set.index_of(k);
-    for (int b = 0; b < 4; ++b) h = (h ^ ((i >> (8 * b)) & 0xff)) * 0x100000001b3ull;
-  }
+  StableHash tiles;  // over the tile indices
+  for (std::size_t k = 0; k < p.set.size(); ++k) tiles.add(p.set.index_of(k), 4);
   nlohmann::json j = {{"solver", 1},
                       {"kind", std::string(kind_name(p.set.kind()))},
                       {"radix", {p.set.horizontal_radix(), p.set.vertical_radix()}},
                       {"tiles", p.set.size()},
-                      {"tiles_hash", fmt::format("{:016x}", h)},
+                      {"tiles_hash", fmt::format("{:016x}", tiles.fnv())},
                       {"rows", p.rows},
                       {"cols", p.cols},
                       {"torus", p.torus},

@@ -1,9 +1,6 @@
 #include "tilesets/tile_set_io.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <charconv>
@@ -231,37 +228,6 @@ TileSet resolve_tile_set(const std::string& name) {
   std::error_code ec;
   if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
   throw InputError(fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
-}
-
-void write_file_atomic(const std::string& path, std::string_view text) {
-  namespace fs = std::filesystem;
-  fs::path target(path);
-  fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string tmpl = (dir / ("." + target.filename().string() + ".tmpXXXXXX")).string();
-  int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < text.size()) {
-    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      int err = errno;
-      ::close(fd);
-      ::unlink(tmpl.c_str());
-      throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(err)));
-    }
-    done += std::size_t(n);
-  }
-  ::fchmod(fd, 0644);
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(tmpl.c_str());
-    throw InputError(fmt::format("{}: cannot sync: {}", path, std::strerror(errno)));
-  }
-  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
-    int err = errno;
-    ::unlink(tmpl.c_str());
-    throw InputError(fmt::format("{}: cannot rename into place: {}", path, std::strerror(err)));
-  }
 }
 
 }  // namespace tilekit

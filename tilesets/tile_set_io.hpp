@@ -29,7 +29,4 @@ struct BuiltinInfo {
 };
 std::vector<BuiltinInfo> builtin_tile_sets();
 
-// Writes `text` to `path` atomically: temp file in the same directory, fsync, rename.
-void write_file_atomic(const std::string& path, std::string_view text);
-
 }  // namespace tilekit

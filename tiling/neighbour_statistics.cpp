@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "tiling/halton_tiling.hpp"
 #include "tiling/lattice_tiling.hpp"
 #include "base/random.hpp"
@@ -126,8 +127,7 @@ NeighbourAnalysis analyze_neighbours(std::uint32_t colours, NeighbourAlgo algo, 
   }
   std::mutex mutex;
   int done = 0;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int t = 0; t < tilings; ++t) {
+  parallel_for(tilings, default_thread_count(), [&](std::int64_t t) {
     const int tx = out.resolutions[std::size_t(t)][0], ty = out.resolutions[std::size_t(t)][1];
     std::vector<std::uint16_t> lattice;
     if (algo == NeighbourAlgo::Direct)
@@ -142,7 +142,7 @@ NeighbourAnalysis analyze_neighbours(std::uint32_t colours, NeighbourAlgo algo, 
     out.stats.merge(s);
     ++done;
     if (progress) progress(done, tilings);
-  }
+  });
   return out;
 }
 

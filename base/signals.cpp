@@ -1,4 +1,4 @@
-#include "solver/signals.hpp"
+#include "base/signals.hpp"
 
 #include <atomic>
 #include <csignal>
