@@ -158,6 +158,9 @@ RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
     stbi_image_free(data);
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
+    if (std::uint64_t(a.cols) * a.rows * std::uint64_t(w) * std::uint64_t(w) > (1ull << 28))
+      throw InputError(fmt::format("{}: a {}x{} atlas of {}-pixel tiles is more than 2^28 pixels; use smaller tiles",
+                                   path.string(), a.rows, a.cols, w));
     if (w != size)
       throw InputError(fmt::format("{}: {}x{} pixels, but the other tiles are {}x{}", path.string(), w, h, size, size));
     tiles[index] = std::move(img);

@@ -78,7 +78,8 @@ std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb*
 }  // namespace
 
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options) {
-  if (colours < 1 || colours > 255) throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
+  if (colours < 1 || colours > kMaxAtlasColours)
+    throw InputError(fmt::format("--colors must be between 1 and {} for an atlas, got {}", kMaxAtlasColours, colours));
   std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
   const int n = int(colours * colours);
   if (db) {

@@ -50,6 +50,7 @@ inline int checked_thread_count(std::int64_t threads, const char* flag = "--thre
 // with a `stop` token it also requests StopReason::Error so that the others end early.
 template <class F>
 void parallel_team(int threads, F&& body, StopToken* stop = nullptr) {
+  checked_thread_count(threads);  // the one backstop: no team beyond kMaxThreads reaches libgomp
   std::exception_ptr error;
   std::mutex error_mu;
 #pragma omp parallel num_threads(threads)

@@ -30,6 +30,11 @@ SignalCatcher::~SignalCatcher() {
   for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
 }
 
+void SignalCatcher::catch_for_process() {
+  static SignalCatcher* forever = new SignalCatcher;  // reachable, never destroyed
+  (void)forever;
+}
+
 int SignalCatcher::caught() {
   return g_caught.load(std::memory_order_relaxed);
 }

@@ -14,6 +14,10 @@ class SignalCatcher {
   SignalCatcher& operator=(const SignalCatcher&) = delete;
   // The signal number caught since construction, or 0.
   static int caught();
+  // Installs the handlers for the rest of the process (never restored): a command that
+  // checkpoints calls it first thing in main(), before any slow start-up work, so that a
+  // signal at any moment, exit included, is caught rather than killing the process.
+  static void catch_for_process();
 };
 
 }  // namespace tilekit

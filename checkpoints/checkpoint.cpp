@@ -2,15 +2,16 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
+#include <algorithm>
+#include <charconv>
+#include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/input.hpp"
+#include "base/json_input.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -23,11 +24,11 @@ nlohmann::json counters_json(const SearchCounters& c) {
   return {{"solutions", c.solutions}, {"orbits", c.orbits}, {"nodes", c.nodes}};
 }
 
-SearchCounters counters_from(const nlohmann::json& j) {
+SearchCounters counters_from(const JsonIn& j) {
   SearchCounters c;
-  c.solutions = j.at("solutions").get<std::uint64_t>();
-  c.orbits = j.at("orbits").get<std::uint64_t>();
-  c.nodes = j.at("nodes").get<std::uint64_t>();
+  c.solutions = j.at("solutions").unsigned_integer();
+  c.orbits = j.at("orbits").unsigned_integer();
+  c.nodes = j.at("nodes").unsigned_integer();
   return c;
 }
 
@@ -42,14 +43,17 @@ std::string bitmap_hex(const std::vector<bool>& bits) {
   return s;
 }
 
-std::vector<bool> bitmap_from(const std::string& s, std::size_t n) {
-  if (s.size() != (n + 3) / 4) throw std::runtime_error("finished bitmap has the wrong length");
+std::vector<bool> bitmap_from(const JsonIn& j, std::uint64_t n) {
+  const std::string s = j.string(kMaxSubproblems / 4 + 1);
+  if (s.size() != (n + 3) / 4) throw j.error(fmt::format("{} hex digits for {} subproblems", s.size(), n));
   std::vector<bool> bits(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < s.size() * 4; ++i) {
     char ch = s[i / 4];
     int v = ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 : -1;
-    if (v < 0) throw std::runtime_error("finished bitmap is not hexadecimal");
-    bits[i] = (v >> (i % 4)) & 1;
+    if (v < 0) throw j.error("not hexadecimal");
+    const bool bit = (v >> (i % 4)) & 1;
+    if (i < n) bits[i] = bit;
+    else if (bit) throw j.error("bits set beyond the last subproblem");
   }
   return bits;
 }
@@ -90,36 +94,60 @@ SearchState decode_checkpoint(std::string_view text, const std::string& origin) 
   auto eol2 = text.find('\n', eol1 + 1);
   if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
   std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));
-  std::size_t bytes = 0;
-  unsigned long long sum = 0;
-  char word1[16] = {}, word2[16] = {};
-  if (std::sscanf(header.c_str(), "%15s %zu %15s %llx", word1, &bytes, word2, &sum) != 4 ||
-      std::string(word1) != "bytes" || std::string(word2) != "fnv1a64")
+  // "bytes <decimal> fnv1a64 <16 hex digits>", exactly.
+  std::uint64_t bytes = 0, sum = 0;
+  auto field = [&](std::string_view& rest, std::string_view word, std::uint64_t& value, int base) {
+    if (!rest.starts_with(word) || rest.size() <= word.size() || rest[word.size()] != ' ') return false;
+    rest.remove_prefix(word.size() + 1);
+    const auto space = std::min(rest.find(' '), rest.size());
+    auto [end, ec] = std::from_chars(rest.data(), rest.data() + space, value, base);
+    if (space == 0 || ec != std::errc() || end != rest.data() + space) return false;
+    rest.remove_prefix(std::min(space + 1, rest.size()));
+    return true;
+  };
+  std::string_view rest = header;
+  if (!field(rest, "bytes", bytes, 10) || !field(rest, "fnv1a64", sum, 16) || !rest.empty() ||
+      header.size() - header.rfind(' ') - 1 != 16)
     throw bad("corrupt header");
   std::string_view body = text.substr(eol2 + 1);
   if (body.size() < bytes) throw bad(fmt::format("truncated ({} of {} bytes)", body.size(), bytes));
   if (body.size() > bytes) throw bad(fmt::format("corrupt ({} bytes after the end)", body.size() - bytes));
   if (fnv1a64(body) != sum) throw bad("corrupt (checksum mismatch)");
   SearchState st;
-  try {
-    nlohmann::json j = nlohmann::json::parse(body);
-    st.fingerprint = j.at("fingerprint").get<std::string>();
-    st.subproblem_count = j.at("subproblems").get<std::uint64_t>();
-    st.subproblem_hash = std::stoull(j.at("subproblem_hash").get<std::string>(), nullptr, 16);
-    st.finished = bitmap_from(j.at("finished").get<std::string>(), st.subproblem_count);
-    st.finished_counts = counters_from(j.at("finished_counts"));
-    for (const auto& f : j.at("in_flight")) {
-      InFlightSubproblem s;
-      s.index = f.at("index").get<std::uint64_t>();
-      for (const auto& d : f.at("path")) s.path.push_back({d.at(0).get<int>(), d.at(1).get<int>()});
-      s.counted = counters_from(f.at("counted"));
-      st.in_flight.push_back(std::move(s));
+  const nlohmann::json doc = parse_json_input(body, fmt::format("checkpoint {}", origin));
+  const JsonIn j(doc, fmt::format("checkpoint {}", origin));
+  st.fingerprint = j.at("fingerprint").string();
+  st.subproblem_count = j.at("subproblems").unsigned_integer(kMaxSubproblems);
+  const JsonIn hash = j.at("subproblem_hash");
+  const std::string hex = hash.string(16);
+  auto [end, ec] = std::from_chars(hex.data(), hex.data() + hex.size(), st.subproblem_hash, 16);
+  if (hex.empty() || ec != std::errc() || end != hex.data() + hex.size()) throw hash.error("not a hexadecimal hash");
+  st.finished = bitmap_from(j.at("finished"), st.subproblem_count);
+  st.finished_counts = counters_from(j.at("finished_counts"));
+  const JsonIn in_flight = j.at("in_flight");
+  const std::size_t n = in_flight.array(0, st.subproblem_count);
+  for (std::size_t k = 0; k < n; ++k) {
+    const JsonIn f = in_flight[k];
+    InFlightSubproblem s;
+    s.index = f.at("index").unsigned_integer();
+    const JsonIn path = f.at("path");
+    const std::size_t len = path.array(0, kMaxDecisionPath);
+    for (std::size_t i = 0; i < len; ++i) {
+      const JsonIn d = path[i];
+      d.array(2, 2);
+      s.path.push_back({int(d[0].integer(0, std::numeric_limits<int>::max())),
+                        int(d[1].integer(0, std::numeric_limits<int>::max()))});
     }
-    st.restarts = j.at("restarts").get<std::uint64_t>();
-    st.restart_nodes = j.at("restart_nodes").get<std::uint64_t>();
-    st.seconds = j.at("seconds").get<double>();
-  } catch (const std::exception& e) {
-    throw bad(fmt::format("corrupt body ({})", e.what()));
+    s.counted = counters_from(f.at("counted"));
+    st.in_flight.push_back(std::move(s));
+  }
+  st.restarts = j.at("restarts").unsigned_integer();
+  st.restart_nodes = j.at("restart_nodes").unsigned_integer();
+  st.seconds = j.at("seconds").number(0);
+  try {
+    check_search_state(st);
+  } catch (const InputError& e) {
+    throw bad(fmt::format("inconsistent: {}", e.what()));
   }
   return st;
 }
@@ -128,13 +156,7 @@ void write_checkpoint(const std::string& path, const SearchState& state) {
   write_file_atomic(path, encode_checkpoint(state));
 }
 
-SearchState read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("checkpoint {}: cannot read: {}", path, std::strerror(errno)));
-  std::stringstream b;
-  b << in.rdbuf();
-  return decode_checkpoint(b.str(), path);
-}
+SearchState read_checkpoint(const std::string& path) { return decode_checkpoint(read_input_file(path, "checkpoint"), path); }
 
 std::string fingerprint_difference(const std::string& here, const std::string& checkpoint) {
   if (here == checkpoint) return {};

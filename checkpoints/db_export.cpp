@@ -20,7 +20,8 @@ void ResultsDb::export_json(std::ostream& out) const {
       Statement s(db_, sql);
       bool first = true;
       while (s.step()) {
-        out << (first ? "\n" : ",\n") << row_json(s).dump();
+        // U+FFFD for bytes that are not UTF-8 (text stored by older versions)
+        out << (first ? "\n" : ",\n") << row_json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         first = false;
       }
       out << "]";

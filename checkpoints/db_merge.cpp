@@ -9,11 +9,13 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <variant>
+#include <set>
 
 #include "checkpoints/db_rows.hpp"
 #include "checkpoints/results_db.hpp"
 #include "base/error.hpp"
+#include "base/input.hpp"
+#include "base/json_input.hpp"
 #include "base/progress.hpp"
 
 namespace tilekit {
@@ -132,38 +134,71 @@ class MergeSink {
   std::map<std::int64_t, std::int64_t> runs_, sets_;
 };
 
-// One input: a Tilekit database opened read-only, or a parsed JSON export.
+// One input: a Tilekit database opened read-only, or a JSON export read and checked whole
+// (every row converted to a record, every reference resolved) before the target is touched.
+struct ExportRows {
+  std::vector<RunRecord> runs;
+  std::vector<TilesetRecord> tilesets;
+  std::vector<ConversionRecord> conversions;
+  std::vector<SolutionRecord> solutions;
+};
 struct Input {
   std::string path;
   std::unique_ptr<ResultsDb> db;
-  nlohmann::json doc;
+  ExportRows rows;
 };
 
+template <class Record, class Convert>
+std::vector<Record> export_section(const JsonIn& doc, const char* key, Convert convert) {
+  const JsonIn section = doc.at(key);
+  const std::size_t n = section.array();
+  std::vector<Record> out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) out.push_back(convert(section[i]));
+  return out;
+}
+
+ExportRows read_export(std::string_view text, const std::string& origin) {
+  const nlohmann::json doc = parse_json_input(text, origin);
+  const JsonIn j(doc, origin);
+  if (!j.has("tilekit_results")) throw j.error("not a Tilekit export (JSON without \"tilekit_results\")");
+  j.at("tilekit_results").integer(1, ResultsDb::kSchemaVersion);
+  ExportRows rows;
+  rows.runs = export_section<RunRecord>(j, "runs", dbrows::run_from_json);
+  rows.tilesets = export_section<TilesetRecord>(j, "tilesets", dbrows::tileset_from_json);
+  rows.conversions = export_section<ConversionRecord>(j, "conversions", dbrows::conversion_from_json);
+  rows.solutions = export_section<SolutionRecord>(j, "solutions", dbrows::solution_from_json);
+  std::set<std::int64_t> set_ids;
+  for (const auto& t : rows.tilesets) set_ids.insert(t.id);
+  for (std::size_t i = 0; i < rows.conversions.size(); ++i)
+    for (std::int64_t ref : {rows.conversions[i].source_set, rows.conversions[i].result_set})
+      if (!set_ids.count(ref))
+        throw InputError(
+            fmt::format("{}: conversions[{}]: refers to tile set {}, which is not in the export", origin, i, ref));
+  return rows;
+}
+
 Input open_input(const std::string& path) {
-  namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such file to merge", path));
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such file to merge", path));
   char first = 0;
   {
     std::ifstream in(path, std::ios::binary);
     in >> std::ws;
     in.get(first);
   }
-  Input input{path, nullptr, nullptr};
+  Input input{path, nullptr, {}};
   if (first == '{') {
-    std::ifstream in(path, std::ios::binary);
-    input.doc = nlohmann::json::parse(in, nullptr, false);
-    if (input.doc.is_discarded() || !input.doc.is_object() || !input.doc.contains("tilekit_results"))
-      throw InputError(fmt::format("{}: not a Tilekit export (JSON without \"tilekit_results\")", path));
-    if (!input.doc["tilekit_results"].is_number_integer() ||
-        input.doc["tilekit_results"].get<int>() > ResultsDb::kSchemaVersion)
-      throw InputError(fmt::format("{}: export of an unknown schema version", path));
-    for (const char* key : {"runs", "tilesets", "conversions", "solutions"})
-      if (!input.doc.contains(key) || !input.doc[key].is_array())
-        throw InputError(fmt::format("{}: export without a \"{}\" array", path, key));
+    input.rows = read_export(read_input_file(path, "JSON export"), path);
     return input;
   }
   input.db = std::make_unique<ResultsDb>(path, DbOpenOptions{.create = false, .read_only = true});
+  Statement dangling(input.db->handle(),
+                     "SELECT id FROM conversions WHERE source_set NOT IN (SELECT id FROM tilesets) OR result_set NOT "
+                     "IN (SELECT id FROM tilesets) LIMIT 1");
+  if (dangling.step())
+    throw InputError(fmt::format("{}: conversion {} refers to a tile set that is not in the database (damaged)", path,
+                                 dangling.int64(0)));
   return input;
 }
 
@@ -184,17 +219,15 @@ void merge_database(const ResultsDb& src, MergeSink& sink) {
 }
 
 void merge_export(const Input& in, MergeSink& sink) {
-  try {
-    for (const auto& r : in.doc["runs"]) sink.run(dbrows::run_from_json(r));
-    for (const auto& t : in.doc["tilesets"]) sink.tileset(dbrows::tileset_from_json(t));
-    for (const auto& c : in.doc["conversions"]) sink.conversion(dbrows::conversion_from_json(c), in.path);
-    for (const auto& s : in.doc["solutions"]) sink.solution(dbrows::solution_from_json(s, in.path));
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: malformed export ({})", in.path, e.what()));
-  }
+  for (const RunRecord& r : in.rows.runs) sink.run(r);
+  for (const TilesetRecord& t : in.rows.tilesets) sink.tileset(t);
+  for (const ConversionRecord& c : in.rows.conversions) sink.conversion(c, in.path);
+  for (const SolutionRecord& s : in.rows.solutions) sink.solution(s);
 }
 
 }  // namespace
+
+void ResultsDb::check_export(std::string_view text, const std::string& origin) { read_export(text, origin); }
 
 void ResultsDb::check_merge_inputs(const std::vector<std::string>& inputs) {
   for (const std::string& p : inputs) open_input(p);
@@ -207,7 +240,7 @@ MergeReport ResultsDb::merge(const std::vector<std::string>& inputs, bool distin
   std::uint64_t total = 0;
   for (const Input& in : opened) {
     if (in.db) total += in.db->stats().solutions;
-    else total += in.doc["solutions"].size();
+    else total += in.rows.solutions.size();
   }
   ProgressReporter reporter(fmt::format("db merge into {}", path_), double(total), progress && total >= 20000);
   reporter.set_detail("solutions read");

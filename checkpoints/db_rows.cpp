@@ -2,11 +2,28 @@
 
 #include <fmt/format.h>
 
+#include <limits>
+
 #include "base/error.hpp"
+#include "base/json_input.hpp"
+#include "base/parallel.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::dbrows {
 
 using sqlitedb::Statement;
+
+namespace {
+// A JSON column as stored; a damaged one (not JSON, or nested beyond the limit) reads as
+// `fallback`, so that one bad row does not hide the others from `db list` or an export.
+nlohmann::json stored_json(const std::string& text, nlohmann::json fallback) {
+  try {
+    return parse_json_input(text, "stored JSON");
+  } catch (const InputError&) {
+    return fallback;
+  }
+}
+}  // namespace
 
 const char* const kInsertSolution =
     "INSERT OR IGNORE INTO solutions(run_id, kind, colors, vertical_colors, rows, cols, torus, cells, method, "
@@ -56,8 +73,7 @@ SolutionRecord read_solution(const Statement& s, bool with_cells) {
   r.canonical_hash = s.text(10);
   r.orbit_size = std::uint64_t(s.int64(11));
   r.validated = s.int64(12) != 0;
-  if (!s.is_null(13)) r.group = nlohmann::json::parse(s.text(13), nullptr, false);
-  if (r.group.is_discarded()) r.group = nullptr;
+  if (!s.is_null(13)) r.group = stored_json(s.text(13), nullptr);
   r.created_at = s.text(14);
   if (with_cells) {
     r.tiling.cells = sqlitedb::cells_from_text(s.text(15));
@@ -77,8 +93,7 @@ RunRecord read_run(const Statement& s) {
   r.id = s.int64(0);
   r.uid = s.text(1);
   r.command = s.text(2);
-  r.params = nlohmann::json::parse(s.text(3), nullptr, false);
-  if (r.params.is_discarded()) r.params = nlohmann::json::object();
+  r.params = stored_json(s.text(3), nlohmann::json::object());
   r.status = s.text(4);
   r.solutions = std::uint64_t(s.int64(5));
   if (!s.is_null(6)) r.orbits = std::uint64_t(s.int64(6));
@@ -123,8 +138,7 @@ ConversionRecord read_conversion(const Statement& s) {
   r.tiles_after = std::uint64_t(s.int64(5));
   r.colours = std::uint32_t(s.int64(6));
   r.soundness = s.text(7);
-  r.details = nlohmann::json::parse(s.text(8), nullptr, false);
-  if (r.details.is_discarded()) r.details = nlohmann::json::object();
+  r.details = stored_json(s.text(8), nlohmann::json::object());
   r.created_at = s.text(9);
   return r;
 }
@@ -196,74 +210,88 @@ nlohmann::json to_json(const ConversionRecord& r) {
           {"created_at", r.created_at}};
 }
 
+// Rows of a JSON export (`db merge OUT export.json`): every field type- and range-checked,
+// every message naming the file and the JSON path (e.g. "x.json: solutions[3].orbit_size: ...").
 namespace {
-template <class T>
-T get_or(const nlohmann::json& j, const char* key, T fallback) {
-  auto it = j.find(key);
-  return it == j.end() || it->is_null() ? fallback : it->get<T>();
-}
+constexpr std::int64_t kMaxId = std::numeric_limits<std::int64_t>::max();
+constexpr std::uint64_t kMaxCount = std::uint64_t(std::numeric_limits<std::int64_t>::max());  // SQLite integers
 }  // namespace
 
-RunRecord run_from_json(const nlohmann::json& j) {
+RunRecord run_from_json(const JsonIn& j) {
   RunRecord r;
-  r.id = get_or<std::int64_t>(j, "id", 0);
-  r.uid = j.at("uid").get<std::string>();
-  r.command = j.at("command").get<std::string>();
-  r.params = j.value("params", nlohmann::json::object());
-  r.status = get_or<std::string>(j, "status", "running");
-  r.solutions = get_or<std::uint64_t>(j, "solutions", 0);
-  if (j.contains("orbits") && !j["orbits"].is_null()) r.orbits = j["orbits"].get<std::uint64_t>();
-  r.nodes = get_or<std::uint64_t>(j, "nodes", 0);
-  r.seconds = get_or<double>(j, "seconds", 0);
-  r.threads = get_or<int>(j, "threads", 1);
-  r.host = get_or<std::string>(j, "host", "");
-  r.version = get_or<std::string>(j, "version", "");
-  r.started_at = get_or<std::string>(j, "started_at", "");
-  r.finished_at = get_or<std::string>(j, "finished_at", "");
+  r.id = j.integer_or("id", 0, 0, kMaxId);
+  r.uid = j.at("uid").string(256);
+  if (r.uid.empty()) throw j.at("uid").error("empty run uid");
+  r.command = j.at("command").string();
+  if (auto p = j.find("params")) {
+    p->object();
+    r.params = p->raw();
+  } else {
+    r.params = nlohmann::json::object();
+  }
+  r.status = j.string_or("status", "running");
+  r.solutions = j.unsigned_or("solutions", 0, kMaxCount);
+  if (auto o = j.find("orbits")) r.orbits = o->unsigned_integer(kMaxCount);
+  r.nodes = j.unsigned_or("nodes", 0, kMaxCount);
+  r.seconds = j.number_or("seconds", 0, 0, 1e15);
+  r.threads = int(j.integer_or("threads", 1, 0, kMaxThreads));
+  r.host = j.string_or("host", "");
+  r.version = j.string_or("version", "");
+  r.started_at = j.string_or("started_at", "");
+  r.finished_at = j.string_or("finished_at", "");
   return r;
 }
 
-SolutionRecord solution_from_json(const nlohmann::json& j, const std::string& origin) {
+SolutionRecord solution_from_json(const JsonIn& j) {
   SolutionRecord r;
-  r.tiling = tiling_from_json(j, origin);
-  r.id = get_or<std::int64_t>(j, "id", 0);
-  r.run_id = get_or<std::int64_t>(j, "run_id", 0);
-  r.method = get_or<std::string>(j, "method", "");
-  r.solution_hash = get_or<std::string>(j, "solution_hash", "");
-  r.canonical_hash = get_or<std::string>(j, "canonical_hash", "");
-  r.orbit_size = get_or<std::uint64_t>(j, "orbit_size", 0);
-  r.validated = get_or<bool>(j, "validated", false);
-  r.group = j.value("group", nlohmann::json(nullptr));
-  r.created_at = get_or<std::string>(j, "created_at", "");
+  r.tiling = tiling_from_json(j);
+  r.id = j.integer_or("id", 0, 0, kMaxId);
+  r.run_id = j.integer_or("run_id", 0, 0, kMaxId);
+  r.method = j.string_or("method", "");
+  r.solution_hash = j.string_or("solution_hash", "");
+  r.canonical_hash = j.string_or("canonical_hash", "");
+  r.orbit_size = j.unsigned_or("orbit_size", 0, kMaxCount);
+  r.validated = j.boolean_or("validated", false);
+  if (auto g = j.find("group")) {
+    g->object();
+    r.group = g->raw();
+  }
+  r.created_at = j.string_or("created_at", "");
   return r;
 }
 
-TilesetRecord tileset_from_json(const nlohmann::json& j) {
+TilesetRecord tileset_from_json(const JsonIn& j) {
   TilesetRecord r;
-  r.id = get_or<std::int64_t>(j, "id", 0);
-  r.name = j.at("name").get<std::string>();
-  r.kind = j.at("kind").get<std::string>();
-  r.tiles = get_or<std::uint64_t>(j, "tiles", 0);
-  r.colours = get_or<std::uint32_t>(j, "colors", 0);
-  r.content_hash = j.at("content_hash").get<std::string>();
-  r.source = get_or<std::string>(j, "source", "");
-  r.text = get_or<std::string>(j, "text", "");
-  r.created_at = get_or<std::string>(j, "created_at", "");
+  r.id = j.integer_or("id", 0, 0, kMaxId);
+  r.name = j.at("name").string();
+  r.kind = j.at("kind").string();
+  if (r.kind != "wang" && r.kind != "corner") throw j.at("kind").error("expected \"wang\" or \"corner\"");
+  r.tiles = j.unsigned_or("tiles", 0, kMaxTiles);
+  r.colours = std::uint32_t(j.integer_or("colors", 0, 0, kMaxTileSetColour + 1));
+  r.content_hash = j.at("content_hash").string();
+  r.source = j.string_or("source", "");
+  r.text = j.string_or("text", "");
+  r.created_at = j.string_or("created_at", "");
   return r;
 }
 
-ConversionRecord conversion_from_json(const nlohmann::json& j) {
+ConversionRecord conversion_from_json(const JsonIn& j) {
   ConversionRecord r;
-  r.id = get_or<std::int64_t>(j, "id", 0);
-  r.source_set = j.at("source_set").get<std::int64_t>();
-  r.method = j.at("method").get<std::string>();
-  r.result_set = j.at("result_set").get<std::int64_t>();
-  r.tiles_before = get_or<std::uint64_t>(j, "tiles_before", 0);
-  r.tiles_after = get_or<std::uint64_t>(j, "tiles_after", 0);
-  r.colours = get_or<std::uint32_t>(j, "colors", 0);
-  r.soundness = get_or<std::string>(j, "soundness", "unknown");
-  r.details = j.value("details", nlohmann::json::object());
-  r.created_at = get_or<std::string>(j, "created_at", "");
+  r.id = j.integer_or("id", 0, 0, kMaxId);
+  r.source_set = j.at("source_set").integer(0, kMaxId);
+  r.method = j.at("method").string();
+  r.result_set = j.at("result_set").integer(0, kMaxId);
+  r.tiles_before = j.unsigned_or("tiles_before", 0, kMaxCount);
+  r.tiles_after = j.unsigned_or("tiles_after", 0, kMaxCount);
+  r.colours = std::uint32_t(j.integer_or("colors", 0, 0, std::numeric_limits<std::uint32_t>::max()));
+  r.soundness = j.string_or("soundness", "unknown");
+  if (auto d = j.find("details")) {
+    d->object();
+    r.details = d->raw();
+  } else {
+    r.details = nlohmann::json::object();
+  }
+  r.created_at = j.string_or("created_at", "");
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "base/json_input.hpp"
 #include "checkpoints/db_sqlite.hpp"
 #include "checkpoints/results_db.hpp"
 
@@ -33,9 +34,10 @@ nlohmann::json to_json(const RunRecord& r);
 nlohmann::json to_json(const SolutionRecord& r, bool with_cells);
 nlohmann::json to_json(const TilesetRecord& r);
 nlohmann::json to_json(const ConversionRecord& r);
-RunRecord run_from_json(const nlohmann::json& j);
-SolutionRecord solution_from_json(const nlohmann::json& j, const std::string& origin);
-TilesetRecord tileset_from_json(const nlohmann::json& j);
-ConversionRecord conversion_from_json(const nlohmann::json& j);
+// Each throws InputError naming the file and the JSON path of a bad field.
+RunRecord run_from_json(const JsonIn& j);
+SolutionRecord solution_from_json(const JsonIn& j);
+TilesetRecord tileset_from_json(const JsonIn& j);
+ConversionRecord conversion_from_json(const JsonIn& j);
 
 }  // namespace tilekit::dbrows

@@ -14,10 +14,15 @@ void fail(sqlite3* db, int rc, std::string_view what) {
   std::string msg = fmt::format("{}{}{}: {}", file ? file : "", file ? ": " : "", what,
                                 db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
   const int primary = rc & 0xff;
+  // Problems of the file or its surroundings are the user's to fix (exit 2), not bugs.
   if (primary == SQLITE_CORRUPT || primary == SQLITE_NOTADB)
     throw InputError(msg + " (the results database is corrupt)");
   if (primary == SQLITE_BUSY || primary == SQLITE_LOCKED)
-    throw std::runtime_error(msg + " (another process held the database longer than the busy timeout)");
+    throw InputError(msg + " (another process held the database longer than the busy timeout)");
+  if (primary == SQLITE_READONLY || primary == SQLITE_PERM || primary == SQLITE_CANTOPEN)
+    throw InputError(msg + " (the database or its directory cannot be written; nothing was changed)");
+  if (primary == SQLITE_FULL) throw InputError(msg + " (the disk is full; the transaction was rolled back)");
+  if (primary == SQLITE_IOERR) throw InputError(msg + " (an I/O error; the transaction was rolled back)");
   throw std::runtime_error(msg);
 }
 

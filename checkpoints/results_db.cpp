@@ -38,6 +38,36 @@ NotOurs not_ours(const std::string& path, const std::string& why) {
   return NotOurs(fmt::format("{}: not a usable Tilekit results database: {}; the file was left untouched", path, why));
 }
 
+// "file:PATH?immutable=1" with the URI's reserved characters escaped (sqlite.org/uri.html).
+std::string immutable_uri(const std::string& path) {
+  std::string uri = "file:";
+  for (char c : path) {
+    if (c == '%' || c == '?' || c == '#') uri += fmt::format("%{:02X}", static_cast<unsigned char>(c));
+    else uri += c;
+  }
+  return uri + "?immutable=1";
+}
+
+// The -wal and -shm files beside a database: which existed before we looked, and, when the
+// file is refused, removal of those the inspection created (the connection is closed first:
+// this object outlives it).
+struct SideFiles {
+  std::string wal, shm;
+  bool wal_existed, shm_existed, refused = false;
+  explicit SideFiles(const std::string& path)
+      : wal(path + "-wal"), shm(path + "-shm"), wal_existed(exists(wal)), shm_existed(exists(shm)) {}
+  ~SideFiles() {
+    if (!refused) return;
+    std::error_code ec;
+    if (!wal_existed) std::filesystem::remove(wal, ec);
+    if (!shm_existed) std::filesystem::remove(shm, ec);
+  }
+  static bool exists(const std::string& p) {
+    std::error_code ec;
+    return std::filesystem::exists(p, ec);
+  }
+};
+
 // Read-only inspection of an existing file. Returns Fresh for an empty file (0 bytes, or an
 // SQLite file without tables and without an application id: e.g. one a concurrent process
 // is creating right now), Current/Older for a Tilekit database; throws InputError otherwise.
@@ -49,16 +79,31 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
   const auto size = fs::file_size(path, ec);
   if (ec) throw not_ours(path, "cannot read its size");
   if (size == 0) return FileState::Fresh;
-  std::array<char, 16> header{};
+  // The 100-byte database header (sqlite.org/fileformat.html, sec. 1.3).
+  std::array<unsigned char, 100> header{};
   {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw not_ours(path, "cannot open it for reading");
-    in.read(header.data(), header.size());
-    if (in.gcount() != std::streamsize(header.size()) || std::memcmp(header.data(), "SQLite format 3\0", 16) != 0)
+    in.read(reinterpret_cast<char*>(header.data()), header.size());
+    if (in.gcount() < 16 || std::memcmp(header.data(), "SQLite format 3\0", 16) != 0)
       throw not_ours(path, "not an SQLite file (corrupt or foreign)");
+    if (in.gcount() != std::streamsize(header.size())) throw not_ours(path, "its SQLite header is truncated (damaged)");
   }
+  // Bytes 18 and 19: file format write/read versions, 1 (rollback journal) or 2 (WAL). SQLite
+  // opens a file with other values read-only or not at all; here it is damage.
+  for (int b : {18, 19})
+    if (header[std::size_t(b)] != 1 && header[std::size_t(b)] != 2)
+      throw not_ours(path, fmt::format("its SQLite header is damaged (byte {} is {}; SQLite writes 1 or 2)", b,
+                                       int(header[std::size_t(b)])));
+  // A WAL database (bytes 18, 19 = 2) without a -wal file is complete in the main file: inspect
+  // it as immutable, which creates no -wal/-shm files beside a file we may refuse. Otherwise (a
+  // rollback-journal file, which a reader never adds files to; or a writer is active, or one
+  // crashed) open it normally, and remove on refusal the side files this created.
+  SideFiles side(path);
+  const bool immutable = header[18] == 2 && header[19] == 2 && !side.wal_existed;
   sqlite3* db = nullptr;
-  int rc = sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+  int rc = immutable ? sqlite3_open_v2(immutable_uri(path).c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr)
+                     : sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
   struct Closer {
     sqlite3* d;
     ~Closer() { sqlite3_close(d); }
@@ -92,10 +137,13 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
     }
     return version == ResultsDb::kSchemaVersion ? FileState::Current : FileState::Older;
   } catch (const NotOurs&) {
+    side.refused = true;
     throw;
   } catch (const InputError& e) {  // SQLITE_CORRUPT / SQLITE_NOTADB while reading
+    side.refused = true;
     throw not_ours(path, fmt::format("corrupt ({})", e.what()));
   } catch (const std::runtime_error& e) {
+    side.refused = true;
     throw not_ours(path, fmt::format("unreadable ({})", e.what()));
   }
 }
@@ -252,6 +300,12 @@ bool ResultsDb::add_solution(const SolutionRecord& s) { return add_solutions({s}
 std::size_t ResultsDb::add_solutions(const std::vector<SolutionRecord>& batch) {
   if (batch.empty()) return 0;
   Transaction tx(db_);
+  const std::size_t added = insert_solutions(batch);
+  tx.commit();
+  return added;
+}
+
+std::size_t ResultsDb::insert_solutions(const std::vector<SolutionRecord>& batch) {
   Statement ins(db_, dbrows::kInsertSolution);
   std::size_t added = 0;
   for (const SolutionRecord& s : batch) {
@@ -259,6 +313,16 @@ std::size_t ResultsDb::add_solutions(const std::vector<SolutionRecord>& batch) {
     ins.run();
     added += std::size_t(sqlite3_changes(db_));
   }
+  return added;
+}
+
+std::size_t ResultsDb::add_run_with_solutions(RunRecord& run, std::vector<SolutionRecord>& batch) {
+  Transaction tx(db_);
+  run.id = begin_run(run);
+  for (SolutionRecord& s : batch) s.run_id = run.id;
+  const std::size_t added = insert_solutions(batch);
+  run.solutions = added;
+  finish_run(run);
   tx.commit();
   return added;
 }

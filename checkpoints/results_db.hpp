@@ -16,6 +16,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tilesets/tile.hpp"
@@ -124,6 +125,9 @@ class ResultsDb {
   bool add_solution(const SolutionRecord& s);
   // Many at once in one transaction; returns how many were new.
   std::size_t add_solutions(const std::vector<SolutionRecord>& batch);
+  // A whole finished run in one transaction: the run row (run.id is set), its solutions (their
+  // run_id is set) and its final counts; a kill leaves all of it or none. Returns the number added.
+  std::size_t add_run_with_solutions(RunRecord& run, std::vector<SolutionRecord>& batch);
   // Any stored, validated solution for this kind/colours/shape (e.g. a packing for the atlas).
   std::optional<SolutionRecord> find_solution(TileKind kind, std::uint32_t colours, int rows, int cols);
 
@@ -164,6 +168,9 @@ class ResultsDb {
   // The checks merge() makes on its inputs, without a target (so a command can refuse bad
   // inputs before it creates the target file).
   static void check_merge_inputs(const std::vector<std::string>& inputs);
+  // The checks of one JSON export's text (every row converted and checked), as merge() makes
+  // them; for the fuzz harness. Throws InputError naming `origin` and the JSON path.
+  static void check_export(std::string_view text, const std::string& origin);
 
   const std::string& path() const { return path_; }
   sqlite3* handle() const { return db_; }
@@ -171,6 +178,7 @@ class ResultsDb {
 
  private:
   void open_connection(bool read_only, int busy_timeout_ms);
+  std::size_t insert_solutions(const std::vector<SolutionRecord>& batch);  // inside a transaction
   void migrate();
   std::string path_;
   sqlite3* db_ = nullptr;

@@ -3,7 +3,9 @@
 // --db they use the per-user default, created on first use.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "base/atomic_file.hpp"
@@ -222,10 +224,22 @@ void add_merge(CLI::App& db, Context& ctx) {
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] {
     ResultsDb::check_merge_inputs(inputs);  // before the target is created
-    ResultsDb db(out);
-    MergeReport r = db.merge(inputs, distinct, !quiet);
-    DbStats s = db.stats();
-    nlohmann::json j = {{"db", db.path()},
+    const bool existed = std::filesystem::exists(out);
+    std::optional<ResultsDb> db;
+    MergeReport r;
+    try {
+      db.emplace(out);
+      r = db->merge(inputs, distinct, !quiet);  // one transaction: all or nothing
+    } catch (...) {
+      db.reset();
+      std::error_code ec;
+      if (!existed)  // a refused merge leaves no new OUT behind
+        for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(out + suffix, ec);
+      throw;
+    }
+    const ResultsDb& target = *db;
+    DbStats s = target.stats();
+    nlohmann::json j = {{"db", target.path()},
                         {"inputs", inputs},
                         {"added", {{"runs", r.runs}, {"solutions", r.solutions}, {"tilesets", r.tilesets},
                                    {"conversions", r.conversions}}},
@@ -234,7 +248,7 @@ void add_merge(CLI::App& db, Context& ctx) {
     emit(ctx, j, [&] {
       fmt::print("merged {} input(s) into {}: {} new solutions (of {} read), {} new runs, {} new tile sets, {} new "
                  "conversions; now {} solutions\n",
-                 inputs.size(), db.path(), r.solutions, r.solutions_seen, r.runs, r.tilesets, r.conversions,
+                 inputs.size(), target.path(), r.solutions, r.solutions_seen, r.runs, r.tilesets, r.conversions,
                  s.solutions);
     });
   });
@@ -266,12 +280,8 @@ void add_add(CLI::App& db, Context& ctx) {
     RunRecord run;
     run.command = "db add";
     run.params = {{"files", files}, {"method", method}};
-    run.id = db.begin_run(run);
-    for (auto& s : batch) s.run_id = run.id;
-    const std::size_t added = db.add_solutions(batch);
     run.status = "complete";
-    run.solutions = added;
-    db.finish_run(run);
+    const std::size_t added = db.add_run_with_solutions(run, batch);
     nlohmann::json hashes = nlohmann::json::array();
     for (const auto& s : batch) hashes.push_back(solution_hash(s.tiling));
     emit(ctx, {{"db", db.path()}, {"files", files.size()}, {"added", added}, {"solution_hashes", hashes}}, [&] {

@@ -2,12 +2,15 @@
 // construction or database lookup, with checkpoints, shards and signals for cluster runs.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
 #include <thread>
 
 #include "base/atomic_file.hpp"
+#include "base/parallel.hpp"
+#include "base/parse.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "checkpoints/results_db.hpp"
 #include "cli/command.hpp"
@@ -45,11 +48,8 @@ SearchMode parse_mode(const std::string& m) {
 }
 
 void parse_shard(const std::string& s, SearchOptions& o) {
-  int i = 0, n = 0;
-  char slash = 0, extra = 0;
-  if (std::sscanf(s.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || i < 0 || i >= n)
-    throw InputError(fmt::format("--shard must be I/N with 0 <= I < N, got '{}'", s));
-  o.shard_index = i, o.shard_count = n;
+  const ShardSpec shard = tilekit::parse_shard(s);
+  o.shard_index = shard.index, o.shard_count = shard.count;
 }
 
 TilingProblem make_problem(const PackArgs& a) {
@@ -59,9 +59,12 @@ TilingProblem make_problem(const PackArgs& a) {
     p.torus = true;
     p.packing = true;
     if (!a.size.empty()) {
-      char x = 0, extra = 0;
-      if (std::sscanf(a.size.c_str(), "%d%c%d%c", &p.rows, &x, &p.cols, &extra) != 3 || (x != 'x' && x != 'X'))
-        throw InputError(fmt::format("--size must be ROWSxCOLS, got '{}'", a.size));
+      // A packing holds every tile once: rows * cols must be the set's size.
+      const Dimensions d = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "--size ROWSxCOLS");
+      p.rows = int(d.first), p.cols = int(d.second);
+      if (std::uint64_t(d.first * d.second) != p.set.size())
+        throw InputError(fmt::format("--size {}: a packing of the {} tiles of {} needs rows*cols = {}, not {}", a.size,
+                                     p.set.size(), p.set.name(), p.set.size(), d.first * d.second));
     } else {
       int side = 1;
       while (std::size_t(side + 1) * std::size_t(side + 1) <= p.set.size()) ++side;
@@ -74,8 +77,7 @@ TilingProblem make_problem(const PackArgs& a) {
   if (a.kind.empty()) throw InputError("pack needs --kind corner|wang and --colors C (or --set SET)");
   if (a.kind != "corner" && a.kind != "wang")
     throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
-  check_colour_count(a.colours, "--colors");
-  return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
+  return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours);
 }
 
 std::string grid_text(const Tiling& t) {
@@ -166,7 +168,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
   if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
   if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
-  o.threads = a.threads;
+  o.threads = checked_thread_count(a.threads);
   o.seed = a.seed;
   o.time_limit = a.time_limit;
   o.formulation = a.formulation;
@@ -198,7 +200,12 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                              complete_set_problem && a.formulation == "auto" && a.ordering == "auto" &&
                              o.checkpoint_path.empty() && o.resume_path.empty() && o.shard_count == 1;
   o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
-  {  // bad options are exit 2 before the database is touched
+  {  // bad options, and searches that cannot fit in memory, are exit 2 before the database is touched
+    const std::vector<std::uint32_t> constructible =
+        a.set.empty() ? constructible_colours(problem.set.kind(), colours) : std::vector<std::uint32_t>{};
+    const bool may_construct = a.method != "search" && o.mode == SearchMode::First && !imposed &&
+                               std::find(constructible.begin(), constructible.end(), colours) != constructible.end();
+    if (a.method != "construct" && !may_construct) check_searchable(problem);
     SearchOptions check = o;
     check.checkpoint_path.clear(), check.resume_path.clear();
     search_fingerprint(problem, check);

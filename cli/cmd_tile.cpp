@@ -5,11 +5,11 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <regex>
 #include <set>
 
 #include "base/atomic_file.hpp"
 #include "atlas/render.hpp"
+#include "base/parse.hpp"
 #include "cli/command.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
@@ -28,12 +28,9 @@ struct TileArgs {
 };
 
 std::pair<int, int> parse_size(const std::string& s) {
-  static const std::regex re(R"(^(\d{1,9})x(\d{1,9})$)");
-  std::smatch m;
-  if (!std::regex_match(s, m, re)) throw InputError(fmt::format("--size must be WxH (e.g. 16x16), got '{}'", s));
-  const std::int64_t w = std::stoll(m[1]), h = std::stoll(m[2]);
-  check_tiling_size(h, w);
-  return {int(w), int(h)};
+  const Dimensions d = parse_dimensions(s, 65536, std::int64_t(1) << 24, "--size WxH");
+  check_tiling_size(d.second, d.first);
+  return {int(d.first), int(d.second)};
 }
 
 void check_out_path(const std::string& out) {

@@ -8,7 +8,9 @@ namespace tilekit::cli {
 
 void emit(const Context& ctx, const nlohmann::json& j, const std::function<void()>& human) {
   if (ctx.json) {
-    std::cout << j.dump() << std::endl;
+    // Stored text from older databases may hold bytes that are not UTF-8: print U+FFFD for
+    // them rather than fail (input is UTF-8 only, base/input.hpp).
+    std::cout << j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;
   } else {
     human();
     std::cout.flush();

@@ -5,11 +5,21 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "cli/command.hpp"
+#include <string_view>
+
 #include "base/error.hpp"
+#include "base/signals.hpp"
+#include "cli/command.hpp"
 
 int main(int argc, char** argv) {
   using namespace tilekit;
+  // `pack` checkpoints on SIGTERM/SIGINT/SIGUSR1 and exits 3: catch them before anything else,
+  // so that no signal finds the default handler, however early or late it comes.
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-') {
+      if (std::string_view(argv[i]) == "pack") SignalCatcher::catch_for_process();
+      break;
+    }
   cli::Context ctx;
   CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
   app.set_version_flag("--version", TILEKIT_VERSION);

@@ -1,5 +1,7 @@
 #include "solver/cell_model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <numeric>
@@ -57,6 +59,11 @@ CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering or
       l[kE] = int(c[k].ne) * C + int(c[k].se);
     }
   }
+  // The compatibility masks: one bit per tile for every (direction, edge label).
+  const std::uint64_t mask_words = 4 * std::uint64_t(t->labels) * std::uint64_t(words_);
+  if (mask_words > kMaxModelTable)
+    throw InputError(fmt::format("the cell model needs {} mask words for {} tiles and {} edge labels (limit {})",
+                                 mask_words, tiles_, t->labels, kMaxModelTable));
   t->nb.assign(std::size_t(cells_) * 4, -1);
   for (int r = 0; r < p.rows; ++r)
     for (int c = 0; c < p.cols; ++c) {
@@ -95,14 +102,15 @@ void CellModel::set_value_seed(std::uint64_t seed) {
 void CellModel::rebuild_masks() {
   const Tables& t = *t_;
   label_.resize(std::size_t(tiles_) * 4);
-  masks_.assign(std::size_t(4 * t.labels * words_), 0);
+  masks_.assign(4 * std::size_t(t.labels) * std::size_t(words_), 0);
   avail_.assign(std::size_t(words_), 0);
   for (int v = 0; v < tiles_; ++v) {
     int k = perm_[std::size_t(v)];
     for (int d = 0; d < 4; ++d) {
       int l = t.tile_label[std::size_t(k) * 4 + std::size_t(d)];
       label_[std::size_t(v) * 4 + std::size_t(d)] = l;
-      masks_[std::size_t((d * t.labels + l) * words_ + v / 64)] |= std::uint64_t(1) << (v % 64);
+      masks_[(std::size_t(d) * std::size_t(t.labels) + std::size_t(l)) * std::size_t(words_) + std::size_t(v / 64)] |=
+          std::uint64_t(1) << (v % 64);
     }
     if (t.self_ok[std::size_t(k)]) avail_[std::size_t(v / 64)] |= std::uint64_t(1) << (v % 64);
   }

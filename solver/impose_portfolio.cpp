@@ -19,6 +19,10 @@
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/input.hpp"
+#include "base/json_input.hpp"
+#include "base/parallel.hpp"
+#include "base/parse.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -112,25 +116,28 @@ std::string PortfolioStats::default_path() {
 
 PortfolioStats PortfolioStats::load(const std::string& path) {
   PortfolioStats s;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return s;
-  std::stringstream buf;
-  buf << in.rdbuf();
-  try {
-    nlohmann::json j = nlohmann::json::parse(buf.str());
-    if (!j.is_object() || j.value("version", 0) != 1 || !j.contains("groups") || !j["groups"].is_object())
-      throw InputError("not a Tilekit portfolio statistics file (version 1)");
-    for (const auto& [key, g] : j["groups"].items()) {
-      if (!g.is_object() || !g["tries"].is_number_unsigned() || !g["successes"].is_number_unsigned() ||
-          !g["success_seconds"].is_array())
-        throw InputError(fmt::format("entry '{}' is malformed", key));
-    }
-    s.groups_ = j["groups"];
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: corrupt portfolio statistics ({}); delete the file to start afresh", path, e.what()));
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}; delete the file to start afresh", path, e.what()));
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return s;
+  const std::string origin = path + " (portfolio statistics; delete the file to start afresh)";
+  const nlohmann::json doc = parse_json_input(read_input_file(path, "portfolio statistics file"), origin);
+  const JsonIn j(doc, origin);
+  if (j.at("version").integer() != 1) throw j.at("version").error("this build reads version 1");
+  const JsonIn groups = j.at("groups");
+  groups.object();
+  for (const auto& [key, value] : groups.raw().items()) {
+    const JsonIn g = groups.at(key);
+    // key: KIND/C/SPEC (report() splits it)
+    const auto a = key.find('/'), b = a == std::string::npos ? a : key.find('/', a + 1);
+    if (b == std::string::npos || (key.substr(0, a) != "wang" && key.substr(0, a) != "corner"))
+      throw g.error("the key is not KIND/COLOURS/GROUP");
+    parse_integer(std::string_view(key).substr(a + 1, b - a - 1), 1, 255, g.path() + " colours");
+    const std::uint64_t tries = g.at("tries").unsigned_integer();
+    g.at("successes").unsigned_integer(tries);  // never more successes than tries
+    const JsonIn seconds = g.at("success_seconds");
+    const std::size_t n = seconds.array(0, 64);
+    for (std::size_t i = 0; i < n; ++i) seconds[i].number(0);
   }
+  s.groups_ = groups.raw();
   return s;
 }
 
@@ -226,7 +233,7 @@ void PortfolioStats::merge(const PortfolioStats& other) {
 
 PortfolioResult run_portfolio(TileKind kind, std::uint32_t colours, const SearchOptions& options,
                               const PortfolioOptions& portfolio) {
-  if (options.threads < 1) throw InputError("--threads must be at least 1");
+  checked_thread_count(options.threads);
   const auto t0 = Clock::now();
   const TilingProblem problem = complete_packing_problem(kind, colours);
   const std::string stats_path = portfolio.stats_path.empty() ? PortfolioStats::default_path() : portfolio.stats_path;

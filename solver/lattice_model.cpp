@@ -1,7 +1,11 @@
 #include "solver/lattice_model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
+
+#include "base/error.hpp"
 #include <random>
 
 namespace tilekit {
@@ -55,6 +59,11 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
   t->max_radix = std::max(ch, cv);
   std::size_t total = 1;
   for (int d : t->digit_radix) total *= std::size_t(d);
+  // One entry per tile index: (C_h C_v)^2 or C^4; the limit is C = 90.
+  if (total > kMaxModelTable)
+    throw InputError(fmt::format("the {} model needs a table of {} entries for these colours (limit {}); use "
+                                 "--formulation cell",
+                                 wang ? "edges" : "pegs", total, kMaxModelTable));
   t->allowed.assign(total, -1);
   for (std::size_t k = 0; k < set.size(); ++k) t->allowed[set.index_of(k)] = int(k);
   // var -> cells (CSR)

@@ -28,6 +28,11 @@
 
 namespace tilekit {
 
+// The largest table a model builds (mask words, tile-index tables): 2^26 entries, at most 512 MiB.
+// A larger one means colours or tiles far beyond anything searchable; it is refused up front
+// (InputError) instead of ending in std::bad_alloc.
+inline constexpr std::uint64_t kMaxModelTable = std::uint64_t(1) << 26;
+
 template <class M>
 concept SearchModel = std::copy_constructible<M> && requires(M m, const M cm, std::vector<int>& v, int x) {
   { m.branch(v) } -> std::convertible_to<int>;

@@ -213,16 +213,17 @@ class ParallelSearch {
     finished_.assign(subs_.size(), false);
     std::vector<Job> jobs;
     if (const SearchState* r = cfg_.resume) {
-      if (r->subproblem_count != subs_.size() || r->subproblem_hash != hash || r->finished.size() != subs_.size())
+      if (r->subproblem_count != subs_.size() || r->subproblem_hash != hash)
         throw InputError(
             "checkpoint does not match this search: its subproblems differ (different problem or options)");
+      try {  // a state made in memory gets the same structural checks as one read from a file
+        check_search_state(*r, subs_.size(), cfg_.shard_index, cfg_.shard_count);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("checkpoint is inconsistent: {}", e.what()));
+      }
       finished_ = r->finished;
       finished_counts_ = r->finished_counts;
-      for (const InFlightSubproblem& f : r->in_flight) {
-        if (f.index >= subs_.size() || finished_[f.index] || !mine(f.index))
-          throw InputError("checkpoint is inconsistent: an in-flight subproblem is finished or not in this shard");
-        jobs.push_back({f.index, f.path, f.counted});
-      }
+      for (const InFlightSubproblem& f : r->in_flight) jobs.push_back({f.index, f.path, f.counted});
     }
     for (std::uint64_t i = 0; i < subs_.size(); ++i) {
       if (!mine(i)) continue;
@@ -292,6 +293,11 @@ class ParallelSearch {
   // ---- first mode with restarts ----
   void run_restarts(ParallelOutcome& out) {
     if (const SearchState* r = cfg_.resume) {
+      try {
+        check_search_state(*r);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("checkpoint is inconsistent: {}", e.what()));
+      }
       next_restart_ = r->restarts;
       restart_nodes_ = r->restart_nodes;
     }
@@ -312,7 +318,7 @@ class ParallelSearch {
       // restart, and every restart of a seeded run, shuffles it.
       m.set_value_seed(cfg_.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
       Control ctl{*this, slot, 0, epoch_.load()};
-      ctl.node_limit = luby(r + 1) * cfg_.restart_base;
+      ctl.node_limit = luby_limit(r + 1, cfg_.restart_base);
       SearchCounters c;
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
       restart_nodes_ += c.nodes;

@@ -50,4 +50,24 @@ struct SearchState {
   double seconds = 0;               // wall time spent by earlier runs of this search
 };
 
+// Bounds of a resumable state (README, "Bad input"): the engine splits a search into about a
+// thousand subproblems (2^24 is far beyond any split), a decision path is at most one decision
+// per variable (2^24 variables is far beyond any model that fits in memory), and 2^40 restarts
+// of at least one node each would take years; a larger count would only make the Luby
+// schedule overflow.
+inline constexpr std::uint64_t kMaxSubproblems = std::uint64_t(1) << 24;
+inline constexpr std::size_t kMaxDecisionPath = std::size_t(1) << 24;
+inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
+
+// Structural validation of a state read from a checkpoint, as data: the finished bitmap has
+// one bit per subproblem; every in-flight subproblem is in range, unfinished and listed once;
+// counters are consistent (orbits <= solutions; nothing counted for finished subproblems when
+// none finished; restart counters only in a restart search); restarts and seconds bounded.
+// With `subproblems` > 0 it also checks the state against the search resuming it (its
+// subproblem count, and that every in-flight subproblem belongs to shard I of N). A
+// checksum only proves the file is as written; this proves it can be resumed to the
+// uninterrupted result. Throws InputError naming the first problem found.
+void check_search_state(const SearchState& state, std::uint64_t subproblems = 0, int shard_index = 0,
+                        int shard_count = 1);
+
 }  // namespace tilekit

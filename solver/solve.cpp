@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
@@ -13,18 +15,36 @@
 #include "solver/symmetry.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/parallel.hpp"
+#include "base/parse.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
 
-TilingProblem complete_packing_problem(TileKind kind, std::uint32_t colours) {
-  check_colour_count(colours, "colours");
+TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours) {
+  if (colours < 1 || colours > std::int64_t(kMaxPackingColours))
+    throw InputError(fmt::format("--colors must be between 1 and {} for a packing of the complete set, got {}",
+                                 kMaxPackingColours, colours));
   TilingProblem p;
-  p.set = kind == TileKind::Wang ? complete_wang_set(colours, colours) : complete_corner_set(colours);
-  p.rows = p.cols = int(colours * colours);
+  const auto c = std::uint32_t(colours);
+  p.set = kind == TileKind::Wang ? complete_wang_set(c, c) : complete_corner_set(c);
+  p.rows = p.cols = int(c * c);
   p.torus = true;
   p.packing = true;
   return p;
+}
+
+void check_searchable(const TilingProblem& p) {
+  const TileSet& set = p.set;
+  const std::uint64_t labels = set.kind() == TileKind::Corner
+                                   ? std::uint64_t(set.horizontal_radix()) * set.horizontal_radix()
+                                   : std::max(set.horizontal_radix(), set.vertical_radix());
+  const std::uint64_t words = 4 * labels * ((set.size() + 63) / 64);
+  if (words > kMaxModelTable)
+    throw InputError(fmt::format("{} is too large to search: {} tiles over {} edge labels need {} mask words (limit "
+                                 "{}); a construction (--method construct) or fewer colours",
+                                 set.name().empty() ? std::string("the tile set") : set.name(), set.size(), labels,
+                                 words, kMaxModelTable));
 }
 
 namespace {
@@ -50,9 +70,12 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (p.packing && std::size_t(p.rows) * std::size_t(p.cols) != set.size())
     throw InputError(
         fmt::format("a packing of {} tiles needs rows*cols == {}, got {}x{}", set.size(), set.size(), p.rows, p.cols));
-  if (o.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", o.threads));
-  if (o.shard_count < 1 || o.shard_index < 0 || o.shard_index >= o.shard_count)
-    throw InputError(fmt::format("shard must be I/N with 0 <= I < N, got {}/{}", o.shard_index, o.shard_count));
+  checked_thread_count(o.threads);
+  if (o.shard_count < 1 || o.shard_count > kMaxShards || o.shard_index < 0 || o.shard_index >= o.shard_count)
+    throw InputError(fmt::format("--shard must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards, o.shard_index,
+                                 o.shard_count));
+  if (!std::isfinite(o.time_limit) || !std::isfinite(o.checkpoint_every))
+    throw InputError("--time-limit and --checkpoint-every must be finite numbers of seconds");
   if (o.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.time_limit));
   if (o.checkpoint_every < 0)
     throw InputError(fmt::format("checkpoint interval must be >= 0 seconds, got {}", o.checkpoint_every));

@@ -34,6 +34,11 @@ TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string
   }
   s.ch_ = std::max(ch, 1u);
   s.cv_ = std::max(cv, 1u);
+  if (std::uint64_t(s.ch_) * s.cv_ > kMaxWangColourProduct)
+    throw InputError(fmt::format("a Wang set over {}x{} colours is too large: tile indices (thesis eq. 2.2) are 32-bit, "
+                                 "so C_h * C_v must be at most {}",
+                                 s.ch_, s.cv_, kMaxWangColourProduct));
+  if (tiles.size() > kMaxTiles) throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
   s.wang_ = std::move(tiles);
   s.name_ = std::move(name);
   s.source_ = std::move(source);
@@ -46,6 +51,11 @@ TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::st
   s.kind_ = TileKind::Corner;
   for (const CornerTile& t : tiles) c = std::max({c, t.ne + 1, t.se + 1, t.sw + 1, t.nw + 1});
   s.ch_ = s.cv_ = std::max(c, 1u);
+  if (s.ch_ > kMaxCornerColours)
+    throw InputError(fmt::format("a corner set over {} colours is too large: tile indices (thesis eq. 2.5) are 32-bit, "
+                                 "so at most {} colours",
+                                 s.ch_, kMaxCornerColours));
+  if (tiles.size() > kMaxTiles) throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
   s.corner_ = std::move(tiles);
   s.name_ = std::move(name);
   s.source_ = std::move(source);

@@ -11,11 +11,22 @@
 
 namespace tilekit {
 
+// Limits (README, "Bad input"). Tile indices (thesis eq. 2.2 / 2.5) are 32-bit, so a corner
+// set has at most 256 colours and a Wang set at most C_h * C_v = 65536 (then (C_h C_v)^2 - 1
+// is the largest index); a colour in a file is at most 65535. The largest set is 2^26 tiles
+// (complete-corner-90, 1 GiB as Wang tiles), far above the largest set Tilekit builds from
+// data (1.2 M tiles in the aperiodic tables).
+inline constexpr std::int64_t kMaxTileSetColour = 65535;
+inline constexpr std::uint64_t kMaxCornerColours = 256;
+inline constexpr std::uint64_t kMaxWangColourProduct = 65536;
+inline constexpr std::size_t kMaxTiles = std::size_t(1) << 26;
+
 class TileSet {
  public:
   TileSet() = default;
-  // Both factories reject duplicate tiles (InputError). Colour radices default to
-  // max colour + 1 per direction; pass larger ones to declare unused colours.
+  // Both factories reject duplicate tiles and sets beyond the limits above (InputError).
+  // Colour radices default to max colour + 1 per direction; pass larger ones to declare
+  // unused colours.
   static TileSet wang(std::vector<WangTile> tiles, std::string name = {}, std::string source = {},
                       std::uint32_t ch = 0, std::uint32_t cv = 0);
   static TileSet corner(std::vector<CornerTile> tiles, std::string name = {}, std::string source = {},

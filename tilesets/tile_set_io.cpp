@@ -2,151 +2,212 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
-#include <charconv>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <regex>
-#include <sstream>
+#include <fmt/ranges.h>
 
-#include "tilesets/compact_sets.hpp"
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+
 #include "base/error.hpp"
+#include "base/input.hpp"
+#include "base/json_input.hpp"
+#include "tilesets/compact_sets.hpp"
 #include "tilesets/reference_data.hpp"
 
 namespace tilekit {
 
 namespace {
 
-constexpr std::int64_t kMaxColour = 1 << 24;
+// One tile as read, in file order (n s w e or nw ne sw se), and where it was read.
+struct RawTile {
+  std::array<std::int64_t, 4> colours{};
+  std::string where;  // "file:line" or "file: tiles[k]"
+};
 
-TileSet make_set(TileKind kind, const std::vector<std::array<std::int64_t, 4>>& rows, std::string name,
-                 std::string source, std::int64_t declared) {
-  if (kind == TileKind::Wang) {
-    std::vector<WangTile> tiles;
-    for (auto& r : rows)  // file order: n s w e
-      tiles.push_back({Colour(r[0]), Colour(r[3]), Colour(r[1]), Colour(r[2])});
-    return TileSet::wang(std::move(tiles), std::move(name), std::move(source), Colour(declared), Colour(declared));
+TileSet make_set(TileKind kind, const std::vector<RawTile>& rows, std::string name, std::string source,
+                 std::int64_t declared, const std::string& origin) {
+  // Duplicates are reported with both places before the factory (which only knows numbers).
+  std::map<std::array<std::int64_t, 4>, std::size_t> seen;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    auto [it, fresh] = seen.emplace(rows[k].colours, k);
+    if (!fresh)
+      throw InputError(fmt::format("{}: duplicate tile: repeats the tile of {} ({})", rows[k].where,
+                                   rows[it->second].where, fmt::join(rows[k].colours, " ")));
   }
-  std::vector<CornerTile> tiles;
-  for (auto& r : rows)  // file order: nw ne sw se
-    tiles.push_back({Colour(r[1]), Colour(r[3]), Colour(r[2]), Colour(r[0])});
-  return TileSet::corner(std::move(tiles), std::move(name), std::move(source), Colour(declared));
+  try {
+    if (kind == TileKind::Wang) {
+      std::vector<WangTile> tiles;
+      tiles.reserve(rows.size());
+      for (const RawTile& t : rows) {  // file order: n s w e
+        const auto& r = t.colours;
+        tiles.push_back({Colour(r[0]), Colour(r[3]), Colour(r[1]), Colour(r[2])});
+      }
+      return TileSet::wang(std::move(tiles), std::move(name), std::move(source), Colour(declared), Colour(declared));
+    }
+    std::vector<CornerTile> tiles;
+    tiles.reserve(rows.size());
+    for (const RawTile& t : rows) {  // file order: nw ne sw se
+      const auto& r = t.colours;
+      tiles.push_back({Colour(r[1]), Colour(r[3]), Colour(r[2]), Colour(r[0])});
+    }
+    return TileSet::corner(std::move(tiles), std::move(name), std::move(source), Colour(declared));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", origin, e.what()));
+  }
 }
 
-std::string stem_of(const std::string& origin) { return std::filesystem::path(origin).stem().string(); }
+std::string stem_of(const std::string& origin) {
+  return utf8_or_question_marks(std::filesystem::path(origin).stem().string());
+}
 
 std::int64_t check_colour(std::int64_t v, std::int64_t declared, const std::string& where) {
   if (v < 0) throw InputError(fmt::format("{}: negative colour {}", where, v));
-  if (v >= kMaxColour) throw InputError(fmt::format("{}: colour {} is too large", where, v));
+  if (v > kMaxTileSetColour)
+    throw InputError(fmt::format("{}: colour {} is too large (at most {})", where, v, kMaxTileSetColour));
   if (declared > 0 && v >= declared)
     throw InputError(fmt::format("{}: colour {} is out of range for {} colours", where, v, declared));
   return v;
 }
 
+constexpr std::string_view kSpace = " \t\r\v\f";
+
+std::string_view trim(std::string_view s) {
+  const auto a = s.find_first_not_of(kSpace);
+  if (a == std::string_view::npos) return {};
+  return s.substr(a, s.find_last_not_of(kSpace) - a + 1);
+}
+
+// Names and sources end up in one-line comments of the text format and in JSON: one line of
+// printable text.
+std::string check_label(std::string_view label, const char* what, const std::string& where) {
+  const std::string text(trim(label));  // as a text file's "# source:" line reads back
+  if (text.size() > 4096) throw InputError(fmt::format("{}: the {} is longer than 4096 bytes", where, what));
+  for (char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
+      throw InputError(fmt::format("{}: the {} holds a control character (it must be one line of text)", where, what));
+  return text;
+}
+
+// "# KEY: VALUE" (spaces allowed around each part) -> VALUE trimmed; nullopt for any other
+// line. A hand-written scanner: std::regex recurses per character and overflows the stack
+// on a long comment line.
+std::optional<std::string_view> directive(std::string_view line, std::initializer_list<std::string_view> keys) {
+  line = trim(line);
+  if (line.empty() || line.front() != '#') return std::nullopt;
+  line = trim(line.substr(1));
+  for (std::string_view key : keys) {
+    if (!line.starts_with(key)) continue;
+    std::string_view rest = trim(line.substr(key.size()));
+    if (rest.empty() || rest.front() != ':') continue;
+    return trim(rest.substr(1));
+  }
+  return std::nullopt;
+}
+
 TileSet parse_text(std::string_view text, const std::string& origin) {
+  require_utf8(text, origin);
   TileKind kind = TileKind::Wang;
   std::int64_t declared = 0;
   std::string source;
-  std::vector<std::array<std::int64_t, 4>> rows;
-  std::istringstream in{std::string(text)};
-  std::string line;
+  std::vector<RawTile> rows;
   int lineno = 0;
-  bool seen_tile = false;
-  static const std::regex kind_re(R"(^\s*#\s*kind\s*:\s*(\S+)\s*$)");
-  static const std::regex colours_re(R"(^\s*#\s*colou?rs\s*:\s*(\S+)\s*$)");
-  static const std::regex source_re(R"(^\s*#\s*source\s*:\s*(.*\S)\s*$)");
-  while (std::getline(in, line)) {
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string_view line = text.substr(pos, eol - pos);
+    pos = eol + 1;
     ++lineno;
     const std::string where = fmt::format("{}:{}", origin, lineno);
-    std::smatch m;
-    if (std::regex_match(line, m, kind_re)) {
-      if (seen_tile) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
-      if (m[1] == "corner") kind = TileKind::Corner;
-      else if (m[1] == "wang") kind = TileKind::Wang;
-      else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, m[1].str()));
+    if (auto v = directive(line, {"kind"})) {
+      if (!rows.empty()) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
+      if (*v == "corner") kind = TileKind::Corner;
+      else if (*v == "wang") kind = TileKind::Wang;
+      else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, v->substr(0, 40)));
       continue;
     }
-    if (std::regex_match(line, m, colours_re)) {
-      auto s = m[1].str();
-      auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), declared);
-      if (ec != std::errc() || p != s.data() + s.size() || declared < 1 || declared > 255)
-        throw InputError(fmt::format("{}: colours must be between 1 and 255, got '{}'", where, s));
+    if (auto v = directive(line, {"colours", "colors"})) {
+      auto [p, ec] = std::from_chars(v->data(), v->data() + v->size(), declared);
+      if (ec != std::errc() || p != v->data() + v->size() || declared < 1 || declared > kMaxTileSetColour + 1)
+        throw InputError(fmt::format("{}: colours must be between 1 and {}, got '{}'", where, kMaxTileSetColour + 1,
+                                     v->substr(0, 40)));
       continue;
     }
-    if (std::regex_match(line, m, source_re)) {
-      if (source.empty()) source = m[1].str();
+    if (auto v = directive(line, {"source"})) {
+      if (source.empty()) source = check_label(*v, "source", where);
       continue;
     }
-    if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream fields(line);
-    std::vector<std::string> tok;
-    for (std::string t; fields >> t;) tok.push_back(t);
-    if (tok.empty()) continue;
-    if (tok.size() != 4)
+    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    std::string_view fields[5];
+    int n = 0;
+    for (std::size_t i = 0; n < 5;) {
+      i = line.find_first_not_of(kSpace, i);
+      if (i == std::string_view::npos) break;
+      const std::size_t j = std::min(line.find_first_of(kSpace, i), line.size());
+      fields[n++] = line.substr(i, j - i);
+      i = j;
+    }
+    if (n == 0) continue;
+    if (n != 4)
       throw InputError(fmt::format("{}: expected 4 colours ({}), found {} fields", where,
-                                   kind == TileKind::Wang ? "n s w e" : "nw ne sw se", tok.size()));
-    std::array<std::int64_t, 4> row{};
+                                   kind == TileKind::Wang ? "n s w e" : "nw ne sw se", n == 5 ? "more than 4" : std::to_string(n)));
+    if (rows.size() >= kMaxTiles) throw InputError(fmt::format("{}: more than {} tiles", where, kMaxTiles));
+    RawTile tile{{}, where};
     for (int k = 0; k < 4; ++k) {
+      const std::string_view f = fields[k];
       std::int64_t v = 0;
-      auto [p, ec] = std::from_chars(tok[k].data(), tok[k].data() + tok[k].size(), v);
-      if (ec == std::errc::result_out_of_range) throw InputError(fmt::format("{}: colour '{}' is too large", where, tok[k]));
-      if (ec != std::errc() || p != tok[k].data() + tok[k].size())
-        throw InputError(fmt::format("{}: '{}' is not a colour (a non-negative integer)", where, tok[k]));
-      row[k] = check_colour(v, declared, where);
+      auto [p, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+      if (ec == std::errc::result_out_of_range)
+        throw InputError(fmt::format("{}: colour '{}' is too large", where, f.substr(0, 40)));
+      if (ec != std::errc() || p != f.data() + f.size())
+        throw InputError(fmt::format("{}: '{}' is not a colour (a non-negative integer)", where, f.substr(0, 40)));
+      tile.colours[std::size_t(k)] = check_colour(v, declared, where);
     }
-    rows.push_back(row);
-    seen_tile = true;
+    rows.push_back(std::move(tile));
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
-  try {
-    return make_set(kind, rows, stem_of(origin), source, declared);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", origin, e.what()));
-  }
+  return make_set(kind, rows, stem_of(origin), source, declared, origin);
 }
 
+// The tile-set JSON format {"kind", "name", "source", "colors", "tiles": [[...], ...]}, and
+// also what `tilekit tileset show --json` prints (there "tiles" is the count and "list" the
+// tiles; "colors" is then the number of colours used, not a declared radix).
 TileSet parse_json(std::string_view text, const std::string& origin) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: invalid JSON: {}", origin, e.what()));
-  }
-  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", origin));
+  const nlohmann::json doc = parse_json_input(text, origin);
+  const JsonIn j(doc, origin);
+  j.object();
   TileKind kind = TileKind::Wang;
-  if (j.contains("kind")) {
-    if (j["kind"] == "corner") kind = TileKind::Corner;
-    else if (j["kind"] != "wang") throw InputError(fmt::format("{}: \"kind\" must be \"wang\" or \"corner\"", origin));
+  if (auto k = j.find("kind")) {
+    const std::string v = k->string();
+    if (v == "corner") kind = TileKind::Corner;
+    else if (v != "wang") throw k->error("must be \"wang\" or \"corner\"");
   }
+  const bool show_format = j.has("list");
+  const JsonIn list = j.at(show_format ? "list" : "tiles");
+  const std::size_t n = list.array(1, kMaxTiles);
   std::int64_t declared = 0;
-  if (j.contains("colors")) {
-    if (!j["colors"].is_number_integer() || j["colors"].get<std::int64_t>() < 1 || j["colors"].get<std::int64_t>() > 255)
-      throw InputError(fmt::format("{}: \"colors\" must be an integer between 1 and 255", origin));
-    declared = j["colors"].get<std::int64_t>();
+  if (show_format) {
+    if (auto count = j.find("tiles"); count && count->unsigned_integer() != n)
+      throw count->error(fmt::format("says {} tiles but \"list\" holds {}", count->raw().dump(), n));
+  } else if (auto c = j.find("colors")) {
+    declared = c->integer(1, kMaxTileSetColour + 1);
   }
-  if (!j.contains("tiles") || !j["tiles"].is_array()) throw InputError(fmt::format("{}: missing \"tiles\" array", origin));
-  std::vector<std::array<std::int64_t, 4>> rows;
-  for (std::size_t k = 0; k < j["tiles"].size(); ++k) {
-    const auto& t = j["tiles"][k];
-    const std::string where = fmt::format("{}: tile {}", origin, k + 1);
-    if (!t.is_array() || t.size() != 4) throw InputError(fmt::format("{}: expected an array of 4 colours", where));
-    std::array<std::int64_t, 4> row{};
-    for (int c = 0; c < 4; ++c) {
-      if (!t[c].is_number_integer()) throw InputError(fmt::format("{}: colour {} is not an integer", where, t[c].dump()));
-      row[c] = check_colour(t[c].get<std::int64_t>(), declared, where);
-    }
-    rows.push_back(row);
+  std::vector<RawTile> rows;
+  rows.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const JsonIn t = list[k];
+    t.array(4, 4);
+    RawTile tile{{}, fmt::format("{}: {}", origin, t.path())};
+    for (std::size_t c = 0; c < 4; ++c) tile.colours[c] = check_colour(t[c].integer(0, kMaxTileSetColour), declared, tile.where);
+    rows.push_back(std::move(tile));
   }
-  if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
-  std::string name = j.value("name", stem_of(origin));
-  std::string source = j.value("source", std::string());
-  try {
-    return make_set(kind, rows, name, source, declared);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", origin, e.what()));
-  }
+  std::string name = check_label(j.string_or("name", stem_of(origin)), "name", origin);
+  std::string source = check_label(j.string_or("source", ""), "source", origin);
+  TileSet set = make_set(kind, rows, std::move(name), std::move(source), declared, origin);
+  if (auto c = j.find("colors"); show_format && c && c->unsigned_integer() != set.colours())
+    throw c->error(fmt::format("says {} colours but the tiles use {}", c->raw().dump(), set.colours()));
+  return set;
 }
 
 std::uint32_t parse_count(const std::string& s, const std::string& name) {
@@ -167,13 +228,7 @@ TileSet parse_tile_set(std::string_view text, const std::string& origin) {
 }
 
 TileSet read_tile_set_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such tile-set file", path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return parse_tile_set(buf.str(), path);
+  return parse_tile_set(read_input_file(path, "tile-set file"), path);
 }
 
 std::string format_tile_set_text(const TileSet& set) {
@@ -209,14 +264,25 @@ std::vector<BuiltinInfo> builtin_tile_sets() {
 }
 
 TileSet resolve_tile_set(const std::string& name) {
-  static const std::regex family_re(R"(^(complete-wang|complete-corner|compact-wang|compact-wang3|compact-corner)-(\d+)$)");
-  static const std::regex mixed_re(R"(^complete-wang-(\d+)x(\d+)$)");
-  std::smatch m;
-  if (std::regex_match(name, m, mixed_re))
-    return complete_wang_set(parse_count(m[1], name), parse_count(m[2], name));
-  if (std::regex_match(name, m, family_re)) {
-    const std::uint32_t c = parse_count(m[2], name);
-    const std::string fam = m[1];
+  // FAMILY-C and complete-wang-HxV; the longest family names first (compact-wang3 before
+  // compact-wang).
+  static constexpr std::string_view kFamilies[] = {"complete-corner", "complete-wang", "compact-corner",
+                                                   "compact-wang3", "compact-wang"};
+  auto digits = [](std::string_view s) {
+    return !s.empty() && s.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  for (std::string_view fam : kFamilies) {
+    const std::string_view n(name);
+    if (n.size() <= fam.size() + 1 || !n.starts_with(fam) || n[fam.size()] != '-') continue;
+    const std::string_view arg = n.substr(fam.size() + 1);
+    if (fam == "complete-wang") {
+      const auto x = arg.find('x');
+      if (x != std::string_view::npos && digits(arg.substr(0, x)) && digits(arg.substr(x + 1)))
+        return complete_wang_set(parse_count(std::string(arg.substr(0, x)), name),
+                                 parse_count(std::string(arg.substr(x + 1)), name));
+    }
+    if (!digits(arg)) break;
+    const std::uint32_t c = parse_count(std::string(arg), name);
     if (fam == "complete-wang") return complete_wang_set(c, c);
     if (fam == "complete-corner") return complete_corner_set(c);
     if (fam == "compact-wang") return compact_wang_set(c);

@@ -2,12 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "base/error.hpp"
+#include "base/json_input.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit {
 
@@ -31,62 +30,43 @@ nlohmann::json tiling_to_json(const Tiling& t) {
   return j;
 }
 
-Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin) {
-  auto fail = [&](const std::string& what) { return InputError(fmt::format("{}: {}", origin, what)); };
-  if (!j.is_object()) throw fail("expected a JSON object");
-  auto get_int = [&](const char* key, std::int64_t lo, std::int64_t hi) -> std::int64_t {
-    if (!j.contains(key)) throw fail(fmt::format("missing \"{}\"", key));
-    if (!j[key].is_number_integer()) throw fail(fmt::format("\"{}\" must be an integer", key));
-    auto v = j[key].get<std::int64_t>();
-    if (v < lo || v > hi) throw fail(fmt::format("\"{}\" must be between {} and {}, got {}", key, lo, hi, v));
-    return v;
-  };
+Tiling tiling_from_json(const nlohmann::json& doc, const std::string& origin) {
+  return tiling_from_json(JsonIn(doc, origin));
+}
+
+Tiling tiling_from_json(const JsonIn& j) {
+  j.object();
   Tiling t;
-  if (!j.contains("kind") || !j["kind"].is_string()) throw fail("missing \"kind\" (\"wang\" or \"corner\")");
-  if (j["kind"] == "wang") t.kind = TileKind::Wang;
-  else if (j["kind"] == "corner") t.kind = TileKind::Corner;
-  else throw fail(fmt::format("unknown kind {} (expected \"wang\" or \"corner\")", j["kind"].dump()));
-  if (j.contains("horizontal_colors")) {
-    t.colours = std::uint32_t(get_int("horizontal_colors", 1, 1 << 16));
-    t.vertical_colours = std::uint32_t(get_int("vertical_colors", 1, 1 << 16));
+  const JsonIn kind = j.at("kind");
+  const std::string k = kind.string();
+  if (k == "wang") t.kind = TileKind::Wang;
+  else if (k == "corner") t.kind = TileKind::Corner;
+  else throw kind.error(fmt::format("unknown kind {} (expected \"wang\" or \"corner\")", kind.raw().dump()));
+  // Colour counts as in tile sets (tilesets/tile_set.hpp): indices must fit in 32 bits.
+  if (j.has("horizontal_colors")) {
+    t.colours = std::uint32_t(j.at("horizontal_colors").integer(1, std::int64_t(kMaxWangColourProduct)));
+    t.vertical_colours = std::uint32_t(j.at("vertical_colors").integer(1, std::int64_t(kMaxWangColourProduct)));
   } else {
-    t.colours = std::uint32_t(get_int("colors", 1, 1 << 16));
+    t.colours = std::uint32_t(j.at("colors").integer(1, std::int64_t(kMaxWangColourProduct)));
   }
-  t.rows = int(get_int("rows", 1, 1 << 20));
-  t.cols = int(get_int("cols", 1, 1 << 20));
-  if (std::uint64_t(t.rows) * std::uint64_t(t.cols) > (1ull << 28)) throw fail("grid is too large");
-  if (!j.contains("torus") || !j["torus"].is_boolean()) throw fail("missing \"torus\" (true or false)");
-  t.torus = j["torus"].get<bool>();
-  if (!j.contains("cells") || !j["cells"].is_array()) throw fail("missing \"cells\" array");
-  const auto& cells = j["cells"];
-  if (cells.size() != std::size_t(t.rows)) throw fail(fmt::format("\"cells\" has {} rows, expected {}", cells.size(), t.rows));
-  t.cells.reserve(std::size_t(t.rows) * std::size_t(t.cols));
+  const std::uint64_t product = std::uint64_t(t.ch()) * t.cv();
+  if (t.kind == TileKind::Corner ? t.colours > kMaxCornerColours : product > kMaxWangColourProduct)
+    throw j.error(fmt::format("{} colours: tile indices (thesis eq. 2.2/2.5) would not fit in 32 bits", product));
+  t.rows = int(j.at("rows").integer(1, kMaxTilingSide));
+  t.cols = int(j.at("cols").integer(1, kMaxTilingSide));
+  if (std::int64_t(t.rows) * t.cols > kMaxTilingCells)
+    throw j.error(fmt::format("a {}x{} grid is more than the limit of {} cells", t.rows, t.cols, kMaxTilingCells));
+  t.torus = j.at("torus").boolean();
+  const JsonIn cells = j.at("cells");
+  cells.array(std::size_t(t.rows), std::size_t(t.rows));
   for (int r = 0; r < t.rows; ++r) {
-    const auto& row = cells[std::size_t(r)];
-    if (!row.is_array() || row.size() != std::size_t(t.cols))
-      throw fail(fmt::format("row {} of \"cells\" must be an array of {} tile indices", r, t.cols));
-    for (const auto& v : row) {
-      if (!v.is_number_integer() || v.get<std::int64_t>() < 0 || v.get<std::int64_t>() > 0xffffffffll)
-        throw fail(fmt::format("row {}: {} is not a tile index", r, v.dump()));
-      t.cells.push_back(TileIndex(v.get<std::int64_t>()));
-    }
+    const JsonIn row = cells[std::size_t(r)];
+    row.array(std::size_t(t.cols), std::size_t(t.cols));
+    for (int c = 0; c < t.cols; ++c) t.cells.push_back(TileIndex(row[std::size_t(c)].integer(0, 0xffffffffll)));
   }
   return t;
 }
 
-Tiling read_tiling_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such file", path));
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(buf.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: invalid JSON: {}", path, e.what()));
-  }
-  return tiling_from_json(j, path);
-}
+Tiling read_tiling_file(const std::string& path) { return tiling_from_json(read_json_file(path, "tiling file"), path); }
 
 }  // namespace tilekit

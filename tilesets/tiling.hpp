@@ -11,6 +11,13 @@
 
 namespace tilekit {
 
+class JsonIn;  // base/json_input.hpp
+
+// Limits of a tiling file: sides up to 2^20 and 2^28 cells (1 GiB of tile indices); the
+// largest packing Tilekit makes is 4096x4096 (the atlas of C=64).
+inline constexpr std::int64_t kMaxTilingSide = std::int64_t(1) << 20;
+inline constexpr std::int64_t kMaxTilingCells = std::int64_t(1) << 28;
+
 struct Tiling {
   TileKind kind = TileKind::Corner;
   std::uint32_t colours = 0;           // C (the radix of N/S edges for Wang sets)
@@ -30,8 +37,9 @@ struct Tiling {
 };
 
 nlohmann::json tiling_to_json(const Tiling& t);
-// Throws InputError naming `origin` and the problem.
+// Throws InputError naming `origin`, the JSON path and the problem.
 Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin);
+Tiling tiling_from_json(const JsonIn& j);  // a tiling inside a larger document (an export row)
 Tiling read_tiling_file(const std::string& path);
 
 }  // namespace tilekit

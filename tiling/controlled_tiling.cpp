@@ -4,12 +4,10 @@
 
 #include <bitset>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "base/error.hpp"
+#include "base/json_input.hpp"
 #include "base/random.hpp"
 
 namespace tilekit {
@@ -30,55 +28,38 @@ ProbabilityMap ProbabilityMap::ramp(std::uint32_t colours, int rows, int cols) {
   return m;
 }
 
-ProbabilityMap probability_map_from_json(const nlohmann::json& j, const std::string& origin) {
-  auto fail = [&](const std::string& what) { return InputError(fmt::format("{}: {}", origin, what)); };
-  if (!j.is_object()) throw fail("expected a JSON object {\"colors\", \"rows\", \"cols\", \"p\"}");
-  auto get_int = [&](const char* key, std::int64_t lo, std::int64_t hi) {
-    if (!j.contains(key) || !j[key].is_number_integer()) throw fail(fmt::format("missing integer \"{}\"", key));
-    auto v = j[key].get<std::int64_t>();
-    if (v < lo || v > hi) throw fail(fmt::format("\"{}\" must be between {} and {}, got {}", key, lo, hi, v));
-    return v;
-  };
+ProbabilityMap probability_map_from_json(const nlohmann::json& doc, const std::string& origin) {
+  const JsonIn j(doc, origin);
+  j.object();
   ProbabilityMap m;
-  m.colours = std::uint32_t(get_int("colors", 1, 255));
-  m.rows = int(get_int("rows", 1, 4096));
-  m.cols = int(get_int("cols", 1, 4096));
-  if (!j.contains("p") || !j["p"].is_array() || j["p"].size() != std::size_t(m.rows))
-    throw fail(fmt::format("\"p\" must be an array of {} rows", m.rows));
-  m.p.reserve(std::size_t(m.rows) * m.cols * m.colours);
+  m.colours = std::uint32_t(j.at("colors").integer(1, 255));
+  m.rows = int(j.at("rows").integer(1, 4096));
+  m.cols = int(j.at("cols").integer(1, 4096));
+  // Sizes are checked row by row against the document before anything is stored, so a header
+  // promising 4096x4096x255 probabilities allocates nothing it does not hold.
+  const JsonIn p = j.at("p");
+  p.array(std::size_t(m.rows), std::size_t(m.rows));
   for (int r = 0; r < m.rows; ++r) {
-    const auto& row = j["p"][std::size_t(r)];
-    if (!row.is_array() || row.size() != std::size_t(m.cols))
-      throw fail(fmt::format("row {} of \"p\" must hold {} pixels", r, m.cols));
+    const JsonIn row = p[std::size_t(r)];
+    row.array(std::size_t(m.cols), std::size_t(m.cols));
     for (int c = 0; c < m.cols; ++c) {
-      const auto& px = row[std::size_t(c)];
-      if (!px.is_array() || px.size() != m.colours)
-        throw fail(fmt::format("pixel ({},{}) must hold {} probabilities", r, c, m.colours));
+      const JsonIn px = row[std::size_t(c)];
+      px.array(m.colours, m.colours);
       double sum = 0;
-      for (const auto& v : px) {
-        if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
-          throw fail(fmt::format("pixel ({},{}): {} is not a probability", r, c, v.dump()));
-        sum += v.get<double>();
+      const std::size_t first = m.p.size();
+      for (std::uint32_t k = 0; k < m.colours; ++k) {
+        m.p.push_back(px[k].number(0, 1));
+        sum += m.p.back();
       }
-      if (std::abs(sum - 1.0) > 1e-6)
-        throw fail(fmt::format("pixel ({},{}): probabilities sum to {}, not 1", r, c, sum));
-      for (const auto& v : px) m.p.push_back(v.get<double>() / sum);
+      if (std::abs(sum - 1.0) > 1e-6) throw px.error(fmt::format("probabilities sum to {}, not 1", sum));
+      for (std::size_t k = first; k < m.p.size(); ++k) m.p[k] /= sum;
     }
   }
   return m;
 }
 
 ProbabilityMap read_probability_map(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such file", path));
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buf;
-  buf << in.rdbuf();
-  try {
-    return probability_map_from_json(nlohmann::json::parse(buf.str()), path);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: invalid JSON: {}", path, e.what()));
-  }
+  return probability_map_from_json(read_json_file(path, "probability map"), path);
 }
 
 nlohmann::json probability_map_to_json(const ProbabilityMap& m) {

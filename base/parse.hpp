@@ -1,0 +1,31 @@
+#pragma once
+// The small parsers every command shares for flag values: bounded integers, sizes "WxH" and
+// shards "I/N". Each is strict (decimal digits only, no sign unless the range allows one, no
+// spaces, no trailing text, no overflow) and throws InputError naming the flag and the value,
+// so `--shard 4294967296/1` is refused instead of wrapping around to shard 0.
+#include <cstdint>
+#include <string_view>
+
+namespace tilekit {
+
+// The most shards a run may split into: far above Slurm's usual MaxArraySize (1001) and any
+// useful subproblem count per shard (a search splits into about a thousand subproblems).
+inline constexpr std::int64_t kMaxShards = 1'000'000;
+
+// A decimal integer in [lo, hi]; `what` names the flag ("--seed").
+std::int64_t parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::string_view what);
+
+// "AxB" (or "AXB") with 1 <= A, B <= max_side and A*B <= max_area; `what` names the flag and
+// its form ("--size WxH").
+struct Dimensions {
+  std::int64_t first = 0, second = 0;
+};
+Dimensions parse_dimensions(std::string_view text, std::int64_t max_side, std::int64_t max_area, std::string_view what);
+
+// "I/N" with 0 <= I < N <= kMaxShards.
+struct ShardSpec {
+  int index = 0, count = 1;
+};
+ShardSpec parse_shard(std::string_view text, std::string_view what = "--shard");
+
+}  // namespace tilekit

@@ -1,0 +1,62 @@
+#include "solver/search_state.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <unordered_set>
+
+#include "base/error.hpp"
+
+namespace tilekit {
+
+namespace {
+
+void check_counters(const SearchCounters& c, const std::string& what) {
+  if (c.orbits > c.solutions)
+    throw InputError(fmt::format("{} counts {} orbits but only {} solutions", what, c.orbits, c.solutions));
+}
+
+}  // namespace
+
+void check_search_state(const SearchState& st, std::uint64_t subproblems, int shard_index, int shard_count) {
+  if (st.subproblem_count > kMaxSubproblems)
+    throw InputError(fmt::format("{} subproblems is more than the limit of {}", st.subproblem_count, kMaxSubproblems));
+  if (subproblems > 0 && st.subproblem_count != subproblems)
+    throw InputError(fmt::format("it has {} subproblems but this search has {} (different problem or options)",
+                                 st.subproblem_count, subproblems));
+  if (st.finished.size() != st.subproblem_count)
+    throw InputError(fmt::format("the finished bitmap has {} entries for {} subproblems", st.finished.size(),
+                                 st.subproblem_count));
+  check_counters(st.finished_counts, "the finished subproblems' total");
+  bool any_finished = false;
+  for (bool f : st.finished) any_finished = any_finished || f;
+  if (!any_finished && st.finished_counts != SearchCounters{})
+    throw InputError("it counts solutions or nodes for finished subproblems but none is finished");
+  std::unordered_set<std::uint64_t> seen;
+  for (const InFlightSubproblem& f : st.in_flight) {
+    if (f.index >= st.subproblem_count)
+      throw InputError(fmt::format("in-flight subproblem {} is out of range (there are {})", f.index,
+                                   st.subproblem_count));
+    if (st.finished[f.index]) throw InputError(fmt::format("in-flight subproblem {} is also finished", f.index));
+    if (!seen.insert(f.index).second) throw InputError(fmt::format("in-flight subproblem {} is listed twice", f.index));
+    if (subproblems > 0 && shard_count > 0 && f.index % std::uint64_t(shard_count) != std::uint64_t(shard_index))
+      throw InputError(fmt::format("in-flight subproblem {} is not in shard {}/{}", f.index, shard_index, shard_count));
+    if (f.path.size() > kMaxDecisionPath)
+      throw InputError(fmt::format("in-flight subproblem {} has a path of {} decisions", f.index, f.path.size()));
+    for (const Decision& d : f.path)
+      if (d.var < 0 || d.value < 0)
+        throw InputError(fmt::format("in-flight subproblem {} has a negative decision ({}, {})", f.index, d.var,
+                                     d.value));
+    check_counters(f.counted, fmt::format("in-flight subproblem {}", f.index));
+  }
+  if (st.restarts > kMaxRestarts)
+    throw InputError(fmt::format("{} restarts is more than the limit of {}", st.restarts, kMaxRestarts));
+  if (st.restarts == 0 && st.restart_nodes != 0)
+    throw InputError(fmt::format("it counts {} restart nodes but no restart", st.restart_nodes));
+  if (st.restarts > 0 && (st.subproblem_count > 0 || !st.in_flight.empty()))
+    throw InputError("it holds both restarts and subproblems (a restart search has no subproblems)");
+  if (!std::isfinite(st.seconds) || st.seconds < 0)
+    throw InputError(fmt::format("its time so far ({} s) is not a non-negative number", st.seconds));
+}
+
+}  // namespace tilekit
