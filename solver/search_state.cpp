@@ -53,8 +53,6 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
     throw InputError(fmt::format("{} restarts is more than the limit of {}", st.restarts, kMaxRestarts));
   if (st.restarts == 0 && st.restart_nodes != 0)
     throw InputError(fmt::format("it counts {} restart nodes but no restart", st.restart_nodes));
-  if (st.restarts > 0 && (st.subproblem_count > 0 || !st.in_flight.empty()))
-    throw InputError("it holds both restarts and subproblems (a restart search has no subproblems)");
   if (!std::isfinite(st.seconds) || st.seconds < 0)
     throw InputError(fmt::format("its time so far ({} s) is not a non-negative number", st.seconds));
 }

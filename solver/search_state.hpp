@@ -62,7 +62,7 @@ inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 // Structural validation of a state read from a checkpoint, as data: the finished bitmap has
 // one bit per subproblem; every in-flight subproblem is in range, unfinished and listed once;
 // counters are consistent (orbits <= solutions; nothing counted for finished subproblems when
-// none finished; restart counters only in a restart search); restarts and seconds bounded.
+// none finished; no restart nodes without a restart); restarts and seconds bounded.
 // With `subproblems` > 0 it also checks the state against the search resuming it (its
 // subproblem count, and that every in-flight subproblem belongs to shard I of N). A
 // checksum only proves the file is as written; this proves it can be resumed to the

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "checkpoints/checkpoint.hpp"
+#include "checkpoints/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit;
@@ -54,7 +55,7 @@ TEST(BadInput, PackSizeThatCannotHoldThePackingIsRefusedAtOnce) {
 
 TEST(BadInput, DeeplyNestedJsonIsRefusedForEveryReader) {
   TempDir d;
-  write_text(d / "deep.json", std::string(100000, '[') + std::string(100000, ']'));
+  write_text(d / "deep.json", "{\"a\":" + std::string(100000, '[') + std::string(100000, ']') + "}");
   const std::string msg = d / "deep.json" + ":1: invalid JSON: nested deeper than 64 levels";
   expect_refused(run_cli("tileset show " + d / "deep.json"), msg);
   expect_refused(run_cli("check " + d / "deep.json"), msg);
@@ -185,7 +186,7 @@ TEST(BadInput, StoredNonUtf8TextStillExportsListsAndShowsAsJson) {
   // U+FFFD for the bad byte instead of failing.
   TempDir d;
   const std::string db = d / "db.sqlite";
-  ASSERT_EQ(run_cli("db stats --db " + db).code, 0);
+  { ResultsDb created(db); }
   sqlite3* h = nullptr;
   ASSERT_EQ(sqlite3_open(db.c_str(), &h), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(h,
@@ -220,7 +221,7 @@ TEST(BadInput, TilesetShowJsonReadsBackAsATileSetFile) {
 TEST(BadInput, DamagedDatabaseHeaderIsRefusedAndUntouched) {
   TempDir d;
   const std::string db = d / "db.sqlite";
-  ASSERT_EQ(run_cli("db stats --db " + db).code, 0);
+  { ResultsDb created(db); }
   std::string bytes = slurp(db);
   bytes[18] = 3;
   write_text(db, bytes);
@@ -246,7 +247,7 @@ TEST(BadInput, RefusingAForeignWalDatabaseLeavesNoSideFiles) {
   for (const std::string cmd : {"db stats --db ", "db list --db ", "pack --kind corner --colors 2 --db "}) {
     CliResult r = run_cli(cmd + db);
     expect_refused(r, db + ": not a usable Tilekit results database: an SQLite database of another application "
-                           "(application_id 0, 1 tables); the file was left untouched");
+                           "(application_id 0x0, 1 tables); the file was left untouched");
     EXPECT_FALSE(fs::exists(db + "-wal")) << cmd;
     EXPECT_FALSE(fs::exists(db + "-shm")) << cmd;
   }

@@ -80,22 +80,23 @@ TEST(SearchStateCheck, CountersMustBeConsistent) {
   EXPECT_EQ(problem_of(st), "its time so far (-1 s) is not a non-negative number");
 }
 
-TEST(SearchStateCheck, RestartsAreBoundedAndExcludeSubproblems) {
+TEST(SearchStateCheck, RestartsAreBoundedAndCountNodesOnlyWhenRestarted) {
   SearchState st;
   st.restarts = std::uint64_t(1) << 63;  // made the Luby schedule shift by 64 and loop forever
   st.restart_nodes = 10;
   EXPECT_EQ(problem_of(st), "9223372036854775808 restarts is more than the limit of 1099511627776");
   st.restarts = 0;
   EXPECT_EQ(problem_of(st), "it counts 10 restart nodes but no restart");
-  st = good_state();
-  st.restarts = 3;
-  EXPECT_EQ(problem_of(st), "it holds both restarts and subproblems (a restart search has no subproblems)");
 }
 
 TEST(SearchStateCheck, AgainstTheResumingSearchCountAndShardMustMatch) {
   EXPECT_EQ(problem_of(good_state(), 9), "it has 8 subproblems but this search has 9 (different problem or options)");
   EXPECT_EQ(problem_of(good_state(), 8, 0, 2), "in-flight subproblem 5 is not in shard 0/2");
-  EXPECT_EQ(problem_of(good_state(), 8, 1, 3), "in-flight subproblem 5 is not in shard 1/3");
+  SearchState st = good_state();
+  st.in_flight = {{4, {}, {}}, {7, {}, {}}};  // both in shard 1/3
+  EXPECT_EQ(problem_of(st, 8, 1, 3), "");
+  st.in_flight[1].index = 5;
+  EXPECT_EQ(problem_of(st, 8, 1, 3), "in-flight subproblem 5 is not in shard 1/3");
 }
 
 TEST(SearchStateCheck, TheEngineRefusesABadStateGivenInMemory) {

@@ -111,9 +111,9 @@ TEST(TileSetFiles, MalformedInputNamesFileLineAndProblem) {
   EXPECT_EQ(error_of("0 1 -1 2\n"), "bad.tiles:1: negative colour -1");
   EXPECT_EQ(error_of("# colors: 2\n0 1 2 1\n"), "bad.tiles:2: colour 2 is out of range for 2 colours");
   EXPECT_EQ(error_of("# only comments\n"), "bad.tiles: the tile set has no tiles");
-  EXPECT_EQ(error_of("0 1 1 0\n1 1 0 0\n0 1 1 0\n"), "bad.tiles: duplicate tile: tile 3 repeats tile 1 (0 1 1 0)");
+  EXPECT_EQ(error_of("0 1 1 0\n1 1 0 0\n0 1 1 0\n"), "bad.tiles:3: duplicate tile: repeats the tile of bad.tiles:1 (0 1 1 0)");
   EXPECT_EQ(error_of("# kind: hex\n"), "bad.tiles:1: unknown kind 'hex' (expected wang or corner)");
-  EXPECT_NE(error_of("{\"tiles\": [[0,1,2]]}").find("expected an array of 4 colours"), std::string::npos);
+  EXPECT_EQ(error_of("{\"tiles\": [[0,1,2]]}"), "bad.tiles: tiles[0]: expected an array of 4 elements, got 3");
   EXPECT_NE(error_of("{\"tiles\": ").find("invalid JSON"), std::string::npos);
 }
 

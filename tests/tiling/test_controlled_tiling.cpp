@@ -115,13 +115,16 @@ TEST(ProbabilityMap, MalformedMapsAreInputErrorsNamingTheProblem) {
     return std::string("no error");
   };
   EXPECT_EQ(message(R"({"colors":2,"rows":1,"cols":1,"p":[[[0.5,0.6]]]})"),
-            "map.json: pixel (0,0): probabilities sum to 1.1, not 1");
+            "map.json: p[0][0]: probabilities sum to 1.1, not 1");
   EXPECT_EQ(message(R"({"colors":2,"rows":1,"cols":1,"p":[[[1.5,-0.5]]]})"),
-            "map.json: pixel (0,0): -0.5 is not a probability");
-  EXPECT_EQ(message(R"({"colors":2,"rows":1,"cols":2,"p":[[[1,0]]]})"), "map.json: row 0 of \"p\" must hold 2 pixels");
+            "map.json: p[0][0][0]: expected a number between 0 and 1, got 1.5");
+  EXPECT_EQ(message(R"({"colors":2,"rows":1,"cols":2,"p":[[[1,0]]]})"), "map.json: p[0]: expected an array of 2 elements, got 1");
   EXPECT_EQ(message(R"({"colors":0,"rows":1,"cols":1,"p":[]})"),
-            "map.json: \"colors\" must be between 1 and 255, got 0");
-  EXPECT_EQ(message(R"([1,2])"), "map.json: expected a JSON object {\"colors\", \"rows\", \"cols\", \"p\"}");
+            "map.json: colors: expected an integer between 1 and 255, got 0");
+  EXPECT_EQ(message(R"([1,2])"), "map.json: expected a JSON object, got [1,2]");
+  // a header promising 4096x4096x255 probabilities is refused by the rows it lacks, not by an allocation
+  EXPECT_EQ(message(R"({"colors":255,"rows":4096,"cols":4096,"p":[]})"),
+            "map.json: p: expected an array of 4096 elements, got 0");
   const ProbabilityMap ok = probability_map_from_json(
       nlohmann::json::parse(R"({"colors":2,"rows":1,"cols":1,"p":[[[0.25,0.75]]]})"), "ok.json");
   EXPECT_DOUBLE_EQ(ok.at(0, 0)[1], 0.75);
