@@ -52,76 +52,44 @@ std::vector<bool> bitmap_from(const JsonIn& j, std::uint64_t n) {
     int v = ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 : -1;
     if (v < 0) throw j.error("not hexadecimal");
     const bool bit = (v >> (i % 4)) & 1;
-    if (i < n) bits[i] = bit;
-    else if (bit) throw j.error("bits set beyond the last subproblem");
+    if (i < n)
+      bits[i] = bit;
+    else if (bit)
+      throw j.error("bits set beyond the last subproblem");
   }
   return bits;
 }
 
-}  // namespace
-
-std::string encode_checkpoint(const SearchState& st) {
+nlohmann::json search_json(const SearchState& st) {
   nlohmann::json in_flight = nlohmann::json::array();
   for (const InFlightSubproblem& f : st.in_flight) {
     nlohmann::json path = nlohmann::json::array();
     for (const Decision& d : f.path) path.push_back({d.var, d.value});
     in_flight.push_back({{"index", f.index}, {"path", path}, {"counted", counters_json(f.counted)}});
   }
-  nlohmann::json body = {{"fingerprint", st.fingerprint},
-                         {"subproblems", st.subproblem_count},
-                         {"subproblem_hash", fmt::format("{:016x}", st.subproblem_hash)},
-                         {"finished", bitmap_hex(st.finished)},
-                         {"finished_counts", counters_json(st.finished_counts)},
-                         {"in_flight", in_flight},
-                         {"restarts", st.restarts},
-                         {"restart_nodes", st.restart_nodes},
-                         {"seconds", st.seconds}};
-  std::string text = body.dump();
-  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", kMagic, kCheckpointVersion, text.size(), fnv1a64(text),
-                     text);
+  return {{"fingerprint", st.fingerprint},
+          {"subproblems", st.subproblem_count},
+          {"subproblem_hash", fmt::format("{:016x}", st.subproblem_hash)},
+          {"finished", bitmap_hex(st.finished)},
+          {"finished_counts", counters_json(st.finished_counts)},
+          {"in_flight", in_flight},
+          {"restarts", st.restarts},
+          {"restart_nodes", st.restart_nodes},
+          {"seconds", st.seconds}};
 }
 
-SearchState decode_checkpoint(std::string_view text, const std::string& origin) {
-  auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
-  auto eol1 = text.find('\n');
-  if (eol1 == std::string_view::npos || text.substr(0, kMagic.size()) != kMagic || text.size() <= kMagic.size() ||
-      text[kMagic.size()] != ' ')
-    throw bad("not a Tilekit checkpoint file");
-  std::string version(text.substr(kMagic.size() + 1, eol1 - kMagic.size() - 1));
-  if (version != std::to_string(kCheckpointVersion))
-    throw bad(
-        fmt::format("format version {} is not supported (this build reads version {})", version, kCheckpointVersion));
-  auto eol2 = text.find('\n', eol1 + 1);
-  if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
-  std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));
-  // "bytes <decimal> fnv1a64 <16 hex digits>", exactly.
-  std::uint64_t bytes = 0, sum = 0;
-  auto field = [&](std::string_view& rest, std::string_view word, std::uint64_t& value, int base) {
-    if (!rest.starts_with(word) || rest.size() <= word.size() || rest[word.size()] != ' ') return false;
-    rest.remove_prefix(word.size() + 1);
-    const auto space = std::min(rest.find(' '), rest.size());
-    auto [end, ec] = std::from_chars(rest.data(), rest.data() + space, value, base);
-    if (space == 0 || ec != std::errc() || end != rest.data() + space) return false;
-    rest.remove_prefix(std::min(space + 1, rest.size()));
-    return true;
-  };
-  std::string_view rest = header;
-  if (!field(rest, "bytes", bytes, 10) || !field(rest, "fnv1a64", sum, 16) || !rest.empty() ||
-      header.size() - header.rfind(' ') - 1 != 16)
-    throw bad("corrupt header");
-  std::string_view body = text.substr(eol2 + 1);
-  if (body.size() < bytes) throw bad(fmt::format("truncated ({} of {} bytes)", body.size(), bytes));
-  if (body.size() > bytes) throw bad(fmt::format("corrupt ({} bytes after the end)", body.size() - bytes));
-  if (fnv1a64(body) != sum) throw bad("corrupt (checksum mismatch)");
+// Types and ranges through JsonIn (each problem names its JSON path), then the structure
+// through check_search_state (solver/search_state.hpp): a state that passes replays to the
+// uninterrupted result or is refused by the engine with a clear message, never misread.
+SearchState search_from(const JsonIn& j) {
   SearchState st;
-  const nlohmann::json doc = parse_json_input(body, fmt::format("checkpoint {}", origin));
-  const JsonIn j(doc, fmt::format("checkpoint {}", origin));
   st.fingerprint = j.at("fingerprint").string();
   st.subproblem_count = j.at("subproblems").unsigned_integer(kMaxSubproblems);
   const JsonIn hash = j.at("subproblem_hash");
   const std::string hex = hash.string(16);
   auto [end, ec] = std::from_chars(hex.data(), hex.data() + hex.size(), st.subproblem_hash, 16);
-  if (hex.empty() || ec != std::errc() || end != hex.data() + hex.size()) throw hash.error("not a hexadecimal hash");
+  if (hex.size() != 16 || ec != std::errc() || end != hex.data() + hex.size())
+    throw hash.error("not 16 hexadecimal digits");
   st.finished = bitmap_from(j.at("finished"), st.subproblem_count);
   st.finished_counts = counters_from(j.at("finished_counts"));
   const JsonIn in_flight = j.at("in_flight");
@@ -147,16 +115,157 @@ SearchState decode_checkpoint(std::string_view text, const std::string& origin) 
   try {
     check_search_state(st);
   } catch (const InputError& e) {
-    throw bad(fmt::format("inconsistent: {}", e.what()));
+    throw j.error(fmt::format("inconsistent: {}", e.what()));
   }
   return st;
+}
+
+nlohmann::json portfolio_json(const PortfolioState& ps) {
+  nlohmann::json cands = nlohmann::json::array();
+  for (const auto& c : ps.candidates)
+    cands.push_back({{"name", c.name},
+                     {"empty", c.empty},
+                     {"slices", c.slices},
+                     {"nodes", c.nodes},
+                     {"seconds", c.seconds},
+                     {"engine", c.engine ? search_json(*c.engine) : nlohmann::json(nullptr)}});
+  return {{"fingerprint", ps.fingerprint},
+          {"round", ps.round},
+          {"next", ps.next},
+          {"seconds", ps.seconds},
+          {"candidates", cands}};
+}
+
+// The portfolio's schedule (solver/portfolio.hpp): at least one candidate, named, each once;
+// the position inside the candidate list; the round bounded (slices last first_slice * 2^round
+// seconds, so 64 rounds are beyond any run); every candidate's engine state checked as above.
+PortfolioState portfolio_from(const JsonIn& j) {
+  PortfolioState ps;
+  ps.fingerprint = j.at("fingerprint").string();
+  ps.round = j.at("round").unsigned_integer(64);
+  ps.next = j.at("next").unsigned_integer();
+  ps.seconds = j.at("seconds").number(0);
+  const JsonIn cands = j.at("candidates");
+  const std::size_t n = cands.array(1, 1 << 16);
+  for (std::size_t k = 0; k < n; ++k) {
+    const JsonIn c = cands[k];
+    PortfolioCandidateState cs;
+    cs.name = c.at("name").string(4096);
+    if (cs.name.empty()) throw c.at("name").error("a candidate has no name");
+    for (const auto& other : ps.candidates)
+      if (other.name == cs.name) throw c.at("name").error(fmt::format("candidate {} is listed twice", cs.name));
+    cs.empty = c.at("empty").boolean();
+    cs.slices = c.at("slices").unsigned_integer();
+    cs.nodes = c.at("nodes").unsigned_integer();
+    cs.seconds = c.at("seconds").number(0);
+    if (auto e = c.find("engine")) cs.engine = search_from(*e);
+    ps.candidates.push_back(std::move(cs));
+  }
+  if (ps.next > ps.candidates.size())
+    throw j.at("next").error(
+        fmt::format("schedule position {} is past the {} candidates", ps.next, ps.candidates.size()));
+  return ps;
+}
+
+std::string envelope(const std::string& text, int version) {
+  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", kMagic, version, text.size(), fnv1a64(text), text);
+}
+
+}  // namespace
+
+std::string encode_checkpoint(const CheckpointFile& f) {
+  if (f.search.has_value() == f.portfolio.has_value())
+    throw std::logic_error("a checkpoint holds exactly one of a search and a portfolio state");
+  nlohmann::json body = {{"request", f.request}};
+  if (f.search)
+    body["search"] = search_json(*f.search);
+  else
+    body["portfolio"] = portfolio_json(*f.portfolio);
+  return envelope(body.dump(), kCheckpointVersion);
+}
+
+std::string encode_checkpoint(const SearchState& st) {
+  return encode_checkpoint(CheckpointFile{nullptr, st, {}});
+}
+
+CheckpointFile decode_checkpoint_file(std::string_view text, const std::string& origin) {
+  auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
+  auto eol1 = text.find('\n');
+  if (eol1 == std::string_view::npos || text.substr(0, kMagic.size()) != kMagic || text.size() <= kMagic.size() ||
+      text[kMagic.size()] != ' ')
+    throw bad("not a Tilekit checkpoint file");
+  std::string version(text.substr(kMagic.size() + 1, eol1 - kMagic.size() - 1));
+  if (version != "1" && version != std::to_string(kCheckpointVersion))
+    throw bad(fmt::format("format version {} is not supported (this build reads versions 1 to {})", version,
+                          kCheckpointVersion));
+  auto eol2 = text.find('\n', eol1 + 1);
+  if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
+  std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));
+  // "bytes <decimal> fnv1a64 <16 hex digits>", exactly.
+  std::uint64_t bytes = 0, sum = 0;
+  auto field = [&](std::string_view& rest, std::string_view word, std::uint64_t& value, int base) {
+    if (!rest.starts_with(word) || rest.size() <= word.size() || rest[word.size()] != ' ') return false;
+    rest.remove_prefix(word.size() + 1);
+    const auto space = std::min(rest.find(' '), rest.size());
+    auto [end, ec] = std::from_chars(rest.data(), rest.data() + space, value, base);
+    if (space == 0 || ec != std::errc() || end != rest.data() + space) return false;
+    rest.remove_prefix(std::min(space + 1, rest.size()));
+    return true;
+  };
+  std::string_view rest = header;
+  if (!field(rest, "bytes", bytes, 10) || !field(rest, "fnv1a64", sum, 16) || !rest.empty() ||
+      header.size() - header.rfind(' ') - 1 != 16)
+    throw bad("corrupt header");
+  std::string_view body = text.substr(eol2 + 1);
+  if (body.size() < bytes) throw bad(fmt::format("truncated ({} of {} bytes)", body.size(), bytes));
+  if (body.size() > bytes) throw bad(fmt::format("corrupt ({} bytes after the end)", body.size() - bytes));
+  if (fnv1a64(body) != sum) throw bad("corrupt (checksum mismatch)");
+  const std::string where = fmt::format("checkpoint {}", origin);
+  const nlohmann::json doc = parse_json_input(body, where);
+  const JsonIn j(doc, where);
+  j.object();
+  CheckpointFile f;
+  if (version == "1") {
+    f.request = nullptr;
+    f.search = search_from(j);
+    return f;
+  }
+  const JsonIn request = j.at("request");
+  if (!request.raw().is_null()) request.object();
+  f.request = request.raw();
+  const auto search = j.find("search"), portfolio = j.find("portfolio");
+  if (search.has_value() == portfolio.has_value())
+    throw bad("the body holds neither or both of a search and a portfolio state");
+  if (search)
+    f.search = search_from(*search);
+  else
+    f.portfolio = portfolio_from(*portfolio);
+  return f;
+}
+
+SearchState decode_checkpoint(std::string_view text, const std::string& origin) {
+  CheckpointFile f = decode_checkpoint_file(text, origin);
+  if (!f.search) throw InputError(fmt::format("checkpoint {}: holds a portfolio, not a single search", origin));
+  return std::move(*f.search);
+}
+
+void write_checkpoint(const std::string& path, const CheckpointFile& file) {
+  write_file_atomic(path, encode_checkpoint(file));
 }
 
 void write_checkpoint(const std::string& path, const SearchState& state) {
   write_file_atomic(path, encode_checkpoint(state));
 }
 
-SearchState read_checkpoint(const std::string& path) { return decode_checkpoint(read_input_file(path, "checkpoint"), path); }
+CheckpointFile read_checkpoint_file(const std::string& path) {
+  return decode_checkpoint_file(read_input_file(path, "checkpoint"), path);
+}
+
+SearchState read_checkpoint(const std::string& path) {
+  CheckpointFile f = read_checkpoint_file(path);
+  if (!f.search) throw InputError(fmt::format("checkpoint {}: holds a portfolio, not a single search", path));
+  return std::move(*f.search);
+}
 
 std::string fingerprint_difference(const std::string& here, const std::string& checkpoint) {
   if (here == checkpoint) return {};
@@ -180,23 +289,52 @@ std::string fingerprint_difference(const std::string& here, const std::string& c
   return fmt::format("{}", fmt::join(diffs, "; "));
 }
 
-SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options) {
+SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options, const nlohmann::json& request) {
   SearchOptions plain = options;  // the fingerprint does not depend on the file names
   plain.checkpoint_path.clear();
   plain.resume_path.clear();
   std::string here = search_fingerprint(problem, plain);
   if (!options.resume_path.empty()) {
-    SearchState st = read_checkpoint(options.resume_path);
-    std::string diff = fingerprint_difference(here, st.fingerprint);
+    CheckpointFile f = read_checkpoint_file(options.resume_path);
+    if (!f.search)
+      throw InputError(fmt::format("checkpoint {} holds a portfolio run, not a single search", options.resume_path));
+    std::string diff = fingerprint_difference(here, f.search->fingerprint);
     if (!diff.empty())
       throw InputError(fmt::format("checkpoint {} does not match this search: {}", options.resume_path, diff));
-    options.resume_state = std::move(st);
+    options.resume_state = std::move(*f.search);
   }
   if (!options.checkpoint_path.empty()) {
     std::string path = options.checkpoint_path;
-    options.save_checkpoint = [path](const SearchState& s) { write_checkpoint(path, s); };
+    options.save_checkpoint = [path, request](const SearchState& s) {
+      write_checkpoint(path, CheckpointFile{request, s, {}});
+    };
   }
   return solve(problem, options);
+}
+
+PortfolioResult run_portfolio_checkpointed(const TilingProblem& problem, const SearchOptions& options,
+                                           PortfolioOptions portfolio, const nlohmann::json& request) {
+  if (!options.resume_path.empty()) {
+    CheckpointFile f = read_checkpoint_file(options.resume_path);
+    if (!f.portfolio)
+      throw InputError(fmt::format("checkpoint {} holds a single search, not a portfolio run", options.resume_path));
+    std::string diff =
+        fingerprint_difference(portfolio_fingerprint(problem, options, portfolio), f.portfolio->fingerprint);
+    if (!diff.empty())
+      throw InputError(fmt::format("checkpoint {} does not match this portfolio: {}", options.resume_path, diff));
+    portfolio.resume_state = std::move(*f.portfolio);
+  }
+  if (!options.checkpoint_path.empty()) {
+    std::string path = options.checkpoint_path;
+    portfolio.save_checkpoint = [path, request](const PortfolioState& s) {
+      write_checkpoint(path, CheckpointFile{request, {}, s});
+    };
+    portfolio.checkpoint_every = options.checkpoint_every;
+  }
+  SearchOptions o = options;
+  o.checkpoint_path.clear();
+  o.resume_path.clear();
+  return run_portfolio(problem, o, portfolio);
 }
 
 }  // namespace tilekit

@@ -1,5 +1,5 @@
-// Checkpoint files (checkpoints/checkpoint.hpp). The first byte picks the mode: the input as a
-// whole file (header, length, checksum), or the input as a body wrapped in a valid header so
+// Checkpoint files (checkpoints/checkpoint.hpp), version 1 and 2, single searches and portfolios. The first byte picks
+// the mode: the input as a whole file (header, length, checksum), or the input as a body wrapped in a valid header so
 // that the fuzzer reaches the JSON and the structural checks past the checksum.
 #include <fmt/format.h>
 
@@ -18,10 +18,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                        : fmt::format("TILEKIT-CHECKPOINT {}\nbytes {} fnv1a64 {:016x}\n{}",
                                                      kCheckpointVersion, body.size(), fnv1a64(body), body);
   try {
-    const SearchState st = decode_checkpoint(file, "fuzz.ckpt");
-    check_search_state(st);  // what the loader accepted is consistent
-    const SearchState again = decode_checkpoint(encode_checkpoint(st), "again.ckpt");
-    if (again.in_flight.size() != st.in_flight.size() || again.finished != st.finished) __builtin_trap();
+    const CheckpointFile f = decode_checkpoint_file(file, "fuzz.ckpt");
+    if (f.search) check_search_state(*f.search);  // what the loader accepted is consistent
+    const CheckpointFile again = decode_checkpoint_file(encode_checkpoint(f), "again.ckpt");
+    if (again.search.has_value() != f.search.has_value() || again.request != f.request) __builtin_trap();
+    if (f.search &&
+        (again.search->in_flight.size() != f.search->in_flight.size() || again.search->finished != f.search->finished))
+      __builtin_trap();
+    if (f.portfolio && again.portfolio->candidates.size() != f.portfolio->candidates.size()) __builtin_trap();
   } catch (const InputError&) {
   }
   return 0;

@@ -1,4 +1,4 @@
-// Portfolio statistics files (solver/impose_portfolio.hpp): loading, then everything a run does
+// Portfolio statistics files (solver/portfolio_stats.hpp): loading, then everything a run does
 // with what loaded (report, ordering candidates, recording, merging).
 #include <unistd.h>
 
@@ -7,7 +7,8 @@
 #include <string>
 
 #include "base/error.hpp"
-#include "solver/impose_portfolio.hpp"
+#include "solver/portfolio.hpp"
+#include "solver/portfolio_stats.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace tilekit;

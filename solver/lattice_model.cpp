@@ -6,7 +6,6 @@
 #include <numeric>
 
 #include "base/error.hpp"
-#include <random>
 
 namespace tilekit {
 
@@ -61,9 +60,10 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
   for (int d : t->digit_radix) total *= std::size_t(d);
   // One entry per tile index: (C_h C_v)^2 or C^4; the limit is C = 90.
   if (total > kMaxModelTable)
-    throw InputError(fmt::format("the {} model needs a table of {} entries for these colours (limit {}); use "
-                                 "--formulation cell",
-                                 wang ? "edges" : "pegs", total, kMaxModelTable));
+    throw InputError(
+        fmt::format("the {} model needs a table of {} entries for these colours (limit {}); use "
+                    "--formulation cell",
+                    wang ? "edges" : "pegs", total, kMaxModelTable));
   t->allowed.assign(total, -1);
   for (std::size_t k = 0; k < set.size(); ++k) t->allowed[set.index_of(k)] = int(k);
   // var -> cells (CSR)
@@ -121,11 +121,11 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
 void LatticeModel::set_value_seed(std::uint64_t seed) {
   const Tables& t = *t_;
   perm_.assign(std::size_t(t.vars * t.max_radix), 0);
-  std::mt19937_64 rng(mix_seed(seed));
+  SplitMix64 rng(mix_seed(seed));
   for (int v = 0; v < t.vars; ++v) {
     int* p = &perm_[std::size_t(v * t.max_radix)];
     std::iota(p, p + t.radix[std::size_t(v)], 0);
-    if (seed) std::shuffle(p, p + t.radix[std::size_t(v)], rng);
+    if (seed) shuffle(p, p + t.radix[std::size_t(v)], rng);
   }
 }
 

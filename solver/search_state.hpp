@@ -4,6 +4,7 @@
 // path of decisions from the root. That is all a checkpoint or a shard needs to hold.
 // The on-disk format lives in checkpoints/checkpoint.hpp; this is the in-memory value.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,5 +70,22 @@ inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 // uninterrupted result. Throws InputError naming the first problem found.
 void check_search_state(const SearchState& state, std::uint64_t subproblems = 0, int shard_index = 0,
                         int shard_count = 1);
+// The portfolio's resumable state (solver/portfolio.hpp): where the schedule stands and, per
+// candidate, what it used and its own engine state.
+struct PortfolioCandidateState {
+  std::string name;    // "plain", a group spec, "sat:SPEC", ...
+  bool empty = false;  // its subspace was exhausted without a solution
+  std::uint64_t slices = 0, nodes = 0;
+  double seconds = 0;                 // budget used so far (wall seconds of its slices)
+  std::optional<SearchState> engine;  // its engine checkpoint (none before its first slice)
+};
+
+struct PortfolioState {
+  std::string fingerprint;                          // problem, seed, shard, the set of candidates, the first slice
+  std::uint64_t round = 0;                          // slices of this round last first_slice * 2^round seconds
+  std::uint64_t next = 0;                           // the next candidate to run in this round (index into candidates)
+  std::vector<PortfolioCandidateState> candidates;  // in schedule order
+  double seconds = 0;                               // wall time spent by earlier runs of this portfolio
+};
 
 }  // namespace tilekit

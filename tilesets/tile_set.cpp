@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <set>
 
 #include "base/error.hpp"
@@ -34,11 +35,8 @@ TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string
   }
   s.ch_ = std::max(ch, 1u);
   s.cv_ = std::max(cv, 1u);
-  if (std::uint64_t(s.ch_) * s.cv_ > kMaxWangColourProduct)
-    throw InputError(fmt::format("a Wang set over {}x{} colours is too large: tile indices (thesis eq. 2.2) are 32-bit, "
-                                 "so C_h * C_v must be at most {}",
-                                 s.ch_, s.cv_, kMaxWangColourProduct));
-  if (tiles.size() > kMaxTiles) throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
+  if (tiles.size() > kMaxTiles)
+    throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
   s.wang_ = std::move(tiles);
   s.name_ = std::move(name);
   s.source_ = std::move(source);
@@ -52,10 +50,12 @@ TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::st
   for (const CornerTile& t : tiles) c = std::max({c, t.ne + 1, t.se + 1, t.sw + 1, t.nw + 1});
   s.ch_ = s.cv_ = std::max(c, 1u);
   if (s.ch_ > kMaxCornerColours)
-    throw InputError(fmt::format("a corner set over {} colours is too large: tile indices (thesis eq. 2.5) are 32-bit, "
-                                 "so at most {} colours",
-                                 s.ch_, kMaxCornerColours));
-  if (tiles.size() > kMaxTiles) throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
+    throw InputError(
+        fmt::format("a corner set over {} colours is too large: tile indices (thesis eq. 2.5) are 32-bit, "
+                    "so at most {} colours",
+                    s.ch_, kMaxCornerColours));
+  if (tiles.size() > kMaxTiles)
+    throw InputError(fmt::format("{} tiles is more than the limit of {}", tiles.size(), kMaxTiles));
   s.corner_ = std::move(tiles);
   s.name_ = std::move(name);
   s.source_ = std::move(source);
@@ -64,9 +64,14 @@ TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::st
 }
 
 void TileSet::check_distinct() const {
-  std::vector<TileIndex> idx(size());
-  for (std::size_t k = 0; k < size(); ++k) idx[k] = index_of(k);
-  std::vector<TileIndex> sorted = idx;
+  // The colours themselves, not the 32-bit index: a set built in memory (the aperiodic
+  // tables' Wang sets over hundreds of colours) may lie beyond the index range.
+  std::vector<std::array<Colour, 4>> idx(size());
+  for (std::size_t k = 0; k < size(); ++k)
+    idx[k] = kind_ == TileKind::Wang
+                 ? std::array<Colour, 4>{wang_[k].n, wang_[k].e, wang_[k].s, wang_[k].w}
+                 : std::array<Colour, 4>{corner_[k].ne, corner_[k].se, corner_[k].sw, corner_[k].nw};
+  std::vector<std::array<Colour, 4>> sorted = idx;
   std::sort(sorted.begin(), sorted.end());
   auto dup = std::adjacent_find(sorted.begin(), sorted.end());
   if (dup != sorted.end()) {
@@ -123,7 +128,8 @@ TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv) {
   check_colour_count(ch, "horizontal colours");
   check_colour_count(cv, "vertical colours");
   const std::uint64_t n = complete_size(ch, cv);
-  if (n > (1u << 26)) throw InputError(fmt::format("complete Wang set over {}x{} colours is too large ({} tiles)", ch, cv, n));
+  if (n > (1u << 26))
+    throw InputError(fmt::format("complete Wang set over {}x{} colours is too large ({} tiles)", ch, cv, n));
   std::vector<WangTile> tiles(n);
   for (TileIndex i = 0; i < n; ++i) tiles[i] = wang_tile(i, ch, cv);
   std::string name = ch == cv ? fmt::format("complete-wang-{}", ch) : fmt::format("complete-wang-{}x{}", ch, cv);
@@ -133,10 +139,12 @@ TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv) {
 TileSet complete_corner_set(std::uint32_t c) {
   check_colour_count(c);
   const std::uint64_t n = complete_size(c, c);
-  if (n > (1u << 26)) throw InputError(fmt::format("complete corner set over {} colours is too large ({} tiles)", c, n));
+  if (n > (1u << 26))
+    throw InputError(fmt::format("complete corner set over {} colours is too large ({} tiles)", c, n));
   std::vector<CornerTile> tiles(n);
   for (TileIndex i = 0; i < n; ++i) tiles[i] = corner_tile(i, c);
-  return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c), "complete corner set (thesis sec. 2.7)", c);
+  return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c),
+                         "complete corner set (thesis sec. 2.7)", c);
 }
 
 TileSet corner_to_wang(const TileSet& corner) {

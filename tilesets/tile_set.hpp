@@ -12,8 +12,9 @@
 namespace tilekit {
 
 // Limits (README, "Bad input"). Tile indices (thesis eq. 2.2 / 2.5) are 32-bit, so a corner
-// set has at most 256 colours and a Wang set at most C_h * C_v = 65536 (then (C_h C_v)^2 - 1
-// is the largest index); a colour in a file is at most 65535. The largest set is 2^26 tiles
+// set has at most 256 colours and a Wang set read from a file at most C_h * C_v = 65536 (then
+// (C_h C_v)^2 - 1 is the largest index; Wang sets built in memory, such as the aperiodic
+// tables' over hundreds of colours, are never indexed); a colour in a file is at most 65535. The largest set is 2^26 tiles
 // (complete-corner-90, 1 GiB as Wang tiles), far above the largest set Tilekit builds from
 // data (1.2 M tiles in the aperiodic tables).
 inline constexpr std::int64_t kMaxTileSetColour = 65535;

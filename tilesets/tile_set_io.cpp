@@ -1,7 +1,6 @@
 #include "tilesets/tile_set_io.hpp"
 
 #include <fmt/format.h>
-
 #include <fmt/ranges.h>
 
 #include <algorithm>
@@ -45,7 +44,14 @@ TileSet make_set(TileKind kind, const std::vector<RawTile>& rows, std::string na
         const auto& r = t.colours;
         tiles.push_back({Colour(r[0]), Colour(r[3]), Colour(r[1]), Colour(r[2])});
       }
-      return TileSet::wang(std::move(tiles), std::move(name), std::move(source), Colour(declared), Colour(declared));
+      TileSet set =
+          TileSet::wang(std::move(tiles), std::move(name), std::move(source), Colour(declared), Colour(declared));
+      if (std::uint64_t(set.horizontal_radix()) * set.vertical_radix() > kMaxWangColourProduct)
+        throw InputError(
+            fmt::format("a Wang set over {}x{} colours is too large: tile indices (thesis eq. 2.2) are "
+                        "32-bit, so C_h * C_v must be at most {}",
+                        set.horizontal_radix(), set.vertical_radix(), kMaxWangColourProduct));
+      return set;
     }
     std::vector<CornerTile> tiles;
     tiles.reserve(rows.size());
@@ -122,9 +128,12 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     const std::string where = fmt::format("{}:{}", origin, lineno);
     if (auto v = directive(line, {"kind"})) {
       if (!rows.empty()) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
-      if (*v == "corner") kind = TileKind::Corner;
-      else if (*v == "wang") kind = TileKind::Wang;
-      else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, v->substr(0, 40)));
+      if (*v == "corner")
+        kind = TileKind::Corner;
+      else if (*v == "wang")
+        kind = TileKind::Wang;
+      else
+        throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, v->substr(0, 40)));
       continue;
     }
     if (auto v = directive(line, {"colours", "colors"})) {
@@ -151,7 +160,8 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     if (n == 0) continue;
     if (n != 4)
       throw InputError(fmt::format("{}: expected 4 colours ({}), found {} fields", where,
-                                   kind == TileKind::Wang ? "n s w e" : "nw ne sw se", n == 5 ? "more than 4" : std::to_string(n)));
+                                   kind == TileKind::Wang ? "n s w e" : "nw ne sw se",
+                                   n == 5 ? "more than 4" : std::to_string(n)));
     if (rows.size() >= kMaxTiles) throw InputError(fmt::format("{}: more than {} tiles", where, kMaxTiles));
     RawTile tile{{}, where};
     for (int k = 0; k < 4; ++k) {
@@ -180,8 +190,10 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
   TileKind kind = TileKind::Wang;
   if (auto k = j.find("kind")) {
     const std::string v = k->string();
-    if (v == "corner") kind = TileKind::Corner;
-    else if (v != "wang") throw k->error("must be \"wang\" or \"corner\"");
+    if (v == "corner")
+      kind = TileKind::Corner;
+    else if (v != "wang")
+      throw k->error("must be \"wang\" or \"corner\"");
   }
   const bool show_format = j.has("list");
   const JsonIn list = j.at(show_format ? "list" : "tiles");
@@ -199,7 +211,8 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
     const JsonIn t = list[k];
     t.array(4, 4);
     RawTile tile{{}, fmt::format("{}: {}", origin, t.path())};
-    for (std::size_t c = 0; c < 4; ++c) tile.colours[c] = check_colour(t[c].integer(0, kMaxTileSetColour), declared, tile.where);
+    for (std::size_t c = 0; c < 4; ++c)
+      tile.colours[c] = check_colour(t[c].integer(0, kMaxTileSetColour), declared, tile.where);
     rows.push_back(std::move(tile));
   }
   std::string name = check_label(j.string_or("name", stem_of(origin)), "name", origin);
@@ -235,7 +248,8 @@ std::string format_tile_set_text(const TileSet& set) {
   std::string out;
   if (set.kind() == TileKind::Corner) out += "# kind: corner\n";
   if (!set.source().empty()) out += fmt::format("# source: {}\n", set.source());
-  out += set.kind() == TileKind::Wang ? "# format: n s w e (one tile per line)\n" : "# format: nw ne sw se (one tile per line)\n";
+  out += set.kind() == TileKind::Wang ? "# format: n s w e (one tile per line)\n"
+                                      : "# format: nw ne sw se (one tile per line)\n";
   for (std::size_t k = 0; k < set.size(); ++k) out += fmt::format("{}\n", fmt::join(set.file_colours(k), " "));
   return out;
 }
@@ -293,7 +307,8 @@ TileSet resolve_tile_set(const std::string& name) {
     if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name));
   std::error_code ec;
   if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
-  throw InputError(fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
+  throw InputError(
+      fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
 }
 
 }  // namespace tilekit

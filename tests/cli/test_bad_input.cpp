@@ -36,8 +36,9 @@ TEST(BadInput, PackSetWithHugeColoursIsRefusedNotACrash) {
                  d / "big.tiles" + ":2: colour 1000000 is too large (at most 65535)");
   write_text(d / "c300.tiles", "# kind: corner\n0 0 0 300\n");  // fits the parser, not a 32-bit tile index
   expect_refused(run_cli("pack --set " + d / "c300.tiles" + " --size 1x1 --db " + d / "db.sqlite"),
-                 d / "c300.tiles" + ": a corner set over 301 colours is too large: tile indices (thesis eq. 2.5) are "
-                                    "32-bit, so at most 256 colours");
+                 d / "c300.tiles" +
+                     ": a corner set over 301 colours is too large: tile indices (thesis eq. 2.5) are "
+                     "32-bit, so at most 256 colours");
   write_text(d / "five.tiles", "0 0 0 0 0\n");
   expect_refused(run_cli("pack --set " + d / "five.tiles" + " --db " + d / "db.sqlite"),
                  d / "five.tiles" + ":1: expected 4 colours (n s w e), found more than 4 fields");
@@ -63,8 +64,9 @@ TEST(BadInput, DeeplyNestedJsonIsRefusedForEveryReader) {
   expect_refused(run_cli("tile --set complete-corner-2 --algo controlled --size 4x4 --map " + d / "deep.json"), msg);
   write_text(d / "deepobj.json", "{\"version\":1,\"groups\":" + std::string(1000, '[') + std::string(1000, ']') + "}");
   expect_refused(run_cli("pack --portfolio-report --portfolio-stats " + d / "deepobj.json"),
-                 d / "deepobj.json" + " (portfolio statistics; delete the file to start afresh):1: invalid JSON: "
-                                      "nested deeper than 64 levels");
+                 d / "deepobj.json" +
+                     " (portfolio statistics; delete the file to start afresh):1: invalid JSON: "
+                     "nested deeper than 64 levels");
   EXPECT_FALSE(fs::exists(d / "db.sqlite"));
 }
 
@@ -77,10 +79,12 @@ TEST(BadInput, OutOfRangeNumbersAndWrongTypesNameTheJsonPath) {
     return t;
   };
   write_text(d / "e999.json", with("1e999"));
-  expect_refused(run_cli("check " + d / "e999.json"), d / "e999.json" + ": invalid JSON: number overflow parsing '1e999'");
+  expect_refused(run_cli("check " + d / "e999.json"),
+                 d / "e999.json" + ": invalid JSON: number overflow parsing '1e999'");
   write_text(d / "digits.json", with(k100Digits));
-  expect_refused(run_cli("db add " + d / "digits.json" + " --db " + d / "db.sqlite"),
-                 d / "digits.json" + ": cells[0][0]: expected an integer between 0 and 4294967295, got 7.777777777777778e+99");
+  expect_refused(
+      run_cli("db add " + d / "digits.json" + " --db " + d / "db.sqlite"),
+      d / "digits.json" + ": cells[0][0]: expected an integer between 0 and 4294967295, got 7.777777777777778e+99");
   write_text(d / "array.json", with("[]"));
   expect_refused(run_cli("check " + d / "array.json"),
                  d / "array.json" + ": cells[0][0]: expected an integer between 0 and 4294967295, got []");
@@ -99,31 +103,39 @@ TEST(BadInput, OutOfRangeNumbersAndWrongTypesNameTheJsonPath) {
   write_text(d / "stats.json", R"({"version":1,"groups":{"corner/4/t=0,4:pi=1,2,3,0":{"tries":)" + k100Digits +
                                    R"(,"successes":0,"success_seconds":[]}}})");
   expect_refused(run_cli("pack --portfolio-report --portfolio-stats " + d / "stats.json"),
-                 d / "stats.json" + " (portfolio statistics; delete the file to start afresh): "
-                                    "groups[\"corner/4/t=0,4:pi=1,2,3,0\"].tries: expected an integer between 0 and "
-                                    "18446744073709551615, got 7.777777777777778e+99");
+                 d / "stats.json" +
+                     " (portfolio statistics; delete the file to start afresh): "
+                     "groups[\"corner/4/t=0,4:pi=1,2,3,0\"].tries: expected an integer between 0 and "
+                     "18446744073709551615, got 7.777777777777778e+99");
   EXPECT_FALSE(fs::exists(d / "db.sqlite"));
 }
 
 TEST(BadInput, AtlasLookupWithExtremeColoursIsRefusedNotBadAlloc) {
-  expect_refused(run_cli("atlas lookup --kind wang --colors 255"), "--colors must be between 1 and 64 for an atlas, got 255");
+  expect_refused(run_cli("atlas lookup --kind wang --colors 255"),
+                 "--colors must be between 1 and 64 for an atlas, got 255");
   expect_refused(run_cli("atlas lookup --kind corner --colors 4294967295"),
                  "--colors must be between 1 and 64 for an atlas, got 4294967295");
 }
 
 TEST(BadInput, RefusedMergeLeavesNoNewDatabase) {
   TempDir d;
-  write_text(d / "bad.json", R"({"tilekit_results":1,"runs":[],"tilesets":[],"conversions":[],"solutions":[{"kind":"wang"}]})");
-  expect_refused(run_cli("db merge " + d / "out.sqlite" + " " + d / "bad.json"), d / "bad.json" + ": solutions[0]: missing \"colors\"");
-  write_text(d / "bad2.json", R"({"tilekit_results":1,"runs":[{"uid":"u","command":"pack","nodes":-5}],"tilesets":[],"conversions":[],"solutions":[]})");
+  write_text(d / "bad.json",
+             R"({"tilekit_results":1,"runs":[],"tilesets":[],"conversions":[],"solutions":[{"kind":"wang"}]})");
+  expect_refused(run_cli("db merge " + d / "out.sqlite" + " " + d / "bad.json"),
+                 d / "bad.json" + ": solutions[0]: missing \"colors\"");
+  write_text(
+      d / "bad2.json",
+      R"({"tilekit_results":1,"runs":[{"uid":"u","command":"pack","nodes":-5}],"tilesets":[],"conversions":[],"solutions":[]})");
   expect_refused(run_cli("db merge " + d / "out.sqlite" + " " + d / "bad2.json"),
                  d / "bad2.json" + ": runs[0].nodes: expected an integer between 0 and 9223372036854775807, got -5");
-  for (const char* f : {"out.sqlite", "out.sqlite-wal", "out.sqlite-shm", "out.sqlite-journal"}) EXPECT_FALSE(fs::exists(d / f)) << f;
+  for (const char* f : {"out.sqlite", "out.sqlite-wal", "out.sqlite-shm", "out.sqlite-journal"})
+    EXPECT_FALSE(fs::exists(d / f)) << f;
 }
 
 TEST(BadInput, ALongCommentLineIsReadNotARegexStackOverflow) {
   TempDir d;
-  write_text(d / "long.tiles", "# " + std::string(30000, 'a') + "\n# source: " + std::string(3000, 'b') + "\n0 1 1 0\n");
+  write_text(d / "long.tiles",
+             "# " + std::string(30000, 'a') + "\n# source: " + std::string(3000, 'b') + "\n0 1 1 0\n");
   CliResult r = run_cli("tileset show " + d / "long.tiles" + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["tiles"], 1);
@@ -133,8 +145,9 @@ TEST(BadInput, ALongCommentLineIsReadNotARegexStackOverflow) {
 TEST(BadInput, ThreadCountsBeyondTheBoundAreRefused) {
   TempDir d;
   for (const char* t : {"100000", "2147483647", "0"})
-    expect_refused(run_cli(std::string("pack --kind wang --colors 2 --mode count --threads ") + t + " --db " + d / "db.sqlite"),
-                   std::string("--threads must be between 1 and 4096, got ") + t);
+    expect_refused(
+        run_cli(std::string("pack --kind wang --colors 2 --mode count --threads ") + t + " --db " + d / "db.sqlite"),
+        std::string("--threads must be between 1 and 4096, got ") + t);
   EXPECT_FALSE(fs::exists(d / "db.sqlite"));
 }
 
@@ -154,13 +167,16 @@ TEST(BadInput, CheckpointWithHugeRestartCountIsRefusedNotAnEndlessLubyLoop) {
   st.restarts = std::uint64_t(1) << 63;
   st.restart_nodes = 1;
   write_checkpoint(d / "ck", st);
-  expect_refused(run_cli("pack --kind corner --colors 3 --method search --plain --resume " + d / "ck" + " --db " + d / "db.sqlite"),
-                 "checkpoint " + d / "ck" + ": inconsistent: 9223372036854775808 restarts is more than the limit of 1099511627776");
+  expect_refused(run_cli("pack --kind corner --colors 3 --method search --plain --resume " + d / "ck" + " --db " +
+                         d / "db.sqlite"),
+                 "checkpoint " + d / "ck" +
+                     ": search: inconsistent: 9223372036854775808 restarts is more than the limit of 1099511627776");
 }
 
 TEST(BadInput, CheckpointListingAnInFlightSubproblemTwiceIsRefused) {
   TempDir d;
-  const std::string run = "pack --kind wang --colors 2 --mode count --threads 2 --quiet --checkpoint " + d / "ck" + " --db " + d / "db.sqlite";
+  const std::string run = "pack --kind wang --colors 2 --mode count --threads 2 --quiet --checkpoint " + d / "ck" +
+                          " --db " + d / "db.sqlite";
   ASSERT_EQ(run_cli(run).code, 0);
   SearchState st = read_checkpoint(d / "ck");  // the final checkpoint: everything finished
   ASSERT_GT(st.subproblem_count, 3u);
@@ -168,7 +184,7 @@ TEST(BadInput, CheckpointListingAnInFlightSubproblemTwiceIsRefused) {
   st.in_flight = {{3, {}, {}}, {3, {}, {}}};
   write_checkpoint(d / "ck", st);  // a valid checksum over an impossible state
   expect_refused(run_cli(run + " --resume " + d / "ck"),
-                 "checkpoint " + d / "ck" + ": inconsistent: in-flight subproblem 3 is listed twice");
+                 "checkpoint " + d / "ck" + ": search: inconsistent: in-flight subproblem 3 is listed twice");
 }
 
 TEST(BadInput, Latin1BytesAreRefusedAtInputNamingFileAndLine) {
@@ -212,10 +228,12 @@ TEST(BadInput, TilesetShowJsonReadsBackAsATileSetFile) {
     CliResult again = run_cli("tileset show " + d / "set.json" + " --json");
     ASSERT_EQ(again.code, 0) << set << ": " << again.err;
     auto a = shown.json(), b = again.json();
-    for (const char* k : {"kind", "name", "source", "tiles", "colors", "list"}) EXPECT_EQ(a[k], b[k]) << set << " " << k;
+    for (const char* k : {"kind", "name", "source", "tiles", "colors", "list"})
+      EXPECT_EQ(a[k], b[k]) << set << " " << k;
   }
   write_text(d / "lying.json", R"({"kind":"wang","tiles":3,"list":[[0,1,1,0]]})");
-  expect_refused(run_cli("tileset show " + d / "lying.json"), d / "lying.json" + ": tiles: says 3 tiles but \"list\" holds 1");
+  expect_refused(run_cli("tileset show " + d / "lying.json"),
+                 d / "lying.json" + ": tiles: says 3 tiles but \"list\" holds 1");
 }
 
 TEST(BadInput, DamagedDatabaseHeaderIsRefusedAndUntouched) {
@@ -225,7 +243,7 @@ TEST(BadInput, DamagedDatabaseHeaderIsRefusedAndUntouched) {
   std::string bytes = slurp(db);
   bytes[18] = 3;
   write_text(db, bytes);
-  for (const std::string cmd : {"db stats --db ", "db add /dev/null --db "}) {
+  for (const std::string cmd : {"db stats --db ", "db list --db ", "pack --quiet --kind corner --colors 2 --db "}) {
     CliResult r = run_cli(cmd + db);
     expect_refused(r, db + ": not a usable Tilekit results database: its SQLite header is damaged (byte 18 is 3; "
                            "SQLite writes 1 or 2); the file was left untouched");
@@ -260,8 +278,9 @@ TEST(BadInput, FileMessagesNameTheLine) {
   expect_refused(run_cli("tileset show " + d / "dup.tiles"),
                  d / "dup.tiles" + ":4: duplicate tile: repeats the tile of " + d / "dup.tiles" + ":2 (0 1 1 0)");
   write_text(d / "dup.json", R"({"tiles":[[0,1,1,0],[0,1,1,0]]})");
-  expect_refused(run_cli("tileset show " + d / "dup.json"),
-                 d / "dup.json" + ": tiles[1]: duplicate tile: repeats the tile of " + d / "dup.json" + ": tiles[0] (0 1 1 0)");
+  expect_refused(
+      run_cli("tileset show " + d / "dup.json"),
+      d / "dup.json" + ": tiles[1]: duplicate tile: repeats the tile of " + d / "dup.json" + ": tiles[0] (0 1 1 0)");
   write_text(d / "ck", "TILEKIT-CHECKPOINT 1\nbytes 99999999999999999999999 fnv1a64 0000000000000000\n{}");
   expect_refused(run_cli("pack --kind wang --colors 2 --mode count --resume " + d / "ck" + " --db " + d / "db.sqlite"),
                  "checkpoint " + d / "ck" + ": corrupt header");

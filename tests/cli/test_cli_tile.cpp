@@ -78,10 +78,14 @@ TEST(CliTile, BadInputIsExit2WithOneLineNamingTheProblem) {
   TempDir d;
   const std::string base = "tile --set complete-corner-3 --size 4x4 ";
   expect_bad_input(base + "--algo magic", "unknown algorithm 'magic'");
-  expect_bad_input("tile --set complete-corner-3 --algo direct --size 4by4", "--size must be WxH");
-  expect_bad_input("tile --set complete-corner-3 --algo direct --size 0x4", "tiling size must be between");
-  expect_bad_input("tile --set complete-corner-3 --algo direct --size 70000x1", "tiling size must be between");
-  expect_bad_input("tile --set complete-corner-3 --algo direct --size 8192x4096", "too large");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 4by4",
+                   "--size WxH: expected two positive integers such as 16x16, got '4by4'");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 0x4",
+                   "--size WxH: each side must be between 1 and 65536, got '0x4'");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 70000x1",
+                   "--size WxH: each side must be between 1 and 65536");
+  expect_bad_input("tile --set complete-corner-3 --algo direct --size 8192x4096",
+                   "--size WxH: 33554432 cells is more than the limit of 16777216");
   expect_bad_input("tile --set complete-corner-3 --algo direct --size 4096x4096 --tile-size 4 --out " + (d / "big.png"),
                    "more than 8192 per side");
   expect_bad_input(base + "--algo direct --hash md5", "unknown hash 'md5'");
@@ -91,7 +95,7 @@ TEST(CliTile, BadInputIsExit2WithOneLineNamingTheProblem) {
   expect_bad_input("tile --set no-such-set --algo direct --size 4x4", "unknown tile set 'no-such-set'");
   expect_bad_input(base + "--algo direct --out " + (d / "t.gif"), "unknown output format");
   expect_bad_input(base + "--algo direct --map " + (d / "m.json"), "--map only applies to --algo controlled");
-  expect_bad_input(base + "--algo controlled --map " + (d / "missing.json"), "no such file");
+  expect_bad_input(base + "--algo controlled --map " + (d / "missing.json"), "missing.json: no such probability map");
   write_text(d / "bad.json", R"({"colors":2,"rows":1,"cols":1,"p":[[[1,0]]]})");
   expect_bad_input(base + "--algo controlled --map " + (d / "bad.json"), "has 2 colours but tile set");
   expect_bad_input(base + "--algo direct --seed -3", "--seed");

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "tests/cli_runner.hpp"
 
@@ -74,13 +75,14 @@ TEST(PackCli, BadFlagsAreExit2WithAClearMessage) {
     const char* args;
     const char* message;
   };
-  for (Case c : {Case{"--kind wang --colors 0", "--colors must be between 1 and 255, got 0"},
-                 Case{"--kind wang --colors 2 --threads 0", "threads must be at least 1, got 0"},
-                 Case{"--kind hexagon --colors 2", "unknown tile kind 'hexagon' (corner or wang)"},
-                 Case{"--kind wang --colors 2 --mode most", "unknown mode 'most'"},
-                 Case{"--kind wang --colors 2 --shard 4/4", "--shard must be I/N with 0 <= I < N, got '4/4'"},
-                 Case{"--kind wang --colors 2 --formulation pegs", "pegs formulation is for corner tiles"},
-                 Case{"--colors 2", "pack needs --kind"}}) {
+  for (Case c :
+       {Case{"--kind wang --colors 0", "--colors must be between 1 and 255, got 0"},
+        Case{"--kind wang --colors 2 --threads 0", "--threads must be between 1 and 4096, got 0"},
+        Case{"--kind hexagon --colors 2", "unknown tile kind 'hexagon' (corner or wang)"},
+        Case{"--kind wang --colors 2 --mode most", "unknown mode 'most'"},
+        Case{"--kind wang --colors 2 --shard 4/4", "--shard must be I/N with 0 <= I < N <= 1000000, got '4/4'"},
+        Case{"--kind wang --colors 2 --formulation pegs", "pegs formulation is for corner tiles"},
+        Case{"--colors 2", "pack needs --kind"}}) {
     CliResult r = pack(std::string("--quiet ") + c.args);
     EXPECT_EQ(r.code, 2) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
@@ -101,7 +103,8 @@ TEST(PackCli, CorruptOrMismatchedCheckpointsAreExit2) {
   EXPECT_EQ(again.json()["solutions"], 203520);  // a finished checkpoint resumes to the same result
   CliResult mism = pack("--kind wang --colors 2 --mode count --seed 7 --quiet --resume " + ck);
   EXPECT_EQ(mism.code, 2);
-  EXPECT_NE(mism.err.find("does not match this search: seed"), std::string::npos) << mism.err;
+  // Issue 11: the checkpoint holds the run's request; a flag that contradicts it is named.
+  EXPECT_NE(mism.err.find("--seed is 7 here but 0 in the checkpoint"), std::string::npos) << mism.err;
   CliResult other = pack("--kind corner --colors 2 --mode count --quiet --resume " + ck);
   EXPECT_EQ(other.code, 2);
   EXPECT_NE(other.err.find("kind"), std::string::npos) << other.err;
@@ -169,7 +172,9 @@ TEST(PackCli, ImposedGroupFindsAFourColourWangPackingThatValidates) {
   EXPECT_EQ(c.json()["packing"], true);
   CliResult bad = pack("--kind wang --colors 4 --impose t=banana --quiet");
   EXPECT_EQ(bad.code, 2);
-  CliResult mixed = pack("--kind wang --colors 2 --impose t=0,2:pi=1,0 --checkpoint " + (d / "ck") + " --quiet");
-  EXPECT_EQ(mixed.code, 2);
-  EXPECT_NE(mixed.err.find("not checkpointed"), std::string::npos) << mixed.err;
+  // Issue 11: imposed groups run in the one engine, so they take checkpoints (exit 2 before).
+  CliResult mixed = pack("--kind wang --colors 2 --impose t=0,2:pi=1,0 --checkpoint " + (d / "ck") + " --quiet --json");
+  EXPECT_EQ(mixed.code, 0) << mixed.err;
+  EXPECT_EQ(mixed.json()["checkpoint"], d / "ck");
+  EXPECT_TRUE(std::filesystem::exists(d / "ck"));
 }
