@@ -5,14 +5,15 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <mutex>
 
-#include "solver/solve.hpp"
 #include "aperiodic/rows.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -25,7 +26,23 @@ struct Outcome {
   std::optional<Tiling> tiling;
 };
 
-Outcome search(const TileSet& set, int rows, int cols, bool torus, double time_limit) {
+// opts.time_limit bounds the whole verification, not each search: a search gets what is left
+// of it (issue 15: a limit of 20 s used to run for 66-93 s). Past the deadline a search is not
+// started and counts as incomplete.
+struct Deadline {
+  std::chrono::steady_clock::time_point start;
+  double limit = 0;  // seconds; 0: none
+  // Seconds a search may run: 0 for no limit, negative once the deadline has passed.
+  double left() const {
+    if (limit <= 0) return 0;
+    const double used = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return used < limit ? std::max(limit - used, 1e-3) : -1;
+  }
+};
+
+Outcome search(const TileSet& set, int rows, int cols, bool torus, const Deadline& deadline) {
+  const double time_limit = deadline.left();
+  if (time_limit < 0) return {};  // not searched: incomplete
   TilingProblem p;
   p.set = set;
   p.rows = rows;
@@ -54,7 +71,10 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     throw InputError(fmt::format("--max-period must be between 1 and 64, got {}", opts.max_period));
   if (opts.max_square < 0 || opts.max_square > 256)
     throw InputError(fmt::format("--max-square must be between 0 and 256, got {}", opts.max_square));
+  if (!(opts.time_limit >= 0) || !std::isfinite(opts.time_limit))
+    throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", opts.time_limit));
   auto t0 = std::chrono::steady_clock::now();
+  const Deadline deadline{t0, opts.time_limit};
   VerifyResult res;
   res.threads = opts.threads > 0 ? opts.threads : default_thread_count();
 
@@ -88,7 +108,7 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
       const std::size_t k = std::size_t(i);
       if (k > best.load()) return;  // a smaller witness is already known
       try {
-        outcomes[k] = search(set, list[k].first, list[k].second, true, opts.time_limit);
+        outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
         nodes += outcomes[k].nodes;
         if (outcomes[k].found) {
           std::size_t cur = best.load();
@@ -140,8 +160,10 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     }
     std::vector<std::pair<int, int>> rest;
     for (auto [p, q] : large) {
-      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)])) ++res.shapes_excluded;
-      else rest.emplace_back(p, q);
+      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)]))
+        ++res.shapes_excluded;
+      else
+        rest.emplace_back(p, q);
     }
     found = search_shapes(rest);
   }
@@ -169,7 +191,7 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   bool square_incomplete = false;
   if (opts.max_square > 0 && res.verdict.empty()) {
     for (int n = opts.max_square; n >= 1; --n) {
-      Outcome o = search(set, n, n, false, opts.time_limit);
+      Outcome o = search(set, n, n, false, deadline);
       res.nodes += o.nodes;
       if (o.found) {
         ValidationReport rep = validate(*o.tiling, &set);
@@ -187,9 +209,12 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   }
 
   if (res.verdict.empty()) {
-    if (opts.max_square > 0 && !square_incomplete && !res.square_tileable) res.verdict = "cannot-tile";
-    else if (res.shapes_incomplete > 0) res.verdict = "inconclusive";
-    else res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
+    if (opts.max_square > 0 && !square_incomplete && !res.square_tileable)
+      res.verdict = "cannot-tile";
+    else if (res.shapes_incomplete > 0)
+      res.verdict = "inconclusive";
+    else
+      res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;

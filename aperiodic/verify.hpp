@@ -25,7 +25,7 @@ struct VerifyOptions {
   int max_period = 8;      // torus shapes p x q, 1 <= p, q <= max_period
   int max_square = 0;      // bounded n x n square search (0: none)
   int threads = 0;         // 0: all (OpenMP); the torus shapes are searched in parallel
-  double time_limit = 0;   // seconds per search (0: none); a hit leaves the result incomplete
+  double time_limit = 0;   // seconds for the whole verification (0: none); a hit leaves it incomplete
   bool progress = false;
   bool transducer_filter = true;  // false: every shape goes to the solver (baseline)
 };

@@ -96,7 +96,7 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--max-period", va.opts.max_period, "Largest torus period in each direction (default 8)");
   cmd->add_option("--max-square", va.opts.max_square, "Also search an N x N square (bounded); 0 = no square search");
   cmd->add_option("--threads", va.opts.threads, "Threads (default: all)");
-  cmd->add_option("--time-limit", va.opts.time_limit, "Seconds per search (verdict inconclusive if hit)");
+  cmd->add_option("--time-limit", va.opts.time_limit, "Seconds for the whole verification (0 = none; verdict inconclusive if hit)");
   cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
   cmd->add_option("--db", va.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--progress", va.opts.progress, "Progress on stderr");

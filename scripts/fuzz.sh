@@ -66,6 +66,8 @@ make_seeds() {
     --time-limit 0.05 --db "$db" >/dev/null || true
   "$tk" pack --kind corner --colors 3 --method search --plain --quiet --checkpoint "$s/restart.ckpt" \
     --time-limit 0.05 --db "$db" >/dev/null || true
+  "$tk" pack --kind corner --colors 4 --method search --quiet --checkpoint "$s/portfolio.ckpt" --portfolio-stats "$s/stats2.json" \
+    --time-limit 0.05 --db "$db" >/dev/null || true
   for c in "$s"/*.ckpt; do
     [ -f "$c" ] || continue
     { printf '\001'; cat "$c"; } >"$c.whole" && seed checkpoint "$c.whole"

@@ -285,3 +285,40 @@ TEST(BadInput, FileMessagesNameTheLine) {
   expect_refused(run_cli("pack --kind wang --colors 2 --mode count --resume " + d / "ck" + " --db " + d / "db.sqlite"),
                  "checkpoint " + d / "ck" + ": corrupt header");
 }
+
+TEST(BadInput, PortfolioCheckpointIsValidatedStructurally) {
+  // A valid checksum over an impossible portfolio state: each is refused before anything runs.
+  TempDir d;
+  SearchState engine;
+  engine.fingerprint = "{}";
+  engine.subproblem_count = 4;
+  engine.finished = {false, false, false, false};
+  engine.in_flight = {{3, {}, {}}, {3, {}, {}}};
+  PortfolioState twice;
+  twice.fingerprint = "{}";
+  twice.candidates = {{"plain", false, 0, 0, 0, std::nullopt}, {"plain", false, 0, 0, 0, std::nullopt}};
+  PortfolioState past = twice;
+  past.candidates.pop_back();
+  past.next = 2;
+  PortfolioState bad_engine = past;
+  bad_engine.next = 0;
+  bad_engine.candidates[0].engine = engine;
+  const std::string run = "pack --kind corner --colors 4 --quiet --resume " + d / "ck" + " --db " + d / "db.sqlite";
+  const std::string where = "checkpoint " + d / "ck" + ": portfolio";
+  const std::pair<PortfolioState, std::string> cases[] = {
+      {twice, where + ".candidates[1].name: candidate plain is listed twice"},
+      {past, where + ".next: schedule position 2 is past the 1 candidates"},
+      {bad_engine, where + ".candidates[0].engine: inconsistent: in-flight subproblem 3 is listed twice"}};
+  for (const auto& [state, message] : cases) {
+    write_checkpoint(d / "ck", CheckpointFile{nullptr, std::nullopt, state});
+    const std::string before = slurp(d / "ck");
+    expect_refused(run_cli(run), message);
+    EXPECT_EQ(slurp(d / "ck"), before);
+    EXPECT_FALSE(fs::exists(d / "db.sqlite"));
+  }
+}
+
+TEST(BadInput, AperiodicVerifyTimeLimitMustBeANonNegativeNumber) {
+  expect_refused(run_cli("aperiodic verify culik-13 --time-limit -1"),
+                 "--time-limit must be a number of seconds >= 0, got -1");
+}
