@@ -257,7 +257,9 @@ std::string format_tile_set_text(const TileSet& set) {
 nlohmann::json tile_set_to_json(const TileSet& set) {
   nlohmann::json tiles = nlohmann::json::array();
   for (std::size_t k = 0; k < set.size(); ++k) tiles.push_back(set.file_colours(k));
-  return {{"kind", std::string(kind_name(set.kind()))}, {"name", set.name()}, {"tiles", tiles}};
+  nlohmann::json j = {{"kind", std::string(kind_name(set.kind()))}, {"name", set.name()}, {"tiles", tiles}};
+  if (!set.source().empty()) j["source"] = set.source();  // so that the JSON form reads back whole
+  return j;
 }
 
 std::vector<BuiltinInfo> builtin_tile_sets() {

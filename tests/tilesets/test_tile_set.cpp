@@ -123,3 +123,11 @@ TEST(CornerToWang, EquivalentSetHasCSquaredColoursAndSameSize) {
   EXPECT_EQ(w.size(), 16u);
   EXPECT_EQ(w.colours(), 4u);  // thesis Fig. 2.7: 16 tiles over 4 colours
 }
+
+TEST(TileSetFiles, JsonFormKeepsTheSourceLine) {
+  // Found by fuzz_tile_set: the JSON form dropped "# source:", so it did not read back whole.
+  const TileSet set = parse_tile_set("# source: Culik 1996\n0 1 3 4\n0 3 3 3\n", "c.tiles");
+  const TileSet again = parse_tile_set(tile_set_to_json(set).dump(), "c.json");
+  EXPECT_EQ(again.source(), "Culik 1996");
+  EXPECT_EQ(again.size(), 2u);
+}
