@@ -29,6 +29,7 @@ struct PackArgs {
   std::string kind, set, size, method = "auto", mode = "first", checkpoint, resume, db, shard = "0/1";
   std::string formulation = "auto", ordering = "auto", out;
   std::string impose, portfolio_stats;  // issue 7: imposed group; portfolio statistics file
+  std::string lift;                     // issue 11: colour-quotient lift SPEC
   bool portfolio_report = false;
   std::int64_t colours = 0;
   int threads = 0;
@@ -166,6 +167,9 @@ void run_pack(const PackArgs& a, const Context& ctx) {
     throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
   if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
   if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
+  if (!a.lift.empty() && (!a.impose.empty() || a.method == "construct"))
+    throw InputError("--lift searches its own subspace: drop --impose and --method construct");
+  o.lift = a.lift;
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
@@ -194,7 +198,7 @@ void run_pack(const PackArgs& a, const Context& ctx) {
       problem.rows == int(colours * colours) && problem.cols == problem.rows;
   // The portfolio (plain search + imposed groups, first found wins) answers first-mode searches
   // of complete sets unless the engine is pinned by a formulation, ordering, checkpoint or shard.
-  const bool use_portfolio = !imposed && !a.plain && o.mode == SearchMode::First && a.method != "construct" &&
+  const bool use_portfolio = !imposed && a.lift.empty() && !a.plain && o.mode == SearchMode::First && a.method != "construct" &&
                              complete_set_problem && a.formulation == "auto" && a.ordering == "auto" &&
                              o.checkpoint_path.empty() && o.resume_path.empty() && o.shard_count == 1;
   o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
@@ -221,7 +225,8 @@ void run_pack(const PackArgs& a, const Context& ctx) {
                 {"time_limit", a.time_limit},
                 {"checkpoint", o.checkpoint_path},
                 {"resume", o.resume_path},
-                {"impose", a.impose}};
+                {"impose", a.impose},
+                {"lift", a.lift}};
   run.status = "running";
   run.threads = o.threads;
   run.id = db.begin_run(run);
@@ -235,11 +240,11 @@ void run_pack(const PackArgs& a, const Context& ctx) {
   std::string method = "search";
   nlohmann::json group_json = nullptr, portfolio_json = nullptr;
   std::optional<SolutionRecord> hit;
-  if (a.method == "auto" && o.mode == SearchMode::First && complete_set_problem && !imposed)
+  if (a.method == "auto" && o.mode == SearchMode::First && complete_set_problem && !imposed && a.lift.empty())
     hit = db.find_solution(problem.set.kind(), colours, problem.rows, problem.cols);
   if (!(hit && validate(hit->tiling, &problem.set).packing)) hit.reset();
   std::optional<ConstructedPacking> built;
-  if (!hit && a.set.empty() && !imposed && o.mode == SearchMode::First &&
+  if (!hit && a.set.empty() && !imposed && a.lift.empty() && o.mode == SearchMode::First &&
       (a.method == "construct" || a.method == "auto")) {
     built = construct_packing(problem.set.kind(), colours);
     if (built && !validate(built->tiling, &problem.set).packing)
@@ -421,6 +426,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--impose", a->impose,
                   "Search only packings invariant under this group: generators 't=DR,DC:pi=P0,P1,...' separated "
                   "by ';' (Wang: pih=/piv= per edge direction; cycles like pi=(0 1)(2 3) also work)");
+  cmd->add_option("--lift", a->lift,
+                  "Search packings A = B + M*E over a known packing B of M colours (colour-quotient lift): "
+                  "'M' or 'm=M,base=FILE'; --formulation sat solves it with cadical");
   cmd->add_flag("--plain", a->plain, "First mode: plain search only (no imposed-group portfolio)");
   cmd->add_flag("--portfolio-report", a->portfolio_report,
                 "Print the per-group statistics (tries, successes, median time) that order the auto portfolio");

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "solver/impose_model.hpp"
+#include "solver/sat_cnf.hpp"  // sat_solver_available()
 
 namespace tilekit {
 
@@ -29,9 +30,6 @@ struct SatOutcome {
 
 // The CNF in DIMACS text.
 std::string symmetric_cnf(const SymmetricModel& model, std::uint64_t* variables = nullptr, std::uint64_t* clauses = nullptr);
-
-// Whether `cadical` is on PATH.
-bool sat_solver_available();
 
 // Writes the CNF to a temporary file, runs cadical with a time limit (seconds, >= 1) and seed,
 // and decodes the model. Throws InputError when cadical is missing.

@@ -1,6 +1,7 @@
 #include "solver/lattice_model.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 #include <random>
 
@@ -15,9 +16,10 @@ struct LatticeModel::Tables {
   std::vector<int> allowed;                     // tile index -> tile number in the set, or -1
   std::vector<int> var_cells_start, var_cells;  // CSR: var -> cells containing it
   std::vector<int> order;                       // branching order of the free variables
+  std::vector<int> used_base;                   // cell -> class * tiles (offset into used_)
 };
 
-LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
+LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation, int class_period) {
   auto t = std::make_shared<Tables>();
   t->problem = p;
   const TileSet& set = p.set;
@@ -26,6 +28,17 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
   cells_ = R * K;
   packing_ = p.packing;
   break_translation_ = break_translation && p.packing && p.torus;
+  if (class_period > 0) {
+    assert(p.torus && p.packing && R % class_period == 0 && K % class_period == 0);
+    class_period_ = class_period;
+    classes_ = class_period * class_period;
+  }
+  t->used_base.resize(std::size_t(cells_));
+  for (int cell = 0; cell < cells_; ++cell) {
+    const int r = cell / K, c = cell % K;
+    const int cls = class_period > 0 ? (r % class_period) * class_period + c % class_period : 0;
+    t->used_base[std::size_t(cell)] = cls * int(set.size());
+  }
   const int ch = int(set.horizontal_radix()), cv = int(set.vertical_radix());
   t->cell_vars.resize(std::size_t(cells_));
   if (!wang) {
@@ -103,7 +116,7 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
     missing_[std::size_t(cell)] = int(std::unique(cv4.begin(), cv4.end()) - cv4.begin());
   }
   marked_.assign(std::size_t(cells_), 0);
-  used_.assign(set.size(), 0);
+  used_.assign(set.size() * std::size_t(classes_), 0);
   fixed_ = int(fixed.size());
   for (auto& f : fixed) assign(f.first, f.second);
   set_value_seed(0);
@@ -140,7 +153,7 @@ bool LatticeModel::cell_has_option(int cell) const {
       i = i * t.digit_radix[std::size_t(d)] + (v == free_var ? x : value_[std::size_t(v)]);
     }
     int k = t.allowed[std::size_t(i)];
-    if (k >= 0 && !(packing_ && used_[std::size_t(k)])) return true;
+    if (k >= 0 && !(packing_ && used_[std::size_t(t.used_base[std::size_t(cell)] + k)])) return true;
   }
   return false;
 }
@@ -165,6 +178,7 @@ bool LatticeModel::assign(int var, int x) {
   for (const int* c = b; c != e; ++c) {
     if (--missing_[std::size_t(*c)] != 0 || !ok) continue;
     int k = t.allowed[std::size_t(cell_index(*c))];
+    if (k >= 0) k += t.used_base[std::size_t(*c)];
     if (k < 0 || (packing_ && used_[std::size_t(k)])) {
       ok = false;
     } else if (packing_) {
@@ -185,7 +199,7 @@ void LatticeModel::unassign(int var, int x) {
   const int* e = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(var) + 1])];
   for (const int* c = b; c != e; ++c) {
     if (missing_[std::size_t(*c)] == 0 && marked_[std::size_t(*c)]) {
-      used_[std::size_t(t.allowed[std::size_t(cell_index(*c))])] = 0;
+      used_[std::size_t(t.used_base[std::size_t(*c)] + t.allowed[std::size_t(cell_index(*c))])] = 0;
       marked_[std::size_t(*c)] = 0;
     }
     ++missing_[std::size_t(*c)];

@@ -4,11 +4,13 @@
 
 #include <fmt/format.h>
 
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "solver/cell_model.hpp"
 #include "solver/lattice_model.hpp"
+#include "solver/lift_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
 #include "base/error.hpp"
@@ -34,7 +36,15 @@ struct Plan {
   bool restarts = false;
   std::uint64_t restart_base = 0;
   std::size_t subproblems = 0;
+  std::shared_ptr<const LiftProblem> lift;  // --lift: the subspace searched
 };
+
+// A model's leaf stands for its translates by multiples of this step (lifts: the period).
+template <SearchModel M>
+int translation_step(const M& m) {
+  if constexpr (requires { m.translation_step(); }) return m.translation_step();
+  else return 1;
+}
 
 const char* mode_name(SearchMode m) {
   return m == SearchMode::First ? "first" : m == SearchMode::Count ? "count" : "all";
@@ -68,12 +78,24 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   // unconstrained tilings, where most-constrained-first cell search is close and far more
   // robust on restrictive (e.g. aperiodic) sets.
   if (pl.formulation == "auto") pl.formulation = "cell";
-  if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
+  if (!pl.lift && pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
     throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
   if (pl.formulation == "pegs" && wang)
     throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
   if (pl.formulation == "edges" && !wang)
     throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
+  if (!o.lift.empty()) {
+    const bool complete = set.size() == complete_size(set.horizontal_radix(), set.vertical_radix()) &&
+                          set.horizontal_radix() == set.vertical_radix() && p.torus && p.packing &&
+                          p.rows == int(set.colours() * set.colours()) && p.cols == p.rows;
+    if (!complete) throw InputError("--lift searches packings of the complete sets (--kind and --colors)");
+    pl.lift = std::make_shared<const LiftProblem>(make_lift_problem(set.kind(), set.colours(), parse_lift_spec(o.lift)));
+    if (o.formulation == "auto") pl.formulation = "lift";
+    else if (o.formulation != "sat")
+      throw InputError(fmt::format("--lift searches with the engine (--formulation auto) or cadical (sat), not '{}'",
+                                   o.formulation));
+    if (o.ordering != "auto" && o.ordering != "static") throw InputError("--lift uses the static (scanline) ordering");
+  }
   pl.ordering = o.ordering;
   // Static scanline order is cheapest per node for packings; most constrained first is
   // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
@@ -81,6 +103,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
   if (pl.ordering == "mrv" && pl.formulation != "cell") throw InputError("the mrv ordering needs the cell formulation");
+  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : "static";
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
@@ -107,6 +130,11 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
                       {"subproblems", pl.subproblems},
                       {"shard", {o.shard_index, o.shard_count}}};
   if (pl.restarts) j["restart_base"] = pl.restart_base;
+  if (pl.lift) {
+    StableHash base;
+    for (TileIndex t : pl.lift->base.cells) base.add(t, 4);
+    j["lift"] = {{"spec", pl.lift->spec.text()}, {"base_hash", fmt::format("{:016x}", base.fnv())}};
+  }
   return j.dump();
 }
 
@@ -122,7 +150,8 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   std::optional<PackingSymmetry> sym;
   const bool translations = root.multiplicity() > 1;
-  if (o.mode != SearchMode::First && o.count_orbits && translations) sym = PackingSymmetry::for_problem(p);
+  const int step = translation_step(root);  // orbits are counted for whole-torus translations only
+  if (o.mode != SearchMode::First && o.count_orbits && translations && step == 1) sym = PackingSymmetry::for_problem(p);
   if (sym) res.symmetry_order = sym->full_order();
 
   std::mutex emit_mu;
@@ -144,8 +173,8 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
       emit(t);
       res.found.push_back(t);
     } else if (translations) {
-      for (int r = 0; r < t.rows; ++r)
-        for (int col = 0; col < t.cols; ++col) emit(translate(t, r, col));
+      for (int r = 0; r < t.rows; r += step)
+        for (int col = 0; col < t.cols; col += step) emit(translate(t, r, col));
     } else {
       emit(t);
     }
@@ -206,6 +235,8 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.catch_signals) signals.emplace();
+  if (pl.lift && pl.formulation == "sat") return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
+  if (pl.lift) return run_model(LiftModel(*pl.lift), problem, options, pl);
   if (pl.formulation == "cell") {
     auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
     return run_model(CellModel(problem, true, ord), problem, options, pl);
