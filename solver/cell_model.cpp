@@ -1,6 +1,7 @@
 #include "solver/cell_model.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 #include <numeric>
 #include <random>
@@ -23,9 +24,12 @@ struct CellModel::Tables {
   std::vector<int> nb;          // cell*4 + dir -> neighbour cell or -1
   std::vector<int> order;       // static order of the free cells
   std::vector<char> self_ok;    // tile number -> fits next to itself where the torus is 1 wide
+  std::vector<int> cls;         // cell -> residue class (0 without a class period)
+  std::vector<int> class_start, class_cells;  // CSR: class -> its cells
 };
 
-CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering ordering) : ordering_(ordering) {
+CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering ordering, int class_period)
+    : ordering_(ordering) {
   auto t = std::make_shared<Tables>();
   t->problem = p;
   t->rows = p.rows;
@@ -74,6 +78,20 @@ CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering or
     if (p.torus && p.rows == 1 && l[kN] != l[kS]) t->self_ok[std::size_t(k)] = 0;
     if (p.torus && p.cols == 1 && l[kE] != l[kW]) t->self_ok[std::size_t(k)] = 0;
   }
+  assert(class_period == 0 || (p.torus && p.packing && p.rows % class_period == 0 && p.cols % class_period == 0));
+  classes_ = class_period > 0 ? class_period * class_period : 1;
+  t->cls.resize(std::size_t(cells_));
+  std::vector<std::vector<int>> members(static_cast<std::size_t>(classes_));
+  for (int c = 0; c < cells_; ++c) {
+    const int k = class_period > 0 ? (c / p.cols % class_period) * class_period + c % p.cols % class_period : 0;
+    t->cls[std::size_t(c)] = k;
+    members[std::size_t(k)].push_back(c);
+  }
+  t->class_start.push_back(0);
+  for (const auto& m : members) {
+    t->class_cells.insert(t->class_cells.end(), m.begin(), m.end());
+    t->class_start.push_back(int(t->class_cells.size()));
+  }
   fixed_ = break_translation_ ? 1 : 0;
   for (int c = fixed_; c < cells_; ++c) t->order.push_back(c);  // scanline from (0,0)
   t_ = std::move(t);
@@ -96,7 +114,7 @@ void CellModel::rebuild_masks() {
   const Tables& t = *t_;
   label_.resize(std::size_t(tiles_) * 4);
   masks_.assign(std::size_t(4 * t.labels * words_), 0);
-  avail_.assign(std::size_t(words_), 0);
+  avail_.assign(std::size_t(words_ * classes_), 0);
   for (int v = 0; v < tiles_; ++v) {
     int k = perm_[std::size_t(v)];
     for (int d = 0; d < 4; ++d) {
@@ -104,7 +122,8 @@ void CellModel::rebuild_masks() {
       label_[std::size_t(v) * 4 + std::size_t(d)] = l;
       masks_[std::size_t((d * t.labels + l) * words_ + v / 64)] |= std::uint64_t(1) << (v % 64);
     }
-    if (t.self_ok[std::size_t(k)]) avail_[std::size_t(v / 64)] |= std::uint64_t(1) << (v % 64);
+    if (t.self_ok[std::size_t(k)])
+      for (int c = 0; c < classes_; ++c) avail_[std::size_t(c * words_ + v / 64)] |= std::uint64_t(1) << (v % 64);
   }
   std::fill(tile_.begin(), tile_.end(), -1);
   assigned_ = 0;
@@ -116,7 +135,7 @@ void CellModel::rebuild_masks() {
 
 int CellModel::domain(int cell, std::uint64_t* dom) const {
   const Tables& t = *t_;
-  std::copy_n(avail_.data(), words_, dom);
+  std::copy_n(avail_.data() + std::size_t(t.cls[std::size_t(cell)] * words_), words_, dom);
   const int* n = &t.nb[std::size_t(cell) * 4];
   for (int d = 0; d < 4; ++d) {
     int o = n[d];
@@ -141,8 +160,9 @@ bool CellModel::domain_empty(int cell) const {
     int l = label_[std::size_t(tile_[std::size_t(o)]) * 4 + std::size_t(opposite(d))];
     m[k++] = &masks_[std::size_t((d * t.labels + l) * words_)];
   }
+  const std::uint64_t* avail = avail_.data() + std::size_t(t.cls[std::size_t(cell)] * words_);
   for (int w = 0; w < words_; ++w) {
-    std::uint64_t x = avail_[std::size_t(w)];
+    std::uint64_t x = avail[w];
     for (int i = 0; i < k; ++i) x &= m[i][w];
     if (x) return false;
   }
@@ -193,22 +213,29 @@ int CellModel::branch(std::vector<int>& values) {
 }
 
 bool CellModel::assign(int cell, int v) {
+  const Tables& t = *t_;
   tile_[std::size_t(cell)] = v;
   ++assigned_;
-  if (packing_) avail_[std::size_t(v / 64)] &= ~(std::uint64_t(1) << (v % 64));
+  const int k = t.cls[std::size_t(cell)];
+  if (packing_) avail_[std::size_t(k * words_ + v / 64)] &= ~(std::uint64_t(1) << (v % 64));
   // Forward checking: every free neighbour must keep a candidate.
-  const int* n = &t_->nb[std::size_t(cell) * 4];
+  const int* n = &t.nb[std::size_t(cell) * 4];
   for (int d = 0; d < 4; ++d) {
     int o = n[d];
     if (o >= 0 && tile_[std::size_t(o)] < 0 && domain_empty(o)) return false;
   }
+  if (classes_ > 1)  // the tile is gone from the rest of its class too
+    for (int i = t.class_start[std::size_t(k)]; i < t.class_start[std::size_t(k) + 1]; ++i) {
+      const int o = t.class_cells[std::size_t(i)];
+      if (tile_[std::size_t(o)] < 0 && domain_empty(o)) return false;
+    }
   return true;
 }
 
 void CellModel::unassign(int cell, int v) {
   tile_[std::size_t(cell)] = -1;
   --assigned_;
-  if (packing_) avail_[std::size_t(v / 64)] |= std::uint64_t(1) << (v % 64);
+  if (packing_) avail_[std::size_t(t_->cls[std::size_t(cell)] * words_ + v / 64)] |= std::uint64_t(1) << (v % 64);
 }
 
 Tiling CellModel::tiling() const {

@@ -78,6 +78,4 @@ LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSp
   return p;
 }
 
-Tiling LiftModel::tiling() const { return colour_lift(*base_, e_.tiling()); }
-
 }  // namespace tilekit

@@ -18,7 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/cell_model.hpp"
 #include "solver/lattice_model.hpp"
+#include "tilesets/constructions.hpp"
 #include "solver/solve.hpp"
 
 namespace tilekit {
@@ -45,28 +47,40 @@ struct LiftProblem {
 // base file is not one.
 LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSpec& spec);
 
-class LiftModel {
+// The quotient searched by `Inner` (LatticeModel: pegs/edges in scanline order, or CellModel:
+// tile per cell, most constrained first), both with the packing condition per residue class.
+template <class Inner>
+class LiftModelOf {
  public:
-  explicit LiftModel(const LiftProblem& p)
-      : e_(p.quotient, true, p.period), base_(std::make_shared<const Tiling>(p.base)), period_(p.period) {}
+  LiftModelOf(const LiftProblem& p, Inner inner)
+      : e_(std::move(inner)), base_(std::make_shared<const Tiling>(p.base)), period_(p.period) {}
 
   int branch(std::vector<int>& values) { return e_.branch(values); }
   bool assign(int var, int value) { return e_.assign(var, value); }
   void unassign(int var, int value) { e_.unassign(var, value); }
   void set_value_seed(std::uint64_t seed) { e_.set_value_seed(seed); }
-  Tiling tiling() const;  // A = B + m*E
+  Tiling tiling() const { return colour_lift(*base_, e_.tiling()); }  // A = B + m*E
   Tiling quotient() const { return e_.tiling(); }
   std::uint64_t multiplicity() const { return e_.multiplicity(); }
   // A leaf's other solutions are its translates by multiples of the period (solve.cpp).
   int translation_step() const { return period_; }
 
  private:
-  LatticeModel e_;
+  Inner e_;
   std::shared_ptr<const Tiling> base_;
   int period_ = 1;
 };
 
-static_assert(SearchModel<LiftModel>);
+// The two quotient models (formulations "lift" and "lift-cell").
+inline LiftModelOf<LatticeModel> lift_lattice_model(const LiftProblem& p) {
+  return {p, LatticeModel(p.quotient, true, p.period)};
+}
+inline LiftModelOf<CellModel> lift_cell_model(const LiftProblem& p) {
+  return {p, CellModel(p.quotient, true, CellModel::Ordering::MostConstrained, p.period)};
+}
+using LiftModel = LiftModelOf<LatticeModel>;
+
+static_assert(SearchModel<LiftModelOf<LatticeModel>> && SearchModel<LiftModelOf<CellModel>>);
 
 // The lift searched as CNF by cadical (lift_sat.cpp): first mode only; the result is validated
 // like the engine's. Called by solve() for `--lift SPEC --formulation sat`.

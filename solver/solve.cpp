@@ -78,7 +78,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   // unconstrained tilings, where most-constrained-first cell search is close and far more
   // robust on restrictive (e.g. aperiodic) sets.
   if (pl.formulation == "auto") pl.formulation = "cell";
-  if (!pl.lift && pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
+  if (o.lift.empty() && pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
     throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
   if (pl.formulation == "pegs" && wang)
     throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
@@ -90,11 +90,12 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
                           p.rows == int(set.colours() * set.colours()) && p.cols == p.rows;
     if (!complete) throw InputError("--lift searches packings of the complete sets (--kind and --colors)");
     pl.lift = std::make_shared<const LiftProblem>(make_lift_problem(set.kind(), set.colours(), parse_lift_spec(o.lift)));
-    if (o.formulation == "auto") pl.formulation = "lift";
+    if (o.formulation == "auto" || o.formulation == "pegs" || o.formulation == "edges") pl.formulation = "lift";
+    else if (o.formulation == "cell") pl.formulation = "lift-cell";
     else if (o.formulation != "sat")
-      throw InputError(fmt::format("--lift searches with the engine (--formulation auto) or cadical (sat), not '{}'",
-                                   o.formulation));
-    if (o.ordering != "auto" && o.ordering != "static") throw InputError("--lift uses the static (scanline) ordering");
+      throw InputError(fmt::format(
+          "--lift searches with the engine (--formulation auto: pegs/edges, or cell) or cadical (sat), not '{}'",
+          o.formulation));
   }
   pl.ordering = o.ordering;
   // Static scanline order is cheapest per node for packings; most constrained first is
@@ -103,7 +104,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
   if (pl.ordering == "mrv" && pl.formulation != "cell") throw InputError("the mrv ordering needs the cell formulation");
-  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : "static";
+  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : pl.formulation == "lift-cell" ? "mrv" : "static";
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
@@ -236,7 +237,8 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   std::optional<SignalCatcher> signals;
   if (options.catch_signals) signals.emplace();
   if (pl.lift && pl.formulation == "sat") return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
-  if (pl.lift) return run_model(LiftModel(*pl.lift), problem, options, pl);
+  if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);
+  if (pl.lift) return run_model(lift_lattice_model(*pl.lift), problem, options, pl);
   if (pl.formulation == "cell") {
     auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
     return run_model(CellModel(problem, true, ord), problem, options, pl);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "base/error.hpp"
 #include "base/random.hpp"
 #include "tilesets/construct_internal.hpp"
 #include "tilesets/constructions.hpp"
@@ -67,7 +68,7 @@ TEST(ColourLift, IsAPackingExactlyWhenEveryClassHoldsEveryTileOnce) {
     ASSERT_EQ(lifted, each_class_holds_every_tile_once(q, period)) << "trial " << trial;
     (lifted ? packings : others) += 1;
   }
-  EXPECT_GE(packings, 100);  // the unperturbed trials at least
+  EXPECT_GE(packings, 86);  // the 86 unperturbed trials at least
   EXPECT_GE(others, 100);
 }
 
@@ -90,7 +91,9 @@ TEST(Constructions, PowersOfTwoUpToThirtyTwoAreValidPackings) {
     ASSERT_EQ(p->tiling.rows, int(c * c));
     ValidationReport rep = validate(p->tiling);
     EXPECT_TRUE(rep.packing) << "corner C=" << c << ": " << (rep.errors.empty() ? "" : rep.errors[0]);
-    if (c >= 16) EXPECT_EQ(p->how.rfind("binary lift 2x", 0), 0u) << p->how;
+    if (c >= 16) {
+      EXPECT_EQ(p->how.rfind("binary lift 2x", 0), 0u) << p->how;
+    }
   }
 }
 
