@@ -93,7 +93,11 @@ CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering or
     t->class_start.push_back(int(t->class_cells.size()));
   }
   fixed_ = break_translation_ ? 1 : 0;
-  for (int c = fixed_; c < cells_; ++c) t->order.push_back(c);  // scanline from (0,0)
+  // Most constrained first keeps its frontier sorted by domain size when an assignment changes
+  // few domains: tilings (neighbours only) and packings with small classes (lifts); a plain
+  // packing changes every domain at each step, so it scans instead.
+  incremental_ = ordering_ == Ordering::MostConstrained && (!packing_ || cells_ / classes_ <= 64);
+  for (int c = fixed_; c < cells_; ++c) t->order.push_back(c);  // scanline from (0,0); MRV relies on it
   t_ = std::move(t);
   tile_.assign(std::size_t(cells_), -1);
   scratch_.resize(std::size_t(words_) * 2);
@@ -127,6 +131,9 @@ void CellModel::rebuild_masks() {
   }
   std::fill(tile_.begin(), tile_.end(), -1);
   assigned_ = 0;
+  first_free_ = 0;
+  frontier_.clear();
+  frontier_key_.assign(std::size_t(cells_), -1);
   if (break_translation_) {
     int v0 = int(std::find(perm_.begin(), perm_.end(), 0) - perm_.begin());
     assign(0, v0);  // the fixed tile; never a decision
@@ -178,12 +185,24 @@ int CellModel::branch(std::vector<int>& values) {
   if (ordering_ == Ordering::Static) {
     cell = t.order[std::size_t(assigned_ - fixed_)];
     domain(cell, dom);
+  } else if (incremental_ && assigned_ > 0) {
+    if (!frontier_.empty()) {
+      cell = frontier_.begin()->second;  // smallest domain, then lowest index: what the scan below picks
+      domain(cell, dom);
+    } else {
+      for (int c : t.order)
+        if (tile_[std::size_t(c)] < 0) {
+          cell = c;
+          break;
+        }
+      domain(cell, dom);
+    }
   } else {
     // Most constrained first (smallest domain) among free cells next to a placed tile;
     // ties go to the static order.
     int best = tiles_ + 1;
     std::uint64_t* tmp = scratch_.data() + words_;
-    for (int c : t.order) {
+    for (int c = std::max(first_free_, fixed_); c < cells_; ++c) {  // t.order from the first free cell
       if (tile_[std::size_t(c)] >= 0) continue;
       if (assigned_ > 0) {
         const int* n = &t.nb[std::size_t(c) * 4];
@@ -216,8 +235,10 @@ bool CellModel::assign(int cell, int v) {
   const Tables& t = *t_;
   tile_[std::size_t(cell)] = v;
   ++assigned_;
+  while (first_free_ < cells_ && tile_[std::size_t(first_free_)] >= 0) ++first_free_;
   const int k = t.cls[std::size_t(cell)];
   if (packing_) avail_[std::size_t(k * words_ + v / 64)] &= ~(std::uint64_t(1) << (v % 64));
+  if (incremental_) refresh_around(cell);
   // Forward checking: every free neighbour must keep a candidate.
   const int* n = &t.nb[std::size_t(cell) * 4];
   for (int d = 0; d < 4; ++d) {
@@ -235,7 +256,38 @@ bool CellModel::assign(int cell, int v) {
 void CellModel::unassign(int cell, int v) {
   tile_[std::size_t(cell)] = -1;
   --assigned_;
+  first_free_ = std::min(first_free_, cell);
   if (packing_) avail_[std::size_t(t_->cls[std::size_t(cell)] * words_ + v / 64)] |= std::uint64_t(1) << (v % 64);
+  if (incremental_) refresh_around(cell);
+}
+
+void CellModel::refresh(int cell) {
+  const Tables& t = *t_;
+  int key = -1;
+  if (tile_[std::size_t(cell)] < 0) {
+    const int* n = &t.nb[std::size_t(cell) * 4];
+    bool frontier = false;
+    for (int d = 0; d < 4; ++d) frontier |= n[d] >= 0 && tile_[std::size_t(n[d])] >= 0;
+    if (frontier) key = domain(cell, scratch_.data() + words_);
+  }
+  int& old = frontier_key_[std::size_t(cell)];
+  if (key == old) return;
+  if (old >= 0) frontier_.erase({old, cell});
+  if (key >= 0) frontier_.insert({key, cell});
+  old = key;
+}
+
+void CellModel::refresh_around(int cell) {
+  const Tables& t = *t_;
+  refresh(cell);
+  const int* n = &t.nb[std::size_t(cell) * 4];
+  for (int d = 0; d < 4; ++d)
+    if (n[d] >= 0) refresh(n[d]);
+  if (packing_) {  // the class's available tiles changed (incremental_ implies small classes)
+    const int k = t.cls[std::size_t(cell)];
+    for (int i = t.class_start[std::size_t(k)]; i < t.class_start[std::size_t(k) + 1]; ++i)
+      refresh(t.class_cells[std::size_t(i)]);
+  }
 }
 
 Tiling CellModel::tiling() const {

@@ -19,6 +19,8 @@
 // and a leaf stands for the (rows/P)(cols/P) translates by multiples of P.
 #include <cstdint>
 #include <memory>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "solver/model.hpp"
@@ -58,6 +60,14 @@ class CellModel {
   std::vector<std::uint64_t> avail_;  // class*words_: values still usable (packing) or valid (tiling)
   std::vector<int> tile_;             // cell -> internal value or -1
   int assigned_ = 0, fixed_ = 0;
+  int first_free_ = 0;  // every cell below it is assigned (where the MRV scan starts)
+  // Most constrained first, incrementally: (domain size, cell) of the free cells next to a
+  // placed tile, and each cell's key in it (-1: not in it). See the constructor.
+  void refresh(int cell);
+  void refresh_around(int cell);
+  bool incremental_ = false;
+  std::set<std::pair<int, int>> frontier_;
+  std::vector<int> frontier_key_;
   mutable std::vector<std::uint64_t> scratch_;
 };
 

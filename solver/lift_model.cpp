@@ -54,7 +54,11 @@ LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSp
   p.colours = colours;
   p.quotient_colours = colours / m;
   if (!spec.base_file.empty()) {
-    p.base = read_tiling_file(spec.base_file);
+    try {
+      p.base = read_tiling_file(spec.base_file);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--lift {}: {}", spec.text(), e.what()));
+    }
     p.base_how = spec.base_file;
   } else {
     auto built = construct_packing(kind, m);

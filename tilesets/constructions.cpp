@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -16,32 +18,61 @@ namespace tilekit {
 
 namespace {
 
-// The packings of tilesets/data/packing-<kind>-<C>.json, parsed and checked by the independent
-// validator once per process (the embedded data never changes), with their inverse.
+// The packings of tilesets/data/packing-<kind>-<C>.json, each parsed and checked by the
+// independent validator on first use (the embedded data never changes; a C=32 packing takes
+// about 0.2 s, so no lookup pays for packings it does not use), with their inverse.
 struct StoredPacking {
   Tiling tiling;
   std::vector<std::pair<int, int>> positions;  // tile index -> (row, col)
 };
 
-const StoredPacking* stored_entry(TileKind kind, std::uint32_t colours) {
-  static const std::map<std::pair<TileKind, std::uint32_t>, StoredPacking> all = [] {
-    std::map<std::pair<TileKind, std::uint32_t>, StoredPacking> out;
-    for (const EmbeddedFile& f : reference_data()) {
-      if (f.name.rfind("packing-", 0) != 0) continue;
-      const std::string name(f.name);
-      StoredPacking s{tiling_from_json(nlohmann::json::parse(f.text), name), {}};
-      const Tiling& t = s.tiling;
-      if (name != fmt::format("packing-{}-{}.json", kind_name(t.kind), t.colours) || !validate(t).packing)
-        throw std::logic_error(fmt::format("embedded {} is not a packing of the complete set its name says", name));
-      s.positions.resize(t.cells.size());
-      for (int r = 0; r < t.rows; ++r)
-        for (int c = 0; c < t.cols; ++c) s.positions[t.at(r, c)] = {r, c};
-      out.emplace(std::make_pair(t.kind, t.colours), std::move(s));
-    }
+struct StoredSlot {
+  const EmbeddedFile* file = nullptr;
+  std::once_flag once;
+  StoredPacking data;
+};
+
+StoredPacking load_stored(const EmbeddedFile& f, TileKind kind, std::uint32_t colours) {
+  const std::string name(f.name);
+  StoredPacking s{tiling_from_json(nlohmann::json::parse(f.text), name), {}};
+  const Tiling& t = s.tiling;
+  if (t.kind != kind || t.colours != colours || !validate(t).packing)
+    throw std::logic_error(fmt::format("embedded {} is not a packing of the complete set its name says", name));
+  s.positions.resize(t.cells.size());
+  for (int r = 0; r < t.rows; ++r)
+    for (int c = 0; c < t.cols; ++c) s.positions[t.at(r, c)] = {r, c};
+  return s;
+}
+
+using StoredKey = std::pair<TileKind, std::uint32_t>;
+
+// The embedded packing files by kind and colour count (their names only; nothing is parsed).
+std::map<StoredKey, StoredSlot>& stored_slots() {
+  using Key = StoredKey;
+  static std::map<Key, StoredSlot> slots = [] {
+    std::map<Key, StoredSlot> out;
+    for (const EmbeddedFile& f : reference_data())
+      for (TileKind k : {TileKind::Corner, TileKind::Wang}) {
+        const std::string prefix = fmt::format("packing-{}-", kind_name(k));
+        if (f.name.rfind(prefix, 0) != 0) continue;
+        std::uint32_t c = 0;
+        if (std::sscanf(std::string(f.name.substr(prefix.size())).c_str(), "%u.json", &c) == 1)
+          out[{k, c}].file = &f;
+      }
     return out;
   }();
-  auto it = all.find({kind, colours});
-  return it == all.end() ? nullptr : &it->second;
+  return slots;
+}
+
+bool has_stored(TileKind kind, std::uint32_t colours) { return stored_slots().count({kind, colours}) != 0; }
+
+const StoredPacking* stored_entry(TileKind kind, std::uint32_t colours) {
+  auto& slots = stored_slots();
+  auto it = slots.find({kind, colours});
+  if (it == slots.end()) return nullptr;
+  StoredSlot& slot = it->second;
+  std::call_once(slot.once, [&] { slot.data = load_stored(*slot.file, kind, colours); });
+  return &slot.data;
 }
 
 }  // namespace
@@ -69,7 +100,7 @@ std::optional<std::pair<std::uint32_t, std::uint32_t>> product_split(std::uint32
 
 // Which construction serves C: odd closed form, stored data, coprime product, binary lift.
 bool corner_constructible(std::uint32_t colours) {
-  if (colours % 2 == 1 || stored_entry(TileKind::Corner, colours)) return true;
+  if (colours % 2 == 1 || has_stored(TileKind::Corner, colours)) return true;
   if (auto split = product_split(colours)) return corner_constructible(split->first);
   return colours % 4 == 0 && corner_constructible(colours / 2);
 }
