@@ -6,7 +6,10 @@
 //   build/bench_lift                                   default cases (below), 3 seeds each
 //   build/bench_lift --case corner:8:4:sat --reps 5 --time-limit 60
 //                                                      KIND:C:M:FORMULATION (auto, cell or sat)
+//   build/bench_lift --seed 0 ...                      first seed (default 1; seed 0 keeps the natural
+//                                                      value order of the first dive)
 //   build/bench_lift --no-baseline --restart-base 20000 ...
+// The plain search (no lift, --baseline-limit seconds, one seed) runs once per kind and C.
 //   build/bench_lift --construct 8,16,32 --reps 5      construct_packing() + validate(), medians
 #include <fmt/format.h>
 
@@ -53,13 +56,14 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std::uint64_t restart_base) {
+nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std::uint64_t seed0,
+                        std::uint64_t restart_base) {
   std::vector<double> secs, nodes;
   int found = 0;
   for (int r = 0; r < reps; ++r) {
     SearchOptions o;
     o.threads = threads;
-    o.seed = std::uint64_t(r + 1);
+    o.seed = seed0 + std::uint64_t(r);
     o.time_limit = limit;
     o.lift = c.lift;
     o.formulation = c.formulation;
@@ -74,6 +78,7 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
           {"formulation", c.formulation},
           {"found", found},
           {"runs", reps},
+          {"seeds", fmt::format("{}..{}", seed0, seed0 + std::uint64_t(reps) - 1)},
           {"median_seconds", median(secs)},
           {"median_nodes", median(nodes)},
           {"time_limit", limit}};
@@ -117,7 +122,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint32_t> construct;
   int reps = 3, threads = 1;
   double limit = 60, baseline_limit = 60;
-  std::uint64_t restart_base = 0;
+  std::uint64_t restart_base = 0, seed0 = 1;
   bool baseline = true;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -132,6 +137,7 @@ int main(int argc, char** argv) {
       else if (a == "--time-limit") limit = std::stod(next());
       else if (a == "--baseline-limit") baseline_limit = std::stod(next());
       else if (a == "--restart-base") restart_base = std::stoull(next());
+      else if (a == "--seed") seed0 = std::stoull(next());
       else if (a == "--no-baseline") baseline = false;
       else if (a == "--construct") {
         std::stringstream in(next());
@@ -143,20 +149,23 @@ int main(int argc, char** argv) {
       if (cases.empty()) return 0;
     }
     if (cases.empty())
-      cases = {parse_case("corner:4:2:auto"), parse_case("wang:4:2:auto"), parse_case("corner:8:4:sat"),
-               parse_case("corner:8:4:auto")};
+      cases = {parse_case("corner:8:4:sat"), parse_case("corner:8:4:cell"), parse_case("corner:16:8:cell"),
+               parse_case("wang:4:2:sat")};
+    std::vector<std::pair<TileKind, std::uint32_t>> baselined;
     for (const Case& c : cases) {
       nlohmann::json line = {{"bench", "lift"},
                              {"kind", std::string(kind_name(c.kind))},
                              {"colors", c.colours},
                              {"threads", threads},
                              {"cores", std::thread::hardware_concurrency()}};
-      line["lift"] = run_case(c, reps, threads, limit, restart_base);
-      if (baseline) {
+      line["lift"] = run_case(c, reps, threads, limit, seed0, restart_base);
+      const std::pair<TileKind, std::uint32_t> key{c.kind, c.colours};
+      if (baseline && std::find(baselined.begin(), baselined.end(), key) == baselined.end()) {
+        baselined.push_back(key);
         Case plain = c;
         plain.lift.clear();
         plain.formulation = "auto";
-        line["baseline_plain"] = run_case(plain, 1, threads, baseline_limit, restart_base);
+        line["baseline_plain"] = run_case(plain, 1, threads, baseline_limit, 1, restart_base);
       }
       std::cout << line.dump() << std::endl;
     }
