@@ -1,5 +1,6 @@
-// Atlas lookup: where a packing comes from (database, then construction) and the CPU
-// reference of the shader mapping. The text formats are in lookup_formats.cpp.
+// Atlas lookup: where a packing comes from (packing/find_packing.hpp: database, then
+// construction) and the CPU reference of the shader mapping. The text formats are in
+// lookup_formats.cpp.
 #include "atlas/lookup.hpp"
 
 #include <fmt/format.h>
@@ -8,11 +9,12 @@
 #include <filesystem>
 #include <memory>
 
-#include "checkpoints/results_db.hpp"
-#include "tilesets/constructions.hpp"
 #include "base/error.hpp"
-#include "tiling/lattice_hash.hpp"
+#include "checkpoints/results_db.hpp"
+#include "packing/find_packing.hpp"
+#include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
+#include "tiling/lattice_hash.hpp"
 
 namespace tilekit {
 
@@ -78,25 +80,20 @@ std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb*
 }  // namespace
 
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options) {
-  if (colours < 1 || colours > 255) throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
+  if (colours < 1 || colours > 255)
+    throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
   std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
-  const int n = int(colours * colours);
-  if (db) {
-    if (auto s = db->find_solution(kind, colours, n, n)) {
-      ValidationReport rep = validate(s->tiling);  // stored data is re-checked by the independent validator
-      if (rep.packing && s->tiling.torus) {
-        AtlasLookup a =
-            lookup_from_packing(s->tiling, "db", fmt::format("solution {} in {}", s->id, db->path()), false, false);
-        a.solution_id = s->id;
-        return a;
-      }
-    }
-  }
-  // Constructions are proven (see tilesets/construct_*.cpp) and the independent validator checks
-  // each answer again (a C=32 corner packing, 1024x1024 cells, in about 0.1 s: BENCHMARKS.md).
-  if (auto p = construct_packing(kind, colours))
-    return lookup_from_packing(p->tiling, "construct", p->how, p->closed_form, true);
-  throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
+  PackingSources src;
+  src.db = db.get();
+  // Every answer is checked by the independent validator: a stored packing in find_packing, a
+  // construction there too (proven, see tilesets/construct_*.cpp; a C=32 corner packing,
+  // 1024x1024 cells, validates in about 0.1 s: BENCHMARKS.md).
+  src.validate_construction = true;
+  std::optional<FoundPacking> found = find_packing(kind, colours, src);
+  if (!found) throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
+  AtlasLookup a = lookup_from_packing(found->tiling, found->source, found->how, found->closed_form, false);
+  a.solution_id = found->solution_id;
+  return a;
 }
 
 // The project's permutation table (thesis 3.4.1, tiling/lattice_hash.hpp) of size 256, so the

@@ -9,7 +9,7 @@ namespace tilekit {
 
 namespace {
 
-void build_symmetric_cnf(const SymmetricModel& m, CnfBuilder& cnf) {
+void build_symmetric_cnf(const FundamentalDomain& m, CnfBuilder& cnf) {
   std::vector<int> first_var(std::size_t(m.num_sites));
   for (int s = 0; s < m.num_sites; ++s) first_var[std::size_t(s)] = cnf.new_vars(int(m.site_colours[std::size_t(s)]));
   auto x = [&](int s, int v) { return first_var[std::size_t(s)] + v; };
@@ -70,7 +70,7 @@ void build_symmetric_cnf(const SymmetricModel& m, CnfBuilder& cnf) {
 
 }  // namespace
 
-std::string symmetric_cnf(const SymmetricModel& m, std::uint64_t* variables, std::uint64_t* clauses) {
+std::string symmetric_cnf(const FundamentalDomain& m, std::uint64_t* variables, std::uint64_t* clauses) {
   CnfBuilder cnf;
   build_symmetric_cnf(m, cnf);
   if (variables) *variables = cnf.variables();
@@ -78,10 +78,11 @@ std::string symmetric_cnf(const SymmetricModel& m, std::uint64_t* variables, std
   return cnf.dimacs();
 }
 
-SatOutcome solve_symmetric_sat(const SymmetricModel& model, double time_limit, std::uint64_t seed) {
+SatOutcome solve_symmetric_sat(const FundamentalDomain& model, double time_limit, std::uint64_t seed,
+                               const std::function<bool()>& stop) {
   CnfBuilder cnf;
   build_symmetric_cnf(model, cnf);
-  SatRun run = run_cadical(cnf, std::max(1.0, time_limit), seed, nullptr);
+  SatRun run = run_cadical(cnf, std::max(1.0, time_limit), seed, stop);
   SatOutcome out;
   out.variables = cnf.variables();
   out.clauses = cnf.clauses();
@@ -89,7 +90,7 @@ SatOutcome solve_symmetric_sat(const SymmetricModel& model, double time_limit, s
   out.seconds = run.seconds;
   out.status = run.status == SatRun::Status::Satisfiable     ? SatOutcome::Status::Satisfiable
                : run.status == SatRun::Status::Unsatisfiable ? SatOutcome::Status::Unsatisfiable
-                                                              : SatOutcome::Status::Unknown;
+                                                             : SatOutcome::Status::Unknown;
   if (out.status == SatOutcome::Status::Satisfiable) {
     out.values.assign(std::size_t(model.num_sites), -1);
     int var = 1;  // the site variables come first, one block of colours per site

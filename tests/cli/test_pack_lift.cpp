@@ -55,7 +55,8 @@ TEST(PackLift, CountsCheckpointsAndShardsLikeThePlainEngine) {
   EXPECT_EQ(pack(d, "--kind corner --colors 2 --mode count --resume " + (d / "ck")).code, 2);
   std::uint64_t sum = 0;
   for (int i = 0; i < 3; ++i) {
-    CliResult s = pack(d, "--kind wang --colors 2 --lift 1 --mode count --threads 2 --shard " + std::to_string(i) + "/3");
+    CliResult s =
+        pack(d, "--kind wang --colors 2 --lift 1 --mode count --threads 2 --shard " + std::to_string(i) + "/3");
     ASSERT_EQ(s.code, 0) << s.err;
     sum += s.json()["solutions"].get<std::uint64_t>();
   }
@@ -74,19 +75,25 @@ TEST(PackLift, SigtermWritesACheckpointAndExits3) {
   kill(pid, SIGTERM);
   EXPECT_EQ(wait_exit(pid), 3) << slurp(d / "err");
   EXPECT_NE(slurp(d / "err").find("checkpoint written to " + ck), std::string::npos) << slurp(d / "err");
-  CliResult resumed = pack(d, "--kind corner --colors 8 --lift 4 --threads 1 --time-limit 0.5 --resume " + ck);
+  // --resume FILE alone continues the lift search the checkpoint describes (kind, C, lift, mode).
+  CliResult resumed = run_cli("pack --quiet --json --threads 1 --time-limit 0.5 --resume " + ck);
   EXPECT_EQ(resumed.code, 1) << resumed.err;  // continues, then stops at the time limit without a packing
+  EXPECT_EQ(resumed.json()["formulation"], "lift");
+  EXPECT_EQ(resumed.json()["colors"], 8);
   EXPECT_GT(resumed.json()["total_seconds"].get<double>(), resumed.json()["seconds"].get<double>());
+  // A flag contradicting the checkpoint is exit 2 naming it.
+  CliResult other = run_cli("pack --quiet --json --lift 2 --resume " + ck);
+  EXPECT_EQ(other.code, 2);
+  EXPECT_NE(other.err.find("--lift"), std::string::npos) << other.err;
 }
 
 TEST(PackLift, BadSpecsAreExit2WithOneLine) {
   TempDir d;
-  for (const char* args : {"--kind corner --colors 4 --lift 3", "--kind corner --colors 4 --lift x",
-                           "--kind corner --colors 4 --lift 4", "--kind corner --colors 4 --lift 2,q=1",
-                           "--kind corner --colors 4 --lift 2 --impose t=0,8:pi=1,0,3,2",
-                           "--kind corner --colors 4 --lift 2 --formulation cellz",
-                           "--kind corner --colors 4 --lift m=2,base=/nonexistent.json",
-                           "--set complete-corner-2 --size 2x8 --lift 1"}) {
+  for (const char* args :
+       {"--kind corner --colors 4 --lift 3", "--kind corner --colors 4 --lift x", "--kind corner --colors 4 --lift 4",
+        "--kind corner --colors 4 --lift 2,q=1", "--kind corner --colors 4 --lift 2 --impose t=0,8:pi=1,0,3,2",
+        "--kind corner --colors 4 --lift 2 --formulation cellz",
+        "--kind corner --colors 4 --lift m=2,base=/nonexistent.json", "--set complete-corner-2 --size 2x8 --lift 1"}) {
     CliResult r = pack(d, args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("--lift"), std::string::npos) << args << "\n" << r.err;
