@@ -160,7 +160,9 @@ class ParallelSearch {
     InFlightSubproblem snap;
     std::uint64_t epoch = 0;
     std::atomic<std::uint64_t> live_nodes{0};
+    std::atomic<std::uint64_t> dive{kNoDive};  // first mode with restarts: the dive in progress
   };
+  static constexpr std::uint64_t kNoDive = ~std::uint64_t(0);
   struct Control {
     ParallelSearch& s;
     Slot& slot;
@@ -317,7 +319,10 @@ class ParallelSearch {
     while (!stop_.requested()) {
       // The k-th dive of this shard is dive r of the whole run: its seed depends on r, its
       // node limit on k (every shard follows the Luby sequence).
+      // A checkpoint taken now resumes at the lowest dive in progress (see first_unfinished_dive).
+      slot.dive.store(next_restart_.load());
       const std::uint64_t k = next_restart_++;
+      slot.dive.store(k);
       const std::uint64_t r = k * std::uint64_t(cfg_.shard_count) + std::uint64_t(cfg_.shard_index);
       M m = root_;
       // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
@@ -327,10 +332,20 @@ class ParallelSearch {
       ctl.node_limit = luby(k + 1) * cfg_.restart_base;
       SearchCounters c;
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
+      // A dive cut short by a stop (time limit, signal, a portfolio slice's end) is not done: a
+      // resume runs it again, so the natural-order dive 0 and the long Luby dives are never lost.
+      if (!(o == SubtreeOutcome::Stopped && !ctl.hit_limit && stop_.requested())) slot.dive.store(kNoDive);
       restart_nodes_ += c.nodes;
       restart_solutions_ += c.solutions;
       if (o == SubtreeOutcome::Exhausted) stop_.request(StopReason::Exhausted);  // the whole tree, no limit hit
     }
+  }
+
+  // The dive a resume starts at: the lowest one in progress or cut short, else the next one.
+  std::uint64_t first_unfinished_dive() const {
+    std::uint64_t k = next_restart_.load();
+    for (const auto& s : slots_) k = std::min(k, s->dive.load());
+    return k;
   }
 
   // ---- shared machinery: threads, monitor, checkpoints ----
@@ -443,7 +458,7 @@ class ParallelSearch {
       for (std::size_t j = next_job_; j < jobs_.size(); ++j)
         if (!jobs_[j].resume.empty()) st.in_flight.push_back({jobs_[j].index, jobs_[j].resume, jobs_[j].counted});
     }
-    st.restarts = next_restart_.load();
+    st.restarts = first_unfinished_dive();
     st.restart_nodes = restart_nodes_.load();
     st.seconds = prior_seconds_ + elapsed();
     if (cfg_.flush) cfg_.flush();

@@ -132,7 +132,6 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
     throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
   if (pl.formulation == "edges" && !wang)
     throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
-  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : pl.formulation == "lift-cell" ? "mrv" : "static";
   // Static scanline order is cheapest per node for packings; most constrained first is
   // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
   if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
@@ -140,6 +139,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
   if (pl.ordering == "mrv" && pl.formulation != "cell" && !pl.group && !pl.lift)
     throw InputError("the mrv ordering needs the cell formulation (or --impose)");
+  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : pl.formulation == "lift-cell" ? "mrv" : "static";
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   // Nodes per Luby unit: under a group, proportional to the fundamental domain (measured on
   // C=5 corner, BENCHMARKS.md); otherwise to the grid.

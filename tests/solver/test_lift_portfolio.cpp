@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "base/error.hpp"
 #include "solver/portfolio.hpp"
@@ -56,6 +57,24 @@ TEST(LiftPortfolio, TheLiftCandidateFindsAValidatedSixteenColourPacking) {
   const Tiling& a = r.result.found[0];
   EXPECT_EQ(a.rows, 256);
   EXPECT_TRUE(validate(a).packing);
+}
+
+// A portfolio slice ends with a time limit; the Luby dive it cut short must run again when the
+// candidate resumes (else the natural-order dive 0, which finds lifts without backtracking, and
+// every long dive would be lost at a slice's end).
+TEST(LiftPortfolio, ADiveCutShortByTheTimeLimitIsRunAgainOnResume) {
+  SearchOptions o;
+  o.threads = 2;
+  o.restarts = 1;
+  o.restart_base = std::uint64_t(1) << 40;  // no dive ends by its node limit
+  o.time_limit = 0.2;
+  std::optional<SearchState> last;
+  o.save_checkpoint = [&](const SearchState& st) { last = st; };
+  SearchResult r = solve(complete_packing_problem(TileKind::Corner, 5), o);  // far from solved in 0.2 s
+  ASSERT_TRUE(r.timed_out);
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(last->restarts, 0u);  // dives 0 and 1 were cut short: the resume starts at dive 0
+  EXPECT_GE(r.restarts, 2u);      // both had started
 }
 
 }  // namespace
