@@ -110,8 +110,13 @@ TEST(Constructions, TwoColourCornerPackingIsStoredAndValid) {
 }
 
 TEST(Constructions, EvenCornerPackingsFromTheStoredTwoAreValid) {
-  // 6 = 2*3, 10 = 2*5, 14 = 2*7: stored C=2 times the odd closed form (12 = 4*3 below).
-  for (std::uint32_t c : {6u, 10u, 14u}) {
+  // 10 = 2*5, 14 = 2*7, 18 = 2*9: stored C=2 times the odd closed form (12 = 4*3 below). C=6 is
+  // stored itself: the portfolio found it by search (a lift of the C=3 packing).
+  auto six = construct_packing(TileKind::Corner, 6);
+  ASSERT_TRUE(six);
+  EXPECT_EQ(six->how, "stored");
+  EXPECT_TRUE(validate(six->tiling).packing);
+  for (std::uint32_t c : {10u, 14u, 18u}) {
     auto p = construct_packing(TileKind::Corner, c);
     ASSERT_TRUE(p) << c;
     EXPECT_EQ(p->how.rfind("product 2x", 0), 0u) << p->how;
