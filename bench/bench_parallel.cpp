@@ -20,29 +20,15 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "bench/bench_common.hpp"
 #include "solver/solve.hpp"
 
 using namespace tilekit;
+using tilekit::bench::cpu_seconds;
+using tilekit::bench::loadavg;
+using tilekit::bench::median;
 
 namespace {
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double loadavg() {
-  std::ifstream in("/proc/loadavg");
-  double l = 0;
-  in >> l;
-  return l;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
 
 struct Run {
   double cpu = 0, wall = 0, load_before = 0, load_after = 0;
@@ -81,10 +67,14 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw InputError(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--case") kcase = next();
-      else if (a == "--reps") reps = std::stoi(next());
-      else if (a == "--threads") threads = std::stoi(next());
-      else throw InputError("unknown argument " + a);
+      if (a == "--case")
+        kcase = next();
+      else if (a == "--reps")
+        reps = std::stoi(next());
+      else if (a == "--threads")
+        threads = std::stoi(next());
+      else
+        throw InputError("unknown argument " + a);
     }
     auto c1 = kcase.find(':'), c2 = kcase.find(':', c1 + 1);
     if (c1 == std::string::npos || c2 == std::string::npos) throw InputError("--case KIND:C:SPEC");
