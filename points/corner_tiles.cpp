@@ -24,23 +24,24 @@ namespace {
 // horizontal and a vertical edge region per ordered pair of states, an interior per tile.
 struct CornerScheme {
   std::uint32_t l = 0;
-  std::vector<std::vector<Point2>> corner, hedge, vedge, interior;
+  std::vector<std::vector<Point2>> corner, interior;
+  std::vector<parts::EdgeRegion> hedge, vedge;
 
   // The corner and edge regions around tile (NW, NE, SW, SE), in tile coordinates.
-  std::vector<Point2> frame(const parts::Corners& k) const {
-    std::vector<Point2> f;
-    parts::place(corner[k.nw], {0, 0}, f);
-    parts::place(corner[k.ne], {1, 0}, f);
-    parts::place(corner[k.sw], {0, 1}, f);
-    parts::place(corner[k.se], {1, 1}, f);
-    parts::place(hedge[k.nw * l + k.ne], {0, 0}, f);
-    parts::place(hedge[k.sw * l + k.se], {0, 1}, f);
-    parts::place(vedge[k.nw * l + k.sw], {0, 0}, f);
-    parts::place(vedge[k.ne * l + k.se], {1, 0}, f);
+  parts::Frame frame(const parts::Corners& k) const {
+    parts::Frame f;
+    f.add_corner(corner[k.nw], {0, 0});
+    f.add_corner(corner[k.ne], {1, 0});
+    f.add_corner(corner[k.sw], {0, 1});
+    f.add_corner(corner[k.se], {1, 1});
+    f.add_edge(hedge[k.nw * l + k.ne], {0, 0});
+    f.add_edge(hedge[k.sw * l + k.se], {0, 1});
+    f.add_edge(vedge[k.nw * l + k.sw], {0, 0});
+    f.add_edge(vedge[k.ne * l + k.se], {1, 0});
     return f;
   }
   std::vector<Point2> tile(std::uint64_t t) const {
-    std::vector<Point2> pts = parts::inside_unit_tile(frame(parts::corners_of(t, l)));
+    std::vector<Point2> pts = parts::inside_unit_tile(frame(parts::corners_of(t, l)).points);
     pts.insert(pts.end(), interior[t].begin(), interior[t].end());
     return pts;
   }
@@ -122,9 +123,12 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
     for_each_task(2 * std::size_t(l) * l, p.threads, progress, [&](std::size_t i) {
       const std::size_t e = i / 2, a = e / l, b = e % l;
       if (i % 2 == 0)
-        s.hedge[e] = parts::horizontal_edge_region(g, n, s.corner[a], s.corner[b], false, opts, seed_of(2, e));
+        s.hedge[e] = parts::horizontal_edge_region(g, n, s.corner[a], s.corner[b],
+                                                   parts::random_curve(g, seed_of(5, e)), false, opts, seed_of(2, e));
       else
-        s.vedge[e] = parts::vertical_edge_region(g, n, s.corner[a], s.corner[b], opts, seed_of(3, e));
+        s.vedge[e] = parts::vertical_edge_region(
+            g, n, s.corner[a], s.corner[b],
+            parts::EdgeRegion{{}, parts::random_curve(g, seed_of(6, e))}.turned(1).curve, opts, seed_of(3, e));
     });
     for_each_task(tiles, p.threads, progress, [&](std::size_t t) {
       s.interior[t] = parts::interior_region(g, n, s.frame(parts::corners_of(t, l)), 1, opts, seed_of(4, t));
@@ -152,12 +156,13 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
     // half-turn symmetric. Vertical edge (a, b) is horizontal edge (a, b turned back) turned once.
     for_each_task(edges.size(), p.threads, progress, [&](std::size_t i) {
       const std::uint32_t e = std::uint32_t(edges[i]), a = e / l, b = e % l;
-      s.hedge[e] =
-          parts::horizontal_edge_region(g, n, s.corner[a], s.corner[b], d.partner(e, l) == e, opts, seed_of(2, e));
+      const bool self = d.partner(e, l) == e;
+      s.hedge[e] = parts::horizontal_edge_region(
+          g, n, s.corner[a], s.corner[b], parts::random_curve(g, seed_of(5, e), self), self, opts, seed_of(2, e));
     });
-    for (std::uint32_t e : edges) s.hedge[d.partner(e, l)] = turned(s.hedge[e], 2, {0.5, 0});
+    for (std::uint32_t e : edges) s.hedge[d.partner(e, l)] = s.hedge[e].turned(2, {0.5, 0});
     for (std::uint32_t a = 0; a < l; ++a)
-      for (std::uint32_t b = 0; b < l; ++b) s.vedge[a * l + b] = turned(s.hedge[d.turn(a, 3) * l + d.turn(b, 3)], 1);
+      for (std::uint32_t b = 0; b < l; ++b) s.vedge[a * l + b] = s.hedge[d.turn(a, 3) * l + d.turn(b, 3)].turned(1);
     // Interiors up to quarter turns (64C^4 + 4C^2 + 2C), symmetric under their stabiliser.
     for_each_task(interiors.size(), p.threads, progress, [&](std::size_t i) {
       const std::uint64_t t = interiors[i];

@@ -14,9 +14,6 @@ namespace tilekit::points {
 
 namespace {
 
-// Lloyd iterations before pairs still too close are pushed apart.
-constexpr int kLloydBeforeRepair = 10;
-
 class Sampler {
  public:
   Sampler(const SamplingProblem& p, const SamplingOptions& o)
@@ -36,27 +33,27 @@ class Sampler {
     }
     g_ = p.symmetry_order;
     step_ = 4 / g_;
-    make_samples();
+    if (o_.lloyd > 0) make_samples();
   }
 
   bool run(SplitMix64& rng, SamplingResult& out) {
     pos_ = fixed_;
+    ghost_.clear();
     if (!throw_darts(rng)) return false;
-    // Lloyd's relaxation until the distance is met (and at least `lloyd` iterations); where it
-    // stalls short of the distance (a tight interior between fixed regions), pairs that are too
-    // close push each other apart until it is met.
-    const int lloyd_phase = std::max(o_.lloyd, kLloydBeforeRepair);
+    // `lloyd` iterations of Lloyd's relaxation, then pairs still too close push each other apart
+    // until the distance is met.
     for (int it = 0;; ++it) {
       rebuild();
-      const double md = free_min_distance();
+      const double md = kept_min_distance();
       if (md >= d_ && it >= o_.lloyd) {
-        out.points.assign(pos_.begin() + std::ptrdiff_t(fixed_.size()), pos_.end());
+        for (std::size_t i = fixed_.size(); i < pos_.size(); ++i)
+          if (!ghost_[i - fixed_.size()]) out.points.push_back(pos_[i]);
         out.min_distance = md;
-        out.lloyd_iterations = std::min(it, lloyd_phase);
+        out.lloyd_iterations = o_.lloyd;
         return true;
       }
-      if (it >= lloyd_phase + o_.repair) return false;
-      if (it < lloyd_phase)
+      if (it >= o_.lloyd + o_.repair) return false;
+      if (it < o_.lloyd)
         lloyd_step();
       else
         repel_step(d_ * 1.01);
@@ -68,31 +65,30 @@ class Sampler {
     if (!p_.torus) return q;
     return {wrap(q.x - p_.x0, p_.w) + p_.x0, wrap(q.y - p_.y0, p_.h) + p_.y0};
   }
-  bool in_free_region(Point2 q) const {
-    if (!p_.torus && (q.x < p_.x0 || q.y < p_.y0 || q.x >= p_.x0 + p_.w || q.y >= p_.y0 + p_.h)) return false;
-    return !p_.free || p_.free(q);
+  bool in_domain(Point2 q) const {
+    return p_.torus || (q.x >= p_.x0 && q.y >= p_.y0 && q.x < p_.x0 + p_.w && q.y < p_.y0 + p_.h);
   }
+  bool in_kept_region(Point2 q) const { return in_domain(q) && (!p_.free || p_.free(q)); }
+  bool in_ghost_region(Point2 q) const { return p_.ghost && in_domain(q) && !in_kept_region(q) && p_.ghost(q); }
+  bool in_region(Point2 q, bool ghost) const { return ghost ? in_ghost_region(q) : in_kept_region(q); }
   // The orbit of q: image k is q turned k * step_ quarter turns about the centre.
   Point2 image(Point2 q, int k) const { return wrapped(rotate_quarter(q, k * step_, p_.centre)); }
 
+  // Lloyd's samples: an even lattice over the whole domain (Voronoi cells reach into the fixed
+  // regions too), symmetric under the rotations the problems use.
   void make_samples() {
-    // An even lattice, symmetric under the rotations the problems use (about a tile centre or
-    // an edge midpoint of the domain).
     const double hs = d_ / o_.samples_per_distance;
     int nx = std::max(2, int(std::ceil(p_.w / hs))), ny = std::max(2, int(std::ceil(p_.h / hs)));
     nx += nx % 2, ny += ny % 2;
+    std::vector<std::pair<int, Point2>> keyed;
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const Point2 q{p_.x0 + (i + 0.5) * p_.w / nx, p_.y0 + (j + 0.5) * p_.h / ny};
-        if (in_free_region(q)) samples_.push_back(q);
+        keyed.emplace_back(grid_.cell_index(q), q);
       }
     // Grouped by the point grid's cell, so that each cell's candidate points are gathered once.
-    std::vector<std::pair<int, Point2>> keyed;
-    for (const Point2& q : samples_) keyed.emplace_back(grid_.cell_index(q), q);
     std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    sample_cell_.clear();
-    for (std::size_t i = 0; i < keyed.size(); ++i)
-      samples_[i] = keyed[i].second, sample_cell_.push_back(keyed[i].first);
+    for (const auto& [cell, q] : keyed) samples_.push_back(q), sample_cell_.push_back(cell);
   }
 
   void rebuild() {
@@ -101,21 +97,26 @@ class Sampler {
   }
 
   // Relaxation dart throwing: the dart radius starts above the minimum distance and shrinks by
-  // 2% after 200 consecutive failures (thesis sec. 6.4 used 0.99 after 1,000 on whole sets).
+  // 2% after 200 consecutive failures (thesis sec. 6.4 used 0.99 after 1,000 on whole sets). Darts
+  // in the ghost region become context points (discarded at the end), so that points next to a
+  // fixed region see the same surroundings as anywhere else instead of a hard wall.
   bool throw_darts(SplitMix64& rng) {
     rebuild();
     double radius = 1.2 * d_;
-    const std::size_t target = fixed_.size() + p_.count;
+    std::size_t kept = 0;
     int failures = 0;
     std::uint64_t darts = 0;
-    while (pos_.size() < target) {
+    while (kept < p_.count) {
       if (++darts > 50'000'000ull || radius < 0.2 * d_) return false;
       const Point2 q = wrapped({p_.x0 + rng.uniform() * p_.w, p_.y0 + rng.uniform() * p_.h});
-      if (dart_fits(q, radius)) {
+      const bool ghost = !in_kept_region(q);
+      if ((!ghost || in_ghost_region(q)) && dart_fits(q, radius, ghost)) {
         for (int k = 0; k < g_; ++k) {
           pos_.push_back(image(q, k));
+          ghost_.push_back(ghost);
           grid_.insert(int(pos_.size() - 1), pos_.back());
         }
+        if (!ghost) kept += std::size_t(g_);
         failures = 0;
       } else if (++failures >= 200) {
         radius *= 0.98;
@@ -125,13 +126,13 @@ class Sampler {
     return true;
   }
 
-  bool dart_fits(Point2 q, double radius) const {
+  bool dart_fits(Point2 q, double radius, bool ghost) const {
     const int rings = int(std::ceil(radius / grid_.cell()));
     const double r2 = radius * radius;
     Point2 orbit[4];
     for (int k = 0; k < g_; ++k) {
       orbit[k] = image(q, k);
-      if (!in_free_region(orbit[k])) return false;
+      if (!in_region(orbit[k], ghost)) return false;
       for (int m = 0; m < k; ++m) {
         const Point2 dd = grid_.delta(orbit[k], orbit[m]);
         if (dd.x * dd.x + dd.y * dd.y < r2) return false;
@@ -146,15 +147,19 @@ class Sampler {
     return true;
   }
 
-  // The smallest distance between a new point and any other point, capped at 2 cells.
-  double free_min_distance() const {
+  // The smallest distance between a kept new point and any other kept or fixed point, capped at
+  // 2 cells (ghost points are context only).
+  double kept_min_distance() const {
     double best = 4 * grid_.cell() * grid_.cell();
-    for (std::size_t i = fixed_.size(); i < pos_.size(); ++i)
+    const std::size_t f0 = fixed_.size();
+    for (std::size_t i = f0; i < pos_.size(); ++i) {
+      if (ghost_[i - f0]) continue;
       grid_.for_near(pos_[i], 2, [&](int id) {
-        if (std::size_t(id) == i) return;
+        if (std::size_t(id) == i || (std::size_t(id) >= f0 && ghost_[std::size_t(id) - f0])) return;
         const Point2 dd = grid_.delta(pos_[i], pos_[std::size_t(id)]);
         best = std::min(best, dd.x * dd.x + dd.y * dd.y);
       });
+    }
     return std::sqrt(best);
   }
 
@@ -232,12 +237,13 @@ class Sampler {
   }
 
   // Moves the orbit starting at `base` by `delta` (its representative's displacement), shortened
-  // so that no image enters the constrained regions (thesis sec. 4.3: clipping).
+  // so that no image leaves its region (thesis sec. 4.3: clipping the displacement vectors).
   void move_orbit(std::size_t base, Point2 delta) {
+    const bool ghost = ghost_[base - fixed_.size()];
     for (int halvings = 0; halvings < 8; ++halvings, delta.x *= 0.5, delta.y *= 0.5) {
       const Point2 moved = wrapped({pos_[base].x + delta.x, pos_[base].y + delta.y});
       bool ok = true;
-      for (int k = 0; k < g_ && ok; ++k) ok = in_free_region(image(moved, k));
+      for (int k = 0; k < g_ && ok; ++k) ok = in_region(image(moved, k), ghost);
       if (!ok) continue;
       for (int k = 0; k < g_; ++k) pos_[base + std::size_t(k)] = image(moved, k);
       return;
@@ -250,6 +256,7 @@ class Sampler {
   PointGrid grid_;
   int g_ = 1, step_ = 4;
   std::vector<Point2> fixed_, pos_, samples_, sum_;
+  std::vector<char> ghost_;  // per new point (index - fixed count)
   std::vector<int> cnt_, sample_cell_;
 };
 

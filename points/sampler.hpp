@@ -6,13 +6,18 @@
 // points never move and new points never leave the free region (displacements that would
 // enter it are shortened, thesis sec. 4.3: "clipping the displacement vectors").
 //
-// Lloyd's relaxation is discrete: each point moves to the centroid of the free-region samples
-// (a regular lattice of spacing min_distance / samples_per_distance) nearest to it, the usual
-// sampled estimate of its Voronoi cell's centroid. Relaxation runs until the minimum distance
-// is reached (and at least `lloyd` iterations). Where it stalls short of it (interiors squeezed
-// between fixed regions), after 30 iterations pairs still too close push each other apart; a
-// try that does not get there within `repair` such steps starts over from new darts ("if the
-// desired Poisson disk radius is not reached, this process is repeated", thesis sec. 4.5).
+// Lloyd's relaxation is discrete: each point moves to the centroid of the samples (a regular
+// lattice of spacing min_distance / samples_per_distance over the domain) nearest to it, the
+// usual sampled estimate of its Voronoi cell's centroid. After `lloyd` iterations (0 by default:
+// Lloyd makes sets regular, with a tall spectral peak), pairs still closer than the distance push
+// each other apart; a try that does not get there within `repair` such steps starts over from
+// new darts ("if the desired Poisson disk radius is not reached, this process is repeated",
+// thesis sec. 4.5).
+//
+// Ghost points: darts may also land in a `ghost` region next to the free one; they take part in
+// everything but are dropped at the end. Without them the free region's border would be a hard
+// wall that points pile up against, in the same place in every tile, which shows as spikes in
+// the spectrum of tilings; with them a point near the border sees surroundings like anywhere else.
 //
 // A problem may ask for rotational symmetry about a centre (order 2 or 4): points then come in
 // orbits of that size, as the self-symmetric rotatable tiles of Li et al. require.
@@ -27,7 +32,8 @@ namespace tilekit::points {
 struct SamplingProblem {
   double x0 = 0, y0 = 0, w = 1, h = 1;  // the domain [x0, x0 + w) x [y0, y0 + h)
   bool torus = false;                   // wrap both axes
-  std::function<bool(Point2)> free;     // where new points may lie (empty: the whole domain)
+  std::function<bool(Point2)> free;     // where the new points may lie (empty: the whole domain)
+  std::function<bool(Point2)> ghost;    // where context points may lie outside `free` (empty: nowhere)
   std::vector<Point2> fixed;            // constraints that never move (may lie outside a plain domain)
   std::size_t count = 0;                // new points to place; a multiple of symmetry_order
   int symmetry_order = 1;               // 1, 2 or 4: invariance under rotations by 360/order degrees
@@ -36,7 +42,7 @@ struct SamplingProblem {
 
 struct SamplingOptions {
   double min_distance = 0;           // between any two points, new-new and new-fixed
-  int lloyd = 0;                     // Lloyd iterations at least, even once the distance is met
+  int lloyd = 0;                     // Lloyd iterations before the push-apart repair
   int repair = 80;                   // push-apart steps before a try starts over
   int tries = 24;                    // tries before giving up (InputError)
   double samples_per_distance = 10;  // Lloyd sample lattice: min_distance / this apart

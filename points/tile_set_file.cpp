@@ -11,65 +11,13 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "checkpoints/results_db.hpp"
+#include "points/text_format.hpp"
 
 namespace tilekit::points {
 
 namespace {
 
 constexpr const char* kMagic = "TILEKIT-POINT-TILES 1";
-
-// Lines of a text with their numbers, for error messages.
-class Lines {
- public:
-  Lines(const std::string& text, std::string source) : text_(text), source_(std::move(source)) {}
-  bool next(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    const std::size_t end = text_.find('\n', pos_);
-    line = std::string_view(text_).substr(pos_, (end == std::string::npos ? text_.size() : end) - pos_);
-    pos_ = end == std::string::npos ? text_.size() : end + 1;
-    ++number_;
-    return true;
-  }
-  std::string_view expect(const char* what) {
-    std::string_view line;
-    if (!next(line)) fail(fmt::format("ends before {}", what));
-    return line;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(fmt::format("{}:{}: {}", source_, number_, what));
-  }
-  std::size_t offset() const { return pos_; }
-
- private:
-  const std::string& text_;
-  std::string source_;
-  std::size_t pos_ = 0;
-  int number_ = 0;
-};
-
-double parse_double(Lines& in, std::string_view s) {
-  double v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
-    in.fail(fmt::format("'{}' is not a number", s));
-  return v;
-}
-
-std::uint64_t parse_uint(Lines& in, std::string_view s) {
-  std::uint64_t v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) in.fail(fmt::format("'{}' is not a count", s));
-  return v;
-}
-
-// "key value" -> value, failing unless the key is `key`.
-std::string_view keyed(Lines& in, const char* key) {
-  const std::string_view line = in.expect(key);
-  const std::string_view k(key);
-  if (line.size() <= k.size() + 1 || line.substr(0, k.size()) != k || line[k.size()] != ' ')
-    in.fail(fmt::format("expected '{} ...', got '{}'", key, line));
-  return line.substr(k.size() + 1);
-}
 
 }  // namespace
 
@@ -84,22 +32,21 @@ std::string poisson_tiles_to_text(const PoissonTileSet& set) {
     for (const Point2& p : set.tiles[t]) out += fmt::format("{:.17g} {:.17g}\n", p.x, p.y);
   }
   out += "end\n";
-  out += fmt::format("fnv1a64 {:016x}\n", fnv1a64(out));
-  return out;
+  return text::with_checksum(std::move(out));
 }
 
 PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::string& source) {
-  Lines in(text, source);
+  text::LineReader in(text, source);
   if (in.expect("the header") != kMagic) in.fail(fmt::format("not a point tile-set file (expected '{}')", kMagic));
   PoissonTileSet set;
-  set.method = parse_poisson_tile_method(std::string(keyed(in, "method")));
-  set.colours = std::uint32_t(parse_uint(in, keyed(in, "colors")));
-  set.points = std::uint32_t(parse_uint(in, keyed(in, "points")));
-  set.rho = parse_double(in, keyed(in, "rho"));
-  set.radius = parse_double(in, keyed(in, "radius"));
-  set.lloyd = int(parse_uint(in, keyed(in, "lloyd")));
-  set.seed = parse_uint(in, keyed(in, "seed"));
-  const std::uint64_t tiles = parse_uint(in, keyed(in, "tiles"));
+  set.method = parse_poisson_tile_method(std::string(in.keyed("method")));
+  set.colours = std::uint32_t(in.count(in.keyed("colors")));
+  set.points = std::uint32_t(in.count(in.keyed("points")));
+  set.rho = in.number(in.keyed("rho"));
+  set.radius = in.number(in.keyed("radius"));
+  set.lloyd = int(in.count(in.keyed("lloyd")));
+  set.seed = in.count(in.keyed("seed"));
+  const std::uint64_t tiles = in.count(in.keyed("tiles"));
   PoissonTileParams p;
   p.method = set.method, p.colours = set.colours, p.points = set.points, p.rho = set.rho, p.lloyd = set.lloyd;
   try {
@@ -115,21 +62,18 @@ PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::strin
                         expected));
   set.tiles.resize(tiles);
   for (std::uint64_t t = 0; t < tiles; ++t) {
-    if (parse_uint(in, keyed(in, "tile")) != t) in.fail(fmt::format("expected tile {}", t));
+    if (in.count(in.keyed("tile")) != t) in.fail(fmt::format("expected tile {}", t));
     set.tiles[t].resize(set.points);
     for (Point2& q : set.tiles[t]) {
       const std::string_view line = in.expect("a point");
       const std::size_t sp = line.find(' ');
       if (sp == std::string_view::npos) in.fail(fmt::format("expected 'u v', got '{}'", line));
-      q = {parse_double(in, line.substr(0, sp)), parse_double(in, line.substr(sp + 1))};
+      q = {in.number(line.substr(0, sp)), in.number(line.substr(sp + 1))};
       if (!(q.x >= 0 && q.x < 1 && q.y >= 0 && q.y < 1)) in.fail("tile coordinates must lie in [0, 1)");
     }
   }
   if (in.expect("end") != "end") in.fail("expected 'end'");
-  const std::size_t body = in.offset();
-  const std::string_view sum = keyed(in, "fnv1a64");
-  if (sum != fmt::format("{:016x}", fnv1a64(std::string_view(text).substr(0, body))))
-    in.fail("checksum mismatch: the file is damaged or was edited");
+  in.checksum();
   return set;
 }
 

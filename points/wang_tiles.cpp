@@ -15,51 +15,51 @@ using parts::Regions;
 
 namespace {
 
-// An edge region of one colour: N points on the unit torus, cut to the region along (0,0)-(1,0)
-// or (0,0)-(0,1) (thesis Fig. 4.5).
-std::vector<Point2> edge_region(const Regions& g, std::uint32_t n, bool horizontal, const SamplingOptions& o,
-                                std::uint64_t seed) {
-  return parts::balanced(n * g.edge_area(), seed, [&](std::uint64_t s) {
-    SamplingProblem p;
-    p.torus = true;
-    p.count = n;
-    std::vector<Point2> out;
-    for (const Point2& q : sample_poisson_disk(p, o, s).points) {
-      const Point2 c = horizontal ? Point2{q.x, wrap_centred(q.y, 1.0)} : Point2{wrap_centred(q.x, 1.0), q.y};
-      if (horizontal ? g.in_horizontal_edge(c) : g.in_vertical_edge(c)) out.push_back(c);
-    }
-    return out;
-  });
+// An edge region of one colour: N points on the unit torus, cut to the tube about `curve` along
+// (0,0)-(1,0) (thesis Fig. 4.5); `vertical`: the same turned to run along (0,0)-(0,1).
+parts::EdgeRegion edge_region(const Regions& g, std::uint32_t n, std::vector<Point2> curve, bool vertical,
+                              const SamplingOptions& o, std::uint64_t seed) {
+  SamplingProblem p;
+  p.torus = true;
+  p.count = n;
+  parts::EdgeRegion e;
+  for (const Point2& q : sample_poisson_disk(p, o, seed).points) {
+    const Point2 c{q.x, wrap_centred(q.y, 1.0)};
+    if (!g.in_corner(c) && !g.in_corner({c.x - 1, c.y}) && g.in_tube(c, curve)) e.points.push_back(c);
+  }
+  e.curve = std::move(curve);
+  return vertical ? e.turned(1) : e;
 }
 
 struct EdgeScheme {
   std::uint32_t c;
-  std::vector<std::vector<Point2>> h, v, corner;  // corner[((n C + e) C + s) C + w]
+  std::vector<parts::EdgeRegion> h, v;
+  std::vector<std::vector<Point2>> corner;  // corner[((n C + e) C + s) C + w]
 
   // The edge regions incident to a lattice point: north-going n, east-going e, south-going s,
   // west-going w, placed about the point at `at`.
   void place_star(std::uint32_t n, std::uint32_t e, std::uint32_t s, std::uint32_t w, Point2 at,
-                  std::vector<Point2>& out) const {
-    parts::place(v[n], {at.x, at.y - 1}, out);
-    parts::place(h[e], at, out);
-    parts::place(v[s], at, out);
-    parts::place(h[w], {at.x - 1, at.y}, out);
+                  parts::Frame& out) const {
+    out.add_edge(v[n], {at.x, at.y - 1});
+    out.add_edge(h[e], at);
+    out.add_edge(v[s], at);
+    out.add_edge(h[w], {at.x - 1, at.y});
   }
   std::uint32_t star(std::uint32_t n, std::uint32_t e, std::uint32_t s, std::uint32_t w) const {
     return ((n * c + e) * c + s) * c + w;
   }
   // The corner and edge regions of the tile with colours k (wang_pd_tile_index order).
-  std::vector<Point2> frame(const std::uint32_t k[12]) const {
+  parts::Frame frame(const std::uint32_t k[12]) const {
     const std::uint32_t N = k[0], E = k[1], S = k[2], W = k[3];
-    std::vector<Point2> f;
-    parts::place(corner[star(k[4], N, W, k[5])], {0, 0}, f);    // NW: north-going, east = N, south = W, west-going
-    parts::place(corner[star(k[6], k[7], E, N)], {1, 0}, f);    // NE: north-going, east-going, south = E, west = N
-    parts::place(corner[star(E, k[9], k[8], S)], {1, 1}, f);    // SE: north = E, east-going, south-going, west = S
-    parts::place(corner[star(W, S, k[10], k[11])], {0, 1}, f);  // SW: north = W, east = S, south-going, west-going
-    parts::place(h[N], {0, 0}, f);
-    parts::place(h[S], {0, 1}, f);
-    parts::place(v[W], {0, 0}, f);
-    parts::place(v[E], {1, 0}, f);
+    parts::Frame f;
+    f.add_corner(corner[star(k[4], N, W, k[5])], {0, 0});    // NW: north-going, east = N, south = W, west-going
+    f.add_corner(corner[star(k[6], k[7], E, N)], {1, 0});    // NE: north-going, east-going, south = E, west = N
+    f.add_corner(corner[star(E, k[9], k[8], S)], {1, 1});    // SE: north = E, east-going, south-going, west = S
+    f.add_corner(corner[star(W, S, k[10], k[11])], {0, 1});  // SW: north = W, east = S, south-going, west-going
+    f.add_edge(h[N], {0, 0});
+    f.add_edge(h[S], {0, 1});
+    f.add_edge(v[W], {0, 0});
+    f.add_edge(v[E], {1, 0});
     return f;
   }
 };
@@ -73,7 +73,7 @@ void colours_of(std::uint64_t t, std::uint32_t c, std::uint32_t k[12]) {
 PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Regions& g, ProgressReporter& progress) {
   const std::uint32_t c = p.colours, n = p.points;
   const SamplingOptions opts = parts::sampling_options(g, p.lloyd);
-  EdgeScheme s{c, std::vector<std::vector<Point2>>(c), std::vector<std::vector<Point2>>(c),
+  EdgeScheme s{c, std::vector<parts::EdgeRegion>(c), std::vector<parts::EdgeRegion>(c),
                std::vector<std::vector<Point2>>(std::size_t(c) * c * c * c)};
   std::uint64_t tiles = 1;
   for (int i = 0; i < 12; ++i) tiles *= c;
@@ -87,7 +87,7 @@ PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Region
   };
   run(2 * c, [&](std::size_t i) {
     auto& dst = i < c ? s.h[i] : s.v[i - c];
-    dst = edge_region(g, n, i < c, opts, seed_of(1, i));
+    dst = edge_region(g, n, parts::random_curve(g, seed_of(4, i)), i >= c, opts, seed_of(1, i));
   });
   // thesis Fig. 4.7: each corner region assembled with its four edge regions, on a 2 x 2 torus
   // about the lattice point (so that the north- and south-going regions are distinct), 4N points.
@@ -98,12 +98,16 @@ PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Region
     q.x0 = q.y0 = -1;
     q.w = q.h = 2;
     q.torus = true;
-    s.place_star(no, e, so, w, {0, 0}, q.fixed);
-    q.free = [&g](Point2 a) {
+    parts::Frame star;
+    s.place_star(no, e, so, w, {0, 0}, star);
+    q.fixed = star.points;
+    q.free = [&g, &star](Point2 a) {
       const Point2 b{wrap_centred(a.x, 2.0), wrap_centred(a.y, 2.0)};
-      return !g.in_horizontal_edge(b) && !g.in_horizontal_edge({b.x + 1, b.y}) && !g.in_vertical_edge(b) &&
-             !g.in_vertical_edge({b.x, b.y + 1});
+      for (const auto& curve : star.curves)
+        if (g.in_tube(b, curve)) return false;
+      return true;
     };
+    q.ghost = [](Point2) { return true; };  // context in the edge regions' gaps
     q.count = 4 * std::size_t(n) - q.fixed.size();
     for (const Point2& a : sample_poisson_disk(q, opts, seed_of(2, i)).points) {
       const Point2 b{wrap_centred(a.x, 2.0), wrap_centred(a.y, 2.0)};
@@ -123,7 +127,7 @@ PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Region
     std::uint32_t k[12];
     colours_of(t, c, k);
     const auto f = s.frame(k);
-    auto pts = parts::inside_unit_tile(f);
+    auto pts = parts::inside_unit_tile(f.points);
     const auto in = parts::interior_region(g, n, f, 1, opts, seed_of(3, t));
     pts.insert(pts.end(), in.begin(), in.end());
     set.tiles[t] = std::move(pts);
