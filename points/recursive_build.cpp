@@ -194,9 +194,15 @@ RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
     t.base = std::move(next);
     if (change == 0) break;
   }
+  // A chain of matches can converge onto a tile border (y = (1 + y) / 2 has its fixed point at 1);
+  // tile coordinates stay inside [0, 1), 1e-6 from the borders, so that every point has one tile.
+  constexpr double kInset = 1e-6;
   for (std::size_t type = 0; type < types; ++type)
-    for (std::uint32_t k = 0; k < n; ++k)
-      t.relax_residual = std::max(t.relax_residual, std::sqrt(squared_distance(before[type][k], t.base[type][k])));
+    for (std::uint32_t k = 0; k < n; ++k) {
+      Point2& q = t.base[type][k];
+      q = {std::clamp(q.x, kInset, 1 - kInset), std::clamp(q.y, kInset, 1 - kInset)};
+      t.relax_residual = std::max(t.relax_residual, std::sqrt(squared_distance(before[type][k], q)));
+    }
   progress.add(1);
   // 6. The subdivision set's ranking: base points first (their base rank), then dart throwing
   // over the rest with a radius shrinking by 1% after 50 consecutive failures (Fig. 8).
