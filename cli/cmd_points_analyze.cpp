@@ -1,7 +1,7 @@
 // tilekit points analyze | spectrum | zoneplate: the analysis of thesis ch. 6.
 //
 //   tilekit points analyze FILE [--window x0,y0,x1,y1] [--tile-size S] [--spectrum F.png]
-//                          [--plot F.png|.svg] [--zoneplate F.png]
+//                          [--plot F.png|.svg] [--zoneplate F.png] [--quiet]
 //   tilekit points spectrum [source options] [--sets 10] [--set-points 16384] [--compare M,M]
 //                          [--image F.png] [--plot F.png|.svg]
 //   tilekit points zoneplate [source options] [--set-points 262144] --out F.png
@@ -92,6 +92,7 @@ struct AnalyzeArgs {
   std::string file, window, spectrum, plot, zoneplate;
   double tile_size = 0;
   int threads = 0;
+  bool quiet = false;
 };
 
 struct SpectrumArgs {
@@ -117,6 +118,7 @@ void add_analysis_commands(CLI::App* points, Context& ctx) {
     cmd->add_option("--plot", a.plot, "Radially averaged power and anisotropy (.png or .svg)");
     cmd->add_option("--zoneplate", a.zoneplate, "Zone plate sampled at the points (.png, thesis sec. 6.2.3)");
     cmd->add_option("--threads", a.threads, "Threads (default: all cores)");
+    cmd->add_flag("--quiet", a.quiet, "No progress output on stderr");
     add_json_flag(cmd, ctx);
     cmd->callback([&ctx] {
       check_extension(a.spectrum, {".png"}, "--spectrum");
@@ -135,7 +137,11 @@ void add_analysis_commands(CLI::App* points, Context& ctx) {
           w.y0 = std::min<double>(w.y0, xy[i + 1]), w.y1 = std::max<double>(w.y1, xy[i + 1]);
         w.x1 = std::nextafter(w.x1, INFINITY), w.y1 = std::nextafter(w.y1, INFINITY);
       }
+      // Steps: radius analysis, periodogram, pictures.
+      ProgressReporter progress("points analyze", 3, !a.quiet && xy.size() > 2'000'000);
+      progress.set_detail("radius");
       const auto r = radius_stats(xy, w.area(), a.tile_size);
+      progress.add(1);
       nlohmann::json j = {{"file", a.file},
                           {"points", r.count},
                           {"window", {w.x0, w.y0, w.x1, w.y1}},
@@ -147,7 +153,9 @@ void add_analysis_commands(CLI::App* points, Context& ctx) {
       if (r.tiled) j["rho_within"] = r.rho_within, j["rho_across"] = r.rho_across, j["tile_size"] = a.tile_size;
       const double side = std::min(w.width(), w.height());
       PowerSpectrum ps(periodogram_size(r.density, side), side);
+      progress.set_detail("periodogram");
       ps.add(xy, w.x0, w.y0, threads);
+      progress.add(1);
       const auto radial = radial_stats(ps);
       j["spectrum"] = summary_json(summarize(radial, ps.density()));
       j["spectrum"]["size"] = ps.size;
@@ -159,6 +167,8 @@ void add_analysis_commands(CLI::App* points, Context& ctx) {
         write_image(a.zoneplate, z.image);
         j["zoneplate"] = {{"out", a.zoneplate}, {"rms_inner", z.rms_inner}, {"rms_outer", z.rms_outer}};
       }
+      progress.add(1);
+      progress.finish();
       emit(ctx, j, [&] {
         fmt::print("{}: {} points, density {:.6g}\n  rho {:.4f}", a.file, r.count, r.density, r.rho);
         if (r.tiled) fmt::print(" (inside tiles {:.4f}, across tile borders {:.4f})", r.rho_within, r.rho_across);
