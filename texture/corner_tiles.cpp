@@ -33,7 +33,6 @@ namespace tilekit {
 namespace {
 
 using Pos = std::array<int, 2>;
-constexpr double kOffGoal = 1e300;  // the error of a candidate that misses the seam goal
 
 class CornerSynthesis {
  public:
@@ -109,32 +108,19 @@ class CornerSynthesis {
   }
 
   // The seam goal: the tile borders through the patch's lattice point step like the texture.
-  bool on_goal(const Pos& p) const {
+  double goal_miss(const Pos& p) const {
     const Pos centre{p[0] + g_.half + g_.overlap, p[1] + g_.half + g_.overlap};
-    return std::abs(border_activity(e_, centre, g_.half, true, true) / draw_patch_.activity(p[0], p[1]) - 1) <=
-           kBorderTolerance;
+    return seam_goal_miss(border_activity(e_, centre, g_.half, true, true) / draw_patch_.activity(p[0], p[1]));
   }
 
-  // Corner patches: a random draw, then coordinate descent over `search` random candidates per
-  // colour and round (the candidates of one colour are scored in parallel; the lowest error
-  // wins, ties by candidate order, so the result does not depend on the thread count).
+  // Corner patches: a random draw, then the search (search_samples): on the seam goal first,
+  // then the least error of the cuts the patch takes part in.
   void choose_patches(TextureTileSet& s) {
     for (std::uint32_t c = 0; c < c_; ++c) patch_.push_back(draw_patch_(derive_seed(o_.seed, c)));
     s.cut_error_initial = total_error(patch_);
-    for (int round = 0; o_.search > 0 && round < o_.rounds; ++round)
-      for (std::uint32_t c = 0; c < c_; ++c) {
-        std::vector<Pos> cand(std::size_t(o_.search));
-        std::vector<double> err(cand.size());
-        const std::uint64_t stream = derive_seed(o_.seed, 1000 + std::uint64_t(round) * c_ + c);
-        for (std::size_t k = 0; k < cand.size(); ++k) cand[k] = draw_patch_(derive_seed(stream, k));
-        parallel_for(std::int64_t(cand.size()), o_.threads, [&](std::int64_t k) {
-          std::vector<Pos> pos = patch_;
-          pos[c] = cand[std::size_t(k)];
-          err[std::size_t(k)] = on_goal(pos[c]) ? colour_error(pos, c) : kOffGoal;
-        });
-        const std::size_t best = std::size_t(std::min_element(err.begin(), err.end()) - err.begin());
-        if (err[best] < (on_goal(patch_[c]) ? colour_error(patch_, c) : kOffGoal)) patch_[c] = cand[best];
-      }
+    search_samples(patch_, draw_patch_, o_, [&](std::size_t c, const std::vector<Pos>& pos) {
+      return SampleScore{goal_miss(pos[c]), colour_error(pos, std::uint32_t(c))};
+    });
     for (std::uint32_t a = 0; a < c_; ++a)
       for (std::uint32_t b = 0; b < c_; ++b) {
         hcut_.push_back(pair_cut(patch_[a], patch_[b], false).pos);

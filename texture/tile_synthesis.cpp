@@ -9,6 +9,7 @@
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "base/random.hpp"
 
 namespace tilekit {
@@ -94,6 +95,26 @@ std::array<int, 2> SampleDraw::operator()(std::uint64_t seed) const {
     if (a >= 0.85 * median_ && a <= 1.25 * median_) break;
   }
   return p;
+}
+
+double seam_goal_miss(double ratio) { return std::max(0.0, std::abs(ratio - 1) - kBorderTolerance); }
+
+void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& draw, const SynthesisOptions& o,
+                    const std::function<SampleScore(std::size_t, const std::vector<std::array<int, 2>>&)>& score) {
+  for (int round = 0; o.search > 0 && round < o.rounds; ++round)
+    for (std::size_t j = 0; j < samples.size(); ++j) {
+      std::vector<std::array<int, 2>> cand(std::size_t(o.search));
+      std::vector<SampleScore> scores(cand.size());
+      const std::uint64_t stream = derive_seed(o.seed, 1000 + std::uint64_t(round) * samples.size() + j);
+      for (std::size_t k = 0; k < cand.size(); ++k) cand[k] = draw(derive_seed(stream, k));
+      parallel_for(std::int64_t(cand.size()), o.threads, [&](std::int64_t k) {
+        std::vector<std::array<int, 2>> pos = samples;
+        pos[j] = cand[std::size_t(k)];
+        scores[std::size_t(k)] = score(j, pos);
+      });
+      const std::size_t best = std::size_t(std::min_element(scores.begin(), scores.end()) - scores.begin());
+      if (scores[best] < score(j, samples)) samples[j] = cand[best];
+    }
 }
 
 TextureTileSet synthesize_tiles(const Exemplar& e, const SynthesisOptions& o) {

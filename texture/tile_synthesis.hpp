@@ -5,6 +5,7 @@
 // Seeded and deterministic: the same seed gives the same bytes on any thread count.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -98,6 +99,19 @@ class SampleDraw {
   std::vector<double> integral_;  // (width + 1) x (height + 1) summed-area table of pixel activity
   double median_ = 0;
 };
+
+// The score of a sample in the search: first how far its border lines miss the seam goal (0 within
+// kBorderTolerance of its own activity, see border_activity), then the cut error it takes part in.
+using SampleScore = std::pair<double, double>;
+double seam_goal_miss(double border_to_own_activity);
+
+// The search over sample positions (corner patches, Wang diamonds): coordinate descent, `o.rounds`
+// rounds over the samples; each round draws `o.search` candidates for sample j (from `draw`,
+// seeded by o.seed, the round and j), scores them in parallel with score(j, samples with j
+// replaced), and keeps the best if it beats the current one (ties by candidate order, so the
+// result does not depend on the thread count).
+void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& draw, const SynthesisOptions& o,
+                    const std::function<SampleScore(std::size_t, const std::vector<std::array<int, 2>>&)>& score);
 
 // The tiles in index order, about square, `gap` pixels apart on white (the README picture).
 RgbaImage tile_set_sheet(const TextureTileSet& s, int gap = 4);

@@ -24,7 +24,6 @@ namespace tilekit {
 namespace {
 
 using Pos = std::array<int, 2>;
-constexpr double kOffGoal = 1e300;  // the error of a candidate that misses the seam goal
 
 // The tile's quadrants, each with the diagonal from the tile centre to one corner; sx, sy point
 // to the corner (y grows to the south).
@@ -124,29 +123,19 @@ class WangSynthesis {
 
   // The seam goal: the tile border through the diamond's centre (a row for a horizontal edge, a
   // column for a vertical one) steps like the texture.
-  bool on_goal(const Pos& p, std::uint32_t j) const {
+  double goal_miss(const Pos& p, std::size_t j) const {
     const Pos centre{p[0] + g_.half + g_.overlap, p[1] + g_.half + g_.overlap};
-    return std::abs(border_activity(e_, centre, g_.half, j < c_, j >= c_) / draw_.activity(p[0], p[1]) - 1) <=
-           kBorderTolerance;
+    return seam_goal_miss(border_activity(e_, centre, g_.half, j < c_, j >= c_) / draw_.activity(p[0], p[1]));
   }
 
+  // The diamonds: a random draw, then the search (search_samples): on the seam goal first, then
+  // the least error of the cuts the diamond takes part in.
   void choose_samples(TextureTileSet& s) {
     for (std::uint32_t j = 0; j < 2 * c_; ++j) sample_.push_back(draw_(derive_seed(o_.seed, j)));
     s.cut_error_initial = total_error(sample_);
-    for (int round = 0; o_.search > 0 && round < o_.rounds; ++round)
-      for (std::uint32_t j = 0; j < 2 * c_; ++j) {
-        std::vector<Pos> cand(std::size_t(o_.search));
-        std::vector<double> err(cand.size());
-        const std::uint64_t stream = derive_seed(o_.seed, 1000 + std::uint64_t(round) * 2 * c_ + j);
-        for (std::size_t k = 0; k < cand.size(); ++k) cand[k] = draw_(derive_seed(stream, k));
-        parallel_for(std::int64_t(cand.size()), o_.threads, [&](std::int64_t k) {
-          std::vector<Pos> pos = sample_;
-          pos[j] = cand[std::size_t(k)];
-          err[std::size_t(k)] = on_goal(pos[j], j) ? sample_error(pos, j) : kOffGoal;
-        });
-        const std::size_t best = std::size_t(std::min_element(err.begin(), err.end()) - err.begin());
-        if (err[best] < (on_goal(sample_[j], j) ? sample_error(sample_, j) : kOffGoal)) sample_[j] = cand[best];
-      }
+    search_samples(sample_, draw_, o_, [&](std::size_t j, const std::vector<Pos>& pos) {
+      return SampleScore{goal_miss(pos[j], j), sample_error(pos, std::uint32_t(j))};
+    });
     for (int k = 0; k < 4; ++k)
       for (std::uint32_t h = 0; h < c_; ++h)
         for (std::uint32_t v = 0; v < c_; ++v) cuts_.push_back(cut(k, hsample(h, sample_), vsample(v, sample_)).pos);
