@@ -54,7 +54,9 @@ Comparison compare(const std::vector<RgbaImage>& atlas, const AtlasLookup& l, co
           c.max = std::max(c.max, d);
           if (d) {
             ++c.differing;
-            const int edge = std::max(1, 8 >> k);  // level-0 texels 8 from a corner, at level k
+            // texels whose level-0 footprint (the [1 3 3 1] tent k times: texel i covers level-0
+            // texels 2^k i - 2^k + 1 .. 2^k i + 2^(k+1) - 2) reaches within 8 texels of a corner
+            const int edge = (8 + (1 << k) - 1 + (1 << k) - 1) >> k;
             const bool corner = (x < edge || x >= n - edge) && (y < edge || y >= n - edge);
             c.near_corner_only += corner;
           }
