@@ -9,7 +9,6 @@
 #include <string>
 
 #include "../cli_runner.hpp"
-#include "base/random.hpp"
 #include "texture/cpu_renderer.hpp"
 #include "texture/gl_renderer.hpp"
 #include "texture/glsl_sampler.hpp"
@@ -65,11 +64,7 @@ std::array<double, 4> sample_chain(const std::vector<RgbaImage>& chain, double u
 TEST(CpuRenderer, PackedAtlasFiltersAcrossTileBordersLikeTheTilingAndARandomArrangementDoesNot) {
   const TextureTileSet& tiles = test::grass_tiles(TileKind::Corner);
   const TextureAtlas& atlas = test::grass_atlas(TileKind::Corner);
-  AtlasLookup shuffled = atlas.lookup;
-  SplitMix64 rng(4);
-  shuffle(shuffled.cells.begin(), shuffled.cells.end(), rng);
-  for (std::size_t cell = 0; cell < shuffled.cells.size(); ++cell)
-    shuffled.positions[shuffled.cells[cell]] = {int(cell) / shuffled.cols, int(cell) % shuffled.cols};
+  const AtlasLookup shuffled = test::shuffled_lookup(atlas.lookup, 4);
   const TextureAtlas random = build_texture_atlas(shuffled, tiles.tiles);
   const int n = tiles.tile_px, first = 1, count = 18;  // the stitched window: tiles 1..18 each way
   const Tiling t = DirectCornerTiling(2, HashKind::LongPeriod, 9).generate(count, count, first, first);

@@ -4,7 +4,6 @@
 
 #include "../cli_runner.hpp"
 #include "base/error.hpp"
-#include "base/random.hpp"
 #include "texture/mipmap.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture_fixtures.hpp"
@@ -79,11 +78,7 @@ TEST(TextureAtlas, PackedAtlasMipLevelsZeroToTwoEqualTheStitchedTilingAndARandom
                                << c.max;
   }
   // the same tiles in a random arrangement of the atlas cells (not a tiling)
-  AtlasLookup shuffled = atlas.lookup;
-  SplitMix64 rng(4);
-  shuffle(shuffled.cells.begin(), shuffled.cells.end(), rng);
-  for (std::size_t cell = 0; cell < shuffled.cells.size(); ++cell)
-    shuffled.positions[shuffled.cells[cell]] = {int(cell) / shuffled.cols, int(cell) % shuffled.cols};
+  const AtlasLookup shuffled = test::shuffled_lookup(atlas.lookup, 4);
   const TextureAtlas random = build_texture_atlas(shuffled, tiles.tiles);
   const Comparison c1 = compare(random.levels, shuffled, truth, t, 64, 1),
                    c2 = compare(random.levels, shuffled, truth, t, 64, 2);

@@ -60,6 +60,15 @@ inline SynthesisOptions small_options(TileKind kind, std::uint32_t colours, int 
   return o;
 }
 
+// The same atlas cells in a seeded random arrangement (not a packing), with positions to match.
+inline AtlasLookup shuffled_lookup(AtlasLookup l, std::uint64_t seed) {
+  SplitMix64 rng(seed);
+  shuffle(l.cells.begin(), l.cells.end(), rng);
+  for (std::size_t cell = 0; cell < l.cells.size(); ++cell)
+    l.positions[l.cells[cell]] = {int(cell) / l.cols, int(cell) % l.cols};
+  return l;
+}
+
 // Grass tiles (C = 2, 64 px) of either kind and their atlas from the constructions, built once.
 inline const TextureTileSet& grass_tiles(TileKind kind) {
   static std::map<TileKind, TextureTileSet> cache;
