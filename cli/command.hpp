@@ -34,5 +34,6 @@ void add_analyze_commands(CLI::App& app, Context& ctx);
 void add_aperiodic_commands(CLI::App& app, Context& ctx);
 void add_cluster_commands(CLI::App& app, Context& ctx);
 void add_points_commands(CLI::App& app, Context& ctx);
+void add_texture_commands(CLI::App& app, Context& ctx);
 
 }  // namespace tilekit::cli
