@@ -72,21 +72,22 @@ std::string encode_checkpoint(const SearchState& st) {
                          {"restarts", st.restarts},
                          {"restart_nodes", st.restart_nodes},
                          {"seconds", st.seconds}};
-  std::string text = body.dump();
-  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", kMagic, kCheckpointVersion, text.size(), fnv1a64(text),
-                     text);
+  return seal_checkpoint(kMagic, kCheckpointVersion, body.dump());
 }
 
-SearchState decode_checkpoint(std::string_view text, const std::string& origin) {
+std::string seal_checkpoint(std::string_view magic, int version, std::string_view body) {
+  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", magic, version, body.size(), fnv1a64(body), body);
+}
+
+std::string_view open_checkpoint(std::string_view text, std::string_view magic, int version, const std::string& origin) {
   auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
   auto eol1 = text.find('\n');
-  if (eol1 == std::string_view::npos || text.substr(0, kMagic.size()) != kMagic || text.size() <= kMagic.size() ||
-      text[kMagic.size()] != ' ')
-    throw bad("not a Tilekit checkpoint file");
-  std::string version(text.substr(kMagic.size() + 1, eol1 - kMagic.size() - 1));
-  if (version != std::to_string(kCheckpointVersion))
-    throw bad(
-        fmt::format("format version {} is not supported (this build reads version {})", version, kCheckpointVersion));
+  if (eol1 == std::string_view::npos || text.substr(0, magic.size()) != magic || text.size() <= magic.size() ||
+      text[magic.size()] != ' ')
+    throw bad("not a Tilekit checkpoint file" + (magic == kMagic ? std::string() : fmt::format(" of this kind ({})", magic)));
+  std::string ver(text.substr(magic.size() + 1, eol1 - magic.size() - 1));
+  if (ver != std::to_string(version))
+    throw bad(fmt::format("format version {} is not supported (this build reads version {})", ver, version));
   auto eol2 = text.find('\n', eol1 + 1);
   if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
   std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));
@@ -100,6 +101,12 @@ SearchState decode_checkpoint(std::string_view text, const std::string& origin) 
   if (body.size() < bytes) throw bad(fmt::format("truncated ({} of {} bytes)", body.size(), bytes));
   if (body.size() > bytes) throw bad(fmt::format("corrupt ({} bytes after the end)", body.size() - bytes));
   if (fnv1a64(body) != sum) throw bad("corrupt (checksum mismatch)");
+  return body;
+}
+
+SearchState decode_checkpoint(std::string_view text, const std::string& origin) {
+  auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
+  std::string_view body = open_checkpoint(text, kMagic, kCheckpointVersion, origin);
   SearchState st;
   try {
     nlohmann::json j = nlohmann::json::parse(body);

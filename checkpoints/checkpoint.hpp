@@ -19,6 +19,12 @@ namespace tilekit {
 
 inline constexpr int kCheckpointVersion = 1;
 
+// The envelope every Tilekit checkpoint file shares (above, with its own magic and version):
+// seal_checkpoint() wraps a body; open_checkpoint() returns the body after checking magic,
+// version, length and checksum, or throws InputError naming `origin` and the problem.
+std::string seal_checkpoint(std::string_view magic, int version, std::string_view body);
+std::string_view open_checkpoint(std::string_view text, std::string_view magic, int version, const std::string& origin);
+
 std::string encode_checkpoint(const SearchState& state);
 // `origin` names the file in error messages.
 SearchState decode_checkpoint(std::string_view text, const std::string& origin);

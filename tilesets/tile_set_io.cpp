@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -21,8 +22,18 @@ namespace {
 
 constexpr std::int64_t kMaxColour = 1 << 24;
 
-TileSet make_set(TileKind kind, const std::vector<std::array<std::int64_t, 4>>& rows, std::string name,
-                 std::string source, std::int64_t declared) {
+TileSet make_set(TileKind kind, std::vector<std::array<std::int64_t, 4>> rows, std::string name, std::string source,
+                 std::int64_t declared, const std::vector<std::string>& where, std::vector<RepeatedTile>* repeated) {
+  if (repeated) {  // keep the first of equal tiles, report the others
+    std::map<std::array<std::int64_t, 4>, std::size_t> first;
+    std::vector<std::array<std::int64_t, 4>> distinct;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      auto [it, fresh] = first.emplace(rows[k], distinct.size());
+      if (fresh) distinct.push_back(rows[k]);
+      else repeated->push_back({where[k], it->second, {Colour(rows[k][0]), Colour(rows[k][1]), Colour(rows[k][2]), Colour(rows[k][3])}});
+    }
+    rows = std::move(distinct);
+  }
   if (kind == TileKind::Wang) {
     std::vector<WangTile> tiles;
     for (auto& r : rows)  // file order: n s w e
@@ -45,11 +56,12 @@ std::int64_t check_colour(std::int64_t v, std::int64_t declared, const std::stri
   return v;
 }
 
-TileSet parse_text(std::string_view text, const std::string& origin) {
+TileSet parse_text(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   TileKind kind = TileKind::Wang;
   std::int64_t declared = 0;
   std::string source;
   std::vector<std::array<std::int64_t, 4>> rows;
+  std::vector<std::string> where_of;  // "origin:line" of each tile
   std::istringstream in{std::string(text)};
   std::string line;
   int lineno = 0;
@@ -97,17 +109,18 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
       row[k] = check_colour(v, declared, where);
     }
     rows.push_back(row);
+    where_of.push_back(where);
     seen_tile = true;
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
   try {
-    return make_set(kind, rows, stem_of(origin), source, declared);
+    return make_set(kind, std::move(rows), stem_of(origin), source, declared, where_of, repeated);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", origin, e.what()));
   }
 }
 
-TileSet parse_json(std::string_view text, const std::string& origin) {
+TileSet parse_json(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -128,6 +141,7 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
   }
   if (!j.contains("tiles") || !j["tiles"].is_array()) throw InputError(fmt::format("{}: missing \"tiles\" array", origin));
   std::vector<std::array<std::int64_t, 4>> rows;
+  std::vector<std::string> where_of;
   for (std::size_t k = 0; k < j["tiles"].size(); ++k) {
     const auto& t = j["tiles"][k];
     const std::string where = fmt::format("{}: tile {}", origin, k + 1);
@@ -138,12 +152,13 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
       row[c] = check_colour(t[c].get<std::int64_t>(), declared, where);
     }
     rows.push_back(row);
+    where_of.push_back(where);
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
   std::string name = j.value("name", stem_of(origin));
   std::string source = j.value("source", std::string());
   try {
-    return make_set(kind, rows, name, source, declared);
+    return make_set(kind, std::move(rows), name, source, declared, where_of, repeated);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", origin, e.what()));
   }
@@ -160,20 +175,20 @@ std::uint32_t parse_count(const std::string& s, const std::string& name) {
 
 }  // namespace
 
-TileSet parse_tile_set(std::string_view text, const std::string& origin) {
+TileSet parse_tile_set(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   auto first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin);
-  return parse_text(text, origin);
+  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin, repeated);
+  return parse_text(text, origin, repeated);
 }
 
-TileSet read_tile_set_file(const std::string& path) {
+TileSet read_tile_set_file(const std::string& path, std::vector<RepeatedTile>* repeated) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such tile-set file", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
   std::stringstream buf;
   buf << in.rdbuf();
-  return parse_tile_set(buf.str(), path);
+  return parse_tile_set(buf.str(), path, repeated);
 }
 
 std::string format_tile_set_text(const TileSet& set) {
@@ -208,7 +223,7 @@ std::vector<BuiltinInfo> builtin_tile_sets() {
   return out;
 }
 
-TileSet resolve_tile_set(const std::string& name) {
+TileSet resolve_tile_set(const std::string& name, std::vector<RepeatedTile>* repeated) {
   static const std::regex family_re(R"(^(complete-wang|complete-corner|compact-wang|compact-wang3|compact-corner)-(\d+)$)");
   static const std::regex mixed_re(R"(^complete-wang-(\d+)x(\d+)$)");
   std::smatch m;
@@ -226,7 +241,7 @@ TileSet resolve_tile_set(const std::string& name) {
   for (const EmbeddedFile& f : reference_data())
     if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name));
   std::error_code ec;
-  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
+  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name, repeated);
   throw InputError(fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
 }
 
