@@ -7,6 +7,8 @@
 //     mod N, so (top pair, bottom pair) runs over every pair of pairs exactly once.
 //   - The rows wrap: T(N) = N(N-1)/2 = 0 mod N exactly when N is odd, i.e. C odd.
 // The thesis (5.5.3, 7) lists a constructive method for corner packings as an open problem.
+#include <cassert>
+
 #include "tilesets/construct_internal.hpp"
 #include "tilesets/constructions.hpp"
 
@@ -19,6 +21,7 @@ std::uint64_t triangular(std::uint64_t r) { return r * (r - 1) / 2; }  // T(r) =
 std::vector<Colour> corner_triangular_pegs(std::uint32_t colours) {
   const std::vector<Colour> s = eulerian_sequence(colours);  // de Bruijn sequence of order 2
   const std::uint64_t n = s.size();
+  assert(n == std::uint64_t(colours) * colours);
   std::vector<Colour> pegs(n * n);
   for (std::uint64_t r = 0; r < n; ++r) {
     const std::uint64_t shift = r == 0 ? 0 : triangular(r) % n;
@@ -36,6 +39,7 @@ std::pair<int, int> corner_triangular_position(std::uint32_t colours, TileIndex 
   const std::uint64_t p = eulerian_position(t.nw, t.ne), q = eulerian_position(t.sw, t.se);
   const std::uint64_t r = (q + n - p) % n;
   const std::uint64_t c = (p + n - triangular(r) % n) % n;
+  assert(r < n && c < n);
   return {int(r), int(c)};
 }
 
