@@ -6,7 +6,6 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -30,20 +29,24 @@ std::pair<std::size_t, std::size_t> reading(const Transducer& t, std::uint32_t f
 
 }  // namespace
 
-TransducerChain::TransducerChain(const std::vector<WangTile>& tiles, bool columns, bool merge)
+TransducerChain::TransducerChain(const std::vector<WangTile>& tiles, bool columns, bool merge, const Budget& budget)
     : columns_(columns), merge_(merge) {
   // Columns are the rows of the transposed set (n <-> w, s <-> e).
   for (const WangTile& t : tiles) tiles_.push_back(columns ? WangTile{t.w, t.s, t.e, t.n} : t);
-  std::map<Colour, std::uint32_t> state, label;
-  for (const WangTile& t : tiles_) state[t.w], state[t.e], label[t.n], label[t.s];
-  std::uint32_t n = 0;
-  for (auto& [c, id] : state) id = n++;
-  n = 0;
-  for (auto& [c, id] : label) id = n++;
-  labels_ = n;
+  // States: the E/W colours, labels: the N/S colours, both numbered densely in increasing order.
+  std::vector<Colour> state, label;
+  for (const WangTile& t : tiles_) state.push_back(t.w), state.push_back(t.e), label.push_back(t.n), label.push_back(t.s);
+  for (auto* v : {&state, &label}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  auto id = [](const std::vector<Colour>& v, Colour c) {
+    return std::uint32_t(std::lower_bound(v.begin(), v.end(), c) - v.begin());
+  };
+  labels_ = std::uint32_t(label.size());
   base_.states = std::uint32_t(state.size());
   std::vector<Transition> of_tile;
-  for (const WangTile& t : tiles_) of_tile.push_back({state[t.w], label[t.s], label[t.n], state[t.e]});
+  for (const WangTile& t : tiles_) of_tile.push_back({id(state, t.w), id(label, t.s), id(label, t.n), id(state, t.e)});
   base_.transitions = of_tile;
   base_.finalize();
   assert(base_.transitions.size() == tiles_.size() && "tiles must be distinct");
@@ -53,14 +56,23 @@ TransducerChain::TransducerChain(const std::vector<WangTile>& tiles, bool column
   one.t = base_;
   one.product_states = base_.states;
   one.product_transitions = base_.transitions.size();
+  if (StopReason why = budget.check(); why != StopReason::None) throw Stopped{why, false};
   std::vector<std::uint32_t> renum = trim_to_components(one.t, &one.components);
+  if (StopReason why = budget.check(); why != StopReason::None) throw Stopped{why, false};
+  // The tile of each transition T_1 kept: both lists sorted, then walked together.
   for (std::uint32_t k = 0; k < of_tile.size(); ++k) {
     Transition tr = of_tile[k];
     if (renum[tr.from] == kNoState || renum[tr.to] == kNoState) continue;
     tr.from = renum[tr.from], tr.to = renum[tr.to];
-    if (std::binary_search(one.t.transitions.begin(), one.t.transitions.end(), tr)) tile_of_.emplace_back(tr, k);
+    tile_of_.emplace_back(tr, k);
   }
   std::sort(tile_of_.begin(), tile_of_.end());
+  std::size_t kept = 0;
+  for (std::size_t i = 0, j = 0; i < tile_of_.size(); ++i) {
+    while (j < one.t.transitions.size() && one.t.transitions[j] < tile_of_[i].first) ++j;
+    if (j < one.t.transitions.size() && one.t.transitions[j] == tile_of_[i].first) tile_of_[kept++] = tile_of_[i];
+  }
+  tile_of_.resize(kept);
   assert(tile_of_.size() == one.t.transitions.size());
   one.seconds = seconds_since(t0);
   levels_.push_back(std::move(one));
@@ -236,7 +248,7 @@ void TransducerChain::check_level(ChainLevel& l, int k) const {
 
 TransducerChain TransducerChain::restore(const std::vector<WangTile>& tiles, bool columns, bool merge,
                                          std::vector<ChainLevel> levels) {
-  TransducerChain c(tiles, columns, merge);
+  TransducerChain c(tiles, columns, merge, Budget{});
   if (levels.empty() || levels.front().t.transitions != c.levels_.front().t.transitions ||
       levels.front().components != c.levels_.front().components)
     throw InputError("the transducer chain does not belong to this tile set");

@@ -41,7 +41,8 @@ class TransducerChain {
  public:
   TransducerChain() = default;
   // `tiles` distinct; columns = true builds the chain of the transposed set (strips of columns).
-  TransducerChain(const std::vector<WangTile>& tiles, bool columns, bool merge);
+  // Builds T_1; throws Stopped when the budget says so.
+  TransducerChain(const std::vector<WangTile>& tiles, bool columns, bool merge, const Budget& budget = {});
 
   bool columns() const { return columns_; }
   bool merge() const { return merge_; }

@@ -147,10 +147,6 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
       throw InputError(fmt::format("checkpoint {} does not match this run: {}", o.resume_path, diff));
     res.resumed = true;
     res.levels = state.levels;
-  } else {
-    if (o.rows) state.chains.emplace_back(tiles, false, o.merge);
-    if (o.columns) state.chains.emplace_back(tiles, true, o.merge);
-    for (const TransducerChain& c : state.chains) res.levels.push_back(level_stats(c));
   }
   const double before = state.seconds;
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
@@ -162,7 +158,7 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   ProgressReporter progress(fmt::format("decide {}", set.name()), o.time_limit, o.progress);
   auto last_checkpoint = Clock::now();
   auto save = [&] {
-    if (o.checkpoint_path.empty()) return;
+    if (o.checkpoint_path.empty() || state.chains.empty()) return;
     state.seconds = before + elapsed();
     state.levels = res.levels;
     write_decide_checkpoint(o.checkpoint_path, state);
@@ -191,6 +187,13 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   };
   try {
     bool done = false;
+    if (!res.resumed)
+      for (bool columns : {false, true}) {
+        if (columns ? !o.columns : !o.rows) continue;
+        if (StopReason why = budget.check(); why != StopReason::None) throw Stopped{why, false};
+        state.chains.emplace_back(tiles, columns, o.merge, budget);
+        res.levels.push_back(level_stats(state.chains.back()));
+      }
     for (const TransducerChain& c : state.chains)
       if (!done) done = decided(c);
     while (!done) {

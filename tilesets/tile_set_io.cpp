@@ -7,7 +7,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -25,12 +24,21 @@ constexpr std::int64_t kMaxColour = 1 << 24;
 TileSet make_set(TileKind kind, std::vector<std::array<std::int64_t, 4>> rows, std::string name, std::string source,
                  std::int64_t declared, const std::vector<std::string>& where, std::vector<RepeatedTile>* repeated) {
   if (repeated) {  // keep the first of equal tiles, report the others
-    std::map<std::array<std::int64_t, 4>, std::size_t> first;
+    std::vector<std::size_t> order(rows.size()), first_of(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rows[a] < rows[b]; });
+    for (std::size_t i = 0; i < order.size(); ++i)
+      first_of[order[i]] = i > 0 && rows[order[i]] == rows[order[i - 1]] ? first_of[order[i - 1]] : order[i];
     std::vector<std::array<std::int64_t, 4>> distinct;
+    std::vector<std::size_t> position(rows.size());  // of each first occurrence among the distinct tiles
     for (std::size_t k = 0; k < rows.size(); ++k) {
-      auto [it, fresh] = first.emplace(rows[k], distinct.size());
-      if (fresh) distinct.push_back(rows[k]);
-      else repeated->push_back({where[k], it->second, {Colour(rows[k][0]), Colour(rows[k][1]), Colour(rows[k][2]), Colour(rows[k][3])}});
+      if (first_of[k] == k) {
+        position[k] = distinct.size();
+        distinct.push_back(rows[k]);
+      } else {
+        const auto& r = rows[k];
+        repeated->push_back({where[k], position[first_of[k]], {Colour(r[0]), Colour(r[1]), Colour(r[2]), Colour(r[3])}});
+      }
     }
     rows = std::move(distinct);
   }
@@ -73,21 +81,22 @@ TileSet parse_text(std::string_view text, const std::string& origin, std::vector
     ++lineno;
     const std::string where = fmt::format("{}:{}", origin, lineno);
     std::smatch m;
-    if (std::regex_match(line, m, kind_re)) {
+    const bool comment = line.find_first_not_of(" \t") != std::string::npos && line[line.find_first_not_of(" \t")] == '#';
+    if (comment && std::regex_match(line, m, kind_re)) {
       if (seen_tile) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
       if (m[1] == "corner") kind = TileKind::Corner;
       else if (m[1] == "wang") kind = TileKind::Wang;
       else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, m[1].str()));
       continue;
     }
-    if (std::regex_match(line, m, colours_re)) {
+    if (comment && std::regex_match(line, m, colours_re)) {
       auto s = m[1].str();
       auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), declared);
       if (ec != std::errc() || p != s.data() + s.size() || declared < 1 || declared > 255)
         throw InputError(fmt::format("{}: colours must be between 1 and 255, got '{}'", where, s));
       continue;
     }
-    if (std::regex_match(line, m, source_re)) {
+    if (comment && std::regex_match(line, m, source_re)) {
       if (source.empty()) source = m[1].str();
       continue;
     }

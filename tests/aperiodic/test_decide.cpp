@@ -4,10 +4,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <tuple>
 
 #include "aperiodic/chain.hpp"
 #include "aperiodic/decide.hpp"
 #include "aperiodic/decide_checkpoint.hpp"
+#include "aperiodic/generate.hpp"
 #include "aperiodic/transducer.hpp"
 #include "base/error.hpp"
 #include "tests/cli_runner.hpp"
@@ -20,13 +22,7 @@ namespace {
 
 // Tiles (i, j), i < p, j < q, whose colours encode the position mod (p, q): they tile only the
 // p x q periodic pattern (and its translates).
-TileSet torus_set(int p, int q) {
-  std::vector<WangTile> t;
-  for (int i = 0; i < p; ++i)
-    for (int j = 0; j < q; ++j)
-      t.push_back({Colour(i * q + j), Colour(i * q + (j + 1) % q), Colour(((i + 1) % p) * q + j), Colour(i * q + j)});
-  return TileSet::wang(t, "torus");
-}
+TileSet torus_set(int p, int q) { return torus_with_decoys(p, q, 0, 0); }
 
 DecideOptions quick(double seconds = 5) {
   DecideOptions o;
@@ -113,14 +109,32 @@ TEST(Decide, TheSquareBoundOfAFiniteSetIsAtLeastTheLargestTileableSquare) {
   }
 }
 
-TEST(Decide, MergingChangesNoVerdict) {
-  for (const char* name : {"periodic-7-30", "finite-14", "periodic-10-15"}) {
+TEST(Decide, MergingChangesNoVerdictAndNoPeriodFoundInOneDirection) {
+  for (const char* name : {"periodic-7-30", "finite-14", "periodic-9-73"}) {
     TileSet s = read_tile_set_file(std::string(TILEKIT_SOURCE_DIR) + "/aperiodic/data/" + name + ".tiles");
-    DecideOptions plain = quick(20);
-    plain.merge = false;
-    DecideResult a = decide_tile_set(s, quick(20)), b = decide_tile_set(s, plain);
-    EXPECT_EQ(a.verdict, b.verdict) << name;
-    EXPECT_EQ(a.k, b.k) << name;
+    for (bool columns : {false, true}) {
+      DecideOptions merged = quick(20);
+      merged.rows = !columns;
+      merged.columns = columns;
+      DecideOptions plain = merged;
+      plain.merge = false;
+      DecideResult a = decide_tile_set(s, merged), b = decide_tile_set(s, plain);
+      EXPECT_EQ(a.verdict, b.verdict) << name;
+      EXPECT_EQ(a.k, b.k) << name;  // the same least k in one direction
+      EXPECT_EQ(a.shift, b.shift) << name;
+      for (std::size_t i = 0; i < a.levels.size() && i < b.levels.size(); ++i)
+        EXPECT_LE(a.levels[i].states, b.levels[i].states) << name;  // merging only shrinks
+    }
+  }
+}
+
+TEST(Decide, TorusSetsWithDecoysUpToAHundredTilesArePeriodic) {
+  for (auto [p, q, d] : {std::tuple{7, 9, 20}, {5, 5, 75}, {3, 11, 40}}) {
+    TileSet s = torus_with_decoys(p, q, d, 12);
+    ASSERT_EQ(s.size(), std::size_t(p * q + d));
+    DecideResult r = decide_tile_set(s, quick(20));
+    ASSERT_EQ(r.verdict, "periodic") << s.name();
+    EXPECT_TRUE(validate(*r.witness_tiling, &s).valid);
   }
 }
 
