@@ -130,7 +130,7 @@ std::string encode_decide_checkpoint(const DecideCheckpoint& c) {
 
 DecideCheckpoint decode_decide_checkpoint(std::string_view text, const std::vector<WangTile>& tiles,
                                           const std::string& origin) {
-  std::string_view body = open_checkpoint(text, kMagic, kDecideCheckpointVersion, origin);
+  std::string_view body = open_checkpoint(text, kMagic, kDecideCheckpointVersion, kDecideCheckpointVersion, origin);
   DecideCheckpoint c;
   try {
     Reader r(body);

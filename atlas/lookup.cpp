@@ -1,5 +1,6 @@
-// Atlas lookup: where a packing comes from (database, then construction) and the CPU
-// reference of the shader mapping. The text formats are in lookup_formats.cpp.
+// Atlas lookup: where a packing comes from (packing/find_packing.hpp: database, then
+// construction) and the CPU reference of the shader mapping. The text formats are in
+// lookup_formats.cpp.
 #include "atlas/lookup.hpp"
 
 #include <fmt/format.h>
@@ -8,11 +9,12 @@
 #include <filesystem>
 #include <memory>
 
-#include "checkpoints/results_db.hpp"
-#include "tilesets/constructions.hpp"
 #include "base/error.hpp"
-#include "tiling/lattice_hash.hpp"
+#include "checkpoints/results_db.hpp"
+#include "packing/find_packing.hpp"
+#include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
+#include "tiling/lattice_hash.hpp"
 
 namespace tilekit {
 
@@ -78,26 +80,21 @@ std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb*
 }  // namespace
 
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options) {
-  if (colours < 1 || colours > 255) throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
+  if (colours < 1 || colours > 255)
+    throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
   std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
-  const int n = int(colours * colours);
-  if (db) {
-    if (auto s = db->find_solution(kind, colours, n, n)) {
-      ValidationReport rep = validate(s->tiling);  // stored data is re-checked by the independent validator
-      if (rep.packing && s->tiling.torus) {
-        AtlasLookup a =
-            lookup_from_packing(s->tiling, "db", fmt::format("solution {} in {}", s->id, db->path()), false, false);
-        a.solution_id = s->id;
-        return a;
-      }
-    }
-  }
+  PackingSources src;
+  src.db = db.get();
   // Constructions are proven (see tilesets/construct_*.cpp) and checked by the independent
-  // validator in the tests for every C up to 16; here only the every-tile-once check runs, so
-  // that a lookup stays within its time budget.
-  if (auto p = construct_packing(kind, colours))
-    return lookup_from_packing(p->tiling, "construct", p->how, p->closed_form, false);
-  throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
+  // validator in the tests for every C up to 16; here only the every-tile-once check of
+  // lookup_from_packing runs, so that a lookup stays within its time budget. A stored packing
+  // is re-checked by the validator in find_packing.
+  src.validate_construction = false;
+  std::optional<FoundPacking> found = find_packing(kind, colours, src);
+  if (!found) throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
+  AtlasLookup a = lookup_from_packing(found->tiling, found->source, found->how, found->closed_form, false);
+  a.solution_id = found->solution_id;
+  return a;
 }
 
 // The project's permutation table (thesis 3.4.1, tiling/lattice_hash.hpp) of size 256, so the

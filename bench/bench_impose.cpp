@@ -1,17 +1,21 @@
-// Search under imposed automorphisms (issue 7): time to the first packing per (kind, C, group),
-// median over seeds, against the plain search (trivial group, same engine, same time limit) run
-// in the same process. One JSON line per case on stdout.
+// Search under imposed automorphisms (issues 7 and 11): time to the first packing per (kind, C,
+// group), median over seeds, against the plain search (trivial group, same engine, same time
+// limit) run in the same process. CPU seconds (getrusage, the whole process) next to wall
+// seconds. One JSON line per case on stdout.
 //
-//   build/bench_impose                       default cases (C=3..5, corner and Wang)
-//   build/bench_impose --case corner:5:t=0,5:pi=1,2,3,4,0 --reps 5 --threads 1 --time-limit 60
-//   build/bench_impose --no-baseline ...     skip the plain search
-//   build/bench_impose --portfolio corner:6 --threads 1 --time-limit 3000 [--stats F]
-//                                            the --method auto portfolio, one JSON line with every
-//                                            candidate's tries, nodes and seconds
-//   --sat (CNF + cadical instead of the DFS), --patterns MASK (bit k: size-k pattern counts, default 4), --static (no MCF), --luby-unit N
+//   build/bench_bench_impose                     default cases (C=3..5, corner and Wang)
+//   build/bench_bench_impose --case corner:5:t=0,5:pi=1,2,3,4,0 --reps 5 --threads 1 --time-limit 60
+//   build/bench_bench_impose --no-baseline ...   skip the plain search
+//   build/bench_bench_impose --portfolio corner:6 --threads 1 --time-limit 3000 [--stats F]
+//                                            the portfolio, one JSON line with every candidate's
+//                                            slices, nodes and seconds
+//   --sat (CNF + cadical instead of the DFS), --patterns MASK (bit k: size-k pattern counts,
+//   default 4), --static (scan order, no MCF), --luby-unit N (nodes per Luby unit)
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -19,9 +23,9 @@
 #include <thread>
 #include <vector>
 
-#include "solver/impose_portfolio.hpp"
-#include "solver/impose_solve.hpp"
 #include "base/error.hpp"
+#include "solver/portfolio.hpp"
+#include "solver/solve.hpp"
 
 using namespace tilekit;
 
@@ -51,22 +55,58 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v[v.size() / 2];
 }
 
-nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int threads, double limit, std::uint64_t seed0,
-                        const SymmetricControl& ctl) {
-  std::vector<double> secs, nodes;
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// The engine knobs a case runs with (SearchOptions fields).
+struct Knobs {
+  unsigned patterns = 4;
+  bool static_order = false, sat = false;
+  std::uint64_t luby_unit = 0;
+};
+
+SearchResult run_one(const Case& c, const std::string& spec, int threads, double limit, std::uint64_t seed,
+                     const Knobs& k, double& cpu) {
+  SearchOptions o;
+  o.threads = threads;
+  o.seed = seed;
+  o.time_limit = limit;
+  o.impose = spec;
+  o.impose_patterns = k.patterns;
+  o.ordering = k.static_order ? "static" : "auto";
+  o.formulation = k.sat ? "sat" : "auto";
+  o.restart_base = k.luby_unit;
+  const double cpu0 = cpu_seconds();
+  SearchResult r = solve(complete_packing_problem(c.kind, c.colours), o);
+  cpu = cpu_seconds() - cpu0;
+  return r;
+}
+
+nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int threads, double limit,
+                        std::uint64_t seed0, const Knobs& k) {
+  std::vector<double> secs, cpus, nodes;
   int found = 0;
   for (int r = 0; r < reps; ++r) {
-    SearchOptions o;
-    o.threads = threads;
-    o.seed = seed0 + std::uint64_t(r);
-    o.time_limit = limit;
-    auto res = solve_symmetric(c.kind, c.colours, spec, o, ctl);
-    secs.push_back(res.result.solutions ? res.result.seconds : limit);
-    nodes.push_back(double(res.result.nodes));
-    found += res.result.solutions ? 1 : 0;
+    double cpu = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    SearchResult res = run_one(c, spec, threads, limit, seed0 + std::uint64_t(r), k, cpu);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    secs.push_back(wall);
+    cpus.push_back(cpu);
+    nodes.push_back(double(res.nodes));
+    found += res.solutions ? 1 : 0;
   }
-  return {{"spec", spec}, {"found", found}, {"runs", reps}, {"median_seconds", median(secs)},
-          {"median_nodes", median(nodes)}, {"time_limit", limit}};
+  return {{"spec", spec},
+          {"found", found},
+          {"runs", reps},
+          {"median_seconds", median(secs)},
+          {"median_cpu_seconds", median(cpus)},
+          {"cpu_seconds", cpus},
+          {"median_nodes", median(nodes)},
+          {"time_limit", limit}};
 }
 
 }  // namespace
@@ -79,7 +119,7 @@ int main(int argc, char** argv) {
   bool baseline = true;
   std::vector<std::string> portfolios;
   std::string stats = "-";
-  SymmetricControl ctl;
+  Knobs ctl;
   try {
     for (int i = 1; i < argc; ++i) {
       std::string a = argv[i];
@@ -87,19 +127,32 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw InputError(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--case") cases.push_back(parse_case(next()));
-      else if (a == "--reps") reps = std::stoi(next());
-      else if (a == "--threads") threads = std::stoi(next());
-      else if (a == "--time-limit") limit = std::stod(next());
-      else if (a == "--seed") seed = std::stoull(next());
-      else if (a == "--no-baseline") baseline = false;
-      else if (a == "--portfolio") portfolios.push_back(next());
-      else if (a == "--stats") stats = next();
-      else if (a == "--patterns") ctl.pattern_sizes = std::stoi(next());
-      else if (a == "--static") ctl.most_constrained = false;
-      else if (a == "--sat") ctl.sat = true;
-      else if (a == "--luby-unit") ctl.luby_unit = std::stoull(next());
-      else throw InputError("unknown argument " + a);
+      if (a == "--case")
+        cases.push_back(parse_case(next()));
+      else if (a == "--reps")
+        reps = std::stoi(next());
+      else if (a == "--threads")
+        threads = std::stoi(next());
+      else if (a == "--time-limit")
+        limit = std::stod(next());
+      else if (a == "--seed")
+        seed = std::stoull(next());
+      else if (a == "--no-baseline")
+        baseline = false;
+      else if (a == "--portfolio")
+        portfolios.push_back(next());
+      else if (a == "--stats")
+        stats = next();
+      else if (a == "--patterns")
+        ctl.patterns = unsigned(std::stoi(next()));
+      else if (a == "--static")
+        ctl.static_order = true;
+      else if (a == "--sat")
+        ctl.sat = true;
+      else if (a == "--luby-unit")
+        ctl.luby_unit = std::stoull(next());
+      else
+        throw InputError("unknown argument " + a);
     }
     for (const auto& pf : portfolios) {
       Case c = parse_case(pf + ":");
@@ -110,7 +163,9 @@ int main(int argc, char** argv) {
         o.time_limit = limit;
         PortfolioOptions po;
         po.stats_path = stats;
-        auto res = run_portfolio(c.kind, c.colours, o, po);
+        const double cpu0 = cpu_seconds();
+        auto res = run_portfolio(complete_packing_problem(c.kind, c.colours), o, po);
+        const double cpu = cpu_seconds() - cpu0;
         std::cout << nlohmann::json({{"bench", "impose-portfolio"},
                                      {"kind", std::string(kind_name(c.kind))},
                                      {"colors", c.colours},
@@ -118,8 +173,9 @@ int main(int argc, char** argv) {
                                      {"cores", std::thread::hardware_concurrency()},
                                      {"seed", o.seed},
                                      {"found", res.found},
-                                     {"group", res.spec},
+                                     {"group", res.winner},
                                      {"seconds", res.seconds},
+                                     {"cpu_seconds", cpu},
                                      {"nodes", res.nodes},
                                      {"time_limit", limit},
                                      {"runs", res.runs}})
@@ -129,9 +185,9 @@ int main(int argc, char** argv) {
     }
     if (!portfolios.empty() && cases.empty()) return 0;
     if (cases.empty()) {
-      cases = {{TileKind::Corner, 3, "t=0,3:pi=1,2,0"},       {TileKind::Wang, 3, "t=0,3:pi=1,2,0"},
-               {TileKind::Corner, 4, "t=0,4:pi=1,2,3,0"},     {TileKind::Wang, 4, "t=0,8:pi=1,0,3,2"},
-               {TileKind::Corner, 5, "t=0,5:pi=1,2,3,4,0"},   {TileKind::Wang, 5, "t=0,5:pi=1,2,3,4,0"}};
+      cases = {{TileKind::Corner, 3, "t=0,3:pi=1,2,0"},     {TileKind::Wang, 3, "t=0,3:pi=1,2,0"},
+               {TileKind::Corner, 4, "t=0,4:pi=1,2,3,0"},   {TileKind::Wang, 4, "t=0,8:pi=1,0,3,2"},
+               {TileKind::Corner, 5, "t=0,5:pi=1,2,3,4,0"}, {TileKind::Wang, 5, "t=0,5:pi=1,2,3,4,0"}};
     }
     for (const auto& c : cases) {
       nlohmann::json line = {{"bench", "impose"},

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# End-to-end time of `tilekit pack --method auto` (the imposed-group portfolio), process start
-# included, against `tilekit --version` (process start alone) in the same run. Fresh database
-# and fresh portfolio statistics for every run, so no database hit and no learned order.
-# One JSON line per case: median and max wall seconds over REPS runs.
+# End-to-end time of `tilekit pack --method search` (the portfolio), process start included,
+# against `tilekit --version` (process start alone) in the same run. Fresh database and fresh
+# portfolio statistics for every run, so no database hit and no learned order. One JSON line per
+# case: median and max wall seconds, median CPU seconds over REPS runs, and the load average.
 #   bash bench/bench_impose_cli.sh [BUILD_DIR] [REPS] [THREADS] [CASES...]   cases: corner:4 wang:4 ...
+#   METHOD=auto bash bench/bench_impose_cli.sh ...   (auto answers C=4 corner from the stored packing)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 reps=${2:-11}
+method=${METHOD:-search}
 threads=${3:-2}
 shift $(( $# < 3 ? $# : 3 ))
 cases=("$@")
@@ -26,18 +28,23 @@ done
 base=$(median <"$tmp/base")
 for c in "${cases[@]}"; do
   kind=${c%%:*}; colours=${c##*:}
-  : >"$tmp/times"; : >"$tmp/groups"
+  : >"$tmp/times"; : >"$tmp/groups"; : >"$tmp/cpu"
+  load0=$(cut -d' ' -f1 /proc/loadavg)
   for ((i = 0; i < reps; ++i)); do
     rm -f "$tmp/db.sqlite" "$tmp/stats.json"
     t0=$(now)
-    "$build/tilekit" pack --kind "$kind" --colors "$colours" --method auto --threads "$threads" --seed "$i" \
+    /usr/bin/time -f "%U %S" -o "$tmp/rusage" "$build/tilekit" pack --kind "$kind" --colors "$colours" \
+      --method "$method" --threads "$threads" --seed "$i" \
       --quiet --json --db "$tmp/db.sqlite" --portfolio-stats "$tmp/stats.json" >"$tmp/out.json"
     t1=$(now)
     echo "$t1 - $t0" | bc -l >>"$tmp/times"
-    python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["valid"]; print(j["portfolio"]["winner"])' \
+    awk '{print $1 + $2}' "$tmp/rusage" >>"$tmp/cpu"
+    python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["valid"]; print((j.get("portfolio") or {}).get("winner") or j["method"])' \
       "$tmp/out.json" >>"$tmp/groups"
   done
-  printf '{"bench":"impose-cli","tmpdir":"%s","kind":"%s","colors":%s,"threads":%s,"cores":%s,"runs":%s,"median_seconds":%s,"max_seconds":%s,"baseline_process_start_seconds":%s,"winners":"%s"}\n' \
-    "$(dirname "$tmp")" "$kind" "$colours" "$threads" "$(nproc)" "$reps" "$(median <"$tmp/times")" "$(maxv <"$tmp/times")" "$base" \
+  load1=$(cut -d' ' -f1 /proc/loadavg)
+  printf '{"bench":"impose-cli","method":"%s","tmpdir":"%s","kind":"%s","colors":%s,"threads":%s,"cores":%s,"runs":%s,"median_seconds":%s,"max_seconds":%s,"median_cpu_seconds":%s,"baseline_process_start_seconds":%s,"loadavg":[%s,%s],"winners":"%s"}\n' \
+    "$method" "$(dirname "$tmp")" "$kind" "$colours" "$threads" "$(nproc)" "$reps" "$(median <"$tmp/times")" "$(maxv <"$tmp/times")" \
+    "$(median <"$tmp/cpu")" "$base" "$load0" "$load1" \
     "$(sort "$tmp/groups" | uniq -c | awk '{printf "%s%s x%s", (NR>1?"; ":""), $2, $1}')"
 done

@@ -59,7 +59,8 @@ ClusterPlan make_plan(SubmitOptions& o) {
   p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
   if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
   for (const auto& a : o.pack_extra) {
-    for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json"})
+    for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
+                            "--portfolio-stats"})
       if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
         throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <numeric>
-#include <random>
 
 #include "base/error.hpp"
 
@@ -86,8 +85,8 @@ void CellModel::set_value_seed(std::uint64_t seed) {
   perm_.resize(std::size_t(tiles_));
   std::iota(perm_.begin(), perm_.end(), 0);
   if (seed != 0) {
-    std::mt19937_64 rng(mix_seed(seed));
-    std::shuffle(perm_.begin(), perm_.end(), rng);
+    SplitMix64 rng(mix_seed(seed));
+    shuffle(perm_.begin(), perm_.end(), rng);
   }
   rebuild_masks();
 }

@@ -9,12 +9,13 @@
 //        node at `path` is then the first one not yet explored)
 //   void leaf(const M& model, SearchCounters& counted)   at every solution
 #include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <vector>
 
+#include "base/error.hpp"
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
-#include "base/error.hpp"
 
 namespace tilekit {
 
@@ -53,6 +54,7 @@ class SubtreeSearch {
     }
     bool entering = true;
     for (;;) {
+      assert(path_.size() == prefix.size() + d && "the path holds one decision per level below the prefix");
       if (entering) {
         if (!ctl.at_node(path_, counted)) return SubtreeOutcome::Stopped;
         ++counted.nodes;

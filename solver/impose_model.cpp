@@ -1,194 +1,422 @@
+// The imposed-group search model: forward checking on orbit availability, most-constrained-
+// first branching and partial-pattern counts (see impose_model.hpp for why).
 #include "solver/impose_model.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
+#include <bit>
+#include <cassert>
 
-#include "solver/solve.hpp"
-#include "base/error.hpp"
+#include "base/random.hpp"
 
 namespace tilekit {
-namespace {
 
-// Position ids: corner pegs r*cols+c; Wang h-edges r*cols+c, v-edges rows*cols + r*cols+c.
-struct Grid {
-  int rows, cols;
-  int pos(int r, int c) const { return ((r % rows + rows) % rows) * cols + ((c % cols + cols) % cols); }
-};
-
-// Scan order of the lattice: row-major over the narrowest strip of columns (or column-major over
-// the narrowest strip of rows) that meets every translation orbit, then the rest. Sites are
-// numbered in this order, so the scanline fallback of the search walks a narrow strip and each
-// new site soon completes a cell (t=(0,4) and t=(4,0) then search alike).
-std::vector<std::array<int, 2>> scan_order(int rows, int cols, const std::vector<GroupElement>& els) {
-  Grid grid{rows, cols};
-  auto covers = [&](bool by_cols, int w) {
-    std::vector<bool> hit(std::size_t(rows) * std::size_t(cols), false);
-    for (int a = 0; a < (by_cols ? rows : cols); ++a)
-      for (int b = 0; b < w; ++b) {
-        int r = by_cols ? a : b, c = by_cols ? b : a;
-        for (const auto& g : els) hit[std::size_t(grid.pos(r + g.dr, c + g.dc))] = true;
-      }
-    return std::all_of(hit.begin(), hit.end(), [](bool h) { return h; });
-  };
-  int wc = 1, wr = 1;
-  while (wc < cols && !covers(true, wc)) ++wc;
-  while (wr < rows && !covers(false, wr)) ++wr;
-  bool by_cols = wc * rows <= wr * cols;  // strip area; ties keep row-major
-  std::vector<std::array<int, 2>> order;
-  std::vector<bool> listed(std::size_t(rows) * std::size_t(cols), false);
-  auto push = [&](int r, int c) {
-    if (!listed[std::size_t(grid.pos(r, c))]) {
-      listed[std::size_t(grid.pos(r, c))] = true;
-      order.push_back({r, c});
+ImposeModel::ImposeModel(FundamentalDomain domain, Ordering ordering, unsigned pattern_sizes) {
+  auto t = std::make_shared<Tables>();
+  t->domain = std::move(domain);
+  t->ordering = ordering;
+  const FundamentalDomain& m = t->domain;
+  const int ns = m.num_sites;
+  const int nc = int(m.cells.size());
+  std::vector<std::vector<Occurrence>> per_site(static_cast<std::size_t>(ns));
+  t->slot_perm.resize(std::size_t(nc) * 4);
+  t->slot_site.resize(std::size_t(nc) * 4);
+  t->slot_weight.resize(std::size_t(nc) * 4);
+  for (int c = 0; c < nc; ++c)
+    for (int k = 0; k < 4; ++k) {
+      const auto& s = m.cells[std::size_t(c)][std::size_t(k)];
+      assert(s.site >= 0 && s.site < ns);
+      t->slot_perm[std::size_t(c * 4 + k)] = m.perm_tables[std::size_t(s.perm)].data();
+      t->slot_site[std::size_t(c * 4 + k)] = s.site;
+      t->slot_weight[std::size_t(c * 4 + k)] = s.weight;
+      auto& list = per_site[std::size_t(s.site)];
+      auto it = std::find_if(list.begin(), list.end(), [&](const Occurrence& o) { return o.cell == c; });
+      if (it == list.end())
+        list.push_back({c, 1, 1 << k});
+      else
+        ++it->mult, it->mask |= 1 << k;
     }
-  };
-  if (by_cols) {
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < wc; ++c) push(r, c);
-  } else {
-    for (int c = 0; c < cols; ++c)
-      for (int r = 0; r < wr; ++r) push(r, c);
+  t->occ_start.push_back(0);
+  for (const auto& list : per_site) {
+    t->occ.insert(t->occ.end(), list.begin(), list.end());
+    t->occ_start.push_back(int(t->occ.size()));
   }
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) push(r, c);
-  return order;
+  if (m.packing) build_patterns(*t, pattern_sizes);
+  t_ = std::move(t);
+
+  val_.assign(std::size_t(ns), -1);
+  cu_.assign(std::size_t(nc), 4);
+  colour_.assign(std::size_t(nc) * 4, 0);
+  assigned_slots_.assign(std::size_t(nc), 0);
+  used_.assign(std::size_t(m.num_orbits), 0);
+  tight_cnt_.assign(std::size_t(ns), 0);
+  tight_pos_.assign(std::size_t(ns), -1);
+  avail_ = t_->avail_init;
+  demand_.assign(avail_.size(), 0);
+  for (int c = 0; c < nc; ++c) {
+    int u = lone_unassigned(c);  // a cell whose four slots are one site (tiny tori)
+    if (u >= 0) tight_add(u);
+  }
 }
 
+void ImposeModel::build_patterns(Tables& t, unsigned pattern_sizes) {
+  const FundamentalDomain& m = t.domain;
+  const bool wang = m.kind == TileKind::Wang;
+  auto slot_class = [&](int j) { return wang && (j == 1 || j == 3) ? 1 : 0; };  // Wang E, W: vertical
+  auto radix = [&](int j) { return slot_class(j) ? m.cv : m.ch; };
+  auto tile_colours = [&](std::uint32_t tile) -> std::array<Colour, 4> {
+    if (wang) {
+      WangTile w = wang_tile(tile, m.ch, m.cv);
+      return {w.n, w.e, w.s, w.w};
+    }
+    CornerTile c = corner_tile(tile, m.ch);
+    return {c.ne, c.se, c.sw, c.nw};
+  };
+  int classes = 0;
+  std::vector<std::uint32_t> orbit_rep(std::size_t(m.num_orbits), ~0u);
+  for (std::uint32_t tile = 0; tile < m.orbit_of.size(); ++tile)
+    if (m.orbit_of[tile] >= 0 && orbit_rep[std::size_t(m.orbit_of[tile])] == ~0u)
+      orbit_rep[std::size_t(m.orbit_of[tile])] = tile;
+  for (int mask = 1; mask < 16; ++mask) {
+    int n = std::popcount(unsigned(mask));
+    if (!(pattern_sizes >> n & 1) || n > 3) continue;
+    Pattern p;
+    p.mask = mask;
+    std::uint32_t size = 1;
+    for (int j = 0; j < 4; ++j)
+      if (mask >> j & 1) {
+        p.slots[std::size_t(p.n)] = j;
+        p.mul[std::size_t(p.n++)] = size;
+        size *= radix(j);
+      }
+    p.offset = int(t.pattern_class.size());
+    // Class of each code: least code over the group's images, numbered compactly.
+    std::vector<int> least(size);
+    for (std::uint32_t code = 0; code < size; ++code) {
+      std::uint32_t best = code;
+      for (std::size_t e = 0; e < m.group_order; ++e) {
+        std::uint32_t img = 0, rest = code;
+        for (int j = 0; j < p.n; ++j) {
+          std::uint32_t r = radix(p.slots[std::size_t(j)]);
+          Colour c = rest % r;
+          rest /= r;
+          img += p.mul[std::size_t(j)] * m.perm_tables[e * 2 + std::size_t(slot_class(p.slots[std::size_t(j)]))][c];
+        }
+        best = std::min(best, img);
+      }
+      least[code] = int(best);
+    }
+    std::vector<int> id(size, -1);
+    for (std::uint32_t code = 0; code < size; ++code) {
+      int& k = id[std::size_t(least[code])];
+      if (k < 0) k = classes++;
+      t.pattern_class.push_back(k);
+    }
+    t.avail_init.resize(std::size_t(classes), 0);
+    for (std::uint32_t tile : orbit_rep) {
+      auto col = tile_colours(tile);
+      std::uint32_t code = 0;
+      for (int j = 0; j < p.n; ++j) code += p.mul[std::size_t(j)] * col[std::size_t(p.slots[std::size_t(j)])];
+      ++t.avail_init[std::size_t(t.pattern_class[std::size_t(p.offset) + code])];
+    }
+    t.patterns.push_back(p);
+  }
+}
+
+void ImposeModel::tight_add(int site) {
+  if (tight_cnt_[std::size_t(site)]++ == 0) {
+    tight_pos_[std::size_t(site)] = int(tight_list_.size());
+    tight_list_.push_back(site);
+  }
+}
+
+void ImposeModel::tight_remove(int site) {
+  assert(tight_cnt_[std::size_t(site)] > 0);
+  if (--tight_cnt_[std::size_t(site)] == 0) {
+    int pos = tight_pos_[std::size_t(site)];
+    int last = tight_list_.back();
+    tight_list_[std::size_t(pos)] = last;
+    tight_pos_[std::size_t(last)] = pos;
+    tight_list_.pop_back();
+    tight_pos_[std::size_t(site)] = -1;
+  }
+}
+
+int ImposeModel::lone_unassigned(int cell) const {
+  const unsigned free = ~unsigned(assigned_slots_[std::size_t(cell)]) & 15u;
+  if (!free) return -1;
+  const int* sites = &t_->slot_site[std::size_t(cell) * 4];
+  const int lone = sites[std::countr_zero(free)];
+  for (unsigned rest = free; rest; rest &= rest - 1)
+    if (sites[std::countr_zero(rest)] != lone) return -1;
+  return lone;
+}
+
+std::uint32_t ImposeModel::tile_of(int cell) const {
+  assert(assigned_slots_[std::size_t(cell)] == 15);
+  const std::size_t base = std::size_t(cell) * 4;
+  const std::uint32_t* w = &t_->slot_weight[base];
+  const std::uint8_t* c = &colour_[base];
+  return w[0] * c[0] + w[1] * c[1] + w[2] * c[2] + w[3] * c[3];
+}
+
+int ImposeModel::pattern_key(int cell, const Pattern& p) const {
+  const std::uint8_t* c = &colour_[std::size_t(cell) * 4];
+  int code = 0;
+  for (int j = 0; j < p.n; ++j) code += int(p.mul[std::size_t(j)]) * c[p.slots[std::size_t(j)]];
+  return t_->pattern_class[std::size_t(p.offset + code)];
+}
+
+// Applies one occurrence of a just-assigned site; revert_occurrence() is its exact inverse (and
+// runs in the reverse order: the pattern classes touched here are pushed on trail_ and popped
+// there). Returns false when a partial-pattern count now exceeds the unused orbits with that
+// pattern (the state is still fully applied, so the caller reverts it).
+bool ImposeModel::apply_occurrence(const Occurrence& o, int site, int value) {
+  const Tables& t = *t_;
+  const std::size_t base = std::size_t(o.cell) * 4;
+  for (unsigned rest = unsigned(o.mask); rest; rest &= rest - 1) {
+    const unsigned j = unsigned(std::countr_zero(rest));
+    colour_[base + j] = t.slot_perm[base + j][value];
+  }
+  assert((assigned_slots_[std::size_t(o.cell)] & o.mask) == 0);
+  assigned_slots_[std::size_t(o.cell)] |= std::uint8_t(o.mask);
+  bool ok = true;
+  const int after = (cu_[std::size_t(o.cell)] -= o.mult);
+  assert(after >= 0);
+  if (after == 0) {
+    tight_remove(site);
+    if (t.domain.packing) {
+      used_[std::size_t(t.domain.orbit_of[tile_of(o.cell)])] = 1;
+      for (const auto& p : t.patterns) {
+        const int key = pattern_key(o.cell, p);
+        trail_.push_back(key);
+        if (!(p.mask & o.mask)) --demand_[std::size_t(key)];
+        if (--avail_[std::size_t(key)] < demand_[std::size_t(key)]) ok = false;
+      }
+    }
+  } else {
+    const int u = lone_unassigned(o.cell);
+    if (u >= 0) tight_add(u);
+    for (const auto& p : t.patterns) {
+      if (!(p.mask & o.mask) || !pattern_assigned(o.cell, p)) continue;
+      const int key = pattern_key(o.cell, p);
+      trail_.push_back(key);
+      if (++demand_[std::size_t(key)] > avail_[std::size_t(key)]) ok = false;
+    }
+  }
+  return ok;
+}
+
+void ImposeModel::revert_occurrence(const Occurrence& o, int site) {
+  const Tables& t = *t_;
+  const auto& pats = t.patterns;
+  if (cu_[std::size_t(o.cell)] == 0) {
+    if (t.domain.packing) {
+      for (auto p = pats.rbegin(); p != pats.rend(); ++p) {
+        const int key = trail_.back();
+        trail_.pop_back();
+        if (!(p->mask & o.mask)) ++demand_[std::size_t(key)];
+        ++avail_[std::size_t(key)];
+      }
+      used_[std::size_t(t.domain.orbit_of[tile_of(o.cell)])] = 0;
+    }
+    tight_add(site);
+  } else {
+    for (auto p = pats.rbegin(); p != pats.rend(); ++p) {
+      if (!(p->mask & o.mask) || !pattern_assigned(o.cell, *p)) continue;
+      const int key = trail_.back();
+      trail_.pop_back();
+      --demand_[std::size_t(key)];
+      assert(demand_[std::size_t(key)] >= 0);
+    }
+    const int u = lone_unassigned(o.cell);
+    if (u >= 0) tight_remove(u);
+  }
+  assigned_slots_[std::size_t(o.cell)] &= std::uint8_t(~o.mask);
+  cu_[std::size_t(o.cell)] += o.mult;
+  assert(cu_[std::size_t(o.cell)] <= 4);
+}
+
+void ImposeModel::revert_site(int site, int upto) {
+  for (int k = upto - 1; k >= t_->occ_start[std::size_t(site)]; --k) revert_occurrence(t_->occ[std::size_t(k)], site);
+}
+
+namespace {
+std::uint64_t assignment_key(int site, int value) {
+  return mix_seed(std::uint64_t(std::uint32_t(site)) << 8 | std::uint64_t(std::uint32_t(value)));
+}
 }  // namespace
 
-SymmetricModel SymmetricModel::build(const TilingProblem& problem, const ImposedGroup& group) {
-  const TileSet& set = problem.set;
-  if (!problem.torus) throw InputError("--impose needs a torus (translations do not act on a bounded grid)");
-  if (problem.rows != group.rows() || problem.cols != group.cols())
-    throw InputError("--impose: the group was built for another torus size");
-  if (set.kind() != group.kind()) throw InputError("--impose: the group was built for another tile kind");
-  if (set.horizontal_radix() != group.ch() || set.vertical_radix() != group.cv())
-    throw InputError("--impose: the group was built for another number of colours");
-  if (std::max(set.horizontal_radix(), set.vertical_radix()) > 64)
-    throw InputError("--impose: at most 64 colours per edge direction");
-  if (problem.packing && std::size_t(problem.rows) * std::size_t(problem.cols) != set.size())
-    throw InputError(fmt::format("a packing of {} tiles needs a torus of that area, not {}x{}", set.size(),
-                                 problem.rows, problem.cols));
-
-  SymmetricModel m;
-  m.kind = set.kind();
-  m.ch = set.horizontal_radix();
-  m.cv = set.vertical_radix();
-  m.rows = problem.rows;
-  m.cols = problem.cols;
-  m.packing = problem.packing;
-  m.group_order = group.order();
-  const auto& els = group.elements();
-  for (const auto& g : els) {
-    for (int cls = 0; cls < 2; ++cls) {
-      const auto& p = cls == 0 ? g.ph : g.pv;
-      m.perm_tables.emplace_back(p.begin(), p.end());
-    }
-  }
-
-  // Sites: one representative per orbit of pegs / edges, in scanline order.
-  Grid grid{m.rows, m.cols};
-  const int area = m.rows * m.cols;
-  const bool wang = m.kind == TileKind::Wang;
-  m.origin.assign(std::size_t(wang ? 2 * area : area), {-1, -1});
-  auto add_site = [&](int r, int c, int cls) {
-    int base = cls == 1 ? area : 0;
-    if (m.origin[std::size_t(base + grid.pos(r, c))][0] >= 0) return;
-    int site = m.num_sites++;
-    m.site_colours.push_back(cls == 0 ? m.ch : m.cv);
-    for (std::size_t e = 0; e < els.size(); ++e) {
-      auto& o = m.origin[std::size_t(base + grid.pos(r + els[e].dr, c + els[e].dc))];
-      o = {site, int(e) * 2 + cls};
-    }
-  };
-  for (const auto& [r, c] : scan_order(m.rows, m.cols, els)) {
-    add_site(r, c, 0);
-    if (wang) add_site(r, c, 1);
-  }
-
-  // Representative cells and their slots.
-  std::vector<bool> cell_seen(std::size_t(area), false);
-  auto slot = [&](int cls, int r, int c, std::uint32_t weight) {
-    const auto& o = m.origin[std::size_t((cls == 1 ? area : 0) + grid.pos(r, c))];
-    return Slot{o[0], o[1], weight};
-  };
-  for (int r = 0; r < m.rows; ++r)
-    for (int c = 0; c < m.cols; ++c) {
-      if (cell_seen[std::size_t(grid.pos(r, c))]) continue;
-      for (const auto& g : els) cell_seen[std::size_t(grid.pos(r + g.dr, c + g.dc))] = true;
-      std::array<Slot, 4> s;
-      if (!wang) {
-        std::uint32_t C = m.ch;  // thesis eq. (2.5): ((NE*C + SE)*C + SW)*C + NW
-        s = {slot(0, r, c + 1, C * C * C), slot(0, r + 1, c + 1, C * C), slot(0, r + 1, c, C), slot(0, r, c, 1)};
-      } else {
-        // thesis eq. (2.2), mixed radix: ((N*cv + E)*ch + S)*cv + W
-        s = {slot(0, r, c, m.cv * m.ch * m.cv), slot(1, r, c + 1, m.ch * m.cv), slot(0, r + 1, c, m.cv),
-             slot(1, r, c, 1)};
-      }
-      m.cells.push_back(s);
-      m.cell_positions.push_back({r, c});
-    }
-
-  // Tile orbits under G.
-  const std::size_t space = std::size_t(complete_size(m.ch, m.cv));
-  std::vector<bool> in_set(space, false);
-  for (std::size_t k = 0; k < set.size(); ++k) in_set[set.index_of(k)] = true;
-  m.orbit_of.assign(space, -2);
-  std::vector<TileIndex> orbit;
-  for (std::size_t k = 0; k < set.size(); ++k) {
-    TileIndex t = set.index_of(k);
-    if (m.orbit_of[t] != -2) continue;
-    orbit.clear();
-    bool usable = true;
-    for (std::size_t e = 0; e < els.size(); ++e) {
-      TileIndex img = group.apply(els[e], t);
-      if (!in_set[img]) {
-        if (m.packing)
-          throw InputError(fmt::format(
-              "--impose: the tile set is not closed under the group: tile index {} maps to {}, which is not in the set",
-              t, img));
-        usable = false;
-      }
-      if (e > 0 && img == t) {
-        if (m.packing)
-          throw InputError(fmt::format("--impose: tile index {} is its own image under a non-identity group element; "
-                                       "a packing cannot be invariant",
-                                       t));
-      }
-      orbit.push_back(img);
-    }
-    int id = usable ? m.num_orbits++ : -1;
-    for (TileIndex img : orbit) m.orbit_of[img] = id;
-  }
-  for (auto& o : m.orbit_of)
-    if (o == -2) o = -1;
-  if (m.packing && std::size_t(m.num_orbits) != m.cells.size())
-    throw InputError(fmt::format("--impose: {} tile orbits but {} cell orbits; no invariant packing exists",
-                                 m.num_orbits, m.cells.size()));
-  return m;
+// The tile of an occurrence's cell once the site takes `value` (the other slots are assigned).
+std::uint32_t ImposeModel::tile_with(const Occurrence& o, int value) const {
+  const Tables& t = *t_;
+  const std::size_t base = std::size_t(o.cell) * 4;
+  std::uint32_t idx = 0;
+  for (std::size_t j = 0; j < 4; ++j)
+    idx += t.slot_weight[base + j] * (o.mask >> j & 1 ? t.slot_perm[base + j][value] : colour_[base + j]);
+  return idx;
 }
 
-Tiling SymmetricModel::to_tiling(const std::vector<int>& values) const {
-  Tiling t(kind, ch, rows, cols, true);
-  if (kind == TileKind::Wang) t.vertical_colours = cv == ch ? 0 : cv;
-  Grid grid{rows, cols};
-  const int area = rows * cols;
-  auto colour = [&](int cls, int r, int c) -> Colour {
-    const auto& o = origin[std::size_t((cls == 1 ? area : 0) + grid.pos(r, c))];
-    return perm_tables[std::size_t(o[1])][std::size_t(values[std::size_t(o[0])])];
-  };
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < cols; ++c) {
-      if (kind == TileKind::Corner)
-        t.at(r, c) = corner_index(CornerTile{colour(0, r, c + 1), colour(0, r + 1, c + 1), colour(0, r + 1, c),
-                                             colour(0, r, c)},
-                                  ch);
-      else
-        t.at(r, c) = wang_index(WangTile{colour(0, r, c), colour(1, r, c + 1), colour(0, r + 1, c), colour(1, r, c)},
-                                ch, cv);
+bool ImposeModel::assign(int site, int value) {
+  const Tables& t = *t_;
+  assert(site >= 0 && site < t.domain.num_sites);
+  assert(val_[std::size_t(site)] < 0 && "a site is assigned once on any path");
+  assert(value >= 0 && std::uint32_t(value) < t.domain.site_colours[std::size_t(site)]);
+  val_[std::size_t(site)] = value;
+  ++assigned_;
+  const int first = t.occ_start[std::size_t(site)], last = t.occ_start[std::size_t(site) + 1];
+  for (int k = first; k < last; ++k) {
+    const Occurrence& o = t.occ[std::size_t(k)];
+    bool ok = true;
+    if (cu_[std::size_t(o.cell)] == o.mult) {
+      // This occurrence completes the cell: its tile orbit must be usable and unused.
+      const int orbit = t.domain.orbit_of[tile_with(o, value)];
+      ok = orbit >= 0 && !(t.domain.packing && used_[std::size_t(orbit)]);
     }
-  return t;
+    if (ok && !apply_occurrence(o, site, value)) {
+      revert_occurrence(o, site);
+      ok = false;
+    }
+    if (!ok) {  // undo what this assignment did; the engine's unassign() is then a no-op
+      revert_site(site, k);
+      val_[std::size_t(site)] = -1;
+      --assigned_;
+      return false;
+    }
+  }
+  hash_ ^= assignment_key(site, value);
+  return true;
+}
+
+void ImposeModel::unassign(int site, int value) {
+  if (val_[std::size_t(site)] < 0) return;  // the assign failed and undid itself
+  assert(val_[std::size_t(site)] == value && "unassign undoes the latest assign");
+  revert_site(site, t_->occ_start[std::size_t(site) + 1]);
+  val_[std::size_t(site)] = -1;
+  --assigned_;
+  hash_ ^= assignment_key(site, value);
+}
+
+std::uint64_t ImposeModel::cell_mask(int cell, int site, std::uint64_t mask) const {
+  const Tables& t = *t_;
+  std::uint32_t partial = 0;
+  const std::uint8_t* perms[4];
+  std::uint32_t weights[4];
+  int nu = 0;
+  const std::size_t base = std::size_t(cell) * 4;
+  const unsigned assigned = assigned_slots_[std::size_t(cell)];
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (assigned >> j & 1) {
+      partial += t.slot_weight[base + j] * colour_[base + j];
+    } else {
+      assert(t.slot_site[base + j] == site && "a tight cell has one unassigned site");
+      perms[nu] = t.slot_perm[base + j];
+      weights[nu++] = t.slot_weight[base + j];
+    }
+  }
+  std::uint64_t out = 0;
+  for (std::uint64_t rest = mask; rest; rest &= rest - 1) {
+    int v = std::countr_zero(rest);
+    std::uint32_t idx = partial;
+    for (int j = 0; j < nu; ++j) idx += weights[j] * perms[j][v];
+    int orbit = t.domain.orbit_of[idx];
+    if (orbit >= 0 && !(t.domain.packing && used_[std::size_t(orbit)])) out |= std::uint64_t(1) << v;
+  }
+  return out;
+}
+
+std::uint64_t ImposeModel::site_mask(int site) const {
+  const Tables& t = *t_;
+  std::uint32_t nv = t.domain.site_colours[std::size_t(site)];
+  std::uint64_t mask = nv == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << nv) - 1;
+  if (tight_cnt_[std::size_t(site)] == 0) return mask;
+  for (int k = t.occ_start[std::size_t(site)]; k < t.occ_start[std::size_t(site) + 1] && mask; ++k) {
+    const Occurrence& o = t.occ[std::size_t(k)];
+    if (cu_[std::size_t(o.cell)] == o.mult) mask = cell_mask(o.cell, site, mask);
+  }
+  return mask;
+}
+
+int ImposeModel::branch(std::vector<int>& values) {
+  const Tables& t = *t_;
+  values.clear();
+  if (assigned_ == t.domain.num_sites) return -1;
+  const bool mcf = t.ordering == Ordering::MostConstrained;
+  int best = -1, best_count = 65;
+  std::uint64_t best_mask = 0;
+  for (int u : tight_list_) {
+    std::uint64_t mask = site_mask(u);
+    if (!mask) return u;  // forward checking: no unused orbit left for a cell; a dead end
+    int count = std::popcount(mask);
+    if (mcf ? (count < best_count || (count == best_count && u < best)) : (best < 0 || u < best)) {
+      best = u;
+      best_count = count;
+      best_mask = mask;
+    }
+  }
+  if (best < 0 || !mcf) {
+    // No tight site (or scanline order): the first unassigned site in scan order.
+    int first = 0;
+    while (val_[std::size_t(first)] >= 0) ++first;
+    if (best != first) {
+      best = first;
+      best_mask = site_mask(first);
+      if (!best_mask) return first;
+    }
+  }
+  for (std::uint64_t rest = best_mask; rest; rest &= rest - 1) values.push_back(std::countr_zero(rest));
+  if (value_seed_) {
+    // Seeded order, a function of the seed and the assignment only (replayable).
+    SplitMix64 rng(mix_seed(value_seed_ ^ hash_));
+    shuffle(values.begin(), values.end(), rng);
+  }
+  return best;
+}
+
+Tiling ImposeModel::tiling() const {
+  assert(assigned_ == t_->domain.num_sites);
+  return t_->domain.to_tiling(val_);
+}
+
+bool ImposeModel::check_state() const {
+  // Recomputes what assign()/unassign() maintain incrementally (too slow for the search).
+  const Tables& t = *t_;
+  const FundamentalDomain& m = t.domain;
+  std::vector<int> cu(m.cells.size(), 0);
+  std::vector<std::uint8_t> used(std::size_t(m.num_orbits), 0);
+  std::vector<int> tight(std::size_t(m.num_sites), 0);
+  int assigned = 0;
+  for (int v : val_) assigned += v >= 0;
+  if (assigned != assigned_) return false;
+  for (std::size_t c = 0; c < m.cells.size(); ++c) {  // the per-cell caches against the site values
+    unsigned mask = 0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      const int v = val_[std::size_t(t.slot_site[c * 4 + j])];
+      if (v < 0) continue;
+      mask |= 1u << j;
+      if (colour_[c * 4 + j] != t.slot_perm[c * 4 + j][v]) return false;
+    }
+    if (mask != assigned_slots_[c]) return false;
+  }
+  for (std::size_t c = 0; c < m.cells.size(); ++c) {
+    for (std::size_t j = 0; j < 4; ++j) cu[c] += val_[std::size_t(t.slot_site[c * 4 + j])] < 0;
+    if (cu[c] == 0 && m.packing) used[std::size_t(m.orbit_of[tile_of(int(c))])] = 1;
+    int lone = lone_unassigned(int(c));
+    if (lone >= 0) ++tight[std::size_t(lone)];
+  }
+  if (cu != cu_ || used != used_ || tight != tight_cnt_) return false;
+  for (std::size_t i = 0; i < tight_list_.size(); ++i)
+    if (tight_pos_[std::size_t(tight_list_[i])] != int(i)) return false;
+  std::vector<int> avail = t.avail_init, demand(avail.size(), 0);
+  for (std::size_t c = 0; c < m.cells.size() && m.packing; ++c)
+    for (const auto& p : t.patterns) {
+      if (!pattern_assigned(int(c), p)) continue;
+      int key = pattern_key(int(c), p);
+      if (cu[c] == 0)
+        --avail[std::size_t(key)];
+      else
+        ++demand[std::size_t(key)];
+    }
+  return avail == avail_ && demand == demand_ && trail_.size() <= t.patterns.size() * 4 * m.cells.size();
 }
 
 }  // namespace tilekit

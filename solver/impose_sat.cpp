@@ -1,6 +1,10 @@
 #include "solver/impose_sat.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,8 +12,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <thread>
 #include <unordered_map>
 
 #include "base/error.hpp"
@@ -56,7 +63,7 @@ struct Cnf {
 
 }  // namespace
 
-std::string symmetric_cnf(const SymmetricModel& m, std::uint64_t* variables, std::uint64_t* clauses) {
+std::string symmetric_cnf(const FundamentalDomain& m, std::uint64_t* variables, std::uint64_t* clauses) {
   Cnf cnf;
   std::vector<int> first_var(std::size_t(m.num_sites));
   for (int s = 0; s < m.num_sites; ++s) {
@@ -123,42 +130,79 @@ std::string symmetric_cnf(const SymmetricModel& m, std::uint64_t* variables, std
   return fmt::format("p cnf {} {}\n", cnf.next_var - 1, cnf.clauses) + cnf.text;
 }
 
-bool sat_solver_available() { return std::system("command -v cadical >/dev/null 2>&1") == 0; }
+bool sat_solver_available() {
+  return std::system("command -v cadical >/dev/null 2>&1") == 0;
+}
 
-SatOutcome solve_symmetric_sat(const SymmetricModel& model, double time_limit, std::uint64_t seed) {
-  if (!sat_solver_available()) throw InputError("the SAT comparison needs `cadical` on PATH (Debian package cadical)");
+namespace {
+
+// A temporary file removed when it goes out of scope.
+struct TempFile {
+  std::string path;
+  explicit TempFile(const char* stem) {
+    path = (std::filesystem::temp_directory_path() / (std::string(stem) + "-XXXXXX")).string();
+    int fd = ::mkstemp(path.data());
+    if (fd < 0) throw InputError(fmt::format("cannot create a temporary file {}", path));
+    ::close(fd);
+  }
+  ~TempFile() { ::unlink(path.c_str()); }
+};
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream b;
+  b << in.rdbuf();
+  return b.str();
+}
+
+}  // namespace
+
+SatOutcome solve_symmetric_sat(const FundamentalDomain& model, double time_limit, std::uint64_t seed,
+                               const std::function<bool()>& stop) {
+  if (!sat_solver_available()) throw InputError("the SAT formulation needs `cadical` on PATH (Debian package cadical)");
   const auto t0 = std::chrono::steady_clock::now();
   SatOutcome out;
-  std::string text = symmetric_cnf(model, &out.variables, &out.clauses);
-  std::string path = (std::filesystem::temp_directory_path() / "tilekit-sat-XXXXXX").string();
-  int fd = ::mkstemp(path.data());
-  if (fd < 0) throw InputError("cannot create a temporary CNF file");
-  for (std::size_t done = 0; done < text.size();) {
-    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n <= 0) {
-      ::close(fd);
-      ::unlink(path.c_str());
-      throw InputError("cannot write the temporary CNF file");
+  TempFile cnf("tilekit-sat"), answer("tilekit-sat-out");
+  {
+    std::ofstream f(cnf.path, std::ios::binary);
+    f << symmetric_cnf(model, &out.variables, &out.clauses);
+    if (!f) throw InputError(fmt::format("cannot write the temporary CNF file {}", cnf.path));
+  }
+  const int limit = std::max(1, int(std::ceil(time_limit)));
+  const std::string seed_arg = fmt::format("--seed={}", seed % 2000000000ULL), limit_arg = std::to_string(limit);
+  out.solver = fmt::format("cadical -q -t {} {} {}", limit, seed_arg, cnf.path);
+  // The solver runs as a child whose stdout goes to a file; this thread polls it, the time limit
+  // and `stop` (signals, a portfolio's end), and ends it early when asked.
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, answer.path.c_str(), O_WRONLY | O_TRUNC, 0600);
+  std::vector<std::string> args = {"cadical", "-q", "-t", limit_arg, seed_arg, cnf.path};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  int rc = posix_spawnp(&pid, "cadical", &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) throw InputError(fmt::format("cannot run cadical: {}", std::strerror(rc)));
+  bool stopped = false;
+  for (int status = 0;;) {
+    pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid || (r < 0 && errno != EINTR)) break;
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!stopped && ((stop && stop()) || secs > time_limit + 2)) {
+      ::kill(pid, SIGTERM);
+      stopped = true;
     }
-    done += std::size_t(n);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  ::close(fd);
-  int limit = std::max(1, int(std::ceil(time_limit)));
-  out.solver = fmt::format("cadical -q -t {} --seed={} {}", limit, seed % 2000000000ULL, path);
-  std::string output;
-  if (FILE* p = ::popen(out.solver.c_str(), "r")) {
-    char buf[65536];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) output.append(buf, n);
-    ::pclose(p);
-  }
-  ::unlink(path.c_str());
-  std::istringstream in(output);
+  std::istringstream in(stopped ? std::string() : read_all(answer.path));
   std::string line;
   std::vector<int> lits;
   while (std::getline(in, line)) {
-    if (line.rfind("s SATISFIABLE", 0) == 0) out.status = SatOutcome::Status::Satisfiable;
-    else if (line.rfind("s UNSATISFIABLE", 0) == 0) out.status = SatOutcome::Status::Unsatisfiable;
+    if (line.rfind("s SATISFIABLE", 0) == 0)
+      out.status = SatOutcome::Status::Satisfiable;
+    else if (line.rfind("s UNSATISFIABLE", 0) == 0)
+      out.status = SatOutcome::Status::Unsatisfiable;
     else if (line.rfind("v ", 0) == 0) {
       std::istringstream ls(line.substr(2));
       int l;

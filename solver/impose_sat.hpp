@@ -1,5 +1,5 @@
 #pragma once
-// The same fundamental-domain subspace as SymmetricSearch, encoded as CNF and solved by the
+// The same fundamental-domain subspace as ImposeModel, encoded as CNF and solved by the
 // external SAT solver CaDiCaL (Debian package `cadical`, installed by scripts/setup.sh). The
 // portfolio runs it as candidate "sat:SPEC" beside "SPEC" and its statistics keep whichever
 // wins per problem (issue 7, "Beyond DFS").
@@ -11,11 +11,12 @@
 // counter, Sinz 2005) and at least one; each cell has at most one w, so w[cell][.] is exactly
 // the window's orbit and the "at least one" clauses are sound (they add pigeonhole propagation).
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "solver/impose_model.hpp"
+#include "solver/impose_domain.hpp"
 
 namespace tilekit {
 
@@ -24,17 +25,20 @@ struct SatOutcome {
   std::vector<int> values;  // site values when satisfiable
   std::uint64_t variables = 0, clauses = 0;
   double seconds = 0;
-  std::string solver;       // the command line used
+  std::string solver;  // the command line used
 };
 
 // The CNF in DIMACS text.
-std::string symmetric_cnf(const SymmetricModel& model, std::uint64_t* variables = nullptr, std::uint64_t* clauses = nullptr);
+std::string symmetric_cnf(const FundamentalDomain& model, std::uint64_t* variables = nullptr,
+                          std::uint64_t* clauses = nullptr);
 
 // Whether `cadical` is on PATH.
 bool sat_solver_available();
 
 // Writes the CNF to a temporary file, runs cadical with a time limit (seconds, >= 1) and seed,
-// and decodes the model. Throws InputError when cadical is missing.
-SatOutcome solve_symmetric_sat(const SymmetricModel& model, double time_limit, std::uint64_t seed);
+// and decodes the model. `stop` (may be empty) is polled every 10 ms and ends the solver early
+// (status Unknown). Throws InputError when cadical is missing.
+SatOutcome solve_symmetric_sat(const FundamentalDomain& model, double time_limit, std::uint64_t seed,
+                               const std::function<bool()>& stop = {});
 
 }  // namespace tilekit

@@ -4,9 +4,9 @@
 // d_i the number of children of the i-th node on it, 1 + d_1 + d_1 d_2 + ... is an unbiased
 // estimate of the number of nodes. Averaging many probes reduces the variance.
 #include <cstdint>
-#include <random>
 #include <vector>
 
+#include "base/random.hpp"
 #include "solver/model.hpp"
 
 namespace tilekit {
@@ -19,7 +19,7 @@ struct TreeEstimate {
 
 template <SearchModel M>
 TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t seed) {
-  std::mt19937_64 rng(mix_seed(seed ^ 0x6b6e757468ull));
+  SplitMix64 rng(mix_seed(seed ^ 0x6b6e757468ull));
   TreeEstimate est;
   std::vector<int> values, ok;
   for (std::uint64_t p = 0; p < probes; ++p) {
@@ -39,7 +39,7 @@ TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t s
       if (ok.empty()) break;
       weight *= double(ok.size());
       total += weight;
-      int v = ok[std::uniform_int_distribution<std::size_t>(0, ok.size() - 1)(rng)];
+      int v = ok[rng.below(ok.size())];
       m.assign(var, v);
     }
     est.nodes += total;

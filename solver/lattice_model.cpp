@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <random>
 
 namespace tilekit {
 
@@ -112,11 +111,11 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
 void LatticeModel::set_value_seed(std::uint64_t seed) {
   const Tables& t = *t_;
   perm_.assign(std::size_t(t.vars * t.max_radix), 0);
-  std::mt19937_64 rng(mix_seed(seed));
+  SplitMix64 rng(mix_seed(seed));
   for (int v = 0; v < t.vars; ++v) {
     int* p = &perm_[std::size_t(v * t.max_radix)];
     std::iota(p, p + t.radix[std::size_t(v)], 0);
-    if (seed) std::shuffle(p, p + t.radix[std::size_t(v)], rng);
+    if (seed) shuffle(p, p + t.radix[std::size_t(v)], rng);
   }
 }
 

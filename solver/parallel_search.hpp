@@ -10,13 +10,16 @@
 //    runs randomised dives with Luby-sequence node limits (packing problems); the first
 //    solution stops every thread.
 //  - shards: subproblem i belongs to shard i mod N; the subproblem list depends only on the
-//    model and N, so shards 0..N-1 together cover the tree exactly once.
+//    model and N, so shards 0..N-1 together cover the tree exactly once. With restarts, shard I
+//    runs the dives r = I, I+N, I+2N, ... (each seeded by r), so shards never repeat a dive.
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
+//    The first checkpoint is written before any work, so a run killed at once can resume.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -27,17 +30,17 @@
 #include <thread>
 #include <vector>
 
+#include "base/error.hpp"
+#include "base/hash.hpp"
+#include "base/parallel.hpp"
+#include "base/progress.hpp"
+#include "base/signals.hpp"
 #include "solver/dfs.hpp"
 #include "solver/knuth_estimate.hpp"
 #include "solver/luby.hpp"
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
-#include "base/signals.hpp"
 #include "solver/solve.hpp"
-#include "base/error.hpp"
-#include "base/hash.hpp"
-#include "base/parallel.hpp"
-#include "base/progress.hpp"
 
 namespace tilekit {
 
@@ -233,9 +236,12 @@ class ParallelSearch {
     }
     // In first mode keep DFS order; a resumed in-flight job goes where its index says.
     std::stable_sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.index < b.index; });
+    assert(std::adjacent_find(jobs.begin(), jobs.end(),
+                              [](const Job& a, const Job& b) { return a.index == b.index; }) == jobs.end());
     jobs_ = std::move(jobs);
     split_nodes_ = split_nodes;
     shard_total_ = out.shard_subproblems;
+    checkpoint(true);  // the first checkpoint, before any work
 
     run_workers([this](int tid) { worker_subproblems(tid); });
 
@@ -248,6 +254,7 @@ class ParallelSearch {
         out.counts.nodes += s->snap.counted.nodes;
       }
     out.subproblems_done = done_in_shard();
+    assert(out.subproblems_done <= out.shard_subproblems);
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
@@ -281,6 +288,7 @@ class ParallelSearch {
       SubtreeOutcome o = dfs.run(m, subs_[job.index], job.resume, c, ctl);
       if (o == SubtreeOutcome::Stopped) return;  // the slot keeps the published snapshot
       std::lock_guard lock(mu_);
+      assert(!finished_[job.index] && "a subproblem is finished once");
       finished_[job.index] = true;
       finished_counts_ += c;
       std::lock_guard sl(slot.mu);
@@ -295,6 +303,7 @@ class ParallelSearch {
       next_restart_ = r->restarts;
       restart_nodes_ = r->restart_nodes;
     }
+    checkpoint(true);  // the first checkpoint, before any work
     run_workers([this](int tid) { worker_restarts(tid); });
     out.restarts = next_restart_.load();
     out.counts.nodes = restart_nodes_.load();
@@ -306,13 +315,16 @@ class ParallelSearch {
     Slot& slot = *slots_[std::size_t(tid)];
     SubtreeSearch<M> dfs;
     while (!stop_.requested()) {
-      std::uint64_t r = next_restart_++;
+      // The k-th dive of this shard is dive r of the whole run: its seed depends on r, its
+      // node limit on k (every shard follows the Luby sequence).
+      const std::uint64_t k = next_restart_++;
+      const std::uint64_t r = k * std::uint64_t(cfg_.shard_count) + std::uint64_t(cfg_.shard_index);
       M m = root_;
       // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
       // restart, and every restart of a seeded run, shuffles it.
       m.set_value_seed(cfg_.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
       Control ctl{*this, slot, 0, epoch_.load()};
-      ctl.node_limit = luby(r + 1) * cfg_.restart_base;
+      ctl.node_limit = luby(k + 1) * cfg_.restart_base;
       SearchCounters c;
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
       restart_nodes_ += c.nodes;
@@ -427,6 +439,9 @@ class ParallelSearch {
         std::lock_guard sl(s->mu);
         if (s->active) st.in_flight.push_back(s->snap);
       }
+      // Resumed subproblems not yet picked up by a worker keep their paths.
+      for (std::size_t j = next_job_; j < jobs_.size(); ++j)
+        if (!jobs_[j].resume.empty()) st.in_flight.push_back({jobs_[j].index, jobs_[j].resume, jobs_[j].counted});
     }
     st.restarts = next_restart_.load();
     st.restart_nodes = restart_nodes_.load();

@@ -4,6 +4,7 @@
 // path of decisions from the root. That is all a checkpoint or a shard needs to hold.
 // The on-disk format lives in checkpoints/checkpoint.hpp; this is the in-memory value.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,24 @@ struct SearchState {
   std::uint64_t restarts = 0;       // first mode with restarts: restarts done so far
   std::uint64_t restart_nodes = 0;  // nodes spent in those restarts
   double seconds = 0;               // wall time spent by earlier runs of this search
+};
+
+// The portfolio's resumable state (solver/portfolio.hpp): where the schedule stands and, per
+// candidate, what it used and its own engine state.
+struct PortfolioCandidateState {
+  std::string name;    // "plain", a group spec, "sat:SPEC", ...
+  bool empty = false;  // its subspace was exhausted without a solution
+  std::uint64_t slices = 0, nodes = 0;
+  double seconds = 0;                 // budget used so far (wall seconds of its slices)
+  std::optional<SearchState> engine;  // its engine checkpoint (none before its first slice)
+};
+
+struct PortfolioState {
+  std::string fingerprint;                          // problem, seed, shard, the set of candidates, the first slice
+  std::uint64_t round = 0;                          // slices of this round last first_slice * 2^round seconds
+  std::uint64_t next = 0;                           // the next candidate to run in this round (index into candidates)
+  std::vector<PortfolioCandidateState> candidates;  // in schedule order
+  double seconds = 0;                               // wall time spent by earlier runs of this portfolio
 };
 
 }  // namespace tilekit

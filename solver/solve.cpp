@@ -1,18 +1,23 @@
-// solve(): checks a problem and its options, picks a model (formulation) and runs the
-// parallel engine on it; counts solutions and orbits, emits validated solutions.
+// solve(): checks a problem and its options, picks a model (formulation; the fundamental
+// domain under an imposed group) and runs the one parallel engine on it; counts solutions and
+// orbits, emits validated solutions (and, under a group, checks them invariant).
 #include "solver/solve.hpp"
 
 #include <fmt/format.h>
 
+#include <cassert>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "base/error.hpp"
+#include "base/hash.hpp"
 #include "solver/cell_model.hpp"
+#include "solver/impose_domain.hpp"
+#include "solver/impose_model.hpp"
+#include "solver/impose_sat.hpp"
 #include "solver/lattice_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
-#include "base/error.hpp"
-#include "base/hash.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -29,11 +34,16 @@ TilingProblem complete_packing_problem(TileKind kind, std::uint32_t colours) {
 
 namespace {
 
+// Luby unit under a group: nodes per site of the fundamental domain, plus a floor.
+constexpr std::uint64_t kRestartPerSite = 50, kRestartFloor = 1000;
+
 struct Plan {
   std::string formulation, ordering;
   bool restarts = false;
   std::uint64_t restart_base = 0;
   std::size_t subproblems = 0;
+  std::optional<ImposedGroup> group;  // --impose
+  std::optional<FundamentalDomain> domain;
 };
 
 const char* mode_name(SearchMode m) {
@@ -63,26 +73,49 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   Plan pl;
   const bool wang = set.kind() == TileKind::Wang;
   pl.formulation = o.formulation;
+  pl.ordering = o.ordering;
+  if (!o.impose.empty()) {
+    // Under a group the model is the fundamental domain of pegs (corner) or edges (Wang).
+    pl.group = build_group(p, o.impose);
+    pl.domain = FundamentalDomain::build(p, *pl.group);
+    if (pl.formulation == "auto") pl.formulation = wang ? "edges" : "pegs";
+    if (pl.formulation == "cell")
+      throw InputError("--impose searches the pegs (corner) or edges (Wang) of a fundamental domain, not cells");
+    if (pl.ordering == "auto") pl.ordering = "mrv";  // most constrained tight site first
+    if (o.impose_patterns >= 16) throw InputError("impose_patterns is a mask of bits 1..3");
+    if (pl.formulation == "sat") {
+      if (o.mode != SearchMode::First)
+        throw InputError("the sat formulation finds one packing: use it with --mode first");
+      if (o.shard_count != 1 || o.save_checkpoint || o.resume_state)
+        throw InputError("the sat formulation runs cadical once: it keeps no checkpoint and takes no --shard");
+    }
+  } else if (pl.formulation == "sat") {
+    throw InputError("the sat formulation encodes an imposed group's subspace: give --impose SPEC");
+  }
   // Measured (BENCHMARKS.md, bench_solver): the tile-per-cell model is fastest on every packing
   // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
   // unconstrained tilings, where most-constrained-first cell search is close and far more
   // robust on restrictive (e.g. aperiodic) sets.
   if (pl.formulation == "auto") pl.formulation = "cell";
-  if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges")
-    throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges or auto)", o.formulation));
+  if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges" && pl.formulation != "sat")
+    throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges, sat or auto)", o.formulation));
   if (pl.formulation == "pegs" && wang)
     throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
   if (pl.formulation == "edges" && !wang)
     throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
-  pl.ordering = o.ordering;
   // Static scanline order is cheapest per node for packings; most constrained first is
   // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
   if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
-  if (pl.ordering == "mrv" && pl.formulation != "cell") throw InputError("the mrv ordering needs the cell formulation");
+  if (pl.ordering == "mrv" && pl.formulation != "cell" && !pl.group)
+    throw InputError("the mrv ordering needs the cell formulation (or --impose)");
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
-  pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
+  // Nodes per Luby unit: under a group, proportional to the fundamental domain (measured on
+  // C=5 corner, BENCHMARKS.md); otherwise to the grid.
+  const std::uint64_t auto_base = pl.domain ? kRestartPerSite * std::uint64_t(pl.domain->num_sites) + kRestartFloor
+                                            : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
+  pl.restart_base = o.restart_base ? o.restart_base : auto_base;
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
   return pl;
 }
@@ -107,16 +140,41 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
                       {"subproblems", pl.subproblems},
                       {"shard", {o.shard_index, o.shard_count}}};
   if (pl.restarts) j["restart_base"] = pl.restart_base;
+  if (pl.group) {
+    j["impose"] = pl.group->spec_text();
+    j["patterns"] = o.impose_patterns;
+  }
   return j.dump();
 }
 
-template <SearchModel M>
-SearchResult run_model(const M& root, const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+// Every solution leaves through here: the independent validator and, under a group, the
+// invariance check. A failure is a solver bug, never bad input.
+void check_solution(const Tiling& t, const TilingProblem& p, const Plan& pl) {
+  ValidationReport rep = validate(t, &p.set);
+  if (!rep.valid || (p.packing && p.torus && !rep.packing))
+    throw std::logic_error("the solver produced a solution the validator rejects: " +
+                           (rep.errors.empty() ? std::string("not a packing") : rep.errors.front()));
+  if (pl.group && !pl.group->is_invariant(t))
+    throw std::logic_error("the solver produced a solution that is not invariant under the imposed group");
+}
+
+SearchResult new_result(const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
   SearchResult res;
   res.formulation = pl.formulation;
   res.ordering = pl.ordering;
   res.threads = o.threads;
   res.fingerprint = fingerprint(p, o, pl);
+  if (pl.group) {
+    res.group = pl.group->spec_text();
+    res.group_order = pl.group->order();
+    res.sites = pl.domain->num_sites;
+  }
+  return res;
+}
+
+template <SearchModel M>
+SearchResult run_model(const M& root, const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+  SearchResult res = new_result(p, o, pl);
   if (o.resume_state && o.resume_state->fingerprint != res.fingerprint)
     throw InputError("checkpoint does not match this search (different problem, mode, seed, formulation or shard)");
 
@@ -127,13 +185,11 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   std::mutex emit_mu;
   auto emit = [&](const Tiling& t) {
-    ValidationReport rep = validate(t, &p.set);
-    if (!rep.valid || (p.packing && p.torus && !rep.packing))
-      throw std::logic_error("the solver produced a solution the validator rejects: " +
-                             (rep.errors.empty() ? std::string("not a packing") : rep.errors.front()));
+    check_solution(t, p, pl);
     if (o.on_solution) o.on_solution(t);
   };
   auto leaf = [&](const M& m, SearchCounters& c) {
+    assert(m.multiplicity() >= 1);
     c.solutions += m.multiplicity();
     if (o.mode == SearchMode::Count && !sym) return;
     Tiling t = m.tiling();
@@ -196,6 +252,29 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
   return res;
 }
 
+// The imposed group's subspace as CNF, solved by cadical (impose_sat.hpp); first mode only.
+SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+  SearchResult res = new_result(p, o, pl);
+  res.formulation = "sat-" + std::string(p.set.kind() == TileKind::Wang ? "edges" : "pegs");
+  res.threads = 1;
+  const double limit = o.time_limit > 0 ? o.time_limit : 1e6;
+  auto stop = [&] { return o.catch_signals && SignalCatcher::caught() != 0; };
+  SatOutcome sat = solve_symmetric_sat(*pl.domain, limit, o.seed, stop);
+  if (sat.status == SatOutcome::Status::Satisfiable) {
+    Tiling t = pl.domain->to_tiling(sat.values);
+    check_solution(t, p, pl);
+    if (o.on_solution) o.on_solution(t);
+    res.found.push_back(std::move(t));
+    res.solutions = 1;
+  }
+  res.complete = sat.status != SatOutcome::Status::Unknown;
+  res.signal = o.catch_signals ? SignalCatcher::caught() : 0;
+  res.interrupted = res.signal != 0 && sat.status == SatOutcome::Status::Unknown;
+  res.timed_out = !res.interrupted && sat.status == SatOutcome::Status::Unknown && o.time_limit > 0;
+  res.seconds = res.total_seconds = sat.seconds;
+  return res;
+}
+
 }  // namespace
 
 std::string search_fingerprint(const TilingProblem& problem, const SearchOptions& options) {
@@ -206,6 +285,11 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.catch_signals) signals.emplace();
+  if (pl.formulation == "sat") return run_sat(problem, options, pl);
+  if (pl.domain) {
+    auto ord = pl.ordering == "mrv" ? ImposeModel::Ordering::MostConstrained : ImposeModel::Ordering::Static;
+    return run_model(ImposeModel(std::move(*pl.domain), ord, options.impose_patterns), problem, options, pl);
+  }
   if (pl.formulation == "cell") {
     auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
     return run_model(CellModel(problem, true, ord), problem, options, pl);

@@ -1,7 +1,9 @@
 # ---- body of the merge job (scripts/slurm/merge.body.sh) ----
 # Expects, set above by `tilekit cluster submit`: TILEKIT, RUN_DIR and SHARDS.
 # Runs after the whole shard array succeeded (--dependency=afterok:ARRAY): merges the shard
-# databases into RUN_DIR/merged.sqlite, writes `tilekit db stats --json` to RUN_DIR/merged.json
+# databases into RUN_DIR/merged.sqlite, writes `tilekit db stats --json` to RUN_DIR/merged.json,
+# adds up the shards' portfolio statistics (first-mode runs) into RUN_DIR/portfolio-stats.json
+# (`tilekit pack --portfolio-report --portfolio-stats RUN_DIR/portfolio-stats.json` reads it)
 # and prints the final count. Solutions are unique by hash, so merging again (or a shard
 # counted twice) changes nothing.
 set -euo pipefail
@@ -32,6 +34,14 @@ if ((${#missing[@]})); then
 fi
 
 "$TILEKIT" db merge "$RUN_DIR/merged.sqlite" "${inputs[@]}"
+stats=()
+for ((i = 0; i < SHARDS; i++)); do
+  [ -s "$dir/shard-$i.stats.json" ] && stats+=(--portfolio-stats "$dir/shard-$i.stats.json")
+done
+if ((${#stats[@]})); then
+  "$TILEKIT" pack --portfolio-report "${stats[@]}" --out "$RUN_DIR/portfolio-stats.json" --json >/dev/null
+  echo "tilekit merge: portfolio statistics of the shards added up in $RUN_DIR/portfolio-stats.json"
+fi
 "$TILEKIT" db stats --db "$RUN_DIR/merged.sqlite" --json >"$RUN_DIR/merged.json.tmp"
 mv -f "$RUN_DIR/merged.json.tmp" "$RUN_DIR/merged.json"
 number() { { grep -o "\"$1\":[0-9]*" "$RUN_DIR/merged.json" || true; } | head -n 1 | cut -d: -f2; }

@@ -9,6 +9,8 @@
 #   RUN_DIR/shards/shard-I.attempts   one JSON line per attempt: exit code, resumed or not, and
 #                                     tilekit's counts (total_seconds includes earlier attempts)
 #   RUN_DIR/shards/shard-I.done.json  `tilekit pack --json` output once the shard is complete
+#   RUN_DIR/shards/shard-I.stats.json the portfolio statistics of a first-mode run (the merge job
+#                                     adds them up into RUN_DIR/portfolio-stats.json)
 # Signals: Slurm sends USR1 to this script (--signal=B:USR1@S) S seconds before the wall-time
 # kill; it is forwarded to tilekit, which writes its checkpoint and exits 3. The task then
 # requeues itself (scontrol requeue) and its next attempt resumes from the checkpoint; at most
@@ -28,6 +30,7 @@ ckpt="$dir/shard-$shard.ckpt"
 db="$dir/shard-$shard.sqlite"
 done_file="$dir/shard-$shard.done.json"
 attempts="$dir/shard-$shard.attempts"
+stats="$dir/shard-$shard.stats.json"
 
 say() { printf '%s tilekit shard %s/%s (task %s, attempt %s): %s\n' "$(date -u +%FT%TZ)" \
   "$shard" "$SHARDS" "$task" "$attempt" "$*"; }
@@ -68,7 +71,7 @@ if [ -s "$done_file" ]; then
 fi
 
 args=("${PACK_ARGS[@]}" --threads "$OMP_NUM_THREADS" --shard "$shard/$SHARDS"
-      --checkpoint "$ckpt" --checkpoint-every "$CHECKPOINT_EVERY" --db "$db" --json)
+      --checkpoint "$ckpt" --checkpoint-every "$CHECKPOINT_EVERY" --db "$db" --portfolio-stats "$stats" --json)
 resumed=false
 if [ -s "$ckpt" ]; then
   args+=(--resume "$ckpt")

@@ -21,6 +21,9 @@
 #     first); at the requeue bound (1) the task ends with exit 3.
 #  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
 #     scancel then ends it for good (checkpoint, exit 3, no requeue).
+#  5. An imposed-group count as an array (issue 11): the C=3 Wang packings invariant under a
+#     group of order 9, 3 shards, one task requeued mid-search (SIGTERM -> checkpoint -> exit 3
+#     -> Slurm requeues -> resume); the shards' counts add up to an unsharded count.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -252,6 +255,48 @@ check "... and $ORBITS orbits" test "$(json_number "$run1/merged.json" distinct_
 "$TK" db stats --db "$work/twice.sqlite" --json >"$work/twice.json"
 check "a merge listing shard 0 twice holds 203520 solutions" test "$(json_number "$work/twice.json" solutions)" = 203520
 check "... and $ORBITS orbits" test "$(json_number "$work/twice.json" distinct_solutions)" = "$ORBITS"
+
+# ---- 5. an imposed-group count, one task requeued mid-search ----------------------------------
+GROUP='t=0,3:pi=1,2,0;t=3,0:piv=1,2,0'
+log "case 5: 3-shard count under the group $GROUP; one task requeued mid-search"
+t5=$SECONDS
+WHOLE=$("$TK" pack --kind wang --colors 3 --mode count --impose "$GROUP" --threads 2 --quiet --json |
+  { grep -o '"solutions":[0-9]*' || true; } | cut -d: -f2)
+[ -n "$WHOLE" ] || fatal "the unsharded count under $GROUP printed no count"
+run5=$work/group
+out5=$("$TK" cluster submit --kind wang --colors 3 --mode count --method search --shards 3 --cpus-per-task 1 \
+  --time 10 --checkpoint-every 1 --run-dir "$run5" --pack-arg="--impose=$GROUP" --json) || fatal "cluster submit (group) failed"
+array5=$(submitted_id array_job "$out5")
+merge5=$(submitted_id merge_job "$out5")
+[ -n "$array5" ] && [ -n "$merge5" ] || fatal "no job ids in: $out5"
+requeued5=""
+while [ -z "$requeued5" ] && (($(time_left) > 0)); do
+  pid="" shard=""
+  read -r pid shard < <(searching_tilekits "$run5" | head -n 1) || true
+  if [ -z "${pid:-}" ]; then
+    [ "$(field "$merge5" Reason)" = Dependency ] || break
+    sleep 0.01
+    continue
+  fi
+  kill -STOP "$pid"
+  jid=$(field "${array5}_$shard" JobId)
+  requeued5=$shard
+  log "group shard $shard's tilekit (pid $pid) stopped mid-search; scontrol requeue $jid"
+  scontrol requeue "$jid" || fatal "scontrol requeue $jid failed"
+  continue_with_pending "$pid" $TERM_BIT
+done
+[ -n "$requeued5" ] || fatal "could not catch a group shard mid-search"
+state=$(wait_final "$merge5")
+check "the group run's merge job completed ($state)" test "$state" = COMPLETED
+exits=$(attempt_exits "$run5/shards/shard-$requeued5.attempts")
+check "the requeued group shard checkpointed, exited 3, resumed and exited 0 (exits: $exits)" test "$exits" = "3 0"
+check "... its last attempt resumed from the checkpoint" last_attempt_resumed "$run5/shards/shard-$requeued5.attempts"
+sum5=$(grep -o "the shards reported [0-9]* solutions" "$run5"/logs/merge-*.out | grep -o '[0-9][0-9]*' | head -n 1)
+check "the group shards' counts add up to the unsharded count (${sum5:-?} vs $WHOLE)" test "${sum5:-x}" = "$WHOLE"
+for i in 0 1 2; do
+  check "group shard $i reports the group (order 9)" grep -q '"order":9' "$run5/shards/shard-$i.done.json"
+done
+log "case 5 took $((SECONDS - t5)) s"
 
 # ---- 3. checked now ---------------------------------------------------------------------------
 log "case 3: waiting for the wall-time run ($(time_left) s left)"

@@ -4,13 +4,24 @@
 
 #include <string>
 
-#include "solver/impose_sat.hpp"
-#include "solver/impose_solve.hpp"
 #include "base/error.hpp"
+#include "solver/impose_domain.hpp"
+#include "solver/impose_model.hpp"
+#include "solver/impose_sat.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
 namespace {
+
+// solve() under the group `spec` (the one engine, issue 11).
+SearchResult solve_under(const TilingProblem& p, const std::string& spec, SearchOptions o) {
+  o.impose = spec;
+  return solve(p, o);
+}
+SearchResult solve_under(TileKind kind, std::uint32_t c, const std::string& spec, const SearchOptions& o) {
+  return solve_under(complete_packing_problem(kind, c), spec, o);
+}
 
 std::string input_error(TileKind kind, std::uint32_t c, const std::string& spec) {
   try {
@@ -78,9 +89,9 @@ void expect_symmetric_packing(TileKind kind, std::uint32_t c, const std::string&
   o.time_limit = 60;
   TilingProblem p = complete_packing_problem(kind, c);
   ImposedGroup g = build_group(p, spec);
-  SymmetricResult r = solve_symmetric(p, g, o);
-  ASSERT_EQ(r.result.found.size(), 1u) << spec;
-  const Tiling& t = r.result.found[0];
+  SearchResult r = solve_under(p, spec, o);
+  ASSERT_EQ(r.found.size(), 1u) << spec;
+  const Tiling& t = r.found[0];
   ValidationReport rep = validate(t);
   EXPECT_TRUE(rep.valid);
   EXPECT_TRUE(rep.packing);
@@ -89,7 +100,8 @@ void expect_symmetric_packing(TileKind kind, std::uint32_t c, const std::string&
   Tiling broken = t;
   std::swap(broken.at(0, 0), broken.at(1, 1));
   EXPECT_FALSE(g.is_invariant(broken));
-  EXPECT_EQ(r.group["spec"], g.spec_text());
+  EXPECT_EQ(r.group, g.spec_text());
+  EXPECT_EQ(r.group_order, g.order());
 }
 
 TEST(ImposeFirst, CornerPackingsUnderCyclicGroupsValidateAndAreInvariant) {
@@ -107,11 +119,11 @@ TEST(ImposeFirst, WangPackingsUnderImposedGroupsValidateAndAreInvariant) {
 TEST(ImposeFirst, SameSeedAndOneThreadGiveTheSameSolution) {
   SearchOptions o;
   o.seed = 3;
-  auto a = solve_symmetric(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
-  auto b = solve_symmetric(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
-  ASSERT_EQ(a.result.found.size(), 1u);
-  ASSERT_EQ(b.result.found.size(), 1u);
-  EXPECT_EQ(a.result.found[0].cells, b.result.found[0].cells);
+  auto a = solve_under(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
+  auto b = solve_under(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
+  ASSERT_EQ(a.found.size(), 1u);
+  ASSERT_EQ(b.found.size(), 1u);
+  EXPECT_EQ(a.found[0].cells, b.found[0].cells);
 }
 
 TEST(ImposeFirst, EmptySubspaceIsReportedCompleteWithoutSolution) {
@@ -120,12 +132,12 @@ TEST(ImposeFirst, EmptySubspaceIsReportedCompleteWithoutSolution) {
   SearchOptions count;
   count.mode = SearchMode::Count;
   for (std::string spec : {"t=0,2:pi=1,0", "t=2,2:pi=1,0"}) {
-    auto n = solve_symmetric(TileKind::Corner, 2, spec, count).result.solutions;
+    auto n = solve_under(TileKind::Corner, 2, spec, count).solutions;
     SearchOptions first;
-    auto r = solve_symmetric(TileKind::Corner, 2, spec, first);
-    EXPECT_EQ(r.result.solutions, n > 0 ? 1u : 0u) << spec;
+    auto r = solve_under(TileKind::Corner, 2, spec, first);
+    EXPECT_EQ(r.solutions, n > 0 ? 1u : 0u) << spec;
     if (n == 0) {
-      EXPECT_TRUE(r.result.complete) << spec;
+      EXPECT_TRUE(r.complete) << spec;
     }
   }
 }
@@ -141,14 +153,14 @@ TEST(ImposeTiling, PeriodicTilingOfASetWithRepeatsAllowed) {
   p.packing = false;
   ImposedGroup g = build_group(p, "t=0,2:pi=1,0");
   SearchOptions o;
-  auto r = solve_symmetric(p, g, o);
-  ASSERT_EQ(r.result.found.size(), 1u);
-  EXPECT_TRUE(validate(r.result.found[0]).valid);
-  EXPECT_TRUE(g.is_invariant(r.result.found[0]));
+  auto r = solve_under(p, "t=0,2:pi=1,0", o);
+  ASSERT_EQ(r.found.size(), 1u);
+  EXPECT_TRUE(validate(r.found[0]).valid);
+  EXPECT_TRUE(g.is_invariant(r.found[0]));
   SearchOptions count;
   count.mode = SearchMode::Count;
   // 2x4 pegs, a fundamental domain of 2x2 free pegs: 16 tilings, every colouring allowed.
-  EXPECT_EQ(solve_symmetric(p, g, count).result.solutions, 16u);
+  EXPECT_EQ(solve_under(p, "t=0,2:pi=1,0", count).solutions, 16u);
 }
 
 }  // namespace
@@ -159,29 +171,73 @@ namespace {
 
 TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
   if (!sat_solver_available()) GTEST_SKIP() << "cadical not installed (scripts/setup.sh installs it)";
-  for (auto [kind, spec] : {std::pair{TileKind::Corner, "t=0,3:pi=1,2,0"}, std::pair{TileKind::Wang, "t=0,3:pi=1,2,0"}}) {
+  for (auto [kind, spec] :
+       {std::pair{TileKind::Corner, "t=0,3:pi=1,2,0"}, std::pair{TileKind::Wang, "t=0,3:pi=1,2,0"}}) {
     TilingProblem p = complete_packing_problem(kind, 3);
     ImposedGroup g = build_group(p, spec);
     SearchOptions o;
     o.time_limit = 60;
-    SymmetricControl ctl;
-    ctl.sat = true;
-    auto r = solve_symmetric(p, g, o, ctl);
-    ASSERT_EQ(r.result.found.size(), 1u) << spec;
-    EXPECT_TRUE(validate(r.result.found[0]).packing);
-    EXPECT_TRUE(g.is_invariant(r.result.found[0]));
-    EXPECT_EQ(r.result.formulation.rfind("sat-", 0), 0u);
+    o.formulation = "sat";
+    auto r = solve_under(p, spec, o);
+    ASSERT_EQ(r.found.size(), 1u) << spec;
+    EXPECT_TRUE(validate(r.found[0]).packing);
+    EXPECT_TRUE(g.is_invariant(r.found[0]));
+    EXPECT_EQ(r.formulation.rfind("sat-", 0), 0u);
   }
   // An empty subspace is proved empty: C=2 corner groups whose brute-force count is 0.
   for (std::string spec : {"t=0,2:pi=1,0", "t=2,2:pi=1,0"}) {
     SearchOptions count;
     count.mode = SearchMode::Count;
-    if (solve_symmetric(TileKind::Corner, 2, spec, count).result.solutions != 0) continue;
-    SymmetricControl ctl;
-    ctl.sat = true;
-    auto r = solve_symmetric(TileKind::Corner, 2, spec, SearchOptions{}, ctl);
-    EXPECT_TRUE(r.result.complete) << spec;
-    EXPECT_TRUE(r.result.found.empty()) << spec;
+    if (solve_under(TileKind::Corner, 2, spec, count).solutions != 0) continue;
+    SearchOptions sat;
+    sat.formulation = "sat";
+    auto r = solve_under(TileKind::Corner, 2, spec, sat);
+    EXPECT_TRUE(r.complete) << spec;
+    EXPECT_TRUE(r.found.empty()) << spec;
+  }
+}
+
+}  // namespace
+}  // namespace tilekit
+
+namespace tilekit {
+namespace {
+
+TEST(ImposeModelState, IncrementalStateEqualsARecomputationAlongRandomDives) {
+  // Random dives with backtracking through the model's own branching: after every assign and
+  // unassign the incremental counts (tight sites, used orbits, pattern demand/avail, per-cell
+  // colour caches) equal a recomputation from the site values.
+  for (auto [kind, c, spec] :
+       {std::tuple{TileKind::Corner, 3u, "t=0,3:pi=1,2,0"}, std::tuple{TileKind::Wang, 3u, "t=0,3:pih=1,2,0"},
+        std::tuple{TileKind::Corner, 4u, "t=0,8:pi=1,0,3,2;t=8,0:pi=2,3,0,1"}}) {
+    TilingProblem p = complete_packing_problem(kind, c);
+    ImposeModel m(FundamentalDomain::build(p, build_group(p, spec)), ImposeModel::Ordering::MostConstrained);
+    ASSERT_TRUE(m.check_state());
+    SplitMix64 rng(11);
+    std::vector<std::pair<int, int>> path;
+    std::vector<int> values;
+    int checks = 0;
+    for (int step = 0; step < 400; ++step) {
+      int var = m.branch(values);
+      if (var >= 0 && !values.empty() && rng.below(4) != 0) {
+        int v = values[rng.below(values.size())];
+        if (m.assign(var, v))
+          path.push_back({var, v});
+        else
+          m.unassign(var, v);  // a failed assign undid itself: unassign is a no-op
+      } else if (!path.empty()) {
+        m.unassign(path.back().first, path.back().second);
+        path.pop_back();
+      }
+      ASSERT_TRUE(m.check_state()) << spec << " at step " << step;
+      ++checks;
+    }
+    EXPECT_EQ(checks, 400);
+    while (!path.empty()) {
+      m.unassign(path.back().first, path.back().second);
+      path.pop_back();
+    }
+    EXPECT_TRUE(m.check_state());
   }
 }
 

@@ -1,13 +1,15 @@
-// The imposed-group portfolio (issue 7): candidate groups, first-found-wins on 2 threads, and
-// statistics that persist and order the next run.
+// The portfolio (issues 7 and 11): candidate groups, a scheduler over solve() on 2 threads that
+// is resumable from its state, and statistics that persist, merge and order the next run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 
 #include "../cli_runner.hpp"
-#include "solver/impose_portfolio.hpp"
 #include "base/error.hpp"
+#include "solver/impose_domain.hpp"
+#include "solver/portfolio.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -20,10 +22,12 @@ TEST(ImposePortfolio, CandidateGroupsAreValidAndIncludeTheKnownWinners) {
   EXPECT_NE(std::find(wang.begin(), wang.end(), "t=0,8:pi=1,0,3,2"), wang.end());
   // Products of two generators: the Klein four-group on 4 colours.
   EXPECT_NE(std::find(corner.begin(), corner.end(), "t=0,8:pi=1,0,3,2;t=8,0:pi=2,3,0,1"), corner.end());
-  for (const auto& spec : corner) EXPECT_NO_THROW(build_group(complete_packing_problem(TileKind::Corner, 4), spec)) << spec;
+  for (const auto& spec : corner)
+    EXPECT_NO_THROW(build_group(complete_packing_problem(TileKind::Corner, 4), spec)) << spec;
   for (const auto& spec : wang) EXPECT_NO_THROW(build_group(complete_packing_problem(TileKind::Wang, 4), spec)) << spec;
   // Odd C: only C-cycles (a fixed-point-free permutation of order k needs k | C).
-  for (const auto& spec : candidate_groups(TileKind::Corner, 5)) EXPECT_NE(spec.find("pi=1,2,3,4,0"), std::string::npos);
+  for (const auto& spec : candidate_groups(TileKind::Corner, 5))
+    EXPECT_NE(spec.find("pi=1,2,3,4,0"), std::string::npos);
 }
 
 void expect_portfolio_finds(TileKind kind, const std::string& stats) {
@@ -33,14 +37,14 @@ void expect_portfolio_finds(TileKind kind, const std::string& stats) {
   o.time_limit = 120;
   PortfolioOptions p;
   p.stats_path = stats;
-  PortfolioResult r = run_portfolio(kind, 4, o, p);
+  PortfolioResult r = run_portfolio(complete_packing_problem(kind, 4), o, p);
   ASSERT_TRUE(r.found);
   ASSERT_EQ(r.result.found.size(), 1u);
   ValidationReport rep = validate(r.result.found[0]);
   EXPECT_TRUE(rep.packing);
-  if (r.spec != kPlainSearch) {
-    EXPECT_EQ(r.group["spec"], r.spec);
-    EXPECT_TRUE(build_group(complete_packing_problem(kind, 4), r.spec).is_invariant(r.result.found[0]));
+  if (r.winner != kPlainSearch) {
+    EXPECT_EQ(r.result.group, r.winner);
+    EXPECT_TRUE(build_group(complete_packing_problem(kind, 4), r.winner).is_invariant(r.result.found[0]));
   }
 }
 
@@ -64,14 +68,16 @@ TEST(ImposePortfolio, EmptySubspacesAreDroppedAndAnEmptyPortfolioEndsAtOnce) {
   o.time_limit = 30;
   PortfolioOptions p;
   p.stats_path = "-";
-  p.specs = {"t=0,2:pi=1,0", "t=2,0:pi=1,0"};
-  PortfolioResult none = run_portfolio(TileKind::Corner, 2, o, p);
+  p.candidates = {"t=0,2:pi=1,0", "t=2,0:pi=1,0"};
+  const TilingProblem c2 = complete_packing_problem(TileKind::Corner, 2);
+  PortfolioResult none = run_portfolio(c2, o, p);
   EXPECT_FALSE(none.found);
+  EXPECT_TRUE(none.complete);  // both subspaces exhausted
   EXPECT_LT(none.seconds, 5.0);
-  p.specs.push_back("t=2,2:pi=1,0");
-  PortfolioResult some = run_portfolio(TileKind::Corner, 2, o, p);
+  p.candidates.push_back("t=2,2:pi=1,0");
+  PortfolioResult some = run_portfolio(c2, o, p);
   ASSERT_TRUE(some.found);
-  EXPECT_EQ(some.spec, "t=2,2:pi=1,0");
+  EXPECT_EQ(some.winner, "t=2,2:pi=1,0");
   EXPECT_TRUE(validate(some.result.found[0]).packing);
 }
 
@@ -99,6 +105,130 @@ TEST(ImposePortfolio, StatisticsSurviveSaveAndLoadAndCorruptFileIsInputError) {
   test::write_text(dir / "bad.json", "{not json");
   EXPECT_THROW(PortfolioStats::load(dir / "bad.json"), InputError);
   EXPECT_FALSE(PortfolioStats::load(dir / "missing.json").find(TileKind::Corner, 5, "x").has_value());
+}
+
+}  // namespace
+}  // namespace tilekit
+
+namespace tilekit {
+namespace {
+
+TEST(PortfolioCandidates, NamesMapToFamiliesAndBadNamesAreInputErrors) {
+  TilingProblem p = complete_packing_problem(TileKind::Corner, 4);
+  EXPECT_EQ(make_candidate(p, "plain").family, "plain");
+  Candidate g = make_candidate(p, "t=0,4:pi=(0 1 2 3)");
+  EXPECT_EQ(g.family, "impose");
+  EXPECT_EQ(g.group, "t=0,4:pi=1,2,3,0");  // canonical spec
+  EXPECT_EQ(make_candidate(p, "impose:t=0,4:pi=1,2,3,0").group, g.group);
+  Candidate sat = make_candidate(p, "sat:t=0,4:pi=1,2,3,0");
+  EXPECT_EQ(sat.family, "sat");
+  EXPECT_FALSE(sat.resumable);
+  EXPECT_THROW(make_candidate(p, "nonsense"), InputError);
+  EXPECT_THROW(make_candidate(p, "impose:t=0,4:pi=1,0,3,2"), InputError);  // orders differ
+}
+
+// Runs the portfolio for at most `seconds`, keeping its state in `state`.
+PortfolioResult portfolio_slice(const TilingProblem& p, const std::vector<std::string>& cands, double seconds,
+                                std::optional<PortfolioState>& state, std::uint64_t seed = 3) {
+  SearchOptions o;
+  o.threads = 2;
+  o.seed = seed;
+  o.time_limit = seconds;
+  PortfolioOptions po;
+  po.stats_path = "-";
+  po.candidates = cands;
+  po.first_slice = 0.05;
+  po.resume_state = state;
+  po.save_checkpoint = [&](const PortfolioState& s) { state = s; };
+  return run_portfolio(p, o, po);
+}
+
+TEST(PortfolioResume, StateCarriesEmptySubspacesBudgetsAndEngineStatesAcrossRuns) {
+  // C=5 corner: the group and the plain search take far longer than these short runs.
+  const TilingProblem p = complete_packing_problem(TileKind::Corner, 5);
+  const std::vector<std::string> cands = {"t=0,5:pi=1,2,3,4,0", "plain"};
+  std::optional<PortfolioState> state;
+  PortfolioResult a = portfolio_slice(p, cands, 0.3, state);
+  ASSERT_TRUE(state.has_value());
+  if (a.found) GTEST_SKIP() << "found a C=5 packing within 0.3 s (lucky seed)";
+  EXPECT_TRUE(a.timed_out);
+  ASSERT_EQ(state->candidates.size(), 2u);
+  double budget = 0;
+  std::uint64_t nodes = 0;
+  for (const auto& c : state->candidates) {
+    budget += c.seconds;
+    nodes += c.nodes;
+    if (c.slices) {
+      EXPECT_TRUE(c.engine.has_value()) << c.name;  // its own engine checkpoint
+    }
+  }
+  EXPECT_GT(nodes, 0u);
+  const double before = state->seconds;
+  PortfolioResult b = portfolio_slice(p, cands, 0.3, state);
+  if (b.found) GTEST_SKIP() << "found a C=5 packing (lucky seed)";
+  EXPECT_GT(state->seconds, before);  // the budget goes on from the first run
+  std::uint64_t nodes2 = 0;
+  for (const auto& c : state->candidates) nodes2 += c.nodes;
+  EXPECT_GT(nodes2, nodes);
+  // Another portfolio's state is refused.
+  std::optional<PortfolioState> other = state;
+  EXPECT_THROW(portfolio_slice(p, {"plain"}, 0.1, other), InputError);
+  EXPECT_THROW(portfolio_slice(p, cands, 0.1, other, 4), InputError);  // another seed
+}
+
+TEST(PortfolioResume, ProvedEmptyCandidatesStayDroppedAfterResume) {
+  const TilingProblem c2 = complete_packing_problem(TileKind::Corner, 2);
+  std::optional<PortfolioState> state;
+  PortfolioResult r = portfolio_slice(c2, {"t=0,2:pi=1,0", "t=2,0:pi=1,0"}, 10, state);
+  EXPECT_FALSE(r.found);
+  EXPECT_TRUE(r.complete);
+  ASSERT_TRUE(state.has_value());
+  for (const auto& c : state->candidates) EXPECT_TRUE(c.empty) << c.name;
+  std::uint64_t slices = 0;
+  for (const auto& c : state->candidates) slices += c.slices;
+  PortfolioResult again = portfolio_slice(c2, {"t=0,2:pi=1,0", "t=2,0:pi=1,0"}, 10, state);
+  EXPECT_TRUE(again.complete);
+  std::uint64_t slices2 = 0;
+  for (const auto& c : state->candidates) slices2 += c.slices;
+  EXPECT_EQ(slices2, slices);  // nothing ran again
+}
+
+TEST(PortfolioShards, ShardsSplitTheDivesAndEachFindsAValidPacking) {
+  // Two shards of one portfolio: each runs its share of every candidate's dives (different
+  // seeds per dive), and each answer validates.
+  for (int shard = 0; shard < 2; ++shard) {
+    SearchOptions o;
+    o.threads = 2;
+    o.seed = 1;
+    o.time_limit = 60;
+    o.shard_index = shard;
+    o.shard_count = 2;
+    PortfolioOptions po;
+    po.stats_path = "-";
+    PortfolioResult r = run_portfolio(complete_packing_problem(TileKind::Wang, 4), o, po);
+    ASSERT_TRUE(r.found) << shard;
+    EXPECT_TRUE(validate(r.result.found[0]).packing);
+  }
+}
+
+TEST(PortfolioStatsMerge, MergedFilesAddUpTriesAndSuccesses) {
+  test::TempDir dir;
+  PortfolioStats a, b;
+  a.record(TileKind::Corner, 5, "t=0,5:pi=1,2,3,4,0", true, 3.0);
+  b.record(TileKind::Corner, 5, "t=0,5:pi=1,2,3,4,0", false, 1.0);
+  b.record(TileKind::Corner, 5, "plain", false, 1.0);
+  a.save(dir / "a.json");
+  b.save(dir / "b.json");
+  PortfolioStats sum = PortfolioStats::load(dir / "a.json");
+  sum.merge(PortfolioStats::load(dir / "b.json"));
+  auto g = sum.find(TileKind::Corner, 5, "t=0,5:pi=1,2,3,4,0");
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->tries, 2u);
+  EXPECT_EQ(g->successes, 1u);
+  EXPECT_EQ(sum.find(TileKind::Corner, 5, "plain")->tries, 1u);
+  test::write_text(dir / "badkey.json",
+                   R"({"version":1,"groups":{"nonsense":{"tries":1,"successes":0,"success_seconds":[]}}})");
+  EXPECT_THROW(PortfolioStats::load(dir / "badkey.json"), InputError);
 }
 
 }  // namespace

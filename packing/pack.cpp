@@ -1,0 +1,287 @@
+// run_pack: the request/run logic of `tilekit pack` (pack.hpp).
+#include "packing/pack.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include "base/error.hpp"
+#include "base/signals.hpp"
+#include "checkpoints/checkpoint.hpp"
+#include "checkpoints/results_db.hpp"
+#include "packing/find_packing.hpp"
+#include "packing/solution_sink.hpp"
+#include "solver/impose_domain.hpp"
+#include "solver/portfolio.hpp"
+#include "solver/symmetry.hpp"
+#include "tilesets/tile_set_io.hpp"
+#include "tilesets/validator.hpp"
+
+namespace tilekit {
+namespace {
+
+SearchMode parse_mode(const std::string& m) {
+  if (m == "first") return SearchMode::First;
+  if (m == "count") return SearchMode::Count;
+  if (m == "all") return SearchMode::All;
+  throw InputError(fmt::format("unknown mode '{}' (first, count or all)", m));
+}
+
+void parse_shard(const std::string& s, SearchOptions& o) {
+  int i = 0, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(s.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' || n < 1 || i < 0 || i >= n)
+    throw InputError(fmt::format("--shard must be I/N with 0 <= I < N, got '{}'", s));
+  o.shard_index = i, o.shard_count = n;
+}
+
+TilingProblem make_problem(const PackRequest& a) {
+  if (!a.set.empty()) {
+    TilingProblem p;
+    p.set = resolve_tile_set(a.set);
+    p.torus = true;
+    p.packing = true;
+    if (!a.size.empty()) {
+      char x = 0, extra = 0;
+      if (std::sscanf(a.size.c_str(), "%d%c%d%c", &p.rows, &x, &p.cols, &extra) != 3 || (x != 'x' && x != 'X'))
+        throw InputError(fmt::format("--size must be ROWSxCOLS, got '{}'", a.size));
+    } else {
+      int side = 1;
+      while (std::size_t(side + 1) * std::size_t(side + 1) <= p.set.size()) ++side;
+      if (std::size_t(side) * std::size_t(side) != p.set.size())
+        throw InputError(fmt::format("the set has {} tiles, not a square number: give --size ROWSxCOLS", p.set.size()));
+      p.rows = p.cols = side;
+    }
+    return p;
+  }
+  if (a.kind.empty()) throw InputError("pack needs --kind corner|wang and --colors C (or --set SET, or --resume FILE)");
+  if (a.kind != "corner" && a.kind != "wang")
+    throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
+  check_colour_count(a.colours, "--colors");
+  return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
+}
+
+// The engine options of a request (checks every flag that solve() does not).
+SearchOptions search_options(const PackRequest& a) {
+  SearchOptions o;
+  o.mode = parse_mode(a.mode);
+  if (a.method != "auto" && a.method != "search" && a.method != "construct")
+    throw InputError(fmt::format("unknown method '{}' (auto, search or construct)", a.method));
+  if (a.method == "construct" && o.mode != SearchMode::First)
+    throw InputError("--method construct gives one packing: use it with --mode first");
+  if (a.method == "construct" && !a.set.empty())
+    throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
+  if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
+  if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
+  if (!a.candidates.empty() && (a.plain || !a.impose.empty()))
+    throw InputError("--candidate names a portfolio candidate: not with --plain or --impose");
+  o.threads = a.threads;
+  o.seed = a.seed;
+  o.time_limit = a.time_limit;
+  o.formulation = a.formulation;
+  o.ordering = a.ordering;
+  o.impose = a.impose;
+  parse_shard(a.shard, o);
+  o.resume_path = a.resume;
+  o.checkpoint_path = !a.checkpoint.empty() ? a.checkpoint : a.resume;
+  if (a.checkpoint_every < 0 && a.checkpoint_every != -1)
+    throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.checkpoint_every));
+  o.checkpoint_every = a.checkpoint_every >= 0 ? a.checkpoint_every : (o.checkpoint_path.empty() ? 0 : 300);
+  o.progress = a.progress;
+  o.catch_signals = a.catch_signals;
+  o.estimate_probes = o.progress && o.mode != SearchMode::First ? 200 : 0;
+  return o;
+}
+
+bool is_complete_set_problem(const TilingProblem& p) {
+  const std::uint32_t c = p.set.colours();
+  return p.set.size() == complete_size(p.set.horizontal_radix(), p.set.vertical_radix()) && p.rows == int(c * c) &&
+         p.cols == p.rows;
+}
+
+nlohmann::json group_json(const TilingProblem& p, const std::string& spec) {
+  return spec.empty() ? nlohmann::json(nullptr) : build_group(p, spec).to_json();
+}
+
+}  // namespace
+
+PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
+  std::optional<SignalCatcher> signals;  // from here to the outcome: a signal always ends in `interrupted`
+  if (request.catch_signals) signals.emplace();
+  if (!request.resume.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
+    CheckpointFile f = read_checkpoint_file(request.resume);
+    request = resume_request(request, given, f.request, request.resume);
+  }
+  PackOutcome out;
+  out.request = request;
+  const PackRequest& a = out.request;
+  out.problem = make_problem(a);
+  const TilingProblem& problem = out.problem;
+  SearchOptions o = search_options(a);
+  const bool complete_set = is_complete_set_problem(problem);
+  const SearchMode mode = o.mode;
+  // The portfolio answers first-mode searches of complete sets unless the engine is pinned by
+  // a group, --plain, a formulation or an ordering.
+  const bool use_portfolio = a.impose.empty() && !a.plain && mode == SearchMode::First && a.method != "construct" &&
+                             complete_set && a.formulation == "auto" && a.ordering == "auto";
+  if (!a.candidates.empty() && !use_portfolio)
+    throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
+  const std::string kind(kind_name(problem.set.kind()));
+  const std::uint32_t colours = problem.set.colours();
+  o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
+  PortfolioOptions po;
+  po.stats_path = a.portfolio_stats;
+  po.candidates = a.candidates;
+  {  // bad options are exit 2 before the database is touched
+    SearchOptions check = o;
+    check.checkpoint_path.clear(), check.resume_path.clear();
+    if (use_portfolio) {
+      portfolio_fingerprint(problem, check, po);
+      for (const auto& c : po.candidates.empty() ? default_candidates(problem.set.kind(), colours) : po.candidates)
+        make_candidate(problem, c);
+    } else {
+      search_fingerprint(problem, check);
+    }
+  }
+  nlohmann::json identity = request_identity(a);
+
+  ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
+  out.db_path = db.path();
+  RunRecord run;
+  run.command = "pack";
+  run.params = identity;
+  run.params["rows"] = problem.rows;
+  run.params["cols"] = problem.cols;
+  run.params["time_limit"] = a.time_limit;
+  run.params["checkpoint"] = o.checkpoint_path;
+  run.params["resume"] = o.resume_path;
+  run.status = "running";
+  run.threads = o.threads;
+  run.id = db.begin_run(run);
+  out.run_id = run.id;
+  SolutionSink sink(db, run.id, problem);
+  if (mode != SearchMode::Count) {
+    o.on_solution = [&sink](const Tiling& t) { sink.add(t); };
+    o.flush = [&sink] { sink.flush(); };
+  }
+  sink.group = out.group = group_json(problem, a.impose);
+  SearchResult& r = out.result;
+
+  // One search: the portfolio, or solve() (under the group with --impose).
+  auto search = [&] {
+    if (use_portfolio) {
+      SearchOptions po_opts = o;
+      po_opts.on_solution = nullptr;  // stored below with the winner's group
+      po_opts.flush = nullptr;
+      PortfolioResult pr = run_portfolio_checkpointed(problem, po_opts, po, identity);
+      r = pr.result;
+      r.nodes = pr.nodes;
+      r.seconds = pr.seconds;
+      r.total_seconds = pr.total_seconds;
+      r.threads = o.threads;
+      r.complete = pr.complete;
+      r.interrupted = pr.interrupted;
+      r.signal = pr.signal;
+      r.timed_out = pr.timed_out;
+      r.checkpoints = pr.checkpoints;
+      r.formulation = "portfolio";
+      out.portfolio = {{"winner", pr.found ? nlohmann::json(pr.winner) : nlohmann::json(nullptr)}, {"runs", pr.runs}};
+      sink.group = out.group = group_json(problem, r.group);
+      if (pr.found) sink.add(pr.result.found.front());
+      // No candidate found one and the plain search (the whole space) was exhausted.
+      if (pr.complete) {
+        bool plain_ran = false;
+        for (const auto& row : pr.runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
+        if (!plain_ran) r.complete = false;  // only subspaces were exhausted
+      }
+    } else {
+      r = solve_checkpointed(problem, o, identity);
+    }
+    sink.flush();
+  };
+
+  try {
+    if (mode == SearchMode::First && complete_set && a.impose.empty() && a.set.empty()) {
+      PackingSources src;
+      src.db = a.method == "auto" ? &db : nullptr;
+      src.construct = a.method != "search";
+      if (a.method != "construct")
+        src.search = [&]() -> std::optional<FoundPacking> {
+          search();
+          if (r.found.empty()) return std::nullopt;
+          return FoundPacking{r.found.front(), "search", r.group, false, 0};
+        };
+      std::optional<FoundPacking> found = find_packing(problem.set.kind(), colours, src);
+      out.method = found ? found->source : "search";
+      if (found && found->source != "search") {
+        r.found = {found->tiling};
+        r.solutions = 1;
+        r.threads = o.threads;
+        r.complete = false;
+        if (found->source == "construct") {
+          out.construction = found->how;
+          sink.method = "construct";
+          sink.add(found->tiling);
+          sink.flush();
+        }
+      }
+      if (!found && a.method == "construct")
+        throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
+                                   kind, colours));
+    } else {
+      out.method = "search";
+      search();
+    }
+  } catch (...) {
+    run.status = "failed";
+    db.finish_run(run);
+    throw;
+  }
+  out.signal = r.signal ? r.signal : SignalCatcher::caught();
+  out.interrupted = r.interrupted || SignalCatcher::caught() != 0;
+  run.status = out.interrupted ? "interrupted" : r.complete ? "complete" : "incomplete";
+  run.solutions = r.solutions;
+  run.orbits = r.orbits;
+  run.nodes = r.nodes;
+  run.seconds = r.seconds;
+  db.finish_run(run);
+  out.stored = sink.added();
+  if (out.method == "search" && !o.checkpoint_path.empty()) out.checkpoint = o.checkpoint_path;
+  if (!r.found.empty())
+    if (auto sym = PackingSymmetry::for_problem(problem)) {
+      std::uint64_t orbit = 0;
+      sym->canonical(r.found.front(), &orbit);
+      out.orbit_size = orbit;
+    }
+  if (mode == SearchMode::First && r.found.empty())
+    out.not_found = r.complete
+                        ? (a.impose.empty() ? "no packing exists (the search space was exhausted)"
+                                            : "no packing is invariant under the imposed group (its subspace was "
+                                              "exhausted)")
+                    : out.portfolio.is_object() && !out.interrupted && !r.timed_out
+                        ? "no packing in the portfolio's subspaces (each candidate was exhausted)"
+                        : "no packing found within the time limit";
+  return out;
+}
+
+nlohmann::json portfolio_report(const std::vector<std::string>& stats_files, const std::string& kind,
+                                std::int64_t colours, const std::string& out) {
+  std::vector<std::string> paths = stats_files;
+  if (paths.empty()) paths.push_back(PortfolioStats::default_path());
+  PortfolioStats sum;
+  for (const auto& p : paths) sum.merge(PortfolioStats::load(p));
+  if (!out.empty()) sum.save(out);
+  nlohmann::json rows = nlohmann::json::array();
+  const nlohmann::json report = sum.report();
+  for (const auto& row : report["groups"]) {
+    if (!kind.empty() && row["kind"] != kind) continue;
+    if (colours && row["colors"] != colours) continue;
+    rows.push_back(row);
+  }
+  nlohmann::json j = {{"stats", paths.size() == 1 ? nlohmann::json(paths[0]) : nlohmann::json(paths)},
+                      {"groups", rows}};
+  if (!out.empty()) j["out"] = out;
+  return j;
+}
+
+}  // namespace tilekit

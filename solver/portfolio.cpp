@@ -1,0 +1,343 @@
+// The portfolio: candidate subspace searches in doubling time slices over solve(), resumable
+// and shardable (portfolio.hpp).
+#include "solver/portfolio.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <numeric>
+#include <set>
+
+#include "base/error.hpp"
+#include "base/signals.hpp"
+#include "solver/impose_domain.hpp"
+
+namespace tilekit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Colours as digits of a mixed radix (k1, k2, rest): pi_1 adds 1 to the first digit, pi_2 to
+// the second. With k2 = 1 this is C/k1 disjoint k1-cycles (0 1 .. k1-1)(k1 .. 2k1-1)...
+std::string block_cycles(std::uint32_t c, std::uint32_t k, std::uint32_t stride) {
+  std::vector<std::uint32_t> p(c);
+  for (std::uint32_t x = 0; x < c; ++x) {
+    std::uint32_t digit = (x / stride) % k;
+    p[x] = x - digit * stride + ((digit + 1) % k) * stride;
+  }
+  return fmt::format("{}", fmt::join(p, ","));
+}
+
+bool valid_spec(TileKind kind, std::uint32_t colours, const std::string& spec) {
+  try {
+    TilingProblem p = complete_packing_problem(kind, colours);
+    build_group(p, spec);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> candidate_groups(TileKind kind, std::uint32_t colours) {
+  const std::uint32_t C = colours, K = C * C;
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  auto add = [&](const std::string& spec) {
+    if (seen.insert(spec).second && valid_spec(kind, C, spec)) out.push_back(spec);
+  };
+  std::vector<std::uint32_t> divisors;
+  for (std::uint32_t k = C; k >= 2; --k)
+    if (C % k == 0) divisors.push_back(k);
+  const bool wang = kind == TileKind::Wang;
+  // One generator: translation (K/k)(i, j) of order k with C/k disjoint k-cycles.
+  for (std::uint32_t k : divisors) {
+    std::string pi = block_cycles(C, k, 1);
+    std::uint32_t s = K / k;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> dirs = {{0, 1}, {1, 1}, {1, 2}, {1, 3}};
+    for (auto [i, j] : dirs) {
+      if (j >= k && !(i == 0 && j == 1) && !(i == 1 && j == 1)) continue;
+      if (std::gcd(std::gcd(i, j), k) != 1) continue;
+      add(fmt::format("t={},{}:pi={}", s * i % K, s * j % K, pi));
+      if (wang) add(fmt::format("t={},{}:pih={}", s * i % K, s * j % K, pi));
+    }
+  }
+  // Two generators with commuting permutations acting on different digits.
+  for (std::uint32_t k1 : divisors)
+    for (std::uint32_t k2 : divisors) {
+      if (C % (k1 * k2) != 0) continue;
+      std::string p1 = block_cycles(C, k1, 1), p2 = block_cycles(C, k2, k1);
+      add(fmt::format("t=0,{}:pi={};t={},0:pi={}", K / k1, p1, K / k2, p2));
+      add(fmt::format("t=0,{}:pi={};t={},{}:pi={}", K / k1, p1, K / k2, K / k2, p2));
+    }
+  if (wang) {
+    // One generator per edge direction: a group of order k^2 (up to C^2 for k = C).
+    for (std::uint32_t k : divisors) {
+      std::string pi = block_cycles(C, k, 1);
+      add(fmt::format("t=0,{}:pih={};t={},0:piv={}", K / k, pi, K / k, pi));
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> default_candidates(TileKind kind, std::uint32_t colours) {
+  std::vector<std::string> out = candidate_groups(kind, colours);
+  out.push_back(kPlainSearch);
+  return out;
+}
+
+// ---- the candidate families ----------------------------------------------------------------
+// A family turns a name into a runnable subspace search. To add one (e.g. "lift:M" for
+// colour-quotient lifts), write its maker and add a row to kFamilies: the portfolio, its
+// checkpoints, shards and statistics then take it like the others (solver/README.md).
+namespace {
+
+SearchResult run_plain(const TilingProblem& p, SearchOptions o) {
+  return solve(p, o);
+}
+
+Candidate make_plain(const TilingProblem&, const std::string& name, const std::string&) {
+  return {name, "plain", "", true, true, run_plain};
+}
+
+Candidate make_impose(const TilingProblem& problem, const std::string& name, const std::string& spec) {
+  const std::string group = build_group(problem, spec).spec_text();  // InputError for a bad group
+  auto run = [spec](const TilingProblem& p, SearchOptions o) {
+    o.impose = spec;
+    return solve(p, o);
+  };
+  return {name, "impose", group, true, true, run};
+}
+
+Candidate make_sat(const TilingProblem& problem, const std::string& name, const std::string& spec) {
+  const std::string group = build_group(problem, spec).spec_text();
+  auto run = [spec](const TilingProblem& p, SearchOptions o) {
+    o.impose = spec;
+    o.formulation = "sat";
+    o.shard_index = 0, o.shard_count = 1;  // a sat candidate runs in one shard (see run_portfolio)
+    o.save_checkpoint = nullptr;
+    o.resume_state.reset();
+    return solve(p, o);
+  };
+  return {name, "sat", group, false, false, run};
+}
+
+struct Family {
+  const char* prefix;  // a name starting with it belongs to the family (the rest is its argument)
+  bool exact;          // the name is the prefix itself
+  Candidate (*make)(const TilingProblem&, const std::string& name, const std::string& arg);
+};
+
+constexpr Family kFamilies[] = {
+    {"plain", true, make_plain},
+    {"impose:", false, make_impose},
+    {"sat:", false, make_sat},
+};
+
+}  // namespace
+
+Candidate make_candidate(const TilingProblem& problem, const std::string& name) {
+  for (const Family& f : kFamilies) {
+    const std::string prefix = f.prefix;
+    if (f.exact ? name == prefix : name.rfind(prefix, 0) == 0) return f.make(problem, name, name.substr(prefix.size()));
+  }
+  if (name.find('=') != std::string::npos) return make_impose(problem, name, name);  // a bare group spec
+  throw InputError(fmt::format("unknown portfolio candidate '{}' (plain, SPEC, impose:SPEC or sat:SPEC)", name));
+}
+
+// ---- the scheduler -----------------------------------------------------------------------
+std::string portfolio_fingerprint(const TilingProblem& problem, const SearchOptions& options,
+                                  const PortfolioOptions& portfolio) {
+  SearchOptions base;
+  base.mode = SearchMode::First;
+  base.seed = options.seed;
+  base.shard_index = options.shard_index;
+  base.shard_count = options.shard_count;
+  std::vector<std::string> names = portfolio.candidates.empty()
+                                       ? default_candidates(problem.set.kind(), problem.set.colours())
+                                       : portfolio.candidates;
+  std::sort(names.begin(), names.end());
+  nlohmann::json j = nlohmann::json::parse(search_fingerprint(problem, base));
+  for (const char* k : {"formulation", "ordering", "restarts", "restart_base", "subproblems"}) j.erase(k);
+  j["portfolio"] = 1;
+  j["candidates"] = names;
+  j["first_slice"] = portfolio.first_slice;
+  return j.dump();
+}
+
+namespace {
+
+class Scheduler {
+ public:
+  Scheduler(const TilingProblem& p, const SearchOptions& o, const PortfolioOptions& po) : p_(p), o_(o), po_(po) {}
+
+  PortfolioResult run();
+
+ private:
+  void save() {
+    if (!po_.save_checkpoint) return;
+    state_.seconds = prior_seconds_ + elapsed();
+    po_.save_checkpoint(state_);
+    ++out_.checkpoints;
+  }
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  void start();
+  bool mine(std::size_t i) const {  // a candidate that cannot be split runs in one shard
+    return candidates_[i].splittable || i % std::size_t(o_.shard_count) == std::size_t(o_.shard_index);
+  }
+  void slice(std::size_t i, double seconds);
+
+  const TilingProblem& p_;
+  const SearchOptions& o_;
+  const PortfolioOptions& po_;
+  PortfolioState state_;
+  std::vector<Candidate> candidates_;
+  PortfolioStats fresh_;  // this run's slices, merged into the statistics file at the end
+  PortfolioResult out_;
+  Clock::time_point t0_ = Clock::now();
+  double prior_seconds_ = 0;
+};
+
+void Scheduler::start() {
+  const std::string fp = portfolio_fingerprint(p_, o_, po_);
+  if (po_.resume_state) {
+    state_ = *po_.resume_state;
+    if (state_.fingerprint != fp)
+      throw InputError("checkpoint does not match this portfolio (different problem, seed, shard or candidates)");
+    prior_seconds_ = state_.seconds;
+  } else {
+    std::vector<std::string> names =
+        po_.candidates.empty() ? default_candidates(p_.set.kind(), p_.set.colours()) : po_.candidates;
+    if (!po_.stats_path.empty() && po_.stats_path != "-")  // learned order first
+      names = PortfolioStats::load(po_.stats_path).order(p_.set.kind(), p_.set.colours(), names);
+    state_.fingerprint = fp;
+    for (const auto& n : names) state_.candidates.push_back({n, false, 0, 0, 0, std::nullopt});
+  }
+  std::set<std::string> seen;
+  for (const auto& c : state_.candidates) {
+    if (!seen.insert(c.name).second) throw InputError(fmt::format("portfolio candidate '{}' is listed twice", c.name));
+    candidates_.push_back(make_candidate(p_, c.name));
+  }
+  if (candidates_.empty()) throw InputError("the portfolio has no candidates");
+}
+
+void Scheduler::slice(std::size_t i, double seconds) {
+  PortfolioCandidateState& cs = state_.candidates[i];
+  const Candidate& cand = candidates_[i];
+  SearchOptions o = o_;
+  o.mode = SearchMode::First;
+  o.time_limit = seconds;
+  o.title = fmt::format("portfolio {} round {}", cand.name, state_.round);
+  o.estimate_probes = 0;
+  o.save_checkpoint = nullptr;
+  o.resume_state.reset();
+  if (cand.resumable) {
+    o.resume_state = cs.engine;
+    o.checkpoint_every = po_.checkpoint_every;
+    o.save_checkpoint = [this, i](const SearchState& st) {
+      state_.candidates[i].engine = st;
+      save();
+    };
+  }
+  SearchResult r = cand.run(p_, o);
+  assert(r.found.size() <= 1);
+  cs.slices += 1;
+  cs.nodes += r.nodes;
+  cs.seconds += r.seconds;
+  out_.nodes += r.nodes;
+  const bool success = !r.found.empty();
+  // A slice cut short by a signal says nothing about the candidate.
+  if (!r.interrupted) fresh_.record(p_.set.kind(), p_.set.colours(), cand.name, success, r.seconds);
+  if (success) {
+    out_.found = true;
+    out_.winner = cand.name;
+    out_.result = std::move(r);
+    return;
+  }
+  if (r.complete) cs.empty = true;  // exhausted without a solution: never scheduled again
+  if (r.interrupted) {
+    out_.interrupted = true;
+    out_.signal = r.signal;
+  }
+}
+
+PortfolioResult Scheduler::run() {
+  start();
+  save();  // the first checkpoint, before any work
+  for (;;) {
+    if (o_.catch_signals && SignalCatcher::caught()) {
+      out_.interrupted = true;
+      out_.signal = SignalCatcher::caught();
+      break;
+    }
+    bool live = false;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) live = live || (mine(i) && !state_.candidates[i].empty);
+    if (!live) {
+      out_.complete = true;
+      break;
+    }
+    if (state_.next >= candidates_.size()) {
+      ++state_.round;
+      state_.next = 0;
+      continue;
+    }
+    const std::size_t i = std::size_t(state_.next);
+    if (!mine(i) || state_.candidates[i].empty) {
+      ++state_.next;
+      continue;
+    }
+    double seconds = po_.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(state_.round, 20));
+    if (o_.time_limit > 0) {
+      const double left = o_.time_limit - elapsed();
+      if (left <= 0) {
+        out_.timed_out = true;
+        break;
+      }
+      seconds = std::min(seconds, left);
+    }
+    slice(i, seconds);
+    if (out_.found || out_.interrupted) break;
+    ++state_.next;
+    save();
+  }
+  save();
+  out_.seconds = elapsed();
+  out_.total_seconds = prior_seconds_ + out_.seconds;
+  out_.nodes = 0;
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    const auto& cs = state_.candidates[i];
+    out_.nodes += cs.nodes;
+    if (cs.slices == 0) continue;
+    out_.runs.push_back({{"group", cs.name},
+                         {"tries", cs.slices},
+                         {"nodes", cs.nodes},
+                         {"seconds", cs.seconds},
+                         {"found", out_.found && out_.winner == cs.name},
+                         {"empty", cs.empty}});
+  }
+  if (!po_.stats_path.empty() && po_.stats_path != "-") {
+    PortfolioStats latest = PortfolioStats::load(po_.stats_path);  // others may have written meanwhile
+    latest.merge(fresh_);
+    latest.save(po_.stats_path);
+  }
+  return out_;
+}
+
+}  // namespace
+
+PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
+                              const PortfolioOptions& portfolio) {
+  if (options.mode != SearchMode::First) throw InputError("the portfolio finds one packing: use it with --mode first");
+  if (portfolio.first_slice <= 0) throw InputError("the portfolio's first slice must be positive");
+  PortfolioOptions po = portfolio;
+  if (po.stats_path.empty()) po.stats_path = PortfolioStats::default_path();
+  std::optional<SignalCatcher> signals;
+  if (options.catch_signals) signals.emplace();
+  return Scheduler(problem, options, po).run();
+}
+
+}  // namespace tilekit
