@@ -29,7 +29,8 @@ TileSet torus_with_decoys(int p, int q, int decoys, std::uint64_t seed) {
     if (seen.insert(t).second) tiles.push_back(t);
   }
   return TileSet::wang(tiles, fmt::format("torus-{}x{}+{}", p, q, decoys),
-                       fmt::format("{} x {} torus tiles and {} decoys (seed {})", p, q, decoys, seed), Colour(c), Colour(c));
+                       fmt::format("{} x {} torus tiles and {} decoys (seed {})", p, q, decoys, seed), Colour(c),
+                       Colour(c));
 }
 
 }  // namespace tilekit

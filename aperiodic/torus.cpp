@@ -1,7 +1,5 @@
 // The torus route of `aperiodic verify` (aperiodic/verify.hpp): periodic tilings as p x q torus
 // tilings found by the solver, and bounded n x n squares, within a deadline.
-#include "aperiodic/verify.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,11 +8,12 @@
 #include <map>
 #include <mutex>
 
-#include "solver/solve.hpp"
 #include "aperiodic/rows.hpp"
+#include "aperiodic/verify.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -102,23 +101,26 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
     std::mutex err_mutex;
     std::string error;
     ProgressReporter progress(fmt::format("verify {}", set.name()), double(list.size()), opts.progress);
-    parallel_for(std::int64_t(list.size()), res.threads, [&](std::int64_t i) {
-      const std::size_t k = std::size_t(i);
-      if (k > best.load() || out_of_time()) return;  // a smaller witness is known, or time is up
-      try {
-        outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
-        nodes += outcomes[k].nodes;
-        if (outcomes[k].found) {
-          std::size_t cur = best.load();
-          while (k < cur && !best.compare_exchange_weak(cur, k)) {
+    parallel_for(
+        std::int64_t(list.size()), res.threads,
+        [&](std::int64_t i) {
+          const std::size_t k = std::size_t(i);
+          if (k > best.load() || out_of_time()) return;  // a smaller witness is known, or time is up
+          try {
+            outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
+            nodes += outcomes[k].nodes;
+            if (outcomes[k].found) {
+              std::size_t cur = best.load();
+              while (k < cur && !best.compare_exchange_weak(cur, k)) {
+              }
+            }
+          } catch (const std::exception& e) {
+            std::lock_guard<std::mutex> lock(err_mutex);
+            error = e.what();
           }
-        }
-      } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(err_mutex);
-        error = e.what();
-      }
-      progress.add(1);
-    }, &stop);
+          progress.add(1);
+        },
+        &stop);
     progress.finish();
     if (!error.empty()) throw InputError(error);
     best_index = best.load();
@@ -137,19 +139,25 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
     std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
     auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
     if (opts.transducer_filter) {
-      parallel_for(P, res.threads, [&](std::int64_t i) {  // longest period first
-        const int q = P - int(i);
-        if (!out_of_time()) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true);
-      }, &stop);
+      parallel_for(
+          P, res.threads,
+          [&](std::int64_t i) {  // longest period first
+            const int q = P - int(i);
+            if (!out_of_time()) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true, 2'000'000, deadline);
+          },
+          &stop);
     }
     // Columns matter only when some horizontal period survived.
     bool any_row = false;
     for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
     if (any_row && opts.transducer_filter) {
-      parallel_for(P, res.threads, [&](std::int64_t i) {
-        const int p = P - int(i);
-        if (!out_of_time()) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false);
-      }, &stop);
+      parallel_for(
+          P, res.threads,
+          [&](std::int64_t i) {
+            const int p = P - int(i);
+            if (!out_of_time()) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false, 2'000'000, deadline);
+          },
+          &stop);
     }
     for (int q = 1; q <= P; ++q) {
       res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);
@@ -159,11 +167,15 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
     }
     std::vector<std::pair<int, int>> rest;
     for (auto [p, q] : large) {
-      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)])) ++res.shapes_excluded;
-      else rest.emplace_back(p, q);
+      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)]))
+        ++res.shapes_excluded;
+      else
+        rest.emplace_back(p, q);
     }
-    if (!out_of_time()) found = search_shapes(rest);
-    else res.shapes_incomplete += rest.size();
+    if (!out_of_time())
+      found = search_shapes(rest);
+    else
+      res.shapes_incomplete += rest.size();
   }
   res.nodes = nodes.load();
 
@@ -208,9 +220,12 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
   }
 
   if (res.verdict.empty()) {
-    if (opts.max_square > 0 && !square_incomplete && !res.square_tileable) res.verdict = "finite";
-    else if (res.shapes_incomplete > 0) res.verdict = "inconclusive";
-    else res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
+    if (opts.max_square > 0 && !square_incomplete && !res.square_tileable)
+      res.verdict = "finite";
+    else if (res.shapes_incomplete > 0)
+      res.verdict = "inconclusive";
+    else
+      res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
   }
   res.route = res.verdict == "periodic" || res.verdict == "finite" ? "torus" : "";
   res.torus_verdict = res.verdict;

@@ -170,7 +170,6 @@ PortfolioState portfolio_from(const nlohmann::json& j) {
   return ps;
 }
 
-
 }  // namespace
 
 std::string encode_checkpoint(const CheckpointFile& f) {
@@ -198,14 +197,16 @@ std::string_view open_checkpoint(std::string_view text, std::string_view magic, 
   auto eol1 = text.find('\n');
   if (eol1 == std::string_view::npos || text.substr(0, magic.size()) != magic || text.size() <= magic.size() ||
       text[magic.size()] != ' ')
-    throw bad("not a Tilekit checkpoint file" + (magic == kMagic ? std::string() : fmt::format(" of this kind ({})", magic)));
+    throw bad("not a Tilekit checkpoint file" +
+              (magic == kMagic ? std::string() : fmt::format(" of this kind ({})", magic)));
   std::string ver(text.substr(magic.size() + 1, eol1 - magic.size() - 1));
   int version = 0;
   auto [p, ec] = std::from_chars(ver.data(), ver.data() + ver.size(), version);
   if (ec != std::errc() || p != ver.data() + ver.size() || version < oldest || version > newest)
-    throw bad(oldest == newest ? fmt::format("format version {} is not supported (this build reads version {})", ver, newest)
-                               : fmt::format("format version {} is not supported (this build reads versions {} to {})",
-                                             ver, oldest, newest));
+    throw bad(oldest == newest
+                  ? fmt::format("format version {} is not supported (this build reads version {})", ver, newest)
+                  : fmt::format("format version {} is not supported (this build reads versions {} to {})", ver, oldest,
+                                newest));
   if (version_read) *version_read = version;
   auto eol2 = text.find('\n', eol1 + 1);
   if (eol2 == std::string_view::npos) throw bad("truncated (no header)");

@@ -85,8 +85,10 @@ TEST(KnownSets, NoAperiodicSetIsEverPeriodicOrFinite) {
   for (const std::string& name : published_aperiodic_sets()) sets.push_back(resolve_tile_set(name));
   for (const char* v : {"jeandel-rao-11-variant-2", "jeandel-rao-11-variant-3"}) sets.push_back(resolve_tile_set(v));
   // The thesis' sound conversions (conjugate, or lifts after pruning) and the smallest chain.
-  for (auto [name, m] : {std::pair{"culik-13", ConversionMethod::Diagonal}, {"kari-14", ConversionMethod::Vertical},
-                         {"labbe-19", ConversionMethod::Vertical}, {"ammann-gs-16", ConversionMethod::Rotation},
+  for (auto [name, m] : {std::pair{"culik-13", ConversionMethod::Diagonal},
+                         {"kari-14", ConversionMethod::Vertical},
+                         {"labbe-19", ConversionMethod::Vertical},
+                         {"ammann-gs-16", ConversionMethod::Rotation},
                          {"jeandel-rao-11", ConversionMethod::Subdivision}}) {
     LabelledConversion c = build_conversion(resolve_tile_set(name), {m, {}, -1});
     ASSERT_TRUE(c.soundness == Soundness::Conjugate || c.soundness == Soundness::Lifts) << name;
