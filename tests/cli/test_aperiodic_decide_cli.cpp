@@ -85,6 +85,19 @@ TEST(AperiodicDecideCli, TheTimeLimitHoldsAndUnknownSaysHowFarItGot) {
   EXPECT_GT(j["k"].get<int>(), 5);
   EXPECT_LT(j["seconds"].get<double>(), 2.0);  // within max(1 s, 10%) of the limit
   EXPECT_LT(wall, 10.0);                       // the process, start-up included (a loaded machine)
+  // Every other route, and convert --verify, within the same bound (the torus route's row
+  // filter once ran 90 s past a 1 s limit at --max-period 64).
+  for (const char* route : {"torus", "both", "auto"}) {
+    auto o = run_cli(
+        std::string("aperiodic verify jeandel-rao-11 --max-period 64 --time-limit 1 --quiet --json --route ") + route);
+    ASSERT_EQ(o.code, 0) << route << o.err;
+    EXPECT_LT(o.json()["seconds"].get<double>(), 2.0) << route;
+    EXPECT_NE(o.json()["verdict"], "periodic") << route;
+  }
+  auto c0 = std::chrono::steady_clock::now();
+  auto c = run_cli("aperiodic convert kari-14 --method vertical --verify 64 --time-limit 1 --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count(), 10.0);
 }
 
 TEST(AperiodicDecideCli, BadInputIsExit2AndAHugeSetAResult) {
