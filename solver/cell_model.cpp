@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <numeric>
 
 #include "base/error.hpp"
@@ -73,6 +74,8 @@ CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering or
     if (p.torus && p.rows == 1 && l[kN] != l[kS]) t->self_ok[std::size_t(k)] = 0;
     if (p.torus && p.cols == 1 && l[kE] != l[kW]) t->self_ok[std::size_t(k)] = 0;
   }
+  // Every label is in range, so the masks below are indexed within bounds.
+  assert(std::all_of(t->tile_label.begin(), t->tile_label.end(), [&](int l) { return l >= 0 && l < t->labels; }));
   fixed_ = break_translation_ ? 1 : 0;
   for (int c = fixed_; c < cells_; ++c) t->order.push_back(c);  // scanline from (0,0)
   t_ = std::move(t);
@@ -186,12 +189,18 @@ int CellModel::branch(std::vector<int>& values) {
       domain(cell, dom);
     }
   }
+  assert(cell >= 0 && tile_[std::size_t(cell)] < 0);  // branch on a free cell only
   for (int w = 0; w < words_; ++w)
     for (std::uint64_t x = dom[w]; x; x &= x - 1) values.push_back(w * 64 + std::countr_zero(x));
   return cell;
 }
 
 bool CellModel::assign(int cell, int v) {
+  // The engine only assigns a free cell a value branch() offered (or the fixed tile): an
+  // unplaced tile of the set, still available when the problem is a packing.
+  assert(cell >= 0 && cell < cells_ && tile_[std::size_t(cell)] < 0);
+  assert(v >= 0 && v < tiles_);
+  assert(!packing_ || (avail_[std::size_t(v / 64)] >> (v % 64) & 1) || (break_translation_ && assigned_ == 0));
   tile_[std::size_t(cell)] = v;
   ++assigned_;
   if (packing_) avail_[std::size_t(v / 64)] &= ~(std::uint64_t(1) << (v % 64));
@@ -205,6 +214,7 @@ bool CellModel::assign(int cell, int v) {
 }
 
 void CellModel::unassign(int cell, int v) {
+  assert(cell >= 0 && cell < cells_ && tile_[std::size_t(cell)] == v && assigned_ > 0);  // LIFO undo
   tile_[std::size_t(cell)] = -1;
   --assigned_;
   if (packing_) avail_[std::size_t(v / 64)] |= std::uint64_t(1) << (v % 64);
