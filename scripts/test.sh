@@ -6,6 +6,8 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh"
+# setup.sh installed Mesa's EGL: the GLSL-vs-CPU tests must run (fail, not skip, without a context).
+export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)" "$@")
 if [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then
   echo "test.sh: the real-Slurm test was SKIPPED (TILEKIT_SKIP_SLURM=1)" >&2

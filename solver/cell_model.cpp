@@ -1,8 +1,8 @@
 #include "solver/cell_model.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <bit>
+#include <cassert>
 #include <numeric>
 
 #include "base/error.hpp"
@@ -91,6 +91,8 @@ CellModel::CellModel(const TilingProblem& p, bool break_translation, Ordering or
     t->class_cells.insert(t->class_cells.end(), m.begin(), m.end());
     t->class_start.push_back(int(t->class_cells.size()));
   }
+  // Every label is in range, so the masks below are indexed within bounds.
+  assert(std::all_of(t->tile_label.begin(), t->tile_label.end(), [&](int l) { return l >= 0 && l < t->labels; }));
   fixed_ = break_translation_ ? 1 : 0;
   // Most constrained first keeps its frontier sorted by domain size when an assignment changes
   // few domains: tilings (neighbours only) and packings with small classes (lifts); a plain
@@ -225,6 +227,7 @@ int CellModel::branch(std::vector<int>& values) {
       domain(cell, dom);
     }
   }
+  assert(cell >= 0 && tile_[std::size_t(cell)] < 0);  // branch on a free cell only
   for (int w = 0; w < words_; ++w)
     for (std::uint64_t x = dom[w]; x; x &= x - 1) values.push_back(w * 64 + std::countr_zero(x));
   return cell;
@@ -232,6 +235,11 @@ int CellModel::branch(std::vector<int>& values) {
 
 bool CellModel::assign(int cell, int v) {
   const Tables& t = *t_;
+  // The engine only assigns a free cell a value branch() offered (or the fixed tile): an
+  // unplaced tile of the set, still available when the problem is a packing.
+  assert(cell >= 0 && cell < cells_ && tile_[std::size_t(cell)] < 0);
+  assert(v >= 0 && v < tiles_);
+  assert(!packing_ || (avail_[std::size_t(t.cls[std::size_t(cell)] * words_ + v / 64)] >> (v % 64) & 1) || (break_translation_ && assigned_ == 0));
   tile_[std::size_t(cell)] = v;
   ++assigned_;
   while (first_free_ < cells_ && tile_[std::size_t(first_free_)] >= 0) ++first_free_;
@@ -253,6 +261,7 @@ bool CellModel::assign(int cell, int v) {
 }
 
 void CellModel::unassign(int cell, int v) {
+  assert(cell >= 0 && cell < cells_ && tile_[std::size_t(cell)] == v && assigned_ > 0);  // LIFO undo
   tile_[std::size_t(cell)] = -1;
   --assigned_;
   first_free_ = std::min(first_free_, cell);

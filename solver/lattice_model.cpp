@@ -68,7 +68,10 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation, int c
   std::size_t total = 1;
   for (int d : t->digit_radix) total *= std::size_t(d);
   t->allowed.assign(total, -1);
-  for (std::size_t k = 0; k < set.size(); ++k) t->allowed[set.index_of(k)] = int(k);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    assert(set.index_of(k) < total);  // a tile's index is its digits in the radices above
+    t->allowed[set.index_of(k)] = int(k);
+  }
   // var -> cells (CSR)
   std::vector<std::vector<int>> vc(std::size_t(t->vars));
   for (int cell = 0; cell < cells_; ++cell)
@@ -145,6 +148,7 @@ bool LatticeModel::cell_has_option(int cell) const {
   int free_var = -1;
   for (int v : cv)
     if (value_[std::size_t(v)] < 0) free_var = v;
+  assert(free_var >= 0);  // called only for a cell with exactly one distinct free variable
   for (int x = 0; x < t.radix[std::size_t(free_var)]; ++x) {
     int i = 0;
     for (int d = 0; d < 4; ++d) {
@@ -169,6 +173,9 @@ int LatticeModel::branch(std::vector<int>& values) {
 
 bool LatticeModel::assign(int var, int x) {
   const Tables& t = *t_;
+  // A free variable gets a colour within its radix (the engine's LIFO discipline).
+  assert(var >= 0 && var < t.vars && value_[std::size_t(var)] < 0);
+  assert(x >= 0 && x < t.radix[std::size_t(var)]);
   value_[std::size_t(var)] = x;
   ++assigned_;
   bool ok = true;
@@ -192,12 +199,14 @@ bool LatticeModel::assign(int var, int x) {
 }
 
 void LatticeModel::unassign(int var, int x) {
-  (void)x;
   const Tables& t = *t_;
+  assert(var >= 0 && var < t.vars && value_[std::size_t(var)] == x && assigned_ > 0);  // LIFO undo
+  (void)x;
   const int* b = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(var)])];
   const int* e = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(var) + 1])];
   for (const int* c = b; c != e; ++c) {
     if (missing_[std::size_t(*c)] == 0 && marked_[std::size_t(*c)]) {
+      assert(used_[std::size_t(t.used_base[std::size_t(*c)] + t.allowed[std::size_t(cell_index(*c))])]);  // marked cells own their tile
       used_[std::size_t(t.used_base[std::size_t(*c)] + t.allowed[std::size_t(cell_index(*c))])] = 0;
       marked_[std::size_t(*c)] = 0;
     }

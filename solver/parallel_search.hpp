@@ -15,6 +15,11 @@
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
 //    The first checkpoint is written before any work, so a run killed at once can resume.
+//
+// Over 400 lines on purpose: ParallelSearch is one class template whose workers, monitor,
+// progress and checkpoint writer share its state (counters, the subproblem cursor, the stop
+// token); split across files it would be read in pieces. The subproblem split is in
+// subproblems.hpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,7 +36,6 @@
 #include <vector>
 
 #include "base/error.hpp"
-#include "base/hash.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/signals.hpp"
@@ -41,6 +45,7 @@
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
 #include "solver/solve.hpp"
+#include "solver/subproblems.hpp"
 
 namespace tilekit {
 
@@ -74,50 +79,6 @@ struct ParallelOutcome {
   std::size_t checkpoints_written = 0;
   TreeEstimate estimate;
 };
-
-// A subproblem list is a deterministic function of the model and the target.
-template <SearchModel M>
-std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t target, std::uint64_t& nodes) {
-  std::vector<std::vector<Decision>> level{{}};
-  std::vector<int> values;
-  for (;;) {
-    std::vector<std::vector<Decision>> next;
-    bool expanded = false;
-    for (std::size_t i = 0; i < level.size(); ++i) {
-      if (next.size() + (level.size() - i) >= target) {  // enough: keep the rest unexpanded
-        next.insert(next.end(), level.begin() + std::ptrdiff_t(i), level.end());
-        break;
-      }
-      M m = root;
-      for (const Decision& d : level[i]) m.assign(d.var, d.value);
-      int var = m.branch(values);
-      if (var < 0) {
-        next.push_back(level[i]);
-        continue;
-      }
-      expanded = true;
-      ++nodes;
-      for (int v : values) {
-        if (m.assign(var, v)) {
-          next.push_back(level[i]);
-          next.back().push_back({var, v});
-        }
-        m.unassign(var, v);
-      }
-    }
-    level = std::move(next);
-    if (!expanded || level.size() >= target || level.empty()) return level;
-  }
-}
-
-inline std::uint64_t hash_subproblems(const std::vector<std::vector<Decision>>& subs) {
-  StableHash h;
-  for (const auto& s : subs) {
-    h.add(s.size());
-    for (const Decision& d : s) h.add(std::uint64_t(std::uint32_t(d.var)) << 32 | std::uint32_t(d.value));
-  }
-  return h.fnv();
-}
 
 template <SearchModel M>
 class ParallelSearch {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <set>
 
 #include "base/error.hpp"
@@ -54,17 +55,17 @@ TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::st
 }
 
 void TileSet::check_distinct() const {
-  std::vector<TileIndex> idx(size());
-  for (std::size_t k = 0; k < size(); ++k) idx[k] = index_of(k);
-  std::vector<TileIndex> sorted = idx;
-  std::sort(sorted.begin(), sorted.end());
-  auto dup = std::adjacent_find(sorted.begin(), sorted.end());
-  if (dup != sorted.end()) {
-    auto first = std::find(idx.begin(), idx.end(), *dup) - idx.begin();
-    auto second = std::find(idx.begin() + first + 1, idx.end(), *dup) - idx.begin();
-    throw InputError(fmt::format("duplicate tile: tile {} repeats tile {} ({})", second + 1, first + 1,
-                                 fmt::join(file_colours(first), " ")));
+  // Compared by colours, not by index: 32-bit indices of large colours can coincide.
+  std::vector<std::pair<std::array<Colour, 4>, std::size_t>> tiles(size());
+  for (std::size_t k = 0; k < size(); ++k) {
+    auto c = file_colours(k);
+    tiles[k] = {{c[0], c[1], c[2], c[3]}, k};
   }
+  std::sort(tiles.begin(), tiles.end());
+  auto dup = std::adjacent_find(tiles.begin(), tiles.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
+  if (dup != tiles.end())
+    throw InputError(fmt::format("duplicate tile: tile {} repeats tile {} ({})", dup[1].second + 1, dup[0].second + 1,
+                                 fmt::join(file_colours(dup[0].second), " ")));
 }
 
 const std::vector<WangTile>& TileSet::wang_tiles() const {

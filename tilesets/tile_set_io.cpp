@@ -21,8 +21,27 @@ namespace {
 
 constexpr std::int64_t kMaxColour = 1 << 24;
 
-TileSet make_set(TileKind kind, const std::vector<std::array<std::int64_t, 4>>& rows, std::string name,
-                 std::string source, std::int64_t declared) {
+TileSet make_set(TileKind kind, std::vector<std::array<std::int64_t, 4>> rows, std::string name, std::string source,
+                 std::int64_t declared, const std::vector<std::string>& where, std::vector<RepeatedTile>* repeated) {
+  if (repeated) {  // keep the first of equal tiles, report the others
+    std::vector<std::size_t> order(rows.size()), first_of(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rows[a] < rows[b]; });
+    for (std::size_t i = 0; i < order.size(); ++i)
+      first_of[order[i]] = i > 0 && rows[order[i]] == rows[order[i - 1]] ? first_of[order[i - 1]] : order[i];
+    std::vector<std::array<std::int64_t, 4>> distinct;
+    std::vector<std::size_t> position(rows.size());  // of each first occurrence among the distinct tiles
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (first_of[k] == k) {
+        position[k] = distinct.size();
+        distinct.push_back(rows[k]);
+      } else {
+        const auto& r = rows[k];
+        repeated->push_back({where[k], position[first_of[k]], {Colour(r[0]), Colour(r[1]), Colour(r[2]), Colour(r[3])}});
+      }
+    }
+    rows = std::move(distinct);
+  }
   if (kind == TileKind::Wang) {
     std::vector<WangTile> tiles;
     for (auto& r : rows)  // file order: n s w e
@@ -45,11 +64,12 @@ std::int64_t check_colour(std::int64_t v, std::int64_t declared, const std::stri
   return v;
 }
 
-TileSet parse_text(std::string_view text, const std::string& origin) {
+TileSet parse_text(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   TileKind kind = TileKind::Wang;
   std::int64_t declared = 0;
   std::string source;
   std::vector<std::array<std::int64_t, 4>> rows;
+  std::vector<std::string> where_of;  // "origin:line" of each tile
   std::istringstream in{std::string(text)};
   std::string line;
   int lineno = 0;
@@ -61,21 +81,22 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     ++lineno;
     const std::string where = fmt::format("{}:{}", origin, lineno);
     std::smatch m;
-    if (std::regex_match(line, m, kind_re)) {
+    const bool comment = line.find_first_not_of(" \t") != std::string::npos && line[line.find_first_not_of(" \t")] == '#';
+    if (comment && std::regex_match(line, m, kind_re)) {
       if (seen_tile) throw InputError(fmt::format("{}: '# kind:' must come before the first tile", where));
       if (m[1] == "corner") kind = TileKind::Corner;
       else if (m[1] == "wang") kind = TileKind::Wang;
       else throw InputError(fmt::format("{}: unknown kind '{}' (expected wang or corner)", where, m[1].str()));
       continue;
     }
-    if (std::regex_match(line, m, colours_re)) {
+    if (comment && std::regex_match(line, m, colours_re)) {
       auto s = m[1].str();
       auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), declared);
       if (ec != std::errc() || p != s.data() + s.size() || declared < 1 || declared > 255)
         throw InputError(fmt::format("{}: colours must be between 1 and 255, got '{}'", where, s));
       continue;
     }
-    if (std::regex_match(line, m, source_re)) {
+    if (comment && std::regex_match(line, m, source_re)) {
       if (source.empty()) source = m[1].str();
       continue;
     }
@@ -97,17 +118,18 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
       row[k] = check_colour(v, declared, where);
     }
     rows.push_back(row);
+    where_of.push_back(where);
     seen_tile = true;
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
   try {
-    return make_set(kind, rows, stem_of(origin), source, declared);
+    return make_set(kind, std::move(rows), stem_of(origin), source, declared, where_of, repeated);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", origin, e.what()));
   }
 }
 
-TileSet parse_json(std::string_view text, const std::string& origin) {
+TileSet parse_json(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -128,6 +150,7 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
   }
   if (!j.contains("tiles") || !j["tiles"].is_array()) throw InputError(fmt::format("{}: missing \"tiles\" array", origin));
   std::vector<std::array<std::int64_t, 4>> rows;
+  std::vector<std::string> where_of;
   for (std::size_t k = 0; k < j["tiles"].size(); ++k) {
     const auto& t = j["tiles"][k];
     const std::string where = fmt::format("{}: tile {}", origin, k + 1);
@@ -138,12 +161,13 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
       row[c] = check_colour(t[c].get<std::int64_t>(), declared, where);
     }
     rows.push_back(row);
+    where_of.push_back(where);
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
   std::string name = j.value("name", stem_of(origin));
   std::string source = j.value("source", std::string());
   try {
-    return make_set(kind, rows, name, source, declared);
+    return make_set(kind, std::move(rows), name, source, declared, where_of, repeated);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", origin, e.what()));
   }
@@ -160,20 +184,20 @@ std::uint32_t parse_count(const std::string& s, const std::string& name) {
 
 }  // namespace
 
-TileSet parse_tile_set(std::string_view text, const std::string& origin) {
+TileSet parse_tile_set(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   auto first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin);
-  return parse_text(text, origin);
+  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin, repeated);
+  return parse_text(text, origin, repeated);
 }
 
-TileSet read_tile_set_file(const std::string& path) {
+TileSet read_tile_set_file(const std::string& path, std::vector<RepeatedTile>* repeated) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such tile-set file", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
   std::stringstream buf;
   buf << in.rdbuf();
-  return parse_tile_set(buf.str(), path);
+  return parse_tile_set(buf.str(), path, repeated);
 }
 
 std::string format_tile_set_text(const TileSet& set) {
@@ -208,7 +232,7 @@ std::vector<BuiltinInfo> builtin_tile_sets() {
   return out;
 }
 
-TileSet resolve_tile_set(const std::string& name) {
+TileSet resolve_tile_set(const std::string& name, std::vector<RepeatedTile>* repeated) {
   static const std::regex family_re(R"(^(complete-wang|complete-corner|compact-wang|compact-wang3|compact-corner)-(\d+)$)");
   static const std::regex mixed_re(R"(^complete-wang-(\d+)x(\d+)$)");
   std::smatch m;
@@ -226,7 +250,7 @@ TileSet resolve_tile_set(const std::string& name) {
   for (const EmbeddedFile& f : reference_data())
     if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name));
   std::error_code ec;
-  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
+  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name, repeated);
   throw InputError(fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
 }
 
