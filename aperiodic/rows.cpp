@@ -1,6 +1,7 @@
 #include "aperiodic/rows.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <deque>
 #include <map>
 #include <string>
@@ -8,7 +9,8 @@
 
 namespace tilekit {
 
-PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows, std::size_t max_rows) {
+PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows, std::size_t max_rows,
+                           std::chrono::steady_clock::time_point deadline) {
   PeriodicRows res;
   if (q < 1) return res;
   // Columns are the rows of the transposed set (n <-> w, s <-> e).
@@ -53,8 +55,10 @@ PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows,
     key.reserve(narrow ? n : n * sizeof(Colour));
     for (std::size_t i = 0; i < n; ++i) {
       Colour c = x[(best + i) % n];
-      if (narrow) key.push_back(char(c));
-      else key.append(reinterpret_cast<const char*>(&c), sizeof c);
+      if (narrow)
+        key.push_back(char(c));
+      else
+        key.append(reinterpret_cast<const char*>(&c), sizeof c);
     }
     return key;
   };
@@ -63,7 +67,12 @@ PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows,
   const std::size_t len = static_cast<std::size_t>(q);
   std::vector<Colour> north(len), south(len);
   std::vector<std::size_t> choice(len, 0), states(len + 1);
-  bool overflow = false;
+  bool overflow = false;  // too many rows, or the deadline passed: nothing is known
+  std::size_t steps = 0;
+  auto past_deadline = [&] {
+    return deadline != std::chrono::steady_clock::time_point::max() && (++steps & 1023) == 0 &&
+           std::chrono::steady_clock::now() >= deadline;
+  };
   for (std::size_t first = 0; first < w.size() && !overflow; ++first) {
     const std::size_t home = sid[w[first].w], after = sid[w[first].e];
     if (!reach[len - 1][after][home]) continue;
@@ -77,6 +86,10 @@ PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows,
     states[1] = after;
     choice[1] = 0;
     while (depth >= 1) {
+      if (past_deadline()) {
+        overflow = true;
+        break;
+      }
       const std::size_t d = std::size_t(depth);
       auto& opts = out[states[d]];
       bool advanced = false;
@@ -114,7 +127,8 @@ PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows,
   std::vector<std::size_t> as_north(nw, 0), as_south(nw, 0);
   for (auto [a, b] : edges) ++as_north[a], ++as_south[b];
   std::vector<std::vector<std::size_t>> by_north(nw), by_south(nw);
-  for (std::size_t k = 0; k < edges.size(); ++k) by_north[edges[k].first].push_back(k), by_south[edges[k].second].push_back(k);
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    by_north[edges[k].first].push_back(k), by_south[edges[k].second].push_back(k);
   std::vector<bool> alive(edges.size(), true);
   std::deque<std::size_t> dead;
   auto kill = [&](std::size_t k) {

@@ -8,6 +8,7 @@
 // recurrent part of G_q (vertices on or between cycles) is empty, no tiling of the plane
 // has horizontal period q, for any vertical period. `aperiodic verify` uses this to skip
 // torus shapes before it calls the solver; it never proves that a tiling exists.
+#include <chrono>
 #include <cstddef>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct PeriodicRows {
 };
 
 // q-periodic rows of a Wang set (rows = true) or columns (rows = false: the transposed set).
-PeriodicRows periodic_rows(const std::vector<WangTile>& tiles, int q, bool rows, std::size_t max_rows = 2'000'000);
+// Past `deadline` the enumeration stops with enumerated = false.
+PeriodicRows periodic_rows(
+    const std::vector<WangTile>& tiles, int q, bool rows, std::size_t max_rows = 2'000'000,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace tilekit

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "aperiodic/prune.hpp"
+#include "aperiodic/conversion.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
@@ -41,36 +41,35 @@ std::vector<Candidate> aperiodic_corner_candidates(int prune_radius) {
       {ConversionMethod::Subdivision, false}, {ConversionMethod::Subdivision, true}};
   for (const std::string& name : published_aperiodic_sets()) {
     TileSet src = resolve_tile_set(name);
-    ChainStep first{name, src.size(), src.colours(), "wang", "published", "aperiodic: " + src.source()};
+    ChainStep first{name, src.size(), src.colours(), "wang", "published", "aperiodic: " + src.source(),
+                    fmt::format("tilekit tileset show {} --json", name)};
     for (auto [m, merge] : methods) {
-      Conversion c = convert(src, m, {merge, false});
-      std::string method = method_name(m) + (merge ? "+merge-centres" : "");
+      ConversionSpec spec{m, {merge, false}, -1};
+      LabelledConversion c = build_conversion(src, spec);
       Candidate cand;
       cand.source = name;
-      cand.method = method;
-      cand.set = conversion_tile_set(c, fmt::format("{}-{}", name, method), fmt::format("{} of {}", method, name));
+      cand.method = spec_name(spec);
+      cand.set = c.set;
       cand.tiles = cand.set.size();
       cand.colours = cand.set.colours();
       cand.soundness = c.soundness;
-      cand.chain = {first, {section(m) + (merge ? ", centre colours merged" : ""), c.size(), c.colours, "corner",
-                            soundness_name(c.soundness), c.argument}};
+      const std::string convert_cmd = fmt::format("tilekit aperiodic convert {} --method {}{}", name, method_name(m),
+                                                  merge ? " --merge-centres" : "");
+      cand.chain = {first, {section(m) + (merge ? ", centre colours merged" : ""), c.conversion.size(), c.conversion.colours,
+                            "corner", soundness_name(c.soundness), c.argument, convert_cmd + " --json"}};
       out.push_back(cand);
       if (prune_radius < 0) continue;
-      PruneReport rep;
+      spec.prune = prune_radius;
+      LabelledConversion p = build_conversion(src, spec);
+      if (p.pruned->after == p.pruned->before) continue;
       Candidate pr = cand;
       pr.prune_radius = prune_radius;
-      pr.set = prune(cand.set, prune_radius, &rep);
-      if (rep.after == rep.before) continue;
-      pr.set.set_name(fmt::format("{}-pruned{}", cand.set.name(), prune_radius));
-      std::string why;
-      pr.soundness = after_pruning(pruned_soundness(src.wang_tiles(), c, pr.set.corner_tiles(), &why), rep);
+      pr.set = p.set;
+      pr.soundness = p.soundness;
       pr.tiles = pr.set.size();
       pr.colours = pr.set.colours();
-      pr.chain.push_back({fmt::format("prune R={}", prune_radius), pr.tiles, pr.colours, "corner", "prune",
-                          fmt::format("{} -> {} tiles ({} not surroundable, {} outside transducer SCCs): surround pruning "
-                                      "keeps every tiling, SCC pruning keeps tileability and periodic tilings{}",
-                                      rep.before, rep.after, rep.removed_by_surround, rep.removed_by_scc,
-                                      why.empty() ? "" : "; " + why)});
+      pr.chain.push_back({fmt::format("prune R={}", prune_radius), pr.tiles, pr.colours, "corner", "prune", p.prune_argument,
+                          fmt::format("{} --prune {} --json", convert_cmd, prune_radius)});
       out.push_back(pr);
     }
   }

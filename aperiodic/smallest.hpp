@@ -20,6 +20,7 @@ struct ChainStep {
   std::string kind;      // "wang" or "corner"
   std::string label;     // "published", soundness name, "prune"
   std::string argument;  // why the step keeps aperiodicity
+  std::string check;     // a command that re-checks this link (its label, its tile count)
 };
 
 struct Candidate {

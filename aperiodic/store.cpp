@@ -39,12 +39,14 @@ std::int64_t store_verify(ResultsDb& db, const TileSet& set, const VerifyResult&
     SolutionRecord s;
     s.run_id = run.id;
     s.tiling = *v.witness_tiling;
-    s.method = "search";
-    s.validated = true;  // checked by the validator in verify_tile_set()
+    s.method = v.route == "torus" ? "search" : "transducer";
+    s.validated = v.witness_validated;  // checked by the validator in verify_tile_set()
     db.add_solution(s);
     run.solutions = 1;
   }
-  run.status = v.verdict == "inconclusive" ? "incomplete" : "complete";
+  run.status = v.interrupted                                       ? "interrupted"
+               : v.verdict == "inconclusive" || v.verdict == "unknown" ? "incomplete"
+                                                                     : "complete";
   run.nodes = v.nodes;
   run.seconds = v.seconds;
   db.finish_run(run);

@@ -1,42 +1,53 @@
 #pragma once
-// `tilekit aperiodic verify SET`: is a tile set periodic? Searches, with the solver's
-// tiling models (solve(), packing = false), for
-//   - a periodic tiling: a p x q torus tiling for 1 <= p, q <= max_period (smallest area
-//     first). A hit proves periodicity and is the witness;
-//   - a tiling of the n x n square (bounded model, n = max_square): failure proves that the
-//     set tiles nothing that large, hence not the plane ("cannot-tile").
-// Shapes of area <= 16 go straight to the solver. For the larger ones the row/column
-// transducer filter (aperiodic/rows.hpp) first rules out every shape whose
-// horizontal or vertical period admits no infinite stack of periodic rows; only the
-// remaining shapes go to the solver.
-// Verdicts: periodic (witness), cannot-tile (largest tileable square), no-period-up-to P,
-// or inconclusive when a time limit stopped a search before it was exhausted.
+// `tilekit aperiodic verify SET`: is a tile set periodic, finite (tiles no large square), or
+// neither so far? Two independent routes:
+//   - transducer (aperiodic/decide.hpp): Jeandel & Rao's method. Decides every periodic set and
+//     every finite set, given time; an aperiodic set stays unknown at the k reached;
+//   - torus (aperiodic/torus.hpp): the solver's tiling models (solve(), packing = false) search
+//     p x q tori, 1 <= p, q <= max_period, smallest area first (a hit is a periodic witness),
+//     and with max_square an n x n square (failure proves the set finite).
+// route "auto" runs the transducer route and, if it ends unknown before the time limit (max_k),
+// the torus route with the time left; "both" runs the two within the time limit and checks them
+// against each other. `route` in the result says which one answered. Every witness is checked
+// by the independent validator; the time limit covers the whole run, every route included.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "aperiodic/decide.hpp"
 #include "tilesets/tile_set.hpp"
 #include "tilesets/tiling.hpp"
 
 namespace tilekit {
 
 struct VerifyOptions {
+  std::string route = "auto";  // auto | transducer | torus | both
+  double time_limit = 10;      // seconds for the whole run (every route); 0: none
+  int threads = 0;             // 0: all (OpenMP); torus shapes are searched in parallel
+  bool progress = false;
+  // transducer route (its time_limit, stop and progress are set from the fields above)
+  DecideOptions decide;
+  // torus route
   int max_period = 8;      // torus shapes p x q, 1 <= p, q <= max_period
   int max_square = 0;      // bounded n x n square search (0: none)
-  int threads = 0;         // 0: all (OpenMP); the torus shapes are searched in parallel
-  double time_limit = 0;   // seconds for the whole verification (0: none); a hit leaves it incomplete
-  bool progress = false;
   bool transducer_filter = true;  // false: every shape goes to the solver (baseline)
 };
 
 struct VerifyResult {
-  std::string verdict;                   // "periodic", "cannot-tile", "no-period-up-to P", "inconclusive"
-  std::optional<std::pair<int, int>> period;  // rows, cols of the witness torus
+  // "periodic", "finite", "unknown" (transducer route), "no-period-up-to P" (torus route, every
+  // shape up to P searched) or "inconclusive" (the time limit stopped a torus search)
+  std::string verdict;
+  std::string route;  // the route that answered: "transducer", "torus" (or "" when none decided)
+  std::optional<std::pair<int, int>> period;        // rows, cols of the witness torus
   std::vector<std::vector<std::int64_t>> witness;  // tile numbers (positions in the set)
-  std::optional<Tiling> witness_tiling;  // the same, as tile indices (validated)
-  int largest_square = -1;               // largest n <= max_square with an n x n tiling (-1: not searched)
-  bool square_tileable = false;          // the max_square x max_square square has a tiling
+  std::optional<Tiling> witness_tiling;             // the same, as tile indices (validated)
+  bool witness_validated = false;
+  std::optional<DecideResult> transducer;  // the transducer route's run, when it ran
+  std::string torus_verdict;               // the torus route's own verdict, when it ran
+  // torus route
+  int largest_square = -1;  // largest n <= max_square with an n x n tiling (-1: not searched)
+  bool square_tileable = false;
   std::uint64_t nodes = 0;
   std::size_t shapes_searched = 0, shapes_incomplete = 0;
   // Shapes ruled out without search by the transducer filter (aperiodic/rows.hpp): no
@@ -45,9 +56,13 @@ struct VerifyResult {
   std::vector<int> excluded_cols, excluded_rows;
   std::vector<std::size_t> periodic_rows, periodic_cols;  // [q-1]: q-periodic rows/columns (0: over the limit)
   int threads = 1;
+  bool interrupted = false;  // a signal stopped the transducer route (after its checkpoint)
   double seconds = 0;
 };
 
 VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts);
+
+// The torus route alone, until `deadline` (aperiodic/torus.cpp).
+VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, std::chrono::steady_clock::time_point deadline);
 
 }  // namespace tilekit

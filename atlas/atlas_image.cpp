@@ -124,6 +124,17 @@ RgbaImage atlas_from_generated_tiles(const AtlasLookup& a, int tile_size) {
   return assemble(a, tile_size, [&](TileIndex i) -> const RgbaImage& { return tiles[i]; });
 }
 
+RgbaImage read_image(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
+  int w = 0, h = 0, n = 0;
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 4);
+  if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+  RgbaImage img{w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * 4)};
+  stbi_image_free(data);
+  return img;
+}
+
 RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -151,11 +162,8 @@ RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
   std::vector<RgbaImage> tiles(a.cells.size());
   int size = 0;
   for (auto& [index, path] : files) {
-    int w = 0, h = 0, n = 0;
-    stbi_uc* data = stbi_load(path.string().c_str(), &w, &h, &n, 4);
-    if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path.string(), stbi_failure_reason()));
-    RgbaImage img{w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * 4)};
-    stbi_image_free(data);
+    RgbaImage img = read_image(path.string());
+    const int w = img.width, h = img.height;
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
     if (std::uint64_t(a.cols) * a.rows * std::uint64_t(w) * std::uint64_t(w) > (1ull << 28))
@@ -189,11 +197,30 @@ SeamReport measure_seams(const RgbaImage& img, int tile_size) {
 }
 
 void write_png(const std::string& path, const RgbaImage& img) {
+  // The fewest channels that hold the picture exactly (grey, grey+alpha, RGB or RGBA): pictures
+  // of grey textures take a quarter of the space.
+  bool grey = true, opaque = true;
+  for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
+    grey = grey && img.pixels[i] == img.pixels[i + 1] && img.pixels[i] == img.pixels[i + 2];
+    opaque = opaque && img.pixels[i + 3] == 255;
+  }
+  const int channels = (grey ? 1 : 3) + (opaque ? 0 : 1);
+  std::vector<std::uint8_t> packed;
+  const std::uint8_t* data = img.pixels.data();
+  if (channels != 4) {
+    packed.reserve(img.pixels.size() / 4 * std::size_t(channels));
+    for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
+      packed.push_back(img.pixels[i]);
+      if (!grey) packed.insert(packed.end(), {img.pixels[i + 1], img.pixels[i + 2]});
+      if (!opaque) packed.push_back(img.pixels[i + 3]);
+    }
+    data = packed.data();
+  }
   std::string bytes;
-  auto sink = [](void* ctx, void* data, int size) {
-    static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), std::size_t(size));
+  auto sink = [](void* ctx, void* d, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(d), std::size_t(size));
   };
-  if (!stbi_write_png_to_func(sink, &bytes, img.width, img.height, 4, img.pixels.data(), img.width * 4))
+  if (!stbi_write_png_to_func(sink, &bytes, img.width, img.height, channels, data, img.width * channels))
     throw InputError(fmt::format("{}: cannot encode the PNG", path));
   write_file_atomic(path, bytes);
 }

@@ -41,7 +41,12 @@ struct SeamReport {
 };
 SeamReport measure_seams(const RgbaImage& img, int tile_size);
 
-// PNG, written atomically (temp file, fsync, rename). Throws InputError on failure.
+// An image file (PNG, JPEG, anything stb_image reads) as RGBA. InputError naming the file when it
+// is missing or cannot be decoded.
+RgbaImage read_image(const std::string& path);
+
+// PNG with the fewest channels that hold it exactly (grey, RGB, +alpha), written atomically (temp
+// file, fsync, rename). Throws InputError on failure.
 void write_png(const std::string& path, const RgbaImage& img);
 
 }  // namespace tilekit

@@ -61,16 +61,16 @@ std::unique_ptr<ResultsDb> open_lookup_db(const std::string& path) {
 }
 
 std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb* db, const std::string& db_path) {
-  std::vector<std::uint32_t> avail = constructible_colours(kind, 16);
+  std::vector<std::uint32_t> avail = constructible_colours(kind, 32);
   if (db)
-    for (std::uint32_t c = 1; c <= 16; ++c)
+    for (std::uint32_t c = 1; c <= 32; ++c)
       if (db->find_solution(kind, c, int(c * c), int(c * c)) && std::find(avail.begin(), avail.end(), c) == avail.end())
         avail.push_back(c);
   std::sort(avail.begin(), avail.end());
   std::string list;
   for (std::uint32_t c : avail) list += (list.empty() ? "" : ", ") + std::to_string(c);
   return fmt::format(
-      "no {} packing over {} colours is available (no construction, none stored{}); available C up to 16: {}. "
+      "no {} packing over {} colours is available (no construction, none stored{}); available C up to 32: {}. "
       "Search for one with `tilekit pack --kind {} --colors {} --method search --db {}` (it is stored there and "
       "`tilekit atlas lookup` finds it next time)",
       kind_name(kind), colours, db ? " in " + db->path() : "", list, kind_name(kind), colours,
@@ -85,11 +85,10 @@ AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptio
   std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
   PackingSources src;
   src.db = db.get();
-  // Constructions are proven (see tilesets/construct_*.cpp) and checked by the independent
-  // validator in the tests for every C up to 16; here only the every-tile-once check of
-  // lookup_from_packing runs, so that a lookup stays within its time budget. A stored packing
-  // is re-checked by the validator in find_packing.
-  src.validate_construction = false;
+  // Every answer is checked by the independent validator: a stored packing in find_packing, a
+  // construction there too (proven, see tilesets/construct_*.cpp; a C=32 corner packing,
+  // 1024x1024 cells, validates in about 0.1 s: BENCHMARKS.md).
+  src.validate_construction = true;
   std::optional<FoundPacking> found = find_packing(kind, colours, src);
   if (!found) throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
   AtlasLookup a = lookup_from_packing(found->tiling, found->source, found->how, found->closed_form, false);

@@ -51,6 +51,10 @@ std::string lookup_c_header(const AtlasLookup& a);
 // `seed` picks the permutation table of the direct stochastic tiling hash (thesis eq. 3.3).
 std::string lookup_glsl(const AtlasLookup& a, std::uint64_t seed);
 
+// The GLSL function `ivec2 tk_tile_position(int tile)` (row, col of a tile in the atlas): the closed
+// form where the packing has one, else a table. Expects TK_COLORS and TK_COLS to be defined.
+std::string lookup_glsl_position(const AtlasLookup& a);
+
 // The permutation table of size 256 for the hash (thesis 3.4.1), from a seed.
 std::vector<int> hash_permutation(std::uint64_t seed);
 

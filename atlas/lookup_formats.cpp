@@ -108,11 +108,9 @@ std::string lookup_c_header(const AtlasLookup& a) {
   return h;
 }
 
-namespace {
-
 // The tile -> atlas cell part of the shader: a closed form where one exists (written so that
 // it also compiles as C++ with an ivec2 shim, which is how the tests run it), a table otherwise.
-std::string glsl_position(const AtlasLookup& a) {
+std::string lookup_glsl_position(const AtlasLookup& a) {
   std::string s = "// BEGIN tk_tile_position\n";
   if (!a.closed_form) {
     s += fmt::format("const int TK_POSITION[{}] = int[{}](\n  {});\n", a.positions.size(), a.positions.size(),
@@ -152,8 +150,6 @@ std::string glsl_position(const AtlasLookup& a) {
   return s + "// END tk_tile_position\n";
 }
 
-}  // namespace
-
 std::string lookup_glsl(const AtlasLookup& a, std::uint64_t seed) {
   const std::vector<int> perm = hash_permutation(seed);
   std::string g;
@@ -171,7 +167,7 @@ std::string lookup_glsl(const AtlasLookup& a, std::uint64_t seed) {
                    joined(perm.size(), [&](std::size_t i) { return std::to_string(perm[i]); }));
   g += "int tk_hash(int x, int y) { return TK_PERM[(TK_PERM[x & 255] + y) & 255]; }  // thesis eq. (3.3)\n";
   g += "int tk_hash3(int x, int y, int z) { return TK_PERM[(tk_hash(x, y) + z) & 255]; }  // thesis eq. (3.4)\n";
-  g += glsl_position(a);
+  g += lookup_glsl_position(a);
   if (a.kind == TileKind::Corner) {
     g += "int tk_virtual_tile(ivec2 p) {  // direct stochastic tiling, corner tiles (thesis 3.3.1)\n"
          "  int ne = tk_hash(p.x + 1, p.y + 1) % TK_COLORS, se = tk_hash(p.x + 1, p.y) % TK_COLORS;\n"

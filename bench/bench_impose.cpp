@@ -24,10 +24,13 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "bench/bench_common.hpp"
 #include "solver/portfolio.hpp"
 #include "solver/solve.hpp"
 
 using namespace tilekit;
+using tilekit::bench::cpu_seconds;
+using tilekit::bench::median;
 
 namespace {
 
@@ -48,17 +51,6 @@ Case parse_case(const std::string& s) {
   c.colours = std::uint32_t(std::stoul(s.substr(a + 1, b - a - 1)));
   c.spec = s.substr(b + 1);
   return c;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 // The engine knobs a case runs with (SearchOptions fields).

@@ -7,6 +7,8 @@
 //
 //   build/bench_bench_parallel                                     default case, 3 reps
 //   build/bench_bench_parallel --case 'wang:3:t=0,3:pi=1,2,0' --reps 3 [--threads 2]
+//   build/bench_bench_parallel --case 'corner:3:t=3,3:pi=1,2,0' --shard 0/4 --reps 3
+//                                   one shard of a larger count (a count of >= 10 s on one thread)
 //   (SPEC "plain" = no group)
 #include <sys/resource.h>
 
@@ -20,37 +22,25 @@
 #include <vector>
 
 #include "base/error.hpp"
+#include "bench/bench_common.hpp"
 #include "solver/solve.hpp"
 
 using namespace tilekit;
+using tilekit::bench::cpu_seconds;
+using tilekit::bench::loadavg;
+using tilekit::bench::median;
 
 namespace {
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-double loadavg() {
-  std::ifstream in("/proc/loadavg");
-  double l = 0;
-  in >> l;
-  return l;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
-}
 
 struct Run {
   double cpu = 0, wall = 0, load_before = 0, load_after = 0;
   std::uint64_t nodes = 0, solutions = 0;
 };
 
-Run run_count(const TilingProblem& p, const std::string& spec, int threads) {
+Run run_count(const TilingProblem& p, const std::string& spec, int threads, int shard, int shards) {
   SearchOptions o;
+  o.shard_index = shard;
+  o.shard_count = shards;
   o.mode = SearchMode::Count;
   o.threads = threads;
   o.count_orbits = false;
@@ -73,7 +63,7 @@ Run run_count(const TilingProblem& p, const std::string& spec, int threads) {
 
 int main(int argc, char** argv) {
   std::string kcase = "wang:3:t=0,3:pih=1,2,0;t=3,0:piv=1,2,0";
-  int reps = 3, threads = 2;
+  int reps = 3, threads = 2, shard = 0, shards = 1;
   try {
     for (int i = 1; i < argc; ++i) {
       std::string a = argv[i];
@@ -81,10 +71,20 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw InputError(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--case") kcase = next();
-      else if (a == "--reps") reps = std::stoi(next());
-      else if (a == "--threads") threads = std::stoi(next());
-      else throw InputError("unknown argument " + a);
+      if (a == "--case")
+        kcase = next();
+      else if (a == "--reps")
+        reps = std::stoi(next());
+      else if (a == "--threads")
+        threads = std::stoi(next());
+      else if (a == "--shard") {
+        const std::string v = next();
+        const auto slash = v.find('/');
+        if (slash == std::string::npos) throw InputError("--shard I/N");
+        shard = std::stoi(v.substr(0, slash));
+        shards = std::stoi(v.substr(slash + 1));
+      } else
+        throw InputError("unknown argument " + a);
     }
     auto c1 = kcase.find(':'), c2 = kcase.find(':', c1 + 1);
     if (c1 == std::string::npos || c2 == std::string::npos) throw InputError("--case KIND:C:SPEC");
@@ -94,8 +94,8 @@ int main(int argc, char** argv) {
     const TilingProblem p = complete_packing_problem(kind, colours);
     std::vector<Run> one, many;
     for (int r = 0; r < reps; ++r) {  // alternating, so both see the same load on average
-      one.push_back(run_count(p, spec, 1));
-      many.push_back(run_count(p, spec, threads));
+      one.push_back(run_count(p, spec, 1, shard, shards));
+      many.push_back(run_count(p, spec, threads, shard, shards));
       if (many.back().nodes != one.back().nodes || many.back().solutions != one.back().solutions)
         throw std::runtime_error("the count or node count depends on the thread count");
     }
@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
                         {"case", kcase},
                         {"cores", std::thread::hardware_concurrency()},
                         {"threads", threads},
+                        {"shard", std::to_string(shard) + "/" + std::to_string(shards)},
                         {"reps", reps},
                         {"nodes", one.front().nodes},
                         {"solutions", one.front().solutions},

@@ -1,7 +1,7 @@
 // Tiling throughput (thesis ch. 3; Schloemer & Deussen 2010), one thread, one JSON line per case.
 // Every case is timed alternately with a baseline loop writing (x ^ y) & mask into the same
 // buffer, and reports medians of both and their ratio (goal for the direct corner tiling:
-// within 2x of the baseline). Usage: build/bench_tiling [--size N] [--reps R]
+// within 2x of the baseline). Usage: build/bench_tiling [--size N] [--reps R] [--only NAME-PREFIX]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -52,6 +52,7 @@ double median(std::vector<double> v) {
 
 struct Bench {
   int size = 4096, reps = 7;
+  std::string only;  // run only the cases whose name starts with this
   std::vector<TileIndex> buffer;
 
   void baseline(TileIndex mask) {
@@ -64,7 +65,8 @@ struct Bench {
 
   // Runs `fill` (which writes rows x cols tiles into buffer) and the baseline alternately.
   void run(const std::string& name, std::uint32_t colours, int rows, int cols, const std::function<void()>& fill,
-           int reps_override = 0) {
+           int reps_override = 0, int threads = 1) {
+    if (name.rfind(only, 0) != 0) return;
     const int reps_here = reps_override ? reps_override : reps;
     std::vector<double> t_case, t_base;
     fill();  // warm-up (tables, page faults)
@@ -85,7 +87,7 @@ struct Bench {
                         {"case", name},
                         {"colors", colours},
                         {"grid", fmt::format("{}x{}", cols, rows)},
-                        {"threads", 1},
+                        {"threads", threads},
                         {"cores", std::thread::hardware_concurrency()},
                         {"reps", reps_here},
                         {"median_seconds", mc},
@@ -106,6 +108,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--size")) b.size = std::max(16, std::atoi(argv[i + 1]));
     if (!std::strcmp(argv[i], "--reps")) b.reps = std::max(1, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--only")) b.only = argv[i + 1];
   }
   const int n = b.size;
   b.buffer.assign(std::size_t(n) * std::size_t(n), 0);
@@ -115,6 +118,8 @@ int main(int argc, char** argv) {
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod}) {
       const DirectCornerTiling a(c, h, 1);
       b.run(fmt::format("direct-corner/{}", hash_kind_name(h)), c, n, n, [&] { a.fill(0, 0, n, n, out); });
+      if (h == HashKind::LongPeriod)  // rows in parallel (the baseline stays one thread)
+        b.run("direct-corner/long-period/2-threads", c, n, n, [&] { a.fill(0, 0, n, n, out, 2); }, 0, 2);
       if (h == HashKind::Permutation) {
         const EveryTile every{a.hash()};
         b.run("direct-corner/perm/every-tile-evaluated", c, n, n,

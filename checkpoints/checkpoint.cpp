@@ -167,10 +167,6 @@ PortfolioState portfolio_from(const JsonIn& j) {
   return ps;
 }
 
-std::string envelope(const std::string& text, int version) {
-  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", kMagic, version, text.size(), fnv1a64(text), text);
-}
-
 }  // namespace
 
 std::string encode_checkpoint(const CheckpointFile& f) {
@@ -181,23 +177,34 @@ std::string encode_checkpoint(const CheckpointFile& f) {
     body["search"] = search_json(*f.search);
   else
     body["portfolio"] = portfolio_json(*f.portfolio);
-  return envelope(body.dump(), kCheckpointVersion);
+  return seal_checkpoint(kMagic, kCheckpointVersion, body.dump());
 }
 
 std::string encode_checkpoint(const SearchState& st) {
   return encode_checkpoint(CheckpointFile{nullptr, st, {}});
 }
 
-CheckpointFile decode_checkpoint_file(std::string_view text, const std::string& origin) {
+std::string seal_checkpoint(std::string_view magic, int version, std::string_view body) {
+  return fmt::format("{} {}\nbytes {} fnv1a64 {:016x}\n{}", magic, version, body.size(), fnv1a64(body), body);
+}
+
+std::string_view open_checkpoint(std::string_view text, std::string_view magic, int oldest, int newest,
+                                 const std::string& origin, int* version_read) {
   auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
   auto eol1 = text.find('\n');
-  if (eol1 == std::string_view::npos || text.substr(0, kMagic.size()) != kMagic || text.size() <= kMagic.size() ||
-      text[kMagic.size()] != ' ')
-    throw bad("not a Tilekit checkpoint file");
-  std::string version(text.substr(kMagic.size() + 1, eol1 - kMagic.size() - 1));
-  if (version != "1" && version != std::to_string(kCheckpointVersion))
-    throw bad(fmt::format("format version {} is not supported (this build reads versions 1 to {})", version,
-                          kCheckpointVersion));
+  if (eol1 == std::string_view::npos || text.substr(0, magic.size()) != magic || text.size() <= magic.size() ||
+      text[magic.size()] != ' ')
+    throw bad("not a Tilekit checkpoint file" +
+              (magic == kMagic ? std::string() : fmt::format(" of this kind ({})", magic)));
+  std::string ver(text.substr(magic.size() + 1, eol1 - magic.size() - 1));
+  int version = 0;
+  auto [p, ec] = std::from_chars(ver.data(), ver.data() + ver.size(), version);
+  if (ec != std::errc() || p != ver.data() + ver.size() || version < oldest || version > newest)
+    throw bad(oldest == newest
+                  ? fmt::format("format version {} is not supported (this build reads version {})", ver, newest)
+                  : fmt::format("format version {} is not supported (this build reads versions {} to {})", ver, oldest,
+                                newest));
+  if (version_read) *version_read = version;
   auto eol2 = text.find('\n', eol1 + 1);
   if (eol2 == std::string_view::npos) throw bad("truncated (no header)");
   std::string header(text.substr(eol1 + 1, eol2 - eol1 - 1));
@@ -220,12 +227,19 @@ CheckpointFile decode_checkpoint_file(std::string_view text, const std::string& 
   if (body.size() < bytes) throw bad(fmt::format("truncated ({} of {} bytes)", body.size(), bytes));
   if (body.size() > bytes) throw bad(fmt::format("corrupt ({} bytes after the end)", body.size() - bytes));
   if (fnv1a64(body) != sum) throw bad("corrupt (checksum mismatch)");
+  return body;
+}
+
+CheckpointFile decode_checkpoint_file(std::string_view text, const std::string& origin) {
+  auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
+  int version = 0;
+  std::string_view body = open_checkpoint(text, kMagic, 1, kCheckpointVersion, origin, &version);
   const std::string where = fmt::format("checkpoint {}", origin);
   const nlohmann::json doc = parse_json_input(body, where);
   const JsonIn j(doc, where);
   j.object();
   CheckpointFile f;
-  if (version == "1") {
+  if (version == 1) {
     f.request = nullptr;
     f.search = search_from(j);
     return f;

@@ -33,6 +33,14 @@ namespace tilekit {
 
 inline constexpr int kCheckpointVersion = 2;
 
+// The envelope every Tilekit checkpoint file shares (above, with its own magic and version):
+// seal_checkpoint() wraps a body; open_checkpoint() returns the body after checking magic, a
+// version in [oldest, newest] (stored in *version_read), length and checksum, or throws
+// InputError naming `origin` and the problem.
+std::string seal_checkpoint(std::string_view magic, int version, std::string_view body);
+std::string_view open_checkpoint(std::string_view text, std::string_view magic, int oldest, int newest,
+                                 const std::string& origin, int* version_read = nullptr);
+
 struct CheckpointFile {
   nlohmann::json request;             // the run's request (packing/request.hpp); null if unknown
   std::optional<SearchState> search;  // exactly one of search and portfolio

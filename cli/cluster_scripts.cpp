@@ -41,9 +41,20 @@ std::string body(std::string_view name) {
 }
 
 void common_directives(const ClusterPlan& p, std::vector<Directive>& ds) {
-  if (!p.partition.empty())
-    ds.push_back({"--partition=" + p.partition, "the partition (queue) to run in"});
+  if (!p.partition.empty()) ds.push_back({"--partition=" + p.partition, "the partition (queue) to run in"});
   for (const auto& a : p.sbatch_args) ds.push_back({a, "passed through with --sbatch-arg"});
+}
+
+// What both sbatch scripts start with: the shebang, their header comment, the #SBATCH block
+// (with the common directives) and the run's variables that the body reads.
+std::string script_head(const ClusterPlan& p, std::vector<Directive> ds, const std::string& header) {
+  common_directives(p, ds);
+  std::string s = "#!/bin/bash\n" + header + directives_block(ds);
+  s += "\n# The run (written by tilekit cluster submit; the body below reads these).\n";
+  s += variable("TILEKIT", p.tilekit);
+  s += variable("RUN_DIR", p.run_dir);
+  s += variable("SHARDS", std::to_string(p.shards));
+  return s;
 }
 
 }  // namespace
@@ -75,8 +86,7 @@ int default_signal_seconds(long seconds) {
 }
 
 std::string shell_quote(std::string_view text) {
-  static const std::string safe =
-      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:@%";
+  static const std::string safe = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./,:@%";
   if (!text.empty() && text.find_first_not_of(safe) == std::string_view::npos) return std::string(text);
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -91,15 +101,15 @@ void check_plan(const ClusterPlan& p) {
   long limit = parse_slurm_time(p.time);
   parse_slurm_time(p.merge_time);
   if (p.signal_seconds < 1 || p.signal_seconds >= limit)
-    throw InputError(fmt::format("--signal-seconds {} must be between 1 and the wall time ({} s)",
-                                 p.signal_seconds, limit));
+    throw InputError(
+        fmt::format("--signal-seconds {} must be between 1 and the wall time ({} s)", p.signal_seconds, limit));
   // #SBATCH lines are split at white space, and '%' starts a Slurm filename pattern.
   for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"--run-dir", p.run_dir},
                                     {"--partition", p.partition},
                                     {"--job-name", p.job_name}})
     if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos)
-      throw InputError(fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives",
-                                   what, value));
+      throw InputError(
+          fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
   for (const auto& a : p.sbatch_args)
     if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
       throw InputError(fmt::format("--sbatch-arg '{}': expected one sbatch option like --account=NAME", a));
@@ -115,22 +125,16 @@ std::string pack_array_script(const ClusterPlan& p) {
        "...with this many cores (OMP_NUM_THREADS = SLURM_CPUS_PER_TASK)"},
       {"--time=" + p.time, "wall time of one attempt; a requeued attempt gets it anew"},
       {fmt::format("--signal=B:USR1@{}", p.signal_seconds),
-       fmt::format("USR1 to this script {} s (to 60 s more) before the limit: checkpoint, exit 3",
-                   p.signal_seconds)},
+       fmt::format("USR1 to this script {} s (to 60 s more) before the limit: checkpoint, exit 3", p.signal_seconds)},
       {"--requeue", "let the task requeue itself after exit 3 and resume"},
       {"--open-mode=append", "every attempt of a shard appends to the same log"},
       {"--chdir=" + p.run_dir, "working directory, on the shared filesystem"},
       {"--output=" + p.run_dir + "/logs/pack-%A_%a.out", "log of array job %A, shard %a"},
   };
-  common_directives(p, ds);
-  std::string s = "#!/bin/bash\n";
-  s += fmt::format("# Tilekit shard array, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION);
-  s += "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n";
-  s += directives_block(ds);
-  s += "\n# The run (written by tilekit cluster submit; the body below reads these).\n";
-  s += variable("TILEKIT", p.tilekit);
-  s += variable("RUN_DIR", p.run_dir);
-  s += variable("SHARDS", std::to_string(p.shards));
+  std::string s = script_head(
+      p, std::move(ds),
+      fmt::format("# Tilekit shard array, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION) +
+          "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n");
   s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
   s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
   s += bash_array("PACK_ARGS", p.pack_args);
@@ -147,16 +151,11 @@ std::string merge_script(const ClusterPlan& p) {
       {"--chdir=" + p.run_dir, "working directory, on the shared filesystem"},
       {"--output=" + p.run_dir + "/logs/merge-%j.out", "log of merge job %j"},
   };
-  common_directives(p, ds);
-  std::string s = "#!/bin/bash\n";
-  s += fmt::format("# Tilekit merge job, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION);
-  s += "# Queued after the shard array: sbatch --dependency=afterok:ARRAY_JOB_ID merge.sbatch\n";
-  s += "# (afterok: it starts only when every shard task ended with exit code 0).\n";
-  s += directives_block(ds);
-  s += "\n# The run (written by tilekit cluster submit; the body below reads these).\n";
-  s += variable("TILEKIT", p.tilekit);
-  s += variable("RUN_DIR", p.run_dir);
-  s += variable("SHARDS", std::to_string(p.shards));
+  std::string s = script_head(
+      p, std::move(ds),
+      fmt::format("# Tilekit merge job, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION) +
+          "# Queued after the shard array: sbatch --dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +
+          "# (afterok: it starts only when every shard task ended with exit code 0).\n");
   s += "\n" + body("merge");
   return s;
 }

@@ -1,116 +1,95 @@
-// tilekit aperiodic convert | table | verify: the thesis ch. 8 constructions, the recomputed
-// Tables 8.1-8.7 and the periodicity search.
+// tilekit aperiodic convert: the thesis ch. 8 constructions (aperiodic/conversion.hpp), and the
+// registration of the `aperiodic` subcommands.
 #include <fmt/format.h>
 
+#include "aperiodic/json.hpp"
+#include "aperiodic/requests.hpp"
 #include "base/atomic_file.hpp"
-#include "aperiodic/store.hpp"
+#include "base/error.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
-#include "aperiodic/convert.hpp"
-#include "aperiodic/prune.hpp"
-#include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
 
-nlohmann::json conversion_json(const Conversion& c, const std::string& source_name) {
-  nlohmann::json j = {{"kind", std::string(kind_name(c.kind))},
-                      {"tiles", c.size()},
-                      {"colors", c.colours},
-                      {"horizontal_colors", c.horizontal_colours},
-                      {"vertical_colors", c.vertical_colours},
-                      {"method", method_name(c.method)},
-                      {"source", source_name},
-                      {"soundness", soundness_name(c.soundness)},
-                      {"argument", c.argument}};
-  if (c.method == ConversionMethod::Rotation) j["white"] = c.white, j["black"] = c.black;
-  return j;
+void add_verify_flags(CLI::App* cmd, VerifyOptions& o) {
+  // Checked by verify_tile_set (also for library callers): a negative or non-finite limit is exit 2.
+  cmd->add_option("--time-limit", o.time_limit, "Seconds for the whole run, every route (default 10; 0 = none)");
+  cmd->add_option("--route", o.route,
+                  "auto (transducer, then torus if time is left) | transducer | torus | both (cross-checked)");
+  cmd->add_option("--max-k", o.decide.max_k, "transducer: stop after T^k in each direction (default: no bound)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-merge", [&o](std::int64_t) { o.decide.merge = false; },
+                "transducer: trim only, no bisimulation merges (for comparison)");
+  cmd->add_option_function<std::string>(
+      "--direction",
+      [&o](const std::string& d) {
+        if (d != "rows" && d != "columns" && d != "both") throw CLI::ValidationError("--direction", "rows, columns or both");
+        o.decide.rows = d != "columns";
+        o.decide.columns = d != "rows";
+      },
+      "transducer: strips of rows, of columns, or both (default)");
+  cmd->add_option("--memory-limit", o.decide.memory_limit, "transducer: bytes for the transducers (default: half the RAM)");
+  cmd->add_option("--max-period", o.max_period, "torus: largest period in each direction (default 8)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-square", o.max_square, "torus: also search an N x N square (0 = none)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o.threads, "torus: threads (default: all)")->check(CLI::Range(1, kMaxThreads));
 }
 
-nlohmann::json prune_json(const PruneReport& r, int radius) {
-  return {{"radius", radius},
-          {"before", r.before},
-          {"after", r.after},
-          {"removed_by_surround", r.removed_by_surround},
-          {"removed_by_scc", r.removed_by_scc},
-          {"passes", r.passes}};
+std::string repeated_text(const std::vector<RepeatedTile>& r) {
+  if (r.empty()) return {};
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < r.size() && i < 5; ++i) parts.push_back(fmt::format("{} repeats tile {}", r[i].where, r[i].first + 1));
+  if (r.size() > 5) parts.push_back("...");
+  return fmt::format("{} repeated tile{} dropped ({})", r.size(), r.size() == 1 ? "" : "s", fmt::join(parts, ", "));
 }
 
 namespace {
 
 struct ConvertArgs {
   std::string set, method, out, db;
-  int prune = -1, verify = 0;
+  int prune = -1;
+  int verify = 0;
   bool merge_centres = false, star_edge = false, list = false;
+  VerifyOptions vo;
 };
 
-void run_convert(const Context& ctx, const ConvertArgs& a) {
-  TileSet src = resolve_tile_set(a.set);
-  if (src.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", a.set));
-  ConversionMethod m = parse_method(a.method);
-  Conversion conv = convert(src, m, {a.merge_centres, a.star_edge});
-  nlohmann::json j = conversion_json(conv, src.name());
-  std::optional<TileSet> result;
-  if (a.prune >= 0 || !a.out.empty() || a.list || !a.db.empty() || a.verify > 0) {
-    result = conversion_tile_set(conv, src.name() + "-" + a.method, fmt::format("{} of {} (thesis 8.3/8.4)", a.method, src.name()));
-  }
-  if (a.prune >= 0) {
-    PruneReport rep;
-    result = prune(*result, a.prune, &rep);
-    j["pruned"] = prune_json(rep, a.prune);
-    j["tiles"] = result->size();
-    j["colors"] = result->colours();
-    j["horizontal_colors"] = result->horizontal_colours();
-    j["vertical_colors"] = result->vertical_colours();
-    std::string why;
-    Soundness sp = after_pruning(pruned_soundness(src.wang_tiles(), conv, result->corner_tiles(), &why), rep);
-    if (why.empty() && sp != conv.soundness) why = "pruning removed tiles outside the transducer SCCs: tilings still lift";
-    if (sp != conv.soundness) {
-      j["soundness"] = soundness_name(sp);
-      j["argument"] = why;
-      conv.argument = why;
-    }
-  }
-  if (a.verify > 0) {
-    // A periodic tiling found by the search overrides any other label (DESIGN.md).
-    VerifyOptions vo;
-    vo.max_period = a.verify;
-    VerifyResult v = verify_tile_set(*result, vo);
-    j["verify"] = verify_json(v);
-    if (v.period) {
-      j["soundness"] = soundness_name(Soundness::Periodic);
-      j["argument"] = fmt::format("a {}x{} torus tiling was found", v.period->first, v.period->second);
-      conv.argument = j["argument"].get<std::string>();
-    }
-  }
+void run_convert_command(const Context& ctx, ConvertArgs& a) {
+  ConvertRequest req;
+  req.set = a.set;
+  req.spec = {parse_method(a.method), {a.merge_centres, a.star_edge}, a.prune};
+  req.verify = a.verify > 0;
+  req.verify_options = a.vo;
+  if (a.verify > 0) req.verify_options.max_period = a.verify;
+  req.db = a.db;
+  ConvertReport rep = run_convert(req);
+  const LabelledConversion& c = rep.conversion;
+  nlohmann::json j = conversion_json(c, rep.source.name());
+  if (rep.verify) j["verify"] = verify_json(*rep.verify);
+  if (!rep.repeated.empty()) j["repeated_tiles"] = rep.repeated.size();
   if (a.list) {
     nlohmann::json list = nlohmann::json::array();
-    for (std::size_t k = 0; k < result->size(); ++k) list.push_back(result->file_colours(k));
+    for (std::size_t k = 0; k < c.set.size(); ++k) list.push_back(c.set.file_colours(k));
     j["list"] = list;
   }
   if (!a.out.empty()) {
-    write_file_atomic(a.out, format_tile_set_text(*result));
+    write_file_atomic(a.out, format_tile_set_text(c.set));
     j["out"] = a.out;
   }
-  if (!a.db.empty()) {
-    ResultsDb db(a.db);
-    nlohmann::json details = j;
-    details.erase("list");
-    j["conversion_id"] = store_conversion(db, src, *result, a.method, j["soundness"].get<std::string>(), details);
-    j["db"] = a.db;
-  }
+  if (!a.db.empty()) j["conversion_id"] = rep.conversion_id, j["db"] = a.db;
   emit(ctx, j, [&] {
-    fmt::print("{} of {}: {} {} tiles, {} colours", a.method, src.name(), j["tiles"].get<std::size_t>(),
-               j["kind"].get<std::string>(), j["colors"].get<std::uint32_t>());
-    if (m == ConversionMethod::Rotation) fmt::print(" ({} white + {} black)", conv.white, conv.black);
-    fmt::print("\nsoundness: {} ({})\n", j["soundness"].get<std::string>(), conv.argument);
-    if (j.contains("pruned"))
-      fmt::print("pruned (radius {}): {} -> {} tiles ({} by surround, {} by transducer SCC)\n", a.prune,
-                 j["pruned"]["before"].get<std::size_t>(), j["pruned"]["after"].get<std::size_t>(),
-                 j["pruned"]["removed_by_surround"].get<std::size_t>(), j["pruned"]["removed_by_scc"].get<std::size_t>());
-    if (j.contains("verify")) fmt::print("verify (max period {}): {}\n", a.verify, j["verify"]["verdict"].get<std::string>());
+    if (!rep.repeated.empty()) fmt::print("{}\n", repeated_text(rep.repeated));
+    fmt::print("{} of {}: {} {} tiles, {} colours", a.method, rep.source.name(), c.set.size(), kind_name(c.set.kind()),
+               c.set.colours());
+    if (c.spec.method == ConversionMethod::Rotation) fmt::print(" ({} white + {} black)", c.conversion.white, c.conversion.black);
+    fmt::print("\nsoundness: {} ({})\n", soundness_name(c.soundness), c.argument);
+    if (c.pruned)
+      fmt::print("pruned (radius {}): {} -> {} tiles ({} by surround, {} by transducer SCC)\n", a.prune, c.pruned->before,
+                 c.pruned->after, c.pruned->removed_by_surround, c.pruned->removed_by_scc);
+    if (rep.verify) fmt::print("verify: {} (route {})\n", rep.verify->verdict, rep.verify->route.empty() ? "none" : rep.verify->route);
     if (!a.out.empty()) fmt::print("written to {}\n", a.out);
-    if (a.list) fmt::print("{}", format_tile_set_text(*result));
+    if (a.list) fmt::print("{}", format_tile_set_text(c.set));
   });
 }
 
@@ -131,11 +110,14 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   conv->add_flag("--star-edge-colour", ca.star_edge, "subdivision: reuse an edge colour as the star (unverified)");
   conv->add_flag("--list", ca.list, "Include the result's tiles");
   conv->add_option("--out", ca.out, "Write the result as a tile-set file (atomically)");
-  conv->add_option("--verify", ca.verify, "Also run verify on the result up to this period (label periodic if found)")
-      ->check(CLI::Range(1, 64));
+  conv->add_option("--verify", ca.verify,
+                   "Also verify the result (label periodic if a witness turns up); the value is the torus route's "
+                   "--max-period")
+      ->check(CLI::PositiveNumber);
+  add_verify_flags(conv, ca.vo);
   conv->add_option("--db", ca.db, "Store source, result and conversion in this results database");
   add_json_flag(conv, ctx);
-  conv->callback([&ctx] { run_convert(ctx, ca); });
+  conv->callback([&ctx] { run_convert_command(ctx, ca); });
 
   add_aperiodic_table_command(ap, ctx);
   add_aperiodic_verify_command(ap, ctx);

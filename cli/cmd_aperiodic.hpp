@@ -1,21 +1,18 @@
 #pragma once
-// Shared pieces of the `tilekit aperiodic` subcommands (cmd_aperiodic*.cpp).
-#include <nlohmann/json.hpp>
-#include <string>
-
+// The `tilekit aperiodic` subcommands (cmd_aperiodic*.cpp): flags in, printing out; the work is
+// in aperiodic/requests.hpp, aperiodic/table_checks.hpp and aperiodic/smallest.hpp.
 #include "aperiodic/verify.hpp"
 #include "cli/command.hpp"
-#include "aperiodic/convert.hpp"
-#include "aperiodic/prune.hpp"
+#include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
 
-// {kind, tiles, colors, horizontal_colors, vertical_colors, method, source, soundness,
-//  argument[, white, black]}
-nlohmann::json conversion_json(const Conversion& c, const std::string& source_name);
-nlohmann::json prune_json(const PruneReport& r, int radius);
+// The flags every command that verifies shares: --time-limit, --route, --max-k, --max-period,
+// --max-square, --threads, --no-merge, --direction, --memory-limit.
+void add_verify_flags(CLI::App* cmd, VerifyOptions& o);
 
-nlohmann::json verify_json(const VerifyResult& r);
+// "12 repeated tiles dropped (file:3 repeats tile 1, ...)" or "".
+std::string repeated_text(const std::vector<RepeatedTile>& r);
 
 void add_aperiodic_table_command(CLI::App* aperiodic, Context& ctx);
 void add_aperiodic_verify_command(CLI::App* aperiodic, Context& ctx);

@@ -1,109 +1,116 @@
-// tilekit aperiodic verify SET [--max-period P] [--max-square N]: periodic / square search.
+// tilekit aperiodic verify SET: periodic, finite or unknown (aperiodic/verify.hpp), by the
+// transducer method and the torus search.
 #include <fmt/format.h>
 
-#include <optional>
-
-#include "aperiodic/store.hpp"
-#include "aperiodic/verify.hpp"
-#include "cli/cmd_aperiodic.hpp"
+#include "aperiodic/json.hpp"
+#include "aperiodic/requests.hpp"
 #include "base/error.hpp"
-#include "tilesets/tile_set_io.hpp"
+#include "cli/cmd_aperiodic.hpp"
 
 namespace tilekit::cli {
-
-nlohmann::json verify_json(const VerifyResult& r) {
-  nlohmann::json j = {{"verdict", r.verdict},
-                      {"period", r.period ? nlohmann::json::array({r.period->first, r.period->second}) : nlohmann::json()},
-                      {"witness", r.witness},
-                      {"largest_square", r.largest_square},
-                      {"nodes", r.nodes},
-                      {"shapes_searched", r.shapes_searched},
-                      {"shapes_incomplete", r.shapes_incomplete},
-                      {"shapes_excluded", r.shapes_excluded},
-                      {"periodic_rows", r.periodic_rows},
-                      {"periodic_cols", r.periodic_cols},
-                      {"excluded_row_periods", r.excluded_rows},
-                      {"excluded_col_periods", r.excluded_cols},
-                      {"threads", r.threads},
-                      {"seconds", r.seconds}};
-  return j;
-}
 
 namespace {
 
 struct VerifyArgs {
-  std::string set, db;
-  VerifyOptions opts;
-  int prune = -1;
+  VerifyRequest req;
+  bool quiet = false;
 };
 
-void run_verify(const Context& ctx, const VerifyArgs& a) {
-  TileSet set = resolve_tile_set(a.set);
-  if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", a.set));
-  nlohmann::json pruned;
-  if (a.prune >= 0) {
-    PruneReport rep;
-    std::string name = set.name();
-    set = prune(set, a.prune, &rep);
-    set.set_name(fmt::format("{}-pruned{}", name, a.prune));
-    pruned = prune_json(rep, a.prune);
-  }
-  VerifyResult r;
-  if (set.empty()) {
-    // Surround pruning keeps every tiling of the plane and SCC pruning keeps tileability:
-    // nothing left means the set does not tile the plane.
-    r.verdict = "cannot-tile";
-    r.threads = 0;
-  } else {
-    r = verify_tile_set(set, a.opts);
-  }
-  nlohmann::json j = verify_json(r);
-  j["set"] = set.name();
-  j["kind"] = std::string(kind_name(set.kind()));
-  j["tiles"] = set.size();
-  j["colors"] = set.colours();
-  j["max_period"] = a.opts.max_period;
-  j["max_square"] = a.opts.max_square;
-  if (!pruned.is_null()) j["pruned"] = pruned;
-  if (!a.db.empty()) {
-    ResultsDb db(a.db);
-    j["run_id"] = store_verify(db, set, r,
-                               {{"max_period", a.opts.max_period}, {"max_square", a.opts.max_square}, {"prune", a.prune}});
-    j["db"] = a.db;
-  }
-  emit(ctx, j, [&] {
-    fmt::print("{} ({} {} tiles, {} colours): {}\n", set.name(), set.size(), kind_name(set.kind()), set.colours(),
-               r.verdict);
-    if (r.period) {
-      fmt::print("witness: {} x {} torus (tile numbers as in `tileset show`):\n", r.period->first, r.period->second);
+void print_verify(const VerifyReport& rep) {
+  const VerifyResult& r = rep.result;
+  const TileSet& set = rep.set;
+  if (!rep.repeated.empty()) fmt::print("{}\n", repeated_text(rep.repeated));
+  fmt::print("{} ({} {} tiles, {} colours): {}{}\n", set.name(), set.size(), kind_name(set.kind()), set.colours(), r.verdict,
+             r.route.empty() ? "" : fmt::format(" (by the {} route)", r.route));
+  if (r.period) {
+    fmt::print("witness: {} x {} torus (tile numbers as in `tileset show`){}:\n", r.period->first, r.period->second,
+               r.witness_validated ? ", checked by the validator" : ", checked edge by edge (indices overflow)");
+    if (r.period->first * r.period->second <= 400)
       for (auto& row : r.witness) fmt::print("  {}\n", fmt::join(row, " "));
+    else
+      fmt::print("  ({} cells; --json prints them)\n", r.period->first * r.period->second);
+  }
+  if (const auto& d = r.transducer) {
+    if (d->verdict == "finite") {
+      fmt::print("proof: T^{} of the {} is empty (no infinite strip of {} {}), so no square larger than {} is tileable\n",
+                 d->k, d->direction, d->k, d->direction,
+                 d->square_bound ? fmt::format("{}", *d->square_bound)
+                                 : fmt::format("about 10^{:.1f} (the bound overflows 64 bits)", d->square_bound_log10));
+    } else if (d->verdict == "periodic") {
+      fmt::print("found at k = {} ({}), strips stacked with shift {}\n", d->k, d->direction, d->shift);
+    } else {
+      fmt::print("transducer: unknown at k = {} (rows) / {} (columns), stopped by {}: no periodic tiling has a vertical "
+                 "period <= {} or a horizontal period <= {}\n",
+                 d->k_rows, d->k_columns, d->stopped_by.empty() ? "nothing" : d->stopped_by, d->k_rows, d->k_columns);
     }
+    if (!d->levels.empty()) {
+      fmt::print("levels (k, direction: states / transitions, seconds):");
+      for (std::size_t i = 0; i < d->levels.size(); ++i)
+        fmt::print("{}{} {}: {}/{} {:.3f}s", i % 4 == 0 ? "\n  " : ", ", d->levels[i].k, d->levels[i].direction,
+                   d->levels[i].states, d->levels[i].transitions, d->levels[i].seconds);
+      fmt::print("\n");
+    }
+    if (d->checkpoints > 0) fmt::print("{} checkpoint(s) written\n", d->checkpoints);
+  }
+  if (!r.torus_verdict.empty()) {
     if (r.largest_square >= 0) fmt::print("largest tileable square searched: {} x {}\n", r.largest_square, r.largest_square);
-    fmt::print("{} torus shapes ruled out by the transducer filter (no horizontal period in [{}], no vertical "
-               "period in [{}])\n",
-               r.shapes_excluded, fmt::join(r.excluded_cols, ","), fmt::join(r.excluded_rows, ","));
-    fmt::print("{} torus shapes searched ({} incomplete), {} nodes, {} threads, {:.2f} s\n", r.shapes_searched,
-               r.shapes_incomplete, r.nodes, r.threads, r.seconds);
-  });
+    fmt::print("torus: {}; {} shapes ruled out by the row filter, {} searched ({} incomplete), {} nodes, {} threads\n",
+               r.torus_verdict, r.shapes_excluded, r.shapes_searched, r.shapes_incomplete, r.nodes, r.threads);
+  }
+  fmt::print("{:.2f} s\n", r.seconds);
+}
+
+void run_verify_command(const Context& ctx, VerifyArgs& a) {
+  a.req.options.progress = !a.quiet;
+  a.req.options.decide.catch_signals = true;
+  VerifyReport rep = run_verify(a.req);
+  const VerifyResult& r = rep.result;
+  nlohmann::json j = verify_json(r);
+  j["set"] = rep.set.name();
+  j["kind"] = std::string(kind_name(rep.set.kind()));
+  j["tiles"] = rep.set.size();
+  j["colors"] = rep.set.colours();
+  j["time_limit"] = a.req.options.time_limit;
+  j["max_period"] = a.req.options.max_period;
+  j["max_square"] = a.req.options.max_square;
+  if (!rep.repeated.empty()) {
+    nlohmann::json rj = nlohmann::json::array();
+    for (const RepeatedTile& t : rep.repeated) rj.push_back({{"where", t.where}, {"repeats", t.first}, {"colours", t.colours}});
+    j["repeated_tiles"] = rj;
+  }
+  if (rep.pruned) j["pruned"] = prune_json(*rep.pruned, a.req.prune);
+  if (!a.req.db.empty()) j["run_id"] = rep.run_id, j["db"] = a.req.db;
+  emit(ctx, j, [&] { print_verify(rep); });
+  if (r.interrupted) {
+    const std::string& ck = a.req.options.decide.checkpoint_path;
+    throw Interrupted(fmt::format("interrupted by signal {}; {}", r.transducer ? r.transducer->signal : 0,
+                                  ck.empty() ? std::string("no checkpoint (use --checkpoint F to resume later)")
+                                             : "checkpoint written to " + ck + " (continue with --resume " + ck + ")"));
+  }
 }
 
 }  // namespace
 
 void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
-  auto* cmd = ap->add_subcommand("verify", "Search for a periodic tiling (torus p x q) and for an n x n square tiling");
+  auto* cmd = ap->add_subcommand(
+      "verify", "Decide a tile set: periodic (validated witness), finite (no large square), or unknown at the k reached");
   static VerifyArgs va;
-  cmd->add_option("SET", va.set, "Built-in name or tile-set file (Wang or corner)")->required();
-  cmd->add_option("--max-period", va.opts.max_period, "Largest torus period in each direction (default 8)");
-  cmd->add_option("--max-square", va.opts.max_square, "Also search an N x N square (bounded); 0 = no square search");
-  cmd->add_option("--threads", va.opts.threads, "Threads (default: all)");
-  cmd->add_option("--time-limit", va.opts.time_limit, "Seconds for the whole verification (0 = none; verdict inconclusive if hit)");
-  cmd->add_option("--prune", va.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
-  cmd->add_option("--db", va.db, "Store the run, the tile set and the witness in this results database");
-  cmd->add_flag("--progress", va.opts.progress, "Progress on stderr");
-  cmd->add_flag("--no-filter", [](std::int64_t) { va.opts.transducer_filter = false; },
-                "Send every torus shape to the solver (no transducer filter; for comparison)");
+  cmd->add_option("SET", va.req.set, "Built-in name or tile-set file (Wang or corner; repeated tiles are dropped)")
+      ->required();
+  add_verify_flags(cmd, va.req.options);
+  cmd->add_option("--prune", va.req.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
+  cmd->add_option("--checkpoint", va.req.options.decide.checkpoint_path,
+                  "transducer: write checkpoints here (every --checkpoint-every s, at the end, on SIGTERM/SIGUSR1)");
+  cmd->add_option("--checkpoint-every", va.req.options.decide.checkpoint_every, "Seconds between checkpoints (default 300)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--resume", va.req.options.decide.resume_path, "transducer: continue the run this checkpoint holds");
+  cmd->add_option("--db", va.req.db, "Store the run, the tile set and the witness in this results database");
+  cmd->add_flag("--quiet", va.quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] { run_verify(ctx, va); });
+  cmd->footer(
+      "Exit codes: 0 ok (whatever the verdict), 2 bad input or checkpoint, 3 interrupted (checkpoint written with "
+      "--checkpoint).");
+  cmd->callback([&ctx] { run_verify_command(ctx, va); });
 }
 
 }  // namespace tilekit::cli

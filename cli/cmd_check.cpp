@@ -1,8 +1,10 @@
-// tilekit check FILE [--set SET]: the independent validator on a tiling/packing file.
+// tilekit check FILE [--set SET] [--pegs-out F]: the independent validator on a tiling/packing
+// file (cells, or the compact peg form of a corner torus), optionally rewriting it as pegs.
 #include <fmt/format.h>
 
 #include <optional>
 
+#include "base/atomic_file.hpp"
 #include "cli/command.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -11,9 +13,11 @@ namespace tilekit::cli {
 
 void add_check_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("check", "Validate a tiling or packing file (JSON) with the independent validator");
-  static std::string file, set_name;
+  static std::string file, set_name, pegs_out;
   cmd->add_option("FILE", file, "Tiling/packing JSON file")->required();
   cmd->add_option("--set", set_name, "Check that every tile belongs to this tile set (and packs it)");
+  cmd->add_option("--pegs-out", pegs_out,
+                  "Also write a valid corner torus in the compact peg form (one digit per lattice point)");
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] {
     Tiling t = read_tiling_file(file);
@@ -24,6 +28,10 @@ void add_check_command(CLI::App& app, Context& ctx) {
                         {"colors", t.colours},    {"rows", t.rows},
                         {"cols", t.cols},         {"torus", t.torus},
                         {"packing", rep.packing}, {"errors", rep.errors}};
+    if (!pegs_out.empty() && rep.valid) {
+      write_file_atomic(pegs_out, tiling_to_peg_json(t).dump(1) + "\n");
+      j["pegs_out"] = pegs_out;
+    }
     emit(ctx, j, [&] {
       fmt::print("{}: {} {}x{} {} {} tiling: {}{}\n", file, kind_name(t.kind), t.rows, t.cols,
                  t.torus ? "torus" : "bounded", t.colours, rep.valid ? "valid" : "INVALID",

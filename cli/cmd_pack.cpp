@@ -159,7 +159,8 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--mode", r.mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)");
   cmd->add_option("--seed", r.seed, "Seed of the value order and restarts")->capture_default_str();
-  cmd->add_option("--formulation", r.formulation, "auto, cell, pegs (corner), edges (Wang) or sat (with --impose)")
+  cmd->add_option("--formulation", r.formulation,
+                  "auto, cell, pegs (corner), edges (Wang) or sat (with --impose or --lift)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", r.checkpoint, "Write checkpoints to this file");
@@ -176,6 +177,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--impose", r.impose,
                   "Search only packings invariant under this group: generators 't=DR,DC:pi=P0,P1,...' separated "
                   "by ';' (Wang: pih=/piv= per edge direction; cycles like pi=(0 1)(2 3) also work)");
+  cmd->add_option("--lift", r.lift,
+                  "Search packings A = B + M*E over a known packing B of M colours (colour-quotient lift): "
+                  "'M' or 'm=M,base=FILE'; --formulation sat solves it with cadical");
   cmd->add_flag("--plain", r.plain, "First mode: plain search only (no portfolio)");
   cmd->add_option("--candidate", r.candidates,
                   "A portfolio candidate (repeatable): plain, a group SPEC, impose:SPEC or sat:SPEC (default: the "

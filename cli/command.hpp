@@ -33,5 +33,7 @@ void add_tile_command(CLI::App& app, Context& ctx);
 void add_analyze_commands(CLI::App& app, Context& ctx);
 void add_aperiodic_commands(CLI::App& app, Context& ctx);
 void add_cluster_commands(CLI::App& app, Context& ctx);
+void add_points_commands(CLI::App& app, Context& ctx);
+void add_texture_commands(CLI::App& app, Context& ctx);
 
 }  // namespace tilekit::cli

@@ -76,14 +76,17 @@ SearchOptions search_options(const PackRequest& a) {
     throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
   if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
   if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
-  if (!a.candidates.empty() && (a.plain || !a.impose.empty()))
-    throw InputError("--candidate names a portfolio candidate: not with --plain or --impose");
+  if (!a.lift.empty() && (!a.impose.empty() || a.method == "construct"))
+    throw InputError("--lift searches its own subspace: drop --impose and --method construct");
+  if (!a.candidates.empty() && (a.plain || !a.impose.empty() || !a.lift.empty()))
+    throw InputError("--candidate names a portfolio candidate: not with --plain, --impose or --lift");
   o.threads = a.threads;
   o.seed = a.seed;
   o.time_limit = a.time_limit;
   o.formulation = a.formulation;
   o.ordering = a.ordering;
   o.impose = a.impose;
+  o.lift = a.lift;
   parse_shard(a.shard, o);
   o.resume_path = a.resume;
   o.checkpoint_path = !a.checkpoint.empty() ? a.checkpoint : a.resume;
@@ -124,9 +127,9 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   const bool complete_set = is_complete_set_problem(problem);
   const SearchMode mode = o.mode;
   // The portfolio answers first-mode searches of complete sets unless the engine is pinned by
-  // a group, --plain, a formulation or an ordering.
-  const bool use_portfolio = a.impose.empty() && !a.plain && mode == SearchMode::First && a.method != "construct" &&
-                             complete_set && a.formulation == "auto" && a.ordering == "auto";
+  // a group, a lift, --plain, a formulation or an ordering.
+  const bool use_portfolio = a.impose.empty() && a.lift.empty() && !a.plain && mode == SearchMode::First &&
+                             a.method != "construct" && complete_set && a.formulation == "auto" && a.ordering == "auto";
   if (!a.candidates.empty() && !use_portfolio)
     throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
   const std::string kind(kind_name(problem.set.kind()));
@@ -209,7 +212,7 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   };
 
   try {
-    if (mode == SearchMode::First && complete_set && a.impose.empty() && a.set.empty()) {
+    if (mode == SearchMode::First && complete_set && a.impose.empty() && a.lift.empty() && a.set.empty()) {
       PackingSources src;
       src.db = a.method == "auto" ? &db : nullptr;
       src.construct = a.method != "search";
@@ -263,9 +266,10 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
     }
   if (mode == SearchMode::First && r.found.empty())
     out.not_found = r.complete
-                        ? (a.impose.empty() ? "no packing exists (the search space was exhausted)"
-                                            : "no packing is invariant under the imposed group (its subspace was "
-                                              "exhausted)")
+                        ? (!a.impose.empty() ? "no packing is invariant under the imposed group (its subspace was "
+                                               "exhausted)"
+                           : !a.lift.empty() ? "no packing is a lift of the base packing (its subspace was exhausted)"
+                                             : "no packing exists (the search space was exhausted)")
                     : out.portfolio.is_object() && !out.interrupted && !r.timed_out
                         ? "no packing in the portfolio's subspaces (each candidate was exhausted)"
                         : "no packing found within the time limit";

@@ -34,6 +34,7 @@ const Field kFields[] = {
     TILEKIT_FIELD("--formulation", "formulation", formulation, std::string),
     TILEKIT_FIELD("--ordering", "ordering", ordering, std::string),
     TILEKIT_FIELD("--impose", "impose", impose, std::string),
+    TILEKIT_FIELD("--lift", "lift", lift, std::string),
     TILEKIT_FIELD("--plain", "plain", plain, bool),
     TILEKIT_FIELD("--candidate", "candidates", candidates, std::vector<std::string>),
     TILEKIT_FIELD("--seed", "seed", seed, std::uint64_t),

@@ -2,7 +2,9 @@
 # The main job on the embedded default. Grows with the product (see README.md).
 # Gets a corner packing for an atlas (database hit, else a construction, else a search),
 # checks it with the independent validator, stores it in the per-user results database,
-# writes the atlas lookup (JSON, C header, GLSL) and the atlas picture, and says where
+# writes the atlas lookup (JSON, C header, GLSL) and the atlas picture, synthesises texture tiles
+# from a real texture (CC0 grass), lays them out as an atlas and renders a surface with them (CPU,
+# and GLSL through headless EGL where it can), and says where
 # everything went and how to query it.
 #   TILEKIT_MAIN_COLORS  colours of the corner packing (default 6 = 2 x 3: stored x closed form)
 #   TILEKIT_MAIN_OUT     output folder (default: out/main-job in the repository)
@@ -61,6 +63,19 @@ echo "== 4. atlas lookup tables and picture"
 echo
 echo "== 5. the results database"
 "$tk" db stats --db "$db"
+echo
+echo "== 6. texture tiles from a real texture, their atlas and a rendered surface"
+"$root/scripts/fetch-textures.sh"
+tex=$out/texture-grass
+"$tk" texture tiles --exemplar grass --kind corner --colors 3 --tile-px 128 --out "$tex/tiles" --quiet
+"$tk" texture atlas "$tex/tiles" --out "$tex/atlas.png" --db "$db"
+"$tk" texture render --atlas "$tex/atlas.png" --size 1600x900 --scale 1 --tilt 3 --out "$tex/surface.png" --quiet
+if "$tk" texture render --atlas "$tex/atlas.png" --size 1600x900 --scale 1 --tilt 3 --compare \
+  --out "$tex/surface-glsl.png" --quiet; then
+  glsl="$tex/surface-glsl.png (GLSL sampler, headless EGL)"
+else
+  glsl="skipped (no EGL context here; see the message above)"
+fi
 cat <<EOF
 
 Where everything went:
@@ -68,6 +83,10 @@ Where everything went:
   C header / GLSL         $out/atlas-corner-$C.h, $out/atlas-corner-$C.glsl
   atlas picture           $out/atlas-corner-$C.png
   results database        $db (solution $id)
+  texture tiles (grass)   $tex/tiles/tileset.png (81 corner tiles, thesis 5.3)
+  texture atlas + mips    $tex/atlas.png, $tex/atlas.mip1.png ..., $tex/atlas.glsl (sampler)
+  rendered surface        $tex/surface.png (CPU reference)
+  the same through GLSL   $glsl
 How to query it:
   $tk db list --db '$db'
   $tk db show $id --db '$db' --json

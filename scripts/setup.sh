@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Idempotent set-up: installs the Debian packages Tilekit builds and tests with, if missing.
+# Idempotent set-up: installs the Debian packages Tilekit builds and tests with, if missing, and
+# fetches the real textures (scripts/fetch-textures.sh).
+# EGL/GLES + Mesa (libegl-dev, libgles-dev, libegl-mesa0, libgl1-mesa-dri): the headless GLSL renderer.
 set -euo pipefail
 PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt-dev libgtest-dev
       libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
-      glslang-tools cadical
+      glslang-tools cadical libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
       clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev)  # fuzzing and the sanitizer builds (issue 15)
 missing=()
 for p in "${PKGS[@]}"; do
@@ -19,3 +21,5 @@ if ((${#missing[@]})); then
     $SUDO apt-get install -y -q "${missing[@]}" >/dev/null
   }
 fi
+# Real textures for the texture tests, benchmarks and main job (cached, never committed).
+"$(dirname "$0")/fetch-textures.sh"

@@ -27,6 +27,8 @@ if [ "$mode" = sanitize ]; then
   exec "$root/scripts/sanitize.sh" asan "${args[@]}"
 fi
 "$root/scripts/build.sh"
+# setup.sh installed Mesa's EGL: the GLSL-vs-CPU tests must run (fail, not skip, without a context).
+export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)" "${args[@]}")
 if [ "${TILEKIT_SKIP_SANITIZE:-0}" = 1 ]; then
   echo "test.sh: the fuzz (and with --full, sanitizer) runs were SKIPPED (TILEKIT_SKIP_SANITIZE=1)" >&2

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 
 #include "base/error.hpp"
 #include "solver/solve.hpp"
@@ -111,6 +112,10 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
     add_site(r, c, 0);
     if (wang) add_site(r, c, 1);
   }
+  // The scan order lists every position, so every peg / edge has its site and group element.
+  assert(std::all_of(m.origin.begin(), m.origin.end(), [&](const auto& o) {
+    return o[0] >= 0 && o[0] < m.num_sites && o[1] >= 0 && o[1] < int(m.perm_tables.size());
+  }));
 
   // Representative cells and their slots.
   std::vector<bool> cell_seen(std::size_t(area), false);
@@ -134,6 +139,10 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
       m.cells.push_back(s);
       m.cell_positions.push_back({r, c});
     }
+
+  // The group's elements have distinct translations, so it acts freely on the cells: every cell
+  // orbit has |G| cells (what the model's pair counts and the packing's orbit count rely on).
+  assert(m.cells.size() * els.size() == std::size_t(area));
 
   // Tile orbits under G.
   const std::size_t space = std::size_t(complete_size(m.ch, m.cv));
@@ -176,6 +185,9 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
 }
 
 Tiling FundamentalDomain::to_tiling(const std::vector<int>& values) const {
+  assert(values.size() == std::size_t(num_sites));
+  for (int s = 0; s < num_sites; ++s)  // every site holds one of its colours
+    assert(values[std::size_t(s)] >= 0 && std::uint32_t(values[std::size_t(s)]) < site_colours[std::size_t(s)]);
   Tiling t(kind, ch, rows, cols, true);
   if (kind == TileKind::Wang) t.vertical_colours = cv == ch ? 0 : cv;
   Grid grid{rows, cols};

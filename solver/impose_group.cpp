@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cassert>
 #include <map>
 #include <numeric>
 #include <utility>
@@ -60,8 +61,10 @@ std::vector<Colour> parse_numbers(std::string_view s, const std::string& where) 
     token.clear();
   };
   for (char ch : s) {
-    if (ch == ',' || ch == ' ') flush();
-    else token.push_back(ch);
+    if (ch == ',' || ch == ' ')
+      flush();
+    else
+      token.push_back(ch);
   }
   flush();
   return out;
@@ -88,7 +91,9 @@ PermutationSpec parse_permutation(std::string_view s, const std::string& where) 
   return p;
 }
 
-std::string format_perm(const std::vector<Colour>& p) { return fmt::format("{}", fmt::join(p, ",")); }
+std::string format_perm(const std::vector<Colour>& p) {
+  return fmt::format("{}", fmt::join(p, ","));
+}
 
 bool is_identity(const std::vector<Colour>& p) {
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -108,7 +113,9 @@ int fixed_point(const std::vector<Colour>& p) {
   return -1;
 }
 
-int mod(long a, int n) { return int(((a % n) + n) % n); }
+int mod(long a, int n) {
+  return int(((a % n) + n) % n);
+}
 
 }  // namespace
 
@@ -122,7 +129,8 @@ std::vector<Colour> PermutationSpec::resolve(std::uint32_t n, const std::string&
       throw InputError(fmt::format("--impose: {} has {} entries but there are {} colours", what, list.size(), n));
     std::vector<bool> seen(n, false);
     for (Colour c : list) {
-      if (c >= n) throw InputError(fmt::format("--impose: {} maps to colour {}, but colours are 0..{}", what, c, n - 1));
+      if (c >= n)
+        throw InputError(fmt::format("--impose: {} maps to colour {}, but colours are 0..{}", what, c, n - 1));
       if (seen[c]) throw InputError(fmt::format("--impose: {} is not a permutation (colour {} twice)", what, c));
       seen[c] = true;
     }
@@ -154,7 +162,8 @@ GroupSpec parse_group_spec(std::string_view text) {
       field = trim(field);
       auto eq = field.find('=');
       if (eq == std::string_view::npos)
-        throw InputError(fmt::format("--impose: {}: field '{}' is not key=value (keys: t, pi, pih, piv)", where, field));
+        throw InputError(
+            fmt::format("--impose: {}: field '{}' is not key=value (keys: t, pi, pih, piv)", where, field));
       auto key = trim(field.substr(0, eq));
       auto value = field.substr(eq + 1);
       if (key == "t") {
@@ -202,8 +211,8 @@ std::uint64_t translation_order(int dr, int dc, int rows, int cols) {
   return std::lcm(one(dr, rows), one(dc, cols));
 }
 
-ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint32_t ch, std::uint32_t cv,
-                                 int rows, int cols, bool packing) {
+ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint32_t ch, std::uint32_t cv, int rows,
+                                 int cols, bool packing) {
   if (rows <= 0 || cols <= 0) throw InputError("--impose needs a torus with positive size");
   if (spec.generators.empty()) throw InputError("--impose: no generators");
   if (kind == TileKind::Corner) cv = ch;
@@ -226,7 +235,9 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
       g.ph = gs.pi.resolve(ch, where + " pi");
       g.pv = g.ph;
     } else if (gs.pi.given) {
-      if (ch != cv) throw InputError(fmt::format("--impose: {}: the edge directions have different colour counts; use pih/piv", where));
+      if (ch != cv)
+        throw InputError(
+            fmt::format("--impose: {}: the edge directions have different colour counts; use pih/piv", where));
       g.ph = gs.pi.resolve(ch, where + " pi");
       g.pv = g.ph;
     } else {
@@ -276,6 +287,10 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
       G.elements_.push_back(std::move(e));
     }
   }
+  // Identity first; the elements are distinct translations of the rows x cols torus, so their
+  // number (the group order) divides its area (Lagrange).
+  assert(G.elements_.front().dr == 0 && G.elements_.front().dc == 0 && is_identity(G.elements_.front().ph));
+  assert((std::uint64_t(rows) * std::uint64_t(cols)) % G.elements_.size() == 0);
   if (packing) {
     // A tile fixed by a non-identity element would appear at x and at x + t: twice.
     for (std::size_t i = 1; i < G.elements_.size(); ++i) {
@@ -286,10 +301,10 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
                              ? "generator"
                              : "group element";
       if (kind == TileKind::Corner)
-        throw InputError(fmt::format(
-            "--impose: {} t={},{}:pi={} fixes colour {}, so the tile with all corners {} is its own image; "
-            "a packing needs permutations without fixed points",
-            what, e.dr, e.dc, format_perm(e.ph), fh, fh));
+        throw InputError(
+            fmt::format("--impose: {} t={},{}:pi={} fixes colour {}, so the tile with all corners {} is its own image; "
+                        "a packing needs permutations without fixed points",
+                        what, e.dr, e.dc, format_perm(e.ph), fh, fh));
       throw InputError(fmt::format(
           "--impose: {} t={},{}:pih={}:piv={} fixes horizontal colour {} and vertical colour {}, so the tile "
           "N={} E={} S={} W={} is its own image; a packing needs pih or piv without a fixed point",
@@ -325,10 +340,14 @@ bool ImposedGroup::is_invariant(const Tiling& t) const {
 std::string ImposedGroup::spec_text() const {
   std::vector<std::string> gens;
   for (const auto& g : generators_) {
-    if (kind_ == TileKind::Corner || g.ph == g.pv) gens.push_back(fmt::format("t={},{}:pi={}", g.dr, g.dc, format_perm(g.ph)));
-    else if (is_identity(g.pv)) gens.push_back(fmt::format("t={},{}:pih={}", g.dr, g.dc, format_perm(g.ph)));
-    else if (is_identity(g.ph)) gens.push_back(fmt::format("t={},{}:piv={}", g.dr, g.dc, format_perm(g.pv)));
-    else gens.push_back(fmt::format("t={},{}:pih={}:piv={}", g.dr, g.dc, format_perm(g.ph), format_perm(g.pv)));
+    if (kind_ == TileKind::Corner || g.ph == g.pv)
+      gens.push_back(fmt::format("t={},{}:pi={}", g.dr, g.dc, format_perm(g.ph)));
+    else if (is_identity(g.pv))
+      gens.push_back(fmt::format("t={},{}:pih={}", g.dr, g.dc, format_perm(g.ph)));
+    else if (is_identity(g.ph))
+      gens.push_back(fmt::format("t={},{}:piv={}", g.dr, g.dc, format_perm(g.pv)));
+    else
+      gens.push_back(fmt::format("t={},{}:pih={}:piv={}", g.dr, g.dc, format_perm(g.ph), format_perm(g.pv)));
   }
   return fmt::format("{}", fmt::join(gens, ";"));
 }
@@ -337,7 +356,8 @@ nlohmann::json ImposedGroup::to_json() const {
   nlohmann::json gens = nlohmann::json::array();
   for (const auto& g : generators_) {
     nlohmann::json j = {{"t", {g.dr, g.dc}}};
-    if (kind_ == TileKind::Corner || g.ph == g.pv) j["pi"] = g.ph;
+    if (kind_ == TileKind::Corner || g.ph == g.pv)
+      j["pi"] = g.ph;
     else {
       j["pih"] = g.ph;
       j["piv"] = g.pv;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "solver/impose_domain.hpp"
+#include "solver/sat_cnf.hpp"  // sat_solver_available()
 
 namespace tilekit {
 
@@ -31,9 +32,6 @@ struct SatOutcome {
 // The CNF in DIMACS text.
 std::string symmetric_cnf(const FundamentalDomain& model, std::uint64_t* variables = nullptr,
                           std::uint64_t* clauses = nullptr);
-
-// Whether `cadical` is on PATH.
-bool sat_solver_available();
 
 // Writes the CNF to a temporary file, runs cadical with a time limit (seconds, >= 1) and seed,
 // and decodes the model. `stop` (may be empty) is polled every 10 ms and ends the solver early

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 
 #include "base/error.hpp"
@@ -18,9 +19,10 @@ struct LatticeModel::Tables {
   std::vector<int> allowed;                     // tile index -> tile number in the set, or -1
   std::vector<int> var_cells_start, var_cells;  // CSR: var -> cells containing it
   std::vector<int> order;                       // branching order of the free variables
+  std::vector<int> used_base;                   // cell -> class * tiles (offset into used_)
 };
 
-LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
+LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation, int class_period) {
   auto t = std::make_shared<Tables>();
   t->problem = p;
   const TileSet& set = p.set;
@@ -29,6 +31,17 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
   cells_ = R * K;
   packing_ = p.packing;
   break_translation_ = break_translation && p.packing && p.torus;
+  if (class_period > 0) {
+    assert(p.torus && p.packing && R % class_period == 0 && K % class_period == 0);
+    class_period_ = class_period;
+    classes_ = class_period * class_period;
+  }
+  t->used_base.resize(std::size_t(cells_));
+  for (int cell = 0; cell < cells_; ++cell) {
+    const int r = cell / K, c = cell % K;
+    const int cls = class_period > 0 ? (r % class_period) * class_period + c % class_period : 0;
+    t->used_base[std::size_t(cell)] = cls * int(set.size());
+  }
   const int ch = int(set.horizontal_radix()), cv = int(set.vertical_radix());
   t->cell_vars.resize(std::size_t(cells_));
   if (!wang) {
@@ -65,7 +78,10 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
                     "--formulation cell",
                     wang ? "edges" : "pegs", total, kMaxModelTable));
   t->allowed.assign(total, -1);
-  for (std::size_t k = 0; k < set.size(); ++k) t->allowed[set.index_of(k)] = int(k);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    assert(set.index_of(k) < total);  // a tile's index is its digits in the radices above
+    t->allowed[set.index_of(k)] = int(k);
+  }
   // var -> cells (CSR)
   std::vector<std::vector<int>> vc(std::size_t(t->vars));
   for (int cell = 0; cell < cells_; ++cell)
@@ -112,7 +128,7 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation) {
     missing_[std::size_t(cell)] = int(std::unique(cv4.begin(), cv4.end()) - cv4.begin());
   }
   marked_.assign(std::size_t(cells_), 0);
-  used_.assign(set.size(), 0);
+  used_.assign(set.size() * std::size_t(classes_), 0);
   fixed_ = int(fixed.size());
   for (auto& f : fixed) assign(f.first, f.second);
   set_value_seed(0);
@@ -142,6 +158,7 @@ bool LatticeModel::cell_has_option(int cell) const {
   int free_var = -1;
   for (int v : cv)
     if (value_[std::size_t(v)] < 0) free_var = v;
+  assert(free_var >= 0);  // called only for a cell with exactly one distinct free variable
   for (int x = 0; x < t.radix[std::size_t(free_var)]; ++x) {
     int i = 0;
     for (int d = 0; d < 4; ++d) {
@@ -149,7 +166,7 @@ bool LatticeModel::cell_has_option(int cell) const {
       i = i * t.digit_radix[std::size_t(d)] + (v == free_var ? x : value_[std::size_t(v)]);
     }
     int k = t.allowed[std::size_t(i)];
-    if (k >= 0 && !(packing_ && used_[std::size_t(k)])) return true;
+    if (k >= 0 && !(packing_ && used_[std::size_t(t.used_base[std::size_t(cell)] + k)])) return true;
   }
   return false;
 }
@@ -166,6 +183,9 @@ int LatticeModel::branch(std::vector<int>& values) {
 
 bool LatticeModel::assign(int var, int x) {
   const Tables& t = *t_;
+  // A free variable gets a colour within its radix (the engine's LIFO discipline).
+  assert(var >= 0 && var < t.vars && value_[std::size_t(var)] < 0);
+  assert(x >= 0 && x < t.radix[std::size_t(var)]);
   value_[std::size_t(var)] = x;
   ++assigned_;
   bool ok = true;
@@ -174,6 +194,7 @@ bool LatticeModel::assign(int var, int x) {
   for (const int* c = b; c != e; ++c) {
     if (--missing_[std::size_t(*c)] != 0 || !ok) continue;
     int k = t.allowed[std::size_t(cell_index(*c))];
+    if (k >= 0) k += t.used_base[std::size_t(*c)];
     if (k < 0 || (packing_ && used_[std::size_t(k)])) {
       ok = false;
     } else if (packing_) {
@@ -188,13 +209,15 @@ bool LatticeModel::assign(int var, int x) {
 }
 
 void LatticeModel::unassign(int var, int x) {
-  (void)x;
   const Tables& t = *t_;
+  assert(var >= 0 && var < t.vars && value_[std::size_t(var)] == x && assigned_ > 0);  // LIFO undo
+  (void)x;
   const int* b = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(var)])];
   const int* e = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(var) + 1])];
   for (const int* c = b; c != e; ++c) {
     if (missing_[std::size_t(*c)] == 0 && marked_[std::size_t(*c)]) {
-      used_[std::size_t(t.allowed[std::size_t(cell_index(*c))])] = 0;
+      assert(used_[std::size_t(t.used_base[std::size_t(*c)] + t.allowed[std::size_t(cell_index(*c))])]);  // marked cells own their tile
+      used_[std::size_t(t.used_base[std::size_t(*c)] + t.allowed[std::size_t(cell_index(*c))])] = 0;
       marked_[std::size_t(*c)] = 0;
     }
     ++missing_[std::size_t(*c)];

@@ -10,6 +10,11 @@
 // cells scanline by scanline; forward checking fails as soon as a cell with one free colour has
 // no colour left that gives an allowed, unused tile. Translations of a packing torus are
 // broken like in CellModel (tile 0 fixed at cell (0,0)).
+//
+// With a class period P > 0 (colour-quotient lifts, solver/lift_model.hpp) "no tile twice"
+// becomes "no tile twice within a residue class of cells (r mod P, c mod P)": the packing
+// condition of a lift quotient. Fixing tile 0 at (0,0) then breaks the translations by multiples
+// of P (which map classes to themselves), so a leaf stands for (R/P)(K/P) quotients.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -22,14 +27,15 @@ namespace tilekit {
 
 class LatticeModel {
  public:
-  LatticeModel(const TilingProblem& problem, bool break_translation);
+  LatticeModel(const TilingProblem& problem, bool break_translation, int class_period = 0);
 
   int branch(std::vector<int>& values);
   bool assign(int var, int value);
   void unassign(int var, int value);
   void set_value_seed(std::uint64_t seed);
   Tiling tiling() const;
-  std::uint64_t multiplicity() const { return break_translation_ ? std::uint64_t(cells_) : 1; }
+  std::uint64_t multiplicity() const { return break_translation_ ? std::uint64_t(cells_ / classes_) : 1; }
+  int class_period() const { return class_period_; }
 
  private:
   struct Tables;
@@ -37,12 +43,12 @@ class LatticeModel {
   bool cell_has_option(int cell) const;  // exactly one colour free
 
   std::shared_ptr<const Tables> t_;
-  int cells_ = 0;
+  int cells_ = 0, classes_ = 1, class_period_ = 0;
   bool break_translation_ = false, packing_ = false;
   std::vector<int> value_;      // var -> colour or -1
   std::vector<int> missing_;    // cell -> free colours among its four
   std::vector<char> marked_;    // cell -> its tile is marked used
-  std::vector<char> used_;      // tile number -> used (packing)
+  std::vector<char> used_;      // class * tiles + tile number -> used (packing)
   std::vector<int> order_pos_;  // (unused vars) order of branching
   std::vector<int> perm_;       // var*max_radix + k -> k-th colour tried
   int assigned_ = 0, fixed_ = 0;

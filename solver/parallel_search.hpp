@@ -15,6 +15,11 @@
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
 //    The first checkpoint is written before any work, so a run killed at once can resume.
+//
+// Over 400 lines on purpose: ParallelSearch is one class template whose workers, monitor,
+// progress and checkpoint writer share its state (counters, the subproblem cursor, the stop
+// token); split across files it would be read in pieces. The subproblem split is in
+// subproblems.hpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,7 +36,6 @@
 #include <vector>
 
 #include "base/error.hpp"
-#include "base/hash.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/signals.hpp"
@@ -41,6 +45,7 @@
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
 #include "solver/solve.hpp"
+#include "solver/subproblems.hpp"
 
 namespace tilekit {
 
@@ -74,50 +79,6 @@ struct ParallelOutcome {
   std::size_t checkpoints_written = 0;
   TreeEstimate estimate;
 };
-
-// A subproblem list is a deterministic function of the model and the target.
-template <SearchModel M>
-std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t target, std::uint64_t& nodes) {
-  std::vector<std::vector<Decision>> level{{}};
-  std::vector<int> values;
-  for (;;) {
-    std::vector<std::vector<Decision>> next;
-    bool expanded = false;
-    for (std::size_t i = 0; i < level.size(); ++i) {
-      if (next.size() + (level.size() - i) >= target) {  // enough: keep the rest unexpanded
-        next.insert(next.end(), level.begin() + std::ptrdiff_t(i), level.end());
-        break;
-      }
-      M m = root;
-      for (const Decision& d : level[i]) m.assign(d.var, d.value);
-      int var = m.branch(values);
-      if (var < 0) {
-        next.push_back(level[i]);
-        continue;
-      }
-      expanded = true;
-      ++nodes;
-      for (int v : values) {
-        if (m.assign(var, v)) {
-          next.push_back(level[i]);
-          next.back().push_back({var, v});
-        }
-        m.unassign(var, v);
-      }
-    }
-    level = std::move(next);
-    if (!expanded || level.size() >= target || level.empty()) return level;
-  }
-}
-
-inline std::uint64_t hash_subproblems(const std::vector<std::vector<Decision>>& subs) {
-  StableHash h;
-  for (const auto& s : subs) {
-    h.add(s.size());
-    for (const Decision& d : s) h.add(std::uint64_t(std::uint32_t(d.var)) << 32 | std::uint32_t(d.value));
-  }
-  return h.fnv();
-}
 
 template <SearchModel M>
 class ParallelSearch {
@@ -160,7 +121,9 @@ class ParallelSearch {
     InFlightSubproblem snap;
     std::uint64_t epoch = 0;
     std::atomic<std::uint64_t> live_nodes{0};
+    std::atomic<std::uint64_t> dive{kNoDive};  // first mode with restarts: the dive in progress
   };
+  static constexpr std::uint64_t kNoDive = ~std::uint64_t(0);
   struct Control {
     ParallelSearch& s;
     Slot& slot;
@@ -323,7 +286,10 @@ class ParallelSearch {
     while (!stop_.requested()) {
       // The k-th dive of this shard is dive r of the whole run: its seed depends on r, its
       // node limit on k (every shard follows the Luby sequence).
+      // A checkpoint taken now resumes at the lowest dive in progress (see first_unfinished_dive).
+      slot.dive.store(next_restart_.load());
       const std::uint64_t k = next_restart_++;
+      slot.dive.store(k);
       const std::uint64_t r = k * std::uint64_t(cfg_.shard_count) + std::uint64_t(cfg_.shard_index);
       M m = root_;
       // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
@@ -333,10 +299,20 @@ class ParallelSearch {
       ctl.node_limit = luby_limit(k + 1, cfg_.restart_base);
       SearchCounters c;
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
+      // A dive cut short by a stop (time limit, signal, a portfolio slice's end) is not done: a
+      // resume runs it again, so the natural-order dive 0 and the long Luby dives are never lost.
+      if (!(o == SubtreeOutcome::Stopped && !ctl.hit_limit && stop_.requested())) slot.dive.store(kNoDive);
       restart_nodes_ += c.nodes;
       restart_solutions_ += c.solutions;
       if (o == SubtreeOutcome::Exhausted) stop_.request(StopReason::Exhausted);  // the whole tree, no limit hit
     }
+  }
+
+  // The dive a resume starts at: the lowest one in progress or cut short, else the next one.
+  std::uint64_t first_unfinished_dive() const {
+    std::uint64_t k = next_restart_.load();
+    for (const auto& s : slots_) k = std::min(k, s->dive.load());
+    return k;
   }
 
   // ---- shared machinery: threads, monitor, checkpoints ----
@@ -449,7 +425,7 @@ class ParallelSearch {
       for (std::size_t j = next_job_; j < jobs_.size(); ++j)
         if (!jobs_[j].resume.empty()) st.in_flight.push_back({jobs_[j].index, jobs_[j].resume, jobs_[j].counted});
     }
-    st.restarts = next_restart_.load();
+    st.restarts = first_unfinished_dive();
     st.restart_nodes = restart_nodes_.load();
     st.seconds = prior_seconds_ + elapsed();
     if (cfg_.flush) cfg_.flush();

@@ -14,6 +14,9 @@
 #include "base/error.hpp"
 #include "base/signals.hpp"
 #include "solver/impose_domain.hpp"
+#include "solver/lift_model.hpp"
+#include "solver/sat_cnf.hpp"
+#include "tilesets/constructions.hpp"
 
 namespace tilekit {
 namespace {
@@ -84,16 +87,28 @@ std::vector<std::string> candidate_groups(TileKind kind, std::uint32_t colours) 
   return out;
 }
 
+std::vector<std::string> lift_candidates(TileKind kind, std::uint32_t colours) {
+  std::vector<std::string> out;
+  if (kind != TileKind::Corner) return out;  // Wang packings are constructed for every C
+  for (std::uint32_t m = colours / 2; m >= 2; --m) {
+    if (colours % m != 0 || !construct_packing(kind, m)) continue;
+    out.push_back(fmt::format("lift:{}", m));
+    if (sat_solver_available()) out.push_back(fmt::format("lift-sat:{}", m));
+  }
+  return out;
+}
+
 std::vector<std::string> default_candidates(TileKind kind, std::uint32_t colours) {
   std::vector<std::string> out = candidate_groups(kind, colours);
+  for (auto& l : lift_candidates(kind, colours)) out.push_back(l);
   out.push_back(kPlainSearch);
   return out;
 }
 
 // ---- the candidate families ----------------------------------------------------------------
-// A family turns a name into a runnable subspace search. To add one (e.g. "lift:M" for
-// colour-quotient lifts), write its maker and add a row to kFamilies: the portfolio, its
-// checkpoints, shards and statistics then take it like the others (solver/README.md).
+// A family turns a name into a runnable subspace search. To add one, write its maker and add a
+// row to kFamilies: the portfolio, its checkpoints, shards and statistics then take it like
+// the others (solver/README.md).
 namespace {
 
 SearchResult run_plain(const TilingProblem& p, SearchOptions o) {
@@ -126,6 +141,32 @@ Candidate make_sat(const TilingProblem& problem, const std::string& name, const 
   return {name, "sat", group, false, false, run};
 }
 
+// Colour-quotient lifts A = B + m*E over a packing B of m colours (lift_model.hpp): the engine's
+// tile-per-cell quotient, most constrained first ("lift:SPEC"), or its CNF for cadical
+// ("lift-sat:SPEC", one run per slice like "sat:").
+Candidate make_lift(const TilingProblem& problem, const std::string& name, const std::string& spec) {
+  make_lift_problem(problem.set.kind(), problem.set.colours(), parse_lift_spec(spec));  // InputError when impossible
+  auto run = [spec](const TilingProblem& p, SearchOptions o) {
+    o.lift = spec;
+    o.formulation = "cell";
+    return solve(p, o);
+  };
+  return {name, "lift", "", true, true, run};
+}
+
+Candidate make_lift_sat(const TilingProblem& problem, const std::string& name, const std::string& spec) {
+  make_lift_problem(problem.set.kind(), problem.set.colours(), parse_lift_spec(spec));
+  auto run = [spec](const TilingProblem& p, SearchOptions o) {
+    o.lift = spec;
+    o.formulation = "sat";
+    o.shard_index = 0, o.shard_count = 1;  // runs in one shard (see run_portfolio)
+    o.save_checkpoint = nullptr;
+    o.resume_state.reset();
+    return solve(p, o);
+  };
+  return {name, "lift-sat", "", false, false, run};
+}
+
 struct Family {
   const char* prefix;  // a name starting with it belongs to the family (the rest is its argument)
   bool exact;          // the name is the prefix itself
@@ -133,9 +174,8 @@ struct Family {
 };
 
 constexpr Family kFamilies[] = {
-    {"plain", true, make_plain},
-    {"impose:", false, make_impose},
-    {"sat:", false, make_sat},
+    {"plain", true, make_plain}, {"impose:", false, make_impose},     {"sat:", false, make_sat},
+    {"lift:", false, make_lift}, {"lift-sat:", false, make_lift_sat},
 };
 
 }  // namespace
@@ -146,7 +186,8 @@ Candidate make_candidate(const TilingProblem& problem, const std::string& name) 
     if (f.exact ? name == prefix : name.rfind(prefix, 0) == 0) return f.make(problem, name, name.substr(prefix.size()));
   }
   if (name.find('=') != std::string::npos) return make_impose(problem, name, name);  // a bare group spec
-  throw InputError(fmt::format("unknown portfolio candidate '{}' (plain, SPEC, impose:SPEC or sat:SPEC)", name));
+  throw InputError(
+      fmt::format("unknown portfolio candidate '{}' (plain, SPEC, impose:SPEC, sat:SPEC, lift:M or lift-sat:M)", name));
 }
 
 // ---- the scheduler -----------------------------------------------------------------------

@@ -10,7 +10,9 @@
 //
 // Candidate names: "plain" (the whole space), "SPEC" or "impose:SPEC" (only the packings
 // invariant under the group SPEC, solver/impose_group.hpp), "sat:SPEC" (the same subspace as
-// CNF for cadical). How to add a family (e.g. colour-quotient lifts): solver/README.md.
+// CNF for cadical), "lift:M" / "lift-sat:M" (colour-quotient lifts over a packing of M colours,
+// solver/lift_model.hpp, searched by the engine or by cadical). How to add a family:
+// solver/README.md.
 //
 // Shards (options.shard_index/count): every resumable candidate's dives are split between the
 // shards (parallel_search.hpp); a candidate that cannot be split (sat) runs in one shard only,
@@ -52,7 +54,11 @@ Candidate make_candidate(const TilingProblem& problem, const std::string& name);
 //   products of two such generators with commuting permutations (k1 * k2 | C for corner; for
 //   Wang also one generator on the horizontal and one on the vertical colours).
 std::vector<std::string> candidate_groups(TileKind kind, std::uint32_t colours);
-// candidate_groups() and then the plain search.
+// Colour-quotient lift candidates for corner packings over C colours: "lift:M" for every divisor
+// M of C (2 <= M <= C/2) with a known packing over M colours (construct_packing), largest M
+// first, each followed by "lift-sat:M" when cadical is on PATH.
+std::vector<std::string> lift_candidates(TileKind kind, std::uint32_t colours);
+// candidate_groups(), lift_candidates() and then the plain search.
 std::vector<std::string> default_candidates(TileKind kind, std::uint32_t colours);
 
 struct PortfolioOptions {

@@ -51,8 +51,6 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
   }
   if (st.restarts > kMaxRestarts)
     throw InputError(fmt::format("{} restarts is more than the limit of {}", st.restarts, kMaxRestarts));
-  if (st.restarts == 0 && st.restart_nodes != 0)
-    throw InputError(fmt::format("it counts {} restart nodes but no restart", st.restart_nodes));
   if (!std::isfinite(st.seconds) || st.seconds < 0)
     throw InputError(fmt::format("its time so far ({} s) is not a non-negative number", st.seconds));
 }

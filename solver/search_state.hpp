@@ -63,7 +63,8 @@ inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 // Structural validation of a state read from a checkpoint, as data: the finished bitmap has
 // one bit per subproblem; every in-flight subproblem is in range, unfinished and listed once;
 // counters are consistent (orbits <= solutions; nothing counted for finished subproblems when
-// none finished; no restart nodes without a restart); restarts and seconds bounded.
+// none finished); restarts and seconds bounded. (Restart nodes without a finished restart are
+// normal: a checkpoint resumes at the lowest dive cut short, whose nodes are already counted.)
 // With `subproblems` > 0 it also checks the state against the search resuming it (its
 // subproblem count, and that every in-flight subproblem belongs to shard I of N). A
 // checksum only proves the file is as written; this proves it can be resumed to the

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,7 @@
 #include "solver/impose_model.hpp"
 #include "solver/impose_sat.hpp"
 #include "solver/lattice_model.hpp"
+#include "solver/lift_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/validator.hpp"
@@ -64,7 +66,17 @@ struct Plan {
   std::size_t subproblems = 0;
   std::optional<ImposedGroup> group;  // --impose
   std::optional<FundamentalDomain> domain;
+  std::shared_ptr<const LiftProblem> lift;  // --lift: the subspace searched
 };
+
+// A model's leaf stands for its translates by multiples of this step (lifts: the period).
+template <SearchModel M>
+int translation_step(const M& m) {
+  if constexpr (requires { m.translation_step(); })
+    return m.translation_step();
+  else
+    return 1;
+}
 
 const char* mode_name(SearchMode m) {
   return m == SearchMode::First ? "first" : m == SearchMode::Count ? "count" : "all";
@@ -112,15 +124,32 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
       if (o.shard_count != 1 || o.save_checkpoint || o.resume_state)
         throw InputError("the sat formulation runs cadical once: it keeps no checkpoint and takes no --shard");
     }
+    if (!o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
+  } else if (!o.lift.empty()) {
+    const bool complete = set.size() == complete_size(set.horizontal_radix(), set.vertical_radix()) &&
+                          set.horizontal_radix() == set.vertical_radix() && p.torus && p.packing &&
+                          p.rows == int(set.colours() * set.colours()) && p.cols == p.rows;
+    if (!complete) throw InputError("--lift searches packings of the complete sets (--kind and --colors)");
+    pl.lift =
+        std::make_shared<const LiftProblem>(make_lift_problem(set.kind(), set.colours(), parse_lift_spec(o.lift)));
+    if (o.formulation == "auto" || o.formulation == "pegs" || o.formulation == "edges")
+      pl.formulation = "lift";
+    else if (o.formulation == "cell")
+      pl.formulation = "lift-cell";
+    else if (o.formulation != "sat")
+      throw InputError(fmt::format(
+          "--lift searches with the engine (--formulation auto: pegs/edges, or cell) or cadical (sat), not '{}'",
+          o.formulation));
   } else if (pl.formulation == "sat") {
-    throw InputError("the sat formulation encodes an imposed group's subspace: give --impose SPEC");
+    throw InputError("the sat formulation encodes an imposed group's or a lift's subspace: give --impose or --lift");
   }
   // Measured (BENCHMARKS.md, bench_solver): the tile-per-cell model is fastest on every packing
   // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
   // unconstrained tilings, where most-constrained-first cell search is close and far more
   // robust on restrictive (e.g. aperiodic) sets.
   if (pl.formulation == "auto") pl.formulation = "cell";
-  if (pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges" && pl.formulation != "sat")
+  if (!pl.lift && pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges" &&
+      pl.formulation != "sat")
     throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges, sat or auto)", o.formulation));
   if (pl.formulation == "pegs" && wang)
     throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
@@ -131,8 +160,9 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
-  if (pl.ordering == "mrv" && pl.formulation != "cell" && !pl.group)
+  if (pl.ordering == "mrv" && pl.formulation != "cell" && !pl.group && !pl.lift)
     throw InputError("the mrv ordering needs the cell formulation (or --impose)");
+  if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : pl.formulation == "lift-cell" ? "mrv" : "static";
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   // Nodes per Luby unit: under a group, proportional to the fundamental domain (measured on
   // C=5 corner, BENCHMARKS.md); otherwise to the grid.
@@ -163,6 +193,11 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
                       {"subproblems", pl.subproblems},
                       {"shard", {o.shard_index, o.shard_count}}};
   if (pl.restarts) j["restart_base"] = pl.restart_base;
+  if (pl.lift) {
+    StableHash base;
+    for (TileIndex t : pl.lift->base.cells) base.add(t, 4);
+    j["lift"] = {{"spec", pl.lift->spec.text()}, {"base_hash", fmt::format("{:016x}", base.fnv())}};
+  }
   if (pl.group) {
     j["impose"] = pl.group->spec_text();
     j["patterns"] = o.impose_patterns;
@@ -203,7 +238,8 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   std::optional<PackingSymmetry> sym;
   const bool translations = root.multiplicity() > 1;
-  if (o.mode != SearchMode::First && o.count_orbits && translations) sym = PackingSymmetry::for_problem(p);
+  const int step = translation_step(root);  // orbits are counted for whole-torus translations only
+  if (o.mode != SearchMode::First && o.count_orbits && translations && step == 1) sym = PackingSymmetry::for_problem(p);
   if (sym) res.symmetry_order = sym->full_order();
 
   std::mutex emit_mu;
@@ -223,8 +259,8 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
       emit(t);
       res.found.push_back(t);
     } else if (translations) {
-      for (int r = 0; r < t.rows; ++r)
-        for (int col = 0; col < t.cols; ++col) emit(translate(t, r, col));
+      for (int r = 0; r < t.rows; r += step)
+        for (int col = 0; col < t.cols; col += step) emit(translate(t, r, col));
     } else {
       emit(t);
     }
@@ -308,6 +344,10 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.catch_signals) signals.emplace();
+  if (pl.lift && pl.formulation == "sat")
+    return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
+  if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);
+  if (pl.lift) return run_model(lift_lattice_model(*pl.lift), problem, options, pl);
   if (pl.formulation == "sat") return run_sat(problem, options, pl);
   if (pl.domain) {
     auto ord = pl.ordering == "mrv" ? ImposeModel::Ordering::MostConstrained : ImposeModel::Ordering::Static;

@@ -44,7 +44,7 @@ struct SearchOptions {
   int threads = 1;
   std::uint64_t seed = 0;
   double time_limit = 0;             // seconds; 0 = none. Hitting it leaves `complete` false.
-  std::string formulation = "auto";  // "cell", "pegs" (corner), "edges" (Wang) or "auto"
+  std::string formulation = "auto";  // "cell", "pegs" (corner), "edges" (Wang) or "auto"; "sat" with lift
   int shard_index = 0, shard_count = 1;
   std::string checkpoint_path;  // write checkpoints here ("" = none)
   double checkpoint_every = 0;  // seconds between checkpoints (0 = only on signals)
@@ -63,6 +63,9 @@ struct SearchOptions {
   bool catch_signals = false;         // SIGTERM/SIGINT/SIGUSR1 stop the search (result.interrupted)
   bool count_orbits = true;           // Count/All on complete sets: also count orbits
   std::string title;                  // progress line prefix
+  std::string lift;                   // colour-quotient lift SPEC (solver/lift_model.hpp, issue 11):
+                                      // search packings B + m*E of the complete set; "" = none.
+                                      // Formulation "auto" (the engine) or "sat" (cadical)
   // Checkpoint I/O, injected because the file format lives in checkpoints/ (which depends on
   // solver/): use checkpoints/checkpoint.hpp `solve_checkpointed()`, which fills these from
   // checkpoint_path / resume_path. solve() itself rejects the paths without these hooks.

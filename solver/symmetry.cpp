@@ -1,6 +1,7 @@
 #include "solver/symmetry.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <numeric>
 
 namespace tilekit {
@@ -42,6 +43,9 @@ std::optional<PackingSymmetry> PackingSymmetry::for_problem(const TilingProblem&
   const std::size_t T = set.size();
   auto perms_h = permutations(ch);
   auto perms_v = wang ? permutations(cv) : std::vector<std::vector<std::uint32_t>>{{}};
+  s.tiles_ = T;
+  s.colour_maps_ = perms_h.size() * perms_v.size();
+  s.tile_maps_.reserve(colour_part * (square ? 8 : 4) * T);
   for (int tr = 0; tr < (square ? 2 : 1); ++tr)
     for (int fr = 0; fr < 2; ++fr)
       for (int fc = 0; fc < 2; ++fc) {
@@ -54,47 +58,61 @@ std::optional<PackingSymmetry> PackingSymmetry::for_problem(const TilingProblem&
             if (fc) cc = p.cols - 1 - cc;
             cm[std::size_t(r * p.cols + c)] = rr * p.cols + cc;
           }
+        std::vector<int> icm(cm.size());
+        for (std::size_t x = 0; x < cm.size(); ++x) icm[std::size_t(cm[x])] = int(x);
+        s.cell_maps_.push_back(std::move(cm));
+        s.inverse_cells_.push_back(std::move(icm));
+        // The geometric image of every tile, decoded once per geometry; the colour maps below
+        // only relabel its colours.
+        std::vector<WangTile> geo_wang(wang ? T : 0);
+        std::vector<CornerTile> geo_corner(wang ? 0 : T);
+        for (TileIndex i = 0; i < T; ++i) {
+          if (wang) {
+            WangTile t = wang_tile(i, ch, cv), u = t;
+            if (tr) u = {t.w, t.s, t.e, t.n};  // N'=W, E'=S, S'=E, W'=N
+            if (fr) std::swap(u.n, u.s);
+            if (fc) std::swap(u.e, u.w);
+            geo_wang[i] = u;
+          } else {
+            CornerTile u = corner_tile(i, ch);
+            if (tr) std::swap(u.ne, u.sw);
+            if (fr) std::swap(u.nw, u.sw), std::swap(u.ne, u.se);
+            if (fc) std::swap(u.nw, u.ne), std::swap(u.sw, u.se);
+            geo_corner[i] = u;
+          }
+        }
         for (const auto& ph : perms_h)
           for (const auto& pv : perms_v) {
-            std::vector<TileIndex> tm(T);
+            const std::size_t start = s.tile_maps_.size();
             for (TileIndex i = 0; i < T; ++i) {
+              TileIndex image;
               if (wang) {
-                WangTile t = wang_tile(i, ch, cv), u = t;
-                if (tr) u = {t.w, t.s, t.e, t.n};  // N'=W, E'=S, S'=E, W'=N
-                if (fr) std::swap(u.n, u.s);
-                if (fc) std::swap(u.e, u.w);
-                u = {ph[u.n], pv[u.e], ph[u.s], pv[u.w]};
-                tm[i] = wang_index(u, ch, cv);
+                const WangTile& u = geo_wang[i];
+                image = wang_index(WangTile{ph[u.n], pv[u.e], ph[u.s], pv[u.w]}, ch, cv);
               } else {
-                CornerTile t = corner_tile(i, ch), u = t;
-                if (tr) std::swap(u.ne, u.sw);
-                if (fr) std::swap(u.nw, u.sw), std::swap(u.ne, u.se);
-                if (fc) std::swap(u.nw, u.ne), std::swap(u.sw, u.se);
-                u = {ph[u.ne], ph[u.se], ph[u.sw], ph[u.nw]};
-                tm[i] = corner_index(u, ch);
+                const CornerTile& u = geo_corner[i];
+                image = corner_index(CornerTile{ph[u.ne], ph[u.se], ph[u.sw], ph[u.nw]}, ch);
               }
+              s.tile_maps_.push_back(image);
+              if (image == 0) s.inverse_tile0_.push_back(i);
             }
-            std::vector<TileIndex> inv(T);
-            for (TileIndex i = 0; i < T; ++i) inv[tm[i]] = i;
-            std::vector<int> icm(cm.size());
-            for (std::size_t x = 0; x < cm.size(); ++x) icm[std::size_t(cm[x])] = int(x);
-            s.tile_maps_.push_back(std::move(tm));
-            s.inverse_tiles_.push_back(std::move(inv));
-            s.cell_maps_.push_back(cm);
-            s.inverse_cells_.push_back(std::move(icm));
+            // Each map is a bijection of the complete set, so exactly one tile maps to index 0.
+            assert(s.inverse_tile0_.size() == (start / T) + 1);
+            (void)start;
           }
       }
+  assert(s.order() == s.cell_maps_.size() * s.colour_maps_);
   return s;
 }
 
 int PackingSymmetry::compare_image(std::size_t h, const std::vector<TileIndex>& cells,
                                    const std::vector<TileIndex>& ref) const {
-  const auto& tm = tile_maps_[h];
-  const auto& icm = inverse_cells_[h];
-  // The anchor (index 0) of the image comes from the cell holding inverse_tiles_[h][0].
-  TileIndex pre = inverse_tiles_[h][0];
+  const TileIndex* tm = tile_map(h);
+  const auto& icm = inverse_cell_map(h);
+  // The anchor (index 0) of the image comes from the cell holding inverse_tile0_[h].
+  TileIndex pre = inverse_tile0_[h];
   int src = int(std::find(cells.begin(), cells.end(), pre) - cells.begin());
-  int a = cell_maps_[h][std::size_t(src)];
+  int a = cell_map(h)[std::size_t(src)];
   int ar = a / cols_, ac = a % cols_;
   for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < cols_; ++c) {
@@ -108,7 +126,9 @@ int PackingSymmetry::compare_image(std::size_t h, const std::vector<TileIndex>& 
 
 std::vector<TileIndex> PackingSymmetry::image(std::size_t h, const std::vector<TileIndex>& cells) const {
   std::vector<TileIndex> g(cells.size());
-  for (std::size_t x = 0; x < cells.size(); ++x) g[std::size_t(cell_maps_[h][x])] = tile_maps_[h][cells[x]];
+  const TileIndex* tm = tile_map(h);
+  const auto& cm = cell_map(h);
+  for (std::size_t x = 0; x < cells.size(); ++x) g[std::size_t(cm[x])] = tm[cells[x]];
   return g;
 }
 

@@ -27,7 +27,7 @@ class PackingSymmetry {
   // or when H would have more than `max_order` elements.
   static std::optional<PackingSymmetry> for_problem(const TilingProblem& problem, std::size_t max_order = 10000);
 
-  std::size_t order() const { return tile_maps_.size(); }                       // |H|
+  std::size_t order() const { return inverse_tile0_.size(); }                   // |H|
   std::uint64_t full_order() const { return order() * std::uint64_t(cells_); }  // |T x H|
 
   // `cells` must be in normal form. True when no image under H is smaller; `stabiliser`
@@ -44,11 +44,17 @@ class PackingSymmetry {
   int compare_image(std::size_t h, const std::vector<TileIndex>& cells, const std::vector<TileIndex>& ref) const;
   std::vector<TileIndex> image(std::size_t h, const std::vector<TileIndex>& cells) const;
 
+  const TileIndex* tile_map(std::size_t h) const { return &tile_maps_[h * tiles_]; }
+  // h = geometry * colour_maps_ + colour map: the 8 (or 4) geometric maps share cell maps.
+  const std::vector<int>& cell_map(std::size_t h) const { return cell_maps_[h / colour_maps_]; }
+  const std::vector<int>& inverse_cell_map(std::size_t h) const { return inverse_cells_[h / colour_maps_]; }
+
   int rows_ = 0, cols_ = 0, cells_ = 0;
-  std::vector<std::vector<TileIndex>> tile_maps_;      // h -> tile index map
-  std::vector<std::vector<TileIndex>> inverse_tiles_;  // h -> inverse tile map
-  std::vector<std::vector<int>> cell_maps_;            // h -> cell -> image cell
-  std::vector<std::vector<int>> inverse_cells_;        // h -> image cell -> cell
+  std::size_t tiles_ = 0, colour_maps_ = 1;
+  std::vector<TileIndex> tile_maps_;             // h * tiles_ + tile -> its image (one block: fast to build)
+  std::vector<TileIndex> inverse_tile0_;         // h -> the tile that h maps to tile index 0
+  std::vector<std::vector<int>> cell_maps_;      // geometry -> cell -> image cell
+  std::vector<std::vector<int>> inverse_cells_;  // geometry -> image cell -> cell
 };
 
 // The packing translated by (dr, dc): cell (r,c) moves to (r+dr, c+dc) mod the torus.

@@ -44,11 +44,12 @@ struct TempDir {
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
 
-// `args` is appended to the binary path as-is (shell syntax; quote as needed).
-inline CliResult run_cli(const std::string& args) {
+// `args` is appended to the binary path as-is (shell syntax; quote as needed); `prefix` goes before
+// the binary (e.g. "env VAR=value ").
+inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& args) {
   TempDir d;
   std::string out = d / "out", err = d / "err";
-  std::string cmd = std::string(TILEKIT_BINARY) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  std::string cmd = prefix + std::string(TILEKIT_BINARY) + " " + args + " >" + out + " 2>" + err + " </dev/null";
   int status = std::system(cmd.c_str());
   CliResult r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -56,6 +57,8 @@ inline CliResult run_cli(const std::string& args) {
   r.err = slurp(err);
   return r;
 }
+
+inline CliResult run_cli(const std::string& args) { return run_cli_prefixed("", args); }
 
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

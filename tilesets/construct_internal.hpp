@@ -19,4 +19,11 @@ std::pair<int, int> corner_triangular_position(std::uint32_t colours, TileIndex 
 std::vector<Colour> corner_product_pegs(const std::vector<Colour>& pegs_a, std::uint32_t a,
                                         const std::vector<Colour>& pegs_b, std::uint32_t b);
 
+// construct_lift.cpp: the binary lift quotient of an even period M (a 4M x 4M binary peg torus
+// holding every binary 2x2 window once on each residue class mod M), its inverse (the cell of
+// the class of `base_cell` whose window is `window`), and the property of the 4x4 torus it uses.
+std::vector<Colour> binary_lift_quotient_pegs(std::uint64_t period);
+std::pair<int, int> binary_lift_position(std::uint64_t period, std::pair<int, int> base_cell, TileIndex window);
+bool binary_lift_torus_ok();
+
 }  // namespace tilekit

@@ -4,7 +4,9 @@
 //   - Wang, any C: outer product of two Eulerian circuits (thesis 5.5.1-5.5.2, Wei 2004).
 //   - corner, odd C: de Bruijn sequence shifted by triangular numbers (DESIGN.md).
 //   - corner, C = a*b with gcd(a,b) = 1: product of an a- and a b-packing (DESIGN.md).
-//   - corner C = 2 (and 4 once found): packings found by the solver, stored as data.
+//   - corner, C = 2m with m even: binary colour-quotient lift of the m-packing
+//     (construct_lift.cpp), so every power of two from 4 up, and with the products every C.
+//   - corner C = 2, 4, 8: packings found by the solver, stored as data (used before the lift).
 //
 // Layout of a corner packing: the C^2 x C^2 torus of pegs P(r,c); the tile at cell (r,c) has
 // nw = P(r,c), ne = P(r,c+1), sw = P(r+1,c), se = P(r+1,c+1) (indices mod C^2).
@@ -48,8 +50,12 @@ std::optional<Tiling> stored_packing(TileKind kind, std::uint32_t colours);
 // The colour counts in 1..max_colours for which construct_packing() succeeds.
 std::vector<std::uint32_t> constructible_colours(TileKind kind, std::uint32_t max_colours);
 
-// Pegs <-> corner tiles on a torus (layout above).
-Tiling corner_packing_from_pegs(const std::vector<Colour>& pegs, int n, std::uint32_t colours);
-std::vector<Colour> pegs_of_corner_packing(const Tiling& t);
+// Colour-quotient lift (issue 11, construct_lift.cpp): the tiling over (base colours) x
+// (quotient colours) whose every corner or edge colour is b + m*e, b from `base` (a square torus,
+// m colours, repeated with its period) and e from `quotient` (a k-colour torus whose side is a
+// multiple of the base's). It is a packing exactly when `base` is one and `quotient` holds every
+// k-colour tile once on each residue class of cells modulo the base's side. Throws InputError
+// for mismatched kinds or sizes.
+Tiling colour_lift(const Tiling& base, const Tiling& quotient);
 
 }  // namespace tilekit

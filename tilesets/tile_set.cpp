@@ -64,22 +64,17 @@ TileSet TileSet::corner(std::vector<CornerTile> tiles, std::string name, std::st
 }
 
 void TileSet::check_distinct() const {
-  // The colours themselves, not the 32-bit index: a set built in memory (the aperiodic
-  // tables' Wang sets over hundreds of colours) may lie beyond the index range.
-  std::vector<std::array<Colour, 4>> idx(size());
-  for (std::size_t k = 0; k < size(); ++k)
-    idx[k] = kind_ == TileKind::Wang
-                 ? std::array<Colour, 4>{wang_[k].n, wang_[k].e, wang_[k].s, wang_[k].w}
-                 : std::array<Colour, 4>{corner_[k].ne, corner_[k].se, corner_[k].sw, corner_[k].nw};
-  std::vector<std::array<Colour, 4>> sorted = idx;
-  std::sort(sorted.begin(), sorted.end());
-  auto dup = std::adjacent_find(sorted.begin(), sorted.end());
-  if (dup != sorted.end()) {
-    auto first = std::find(idx.begin(), idx.end(), *dup) - idx.begin();
-    auto second = std::find(idx.begin() + first + 1, idx.end(), *dup) - idx.begin();
-    throw InputError(fmt::format("duplicate tile: tile {} repeats tile {} ({})", second + 1, first + 1,
-                                 fmt::join(file_colours(first), " ")));
+  // Compared by colours, not by index: 32-bit indices of large colours can coincide.
+  std::vector<std::pair<std::array<Colour, 4>, std::size_t>> tiles(size());
+  for (std::size_t k = 0; k < size(); ++k) {
+    auto c = file_colours(k);
+    tiles[k] = {{c[0], c[1], c[2], c[3]}, k};
   }
+  std::sort(tiles.begin(), tiles.end());
+  auto dup = std::adjacent_find(tiles.begin(), tiles.end(), [](const auto& a, const auto& b) { return a.first == b.first; });
+  if (dup != tiles.end())
+    throw InputError(fmt::format("duplicate tile: tile {} repeats tile {} ({})", dup[1].second + 1, dup[0].second + 1,
+                                 fmt::join(file_colours(dup[0].second), " ")));
 }
 
 const std::vector<WangTile>& TileSet::wang_tiles() const {

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -26,15 +25,41 @@ struct RawTile {
   std::string where;  // "file:line" or "file: tiles[k]"
 };
 
-TileSet make_set(TileKind kind, const std::vector<RawTile>& rows, std::string name, std::string source,
-                 std::int64_t declared, const std::string& origin) {
-  // Duplicates are reported with both places before the factory (which only knows numbers).
-  std::map<std::array<std::int64_t, 4>, std::size_t> seen;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    auto [it, fresh] = seen.emplace(rows[k].colours, k);
-    if (!fresh)
-      throw InputError(fmt::format("{}: duplicate tile: repeats the tile of {} ({})", rows[k].where,
-                                   rows[it->second].where, fmt::join(rows[k].colours, " ")));
+TileSet make_set(TileKind kind, std::vector<RawTile> rows, std::string name, std::string source,
+                 std::int64_t declared, const std::string& origin, std::vector<RepeatedTile>* repeated) {
+  // Equal tiles, found by sorting (stable: the first in file order leads each run). Without
+  // `repeated` a repeat is an error naming both places; with it, the set keeps the first of
+  // equal tiles (in file order) and the others are listed there.
+  std::vector<std::size_t> order(rows.size()), first_of(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return rows[a].colours < rows[b].colours; });
+  bool any = false;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const bool repeat = i > 0 && rows[order[i]].colours == rows[order[i - 1]].colours;
+    first_of[order[i]] = repeat ? first_of[order[i - 1]] : order[i];
+    any = any || repeat;
+  }
+  if (any && !repeated) {
+    std::size_t k = 0;  // the earliest repeat in file order
+    while (first_of[k] == k) ++k;
+    throw InputError(fmt::format("{}: duplicate tile: repeats the tile of {} ({})", rows[k].where,
+                                 rows[first_of[k]].where, fmt::join(rows[k].colours, " ")));
+  }
+  if (any) {
+    std::vector<RawTile> distinct;
+    std::vector<std::size_t> position(rows.size());  // of each first occurrence among the distinct tiles
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto& r = rows[k].colours;
+      if (first_of[k] == k) {
+        position[k] = distinct.size();
+        distinct.push_back(rows[k]);
+      } else {
+        repeated->push_back(
+            {rows[k].where, position[first_of[k]], {Colour(r[0]), Colour(r[1]), Colour(r[2]), Colour(r[3])}});
+      }
+    }
+    rows = std::move(distinct);
   }
   try {
     if (kind == TileKind::Wang) {
@@ -113,7 +138,7 @@ std::optional<std::string_view> directive(std::string_view line, std::initialize
   return std::nullopt;
 }
 
-TileSet parse_text(std::string_view text, const std::string& origin) {
+TileSet parse_text(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   require_utf8(text, origin);
   TileKind kind = TileKind::Wang;
   std::int64_t declared = 0;
@@ -177,13 +202,13 @@ TileSet parse_text(std::string_view text, const std::string& origin) {
     rows.push_back(std::move(tile));
   }
   if (rows.empty()) throw InputError(fmt::format("{}: the tile set has no tiles", origin));
-  return make_set(kind, rows, stem_of(origin), source, declared, origin);
+  return make_set(kind, std::move(rows), stem_of(origin), source, declared, origin, repeated);
 }
 
 // The tile-set JSON format {"kind", "name", "source", "colors", "tiles": [[...], ...]}, and
 // also what `tilekit tileset show --json` prints (there "tiles" is the count and "list" the
 // tiles; "colors" is then the number of colours used, not a declared radix).
-TileSet parse_json(std::string_view text, const std::string& origin) {
+TileSet parse_json(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   const nlohmann::json doc = parse_json_input(text, origin);
   const JsonIn j(doc, origin);
   j.object();
@@ -217,7 +242,7 @@ TileSet parse_json(std::string_view text, const std::string& origin) {
   }
   std::string name = check_label(j.string_or("name", stem_of(origin)), "name", origin);
   std::string source = check_label(j.string_or("source", ""), "source", origin);
-  TileSet set = make_set(kind, rows, std::move(name), std::move(source), declared, origin);
+  TileSet set = make_set(kind, std::move(rows), std::move(name), std::move(source), declared, origin, repeated);
   if (auto c = j.find("colors"); show_format && c && c->unsigned_integer() != set.colours())
     throw c->error(fmt::format("says {} colours but the tiles use {}", c->raw().dump(), set.colours()));
   return set;
@@ -234,14 +259,14 @@ std::uint32_t parse_count(const std::string& s, const std::string& name) {
 
 }  // namespace
 
-TileSet parse_tile_set(std::string_view text, const std::string& origin) {
+TileSet parse_tile_set(std::string_view text, const std::string& origin, std::vector<RepeatedTile>* repeated) {
   auto first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin);
-  return parse_text(text, origin);
+  if (first != std::string_view::npos && text[first] == '{') return parse_json(text, origin, repeated);
+  return parse_text(text, origin, repeated);
 }
 
-TileSet read_tile_set_file(const std::string& path) {
-  return parse_tile_set(read_input_file(path, "tile-set file"), path);
+TileSet read_tile_set_file(const std::string& path, std::vector<RepeatedTile>* repeated) {
+  return parse_tile_set(read_input_file(path, "tile-set file"), path, repeated);
 }
 
 std::string format_tile_set_text(const TileSet& set) {
@@ -279,7 +304,7 @@ std::vector<BuiltinInfo> builtin_tile_sets() {
   return out;
 }
 
-TileSet resolve_tile_set(const std::string& name) {
+TileSet resolve_tile_set(const std::string& name, std::vector<RepeatedTile>* repeated) {
   // FAMILY-C and complete-wang-HxV; the longest family names first (compact-wang3 before
   // compact-wang).
   static constexpr std::string_view kFamilies[] = {"complete-corner", "complete-wang", "compact-corner",
@@ -306,9 +331,9 @@ TileSet resolve_tile_set(const std::string& name) {
     return compact_corner_set(c);
   }
   for (const EmbeddedFile& f : reference_data())
-    if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name));
+    if (f.name == name + ".tiles") return parse_tile_set(f.text, std::string(f.name), repeated);
   std::error_code ec;
-  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name);
+  if (std::filesystem::exists(name, ec)) return read_tile_set_file(name, repeated);
   throw InputError(
       fmt::format("unknown tile set '{}': not a built-in name (see `tilekit tileset list`) or a file", name));
 }

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cassert>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "base/error.hpp"
 #include "base/json_input.hpp"
@@ -28,6 +30,68 @@ nlohmann::json tiling_to_json(const Tiling& t) {
   }
   j["cells"] = std::move(cells);
   return j;
+}
+
+namespace {
+
+constexpr std::string_view kPegDigits = "0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
+
+Tiling tiling_from_pegs_json(const Tiling& head, const JsonIn& rows) {
+  if (head.kind != TileKind::Corner || !head.torus) throw rows.error("\"pegs\" describes a corner torus only");
+  if (head.colours > kPegDigits.size())
+    throw rows.error(fmt::format("\"pegs\" holds at most {} colours", kPegDigits.size()));
+  rows.array(std::size_t(head.rows), std::size_t(head.rows));
+  std::vector<Colour> pegs;
+  pegs.reserve(std::size_t(head.rows) * std::size_t(head.cols));
+  for (int r = 0; r < head.rows; ++r) {
+    const JsonIn row = rows[std::size_t(r)];
+    const std::string text = row.string(std::size_t(head.cols));
+    if (text.size() != std::size_t(head.cols)) throw row.error(fmt::format("expected a string of {} digits", head.cols));
+    for (char ch : text) {
+      const std::size_t d = kPegDigits.find(ch);
+      if (d == std::string_view::npos || d >= head.colours)
+        throw row.error(fmt::format("'{}' is not a colour below {}", ch, head.colours));
+      pegs.push_back(Colour(d));
+    }
+  }
+  return corner_torus_from_pegs(pegs, head.rows, head.cols, head.colours);
+}
+
+}  // namespace
+
+Tiling corner_torus_from_pegs(const std::vector<Colour>& pegs, int rows, int cols, std::uint32_t colours) {
+  assert(pegs.size() == std::size_t(rows) * std::size_t(cols));
+  Tiling t(TileKind::Corner, colours, rows, cols, true);
+  auto P = [&](int r, int c) { return pegs[std::size_t(r % rows) * std::size_t(cols) + std::size_t(c % cols)]; };
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      CornerTile ct{P(r, c + 1), P(r + 1, c + 1), P(r + 1, c), P(r, c)};  // ne, se, sw, nw
+      t.at(r, c) = corner_index(ct, colours);                             // thesis eq. (2.5)
+    }
+  return t;
+}
+
+std::vector<Colour> pegs_of_corner_torus(const Tiling& t) {
+  std::vector<Colour> pegs(t.cells.size());
+  for (std::size_t i = 0; i < t.cells.size(); ++i) pegs[i] = corner_tile(t.cells[i], t.colours).nw;
+  return pegs;
+}
+
+nlohmann::json tiling_to_peg_json(const Tiling& t) {
+  if (t.kind != TileKind::Corner || !t.torus) throw InputError("the peg form is for corner tori only");
+  if (t.colours > kPegDigits.size())
+    throw InputError(fmt::format("the peg form holds at most {} colours, got {}", kPegDigits.size(), t.colours));
+  const std::vector<Colour> pegs = pegs_of_corner_torus(t);
+  if (corner_torus_from_pegs(pegs, t.rows, t.cols, t.colours).cells != t.cells)
+    throw InputError("neighbouring corners do not match: the tiling is not the window grid of a peg colouring");
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < t.rows; ++r) {
+    std::string row;
+    for (int c = 0; c < t.cols; ++c) row += kPegDigits[pegs[std::size_t(r) * std::size_t(t.cols) + std::size_t(c)]];
+    rows.push_back(std::move(row));
+  }
+  return {{"kind", "corner"}, {"colors", t.colours}, {"rows", t.rows}, {"cols", t.cols}, {"torus", true},
+          {"pegs", std::move(rows)}};
 }
 
 Tiling tiling_from_json(const nlohmann::json& doc, const std::string& origin) {
@@ -57,8 +121,10 @@ Tiling tiling_from_json(const JsonIn& j) {
   if (std::int64_t(t.rows) * t.cols > kMaxTilingCells)
     throw j.error(fmt::format("a {}x{} grid is more than the limit of {} cells", t.rows, t.cols, kMaxTilingCells));
   t.torus = j.at("torus").boolean();
+  if (!j.has("cells") && j.has("pegs")) return tiling_from_pegs_json(t, j.at("pegs"));
   const JsonIn cells = j.at("cells");
   cells.array(std::size_t(t.rows), std::size_t(t.rows));
+  t.cells.reserve(std::size_t(t.rows) * std::size_t(t.cols));
   for (int r = 0; r < t.rows; ++r) {
     const JsonIn row = cells[std::size_t(r)];
     row.array(std::size_t(t.cols), std::size_t(t.cols));

@@ -37,9 +37,20 @@ struct Tiling {
 };
 
 nlohmann::json tiling_to_json(const Tiling& t);
-// Throws InputError naming `origin`, the JSON path and the problem.
+// Throws InputError naming `origin`, the JSON path and the problem. Reads "cells", or for a
+// corner torus the compact "pegs" form below.
 Tiling tiling_from_json(const nlohmann::json& j, const std::string& origin);
 Tiling tiling_from_json(const JsonIn& j);  // a tiling inside a larger document (an export row)
+
+// Pegs <-> corner tiles on a rows x cols torus: cell (r,c) holds the tile with nw = P(r,c),
+// ne = P(r,c+1), sw = P(r+1,c), se = P(r+1,c+1) (indices wrap). A corner packing is thus a
+// (C^2,C^2;2,2)_C de Bruijn torus of pegs (DESIGN.md, facts).
+Tiling corner_torus_from_pegs(const std::vector<Colour>& pegs, int rows, int cols, std::uint32_t colours);
+std::vector<Colour> pegs_of_corner_torus(const Tiling& t);  // the nw corner of every cell
+// The compact file form of a corner torus: "pegs" holds one string per row with one digit per
+// peg (0-9, a-z, A-Z, so at most 62 colours) instead of "cells" (a C=16 packing: 64 KiB instead
+// of 400 KiB). Throws InputError unless `t` is a corner torus whose cells are its pegs' windows.
+nlohmann::json tiling_to_peg_json(const Tiling& t);
 Tiling read_tiling_file(const std::string& path);
 
 }  // namespace tilekit

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <unordered_set>
+#include <vector>
 
 namespace tilekit {
 
@@ -10,21 +11,42 @@ namespace {
 
 // Local decoding, deliberately not shared with the generators (thesis eq. 2.3 / 2.6).
 struct Digits {
-  std::uint64_t d[4];  // most significant first: N E S W (Wang) or NE SE SW NW (corner)
+  std::uint32_t d[4];  // most significant first: N E S W (Wang) or NE SE SW NW (corner)
 };
 
 Digits decode(TileIndex i, std::uint64_t ch, std::uint64_t cv, bool wang) {
   Digits x{};
   std::uint64_t v = i;
-  x.d[3] = v % (wang ? cv : ch);
+  x.d[3] = std::uint32_t(v % (wang ? cv : ch));
   v /= (wang ? cv : ch);
-  x.d[2] = v % ch;
+  x.d[2] = std::uint32_t(v % ch);
   v /= ch;
-  x.d[1] = v % (wang ? cv : ch);
+  x.d[1] = std::uint32_t(v % (wang ? cv : ch));
   v /= (wang ? cv : ch);
-  x.d[0] = v;
+  x.d[0] = std::uint32_t(v);
   return x;
 }
+
+// A set of tile indices below `n`: a flag per index when that is small (a C=32 corner packing
+// has a million cells; hashing them took seconds), a hash set otherwise.
+class IndexSet {
+ public:
+  explicit IndexSet(std::uint64_t n) : dense_(n <= (std::uint64_t(1) << 24)) {
+    if (dense_) flags_.assign(std::size_t(n), 0);
+  }
+  bool insert(TileIndex i) {  // true when new
+    if (!dense_) return sparse_.insert(i).second;
+    if (flags_[i]) return false;
+    flags_[i] = 1;
+    return true;
+  }
+  bool contains(TileIndex i) const { return dense_ ? flags_[i] != 0 : sparse_.count(i) != 0; }
+
+ private:
+  bool dense_;
+  std::vector<char> flags_;
+  std::unordered_set<TileIndex> sparse_;
+};
 
 }  // namespace
 
@@ -52,7 +74,7 @@ ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_e
     if (set->horizontal_radix() > ch || set->vertical_radix() > cv)
       error(fmt::format("tile set '{}' uses more colours than the tiling's {}", set->name(), ch));
   }
-  std::unordered_set<TileIndex> members;
+  IndexSet members(set ? ntiles : 0);
   if (set && error_count == 0)
     for (std::size_t k = 0; k < set->size(); ++k) {
       // re-encode the set's tiles under the tiling's radix
@@ -69,7 +91,7 @@ ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_e
         error(fmt::format("cell ({},{}): tile index {} is out of range (< {})", r, c, i, ntiles));
         continue;
       }
-      if (set && error_count == 0 && !members.count(i))
+      if (set && error_count == 0 && !members.contains(i))
         error(fmt::format("cell ({},{}): tile {} is not in tile set '{}'", r, c, i, set->name()));
       dig[std::size_t(r) * t.cols + c] = decode(i, ch, cv, wang);
     }
@@ -95,8 +117,10 @@ ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_e
   rep.valid = error_count == 0;
   if (rep.valid && t.torus) {
     const std::size_t expected = set ? set->size() : std::size_t(ntiles);
-    std::unordered_set<TileIndex> seen(t.cells.begin(), t.cells.end());
-    rep.packing = t.cells.size() == expected && seen.size() == expected;
+    IndexSet seen(ntiles);
+    std::size_t distinct = 0;
+    for (TileIndex i : t.cells) distinct += seen.insert(i);
+    rep.packing = t.cells.size() == expected && distinct == expected;
   }
   if (error_count > rep.errors.size())
     rep.errors.push_back(fmt::format("... and {} more errors", error_count - rep.errors.size()));

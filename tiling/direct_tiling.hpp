@@ -21,8 +21,8 @@ class DirectCornerTiling {
   std::uint32_t colours() const { return h_.colours(); }
   const ColourHash& hash() const { return h_; }
   TileIndex tile(std::int64_t x, std::int64_t y) const { return lattice_corner_tile(h_, x, y); }
-  void fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) const {
-    fill_lattice_corner_tiles(h_, x0, y0, rows, cols, out);
+  void fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out, int threads = 1) const {
+    fill_lattice_corner_tiles(h_, x0, y0, rows, cols, out, threads);
   }
   Tiling generate(int rows, int cols, std::int64_t x0 = 0, std::int64_t y0 = 0) const;
 
@@ -37,6 +37,8 @@ class DirectWangTiling {
   DirectWangTiling(std::uint32_t ch, std::uint32_t cv, HashKind kind, std::uint64_t seed);
   std::uint32_t ch() const { return hh_.colours(); }
   std::uint32_t cv() const { return hv_.colours(); }
+  const ColourHash& horizontal_hash() const { return hh_; }
+  const ColourHash& vertical_hash() const { return hv_; }
   TileIndex tile(std::int64_t x, std::int64_t y) const;
   void fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) const;
   Tiling generate(int rows, int cols, std::int64_t x0 = 0, std::int64_t y0 = 0) const;

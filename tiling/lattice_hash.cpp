@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cassert>
+#include <cstring>
 #include <numeric>
 
 #include "base/error.hpp"
@@ -93,88 +96,184 @@ std::uint32_t LongPeriodHash::operator()(std::int64_t x, std::int64_t y, std::in
   return std::uint32_t(sum % tables_[final_].size());
 }
 
+namespace {
+
+std::uint32_t floor_mod(std::int64_t v, std::uint32_t n) {
+  const std::int64_t r = v % std::int64_t(n);
+  return std::uint32_t(r < 0 ? r + n : r);
+}
+
+}  // namespace
+
+ColourHash::DivMagic ColourHash::div_magic(std::uint32_t d, std::uint32_t max_value) {
+  DivMagic g;
+  g.d = d;
+  if (max_value >= (1u << 16)) return g;
+  for (std::uint32_t shift = 0; shift < 16; ++shift) {
+    const std::uint64_t m = ((std::uint64_t(1) << (16 + shift)) + d - 1) / d;  // ceil(2^(16+shift) / d)
+    if (m >= (1u << 16)) break;
+    bool ok = true;
+    for (std::uint32_t s = 0; s <= max_value && ok; ++s) ok = ((s * m) >> 16 >> shift) == s / d;
+    if (ok) return {d, std::uint32_t(m), shift, true};
+  }
+  return g;
+}
+
 ColourHash::ColourHash(HashKind kind, std::uint32_t colours, std::uint64_t seed) : kind_(kind), colours_(colours) {
   if (colours < 1 || colours > 65535)
     throw InputError(fmt::format("a colour hash needs 1..65535 colours, got {}", colours));
-  std::uint32_t final_size = 0;
   if (kind == HashKind::Permutation) {
     PermutationHash p((256 + colours - 1) / colours * colours, seed);
     comps_.push_back({p.size(), p.table()});
-    final_size = p.size();
+    range_ = p.size();
     period_ = p.period();
   } else {
     LongPeriodHash h = LongPeriodHash::for_colours(colours, seed);
     for (const auto& t : h.tables()) comps_.push_back({t.size(), t.table()});
-    final_size = h.range();
+    range_ = h.range();
     period_ = h.period();
   }
-  std::uint64_t max_sum = 0;
-  for (const auto& c : comps_) max_sum += c.n - 1;
-  reduce_.resize(max_sum + 1);
-  for (std::uint64_t s = 0; s <= max_sum; ++s) reduce_[s] = std::uint16_t((s % final_size) % colours);
-  if (comps_.size() == 1)
-    for (std::uint32_t v : comps_[0].p) colour_of_entry_.push_back(reduce_[v]);
+  // Both designs make the range a multiple of C, so (sum % N_j) % C = sum % C.
+  assert(range_ % colours_ == 0);
+  for (const auto& c : comps_) max_sum_ += c.n - 1;
+  reduce_.resize(max_sum_ + 1);
+  for (std::uint64_t s = 0; s <= max_sum_; ++s) reduce_[s] = std::uint16_t((s % range_) % colours);
+  by_colours_ = div_magic(colours, std::uint32_t(std::min<std::uint64_t>(max_sum_, 1u << 16)));
+  // s / C = (s * m) >> k for every byte s with s * m < 2^16 (16-bit vector multiplies), packed m << 8 | k
+  for (std::uint32_t k = 8; k < 16 && !byte_magic_; ++k) {
+    const std::uint32_t m = ((1u << k) + colours - 1) / colours;
+    bool ok = m * 255 < 65536;
+    for (std::uint32_t s = 0; s < 256 && ok; ++s) ok = (s * m) >> k == s / colours;
+    if (ok) byte_magic_ = m << 8 | k;
+  }
+  if (max_sum_ < 256 && comps_.size() <= kMaxComponents &&
+      byte_magic_)  // row_bytes' tables: ext_[i][y % N_i][t] for t < N_i + kChunk
+    for (const Component& c : comps_) {
+      ext_offset_.push_back(ext_.size());
+      for (std::uint32_t ym = 0; ym < c.n; ++ym)
+        for (std::uint32_t t = 0; t < c.n + kChunk; ++t) ext_.push_back(std::uint8_t(c.p[(c.p[t % c.n] + ym) % c.n]));
+    }
 }
 
 std::uint32_t ColourHash::colour(std::int64_t x, std::int64_t y) const {
   std::uint64_t sum = 0;
-  for (const auto& c : comps_) {
-    auto mod = [&](std::int64_t v) {
-      std::int64_t r = v % std::int64_t(c.n);
-      return std::uint64_t(r < 0 ? r + c.n : r);
-    };
-    sum += c.p[(c.p[mod(x)] + mod(y)) % c.n];  // thesis eq. (3.3) / (3.6)
-  }
+  for (const auto& c : comps_)
+    sum += c.p[(c.p[floor_mod(x, c.n)] + floor_mod(y, c.n)) % c.n];  // thesis eq. (3.3) / (3.6)
   return reduce_[sum];
 }
 
 void ColourHash::prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride) const {
   cache.x0 = x0;
+  cache.stride = stride;
   cache.n = n;
-  cache.first.resize(comps_.size() * n);
+  cache.start.resize(comps_.size());
+  cache.step.resize(comps_.size());
+  for (std::size_t i = 0; i < comps_.size(); ++i) {
+    cache.start[i] = floor_mod(x0, comps_[i].n);
+    cache.step[i] = floor_mod(stride, comps_[i].n);
+  }
+}
+
+// sum[k] = sum_i P_i[(P_i[x_k % N_i] + y) % N_i] for the row's columns x_k (16 bits: the caller
+// checks that max_sum_ fits). Component i depends on x only through x % N_i, which
+// advances by the stride mod N_i from column to column: a periodic sequence, evaluated for one
+// block of whole periods (at least 64 columns) and added block by block (vectorised adds).
+void ColourHash::row_sums(RowCache& cache, std::int64_t y, std::uint16_t* sum) const {
+  const std::size_t n = cache.n;
   for (std::size_t i = 0; i < comps_.size(); ++i) {
     const Component& c = comps_[i];
-    std::int64_t r = x0 % std::int64_t(c.n);
-    std::uint32_t m = std::uint32_t(r < 0 ? r + c.n : r);
-    std::int64_t step = stride % std::int64_t(c.n);
-    const std::uint32_t st = std::uint32_t(step < 0 ? step + c.n : step);
-    for (std::size_t k = 0; k < n; ++k) {
-      cache.first[i * n + k] = c.p[m];
+    const std::uint32_t N = c.n, ym = floor_mod(y, N), st = cache.step[i];
+    const std::uint32_t period = N / std::gcd(st == 0 ? N : st, N);
+    const std::size_t block = std::min<std::size_t>(n, std::size_t(period) * ((64 + period - 1) / period));
+    cache.periodic.resize(block);
+    std::uint16_t* per = cache.periodic.data();
+    const std::uint32_t* p = c.p.data();
+    for (std::uint32_t t = 0, m = cache.start[i]; t < block; ++t) {
+      const std::uint32_t s = p[m] + ym;
+      per[t] = std::uint16_t(p[s >= N ? s - N : s]);  // thesis eq. (3.3): P[(P[x % N] + y) % N]
       m += st;
-      if (m >= c.n) m -= c.n;
+      if (m >= N) m -= N;
+    }
+    for (std::size_t k = 0; k < n; k += block) {
+      const std::size_t len = std::min(block, n - k);
+      std::uint16_t* dst = sum + k;
+      if (i == 0)
+        std::copy_n(per, len, dst);
+      else
+        for (std::size_t t = 0; t < len; ++t) dst[t] = std::uint16_t(dst[t] + per[t]);
     }
   }
 }
 
 void ColourHash::row(RowCache& cache, std::int64_t y, std::uint16_t* out) const {
   const std::size_t n = cache.n;
-  if (comps_.size() == 1) {  // one permutation table: colour = (P[(P[x] + y) % N]) % C
-    const Component& c = comps_[0];
-    std::int64_t r = y % std::int64_t(c.n);
-    const std::uint32_t ym = std::uint32_t(r < 0 ? r + c.n : r);
-    const std::uint32_t* first = cache.first.data();
-    const std::uint16_t* colour = colour_of_entry_.data();
-    for (std::size_t k = 0; k < n; ++k) {
-      std::uint32_t s = first[k] + ym;
-      s = s >= c.n ? s - c.n : s;
-      out[k] = colour[s];
-    }
+  if (max_sum_ >= (1u << 16)) {  // sums beyond 16 bits (C near 65535): point by point
+    for (std::size_t k = 0; k < n; ++k) out[k] = std::uint16_t(colour(cache.x0 + std::int64_t(k) * cache.stride, y));
     return;
   }
-  std::vector<std::uint32_t>& sum = cache.sum;
-  sum.assign(n, 0);
-  for (std::size_t i = 0; i < comps_.size(); ++i) {
-    const Component& c = comps_[i];
-    std::int64_t r = y % std::int64_t(c.n);
-    const std::uint32_t ym = std::uint32_t(r < 0 ? r + c.n : r);
-    const std::uint32_t* first = cache.first.data() + i * n;
-    const std::uint32_t* p = c.p.data();
+  cache.sum.resize(n);
+  std::uint16_t* sum = cache.sum.data();
+  row_sums(cache, y, sum);
+  if (by_colours_.exact) {  // sum % C by multiply-shift (vectorised)
+    const std::uint16_t d = std::uint16_t(by_colours_.d), m = std::uint16_t(by_colours_.m);
+    const std::uint32_t sh = by_colours_.shift;
     for (std::size_t k = 0; k < n; ++k) {
-      std::uint32_t s = first[k] + ym;
-      sum[k] += p[s >= c.n ? s - c.n : s];
+      const std::uint16_t s = sum[k];
+      const std::uint16_t q = std::uint16_t(std::uint16_t((std::uint32_t(s) * std::uint32_t(m)) >> 16) >> sh);
+      out[k] = std::uint16_t(s - d * q);
+    }
+  } else {
+    for (std::size_t k = 0; k < n; ++k) out[k] = reduce_[sum[k]];
+  }
+}
+
+// One pass over the row in chunks of kChunk columns (one AVX2 register of bytes): each component
+// adds kChunk consecutive entries of its table row ext_[y % N_i], starting at its index
+// x % N_i, which then advances by kChunk mod N_i (the incremental evaluation of thesis eq. 3.6).
+__attribute__((target_clones("avx2", "default"))) const std::uint8_t* ColourHash::row_bytes(RowCache& cache,
+                                                                                            std::int64_t y) const {
+  assert(bytes_suffice() && cache.stride == 1 && comps_.size() <= kMaxComponents);
+  const std::size_t chunks = (cache.n + kChunk - 1) / kChunk, m = comps_.size();
+  cache.bytes.resize(chunks * kChunk);
+  const std::uint8_t* base[kMaxComponents];
+  std::uint32_t off[kMaxComponents], adv[kMaxComponents], size[kMaxComponents];
+  for (std::size_t i = 0; i < m; ++i) {
+    size[i] = comps_[i].n;
+    base[i] = ext_.data() + ext_offset_[i] + std::size_t(floor_mod(y, size[i])) * (size[i] + kChunk);
+    off[i] = cache.start[i];
+    adv[i] = kChunk % size[i];
+  }
+  std::uint8_t* out = cache.bytes.data();
+  const std::uint32_t c = colours_;
+  const bool power_of_two = (c & (c - 1)) == 0;
+  const std::uint8_t mask = std::uint8_t(c - 1);
+  const std::uint16_t c16 = std::uint16_t(c);
+  const std::uint16_t magic = std::uint16_t(byte_magic_ >> 8), shift = std::uint16_t(byte_magic_ & 255);
+  using Bytes = std::uint8_t __attribute__((vector_size(kChunk)));  // one register (AVX2), two (SSE2)
+  for (std::size_t k = 0; k < chunks; ++k) {
+    Bytes acc, v;
+    std::memcpy(&acc, base[0] + off[0], kChunk);
+    for (std::size_t i = 1; i < m; ++i) {
+      std::memcpy(&v, base[i] + off[i], kChunk);
+      acc += v;
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      off[i] += adv[i];
+      if (off[i] >= size[i]) off[i] -= size[i];
+    }
+    std::uint8_t* o = out + k * kChunk;
+    std::memcpy(o, &acc, kChunk);
+    if (power_of_two) {
+      for (std::size_t l = 0; l < kChunk; ++l) o[l] &= mask;
+    } else {
+      for (std::size_t l = 0; l < kChunk; ++l) {
+        const std::uint16_t s = o[l];
+        const std::uint16_t q = std::uint16_t(std::uint16_t(s * magic) >> shift);  // s / C, in 16 bits
+        o[l] = std::uint8_t(s - std::uint16_t(c16 * q));
+      }
     }
   }
-  for (std::size_t k = 0; k < n; ++k) out[k] = reduce_[sum[k]];
+  return out;
 }
 
 }  // namespace tilekit

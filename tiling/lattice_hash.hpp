@@ -96,29 +96,63 @@ class ColourHash {
   std::uint64_t x_period() const { return comps_.size() == 1 ? comps_[0].n : 0; }
   std::uint32_t colour(std::int64_t x, std::int64_t y) const;
 
-  // Per-row evaluation cache: the columns x0..x0+n-1 it was prepared for.
-  struct RowCache {
-    std::int64_t x0 = 0;
-    std::size_t n = 0;
-    std::vector<std::uint32_t> first;  // M*n values P_i[x % N_i], component-major
-    std::vector<std::uint32_t> sum;    // scratch
-  };
-  // Columns x0, x0 + stride, ..., x0 + (n - 1) stride.
-  void prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride = 1) const;
-  // out[k] = colour(x0 + k stride, y) for k < n, with the columns of `cache`.
-  void row(RowCache& cache, std::int64_t y, std::uint16_t* out) const;
-
- private:
+  // The permutation tables P_i of size N_i that make up the hash (one for kind Permutation),
+  // and the final modulo divisor N_j (the range before the reduction to C colours): what a
+  // shader needs to evaluate the same function (texture/glsl_sampler.cpp).
   struct Component {
     std::uint32_t n;
     std::vector<std::uint32_t> p;
   };
+  const std::vector<Component>& components() const { return comps_; }
+  std::uint32_t range() const { return range_; }
+
+  // Per-row evaluation cache for the columns x0, x0 + stride, ..., x0 + (n - 1) stride, with
+  // scratch space; one per thread.
+  struct RowCache {
+    std::int64_t x0 = 0, stride = 1;
+    std::size_t n = 0;
+    std::vector<std::uint32_t> start, step;  // per component: x0 % N_i and stride % N_i
+    std::vector<std::uint16_t> sum;          // the row's sums of component values
+    std::vector<std::uint16_t> periodic;     // one component along the row, a whole number of periods
+    std::vector<std::uint8_t> bytes;         // row_bytes' output
+  };
+  void prepare(RowCache& cache, std::int64_t x0, std::size_t n, std::int64_t stride = 1) const;
+  // out[k] = colour(x0 + k stride, y) for k < n, with the columns of `cache`. Incremental along
+  // the row (thesis eq. 3.3/3.6 per row): component i at column x depends only on x % N_i, and
+  // that index advances by the stride mod N_i from one column to the next, so the component is
+  // a periodic sequence along the row. Each is evaluated for one block of whole periods and
+  // added along the row block by block (vectorised 16-bit adds); the sum is reduced to a colour
+  // by multiply-shift division. Equal to colour() at every column (tests/tiling).
+  void row(RowCache& cache, std::int64_t y, std::uint16_t* out) const;
+  // The same colours as bytes (columns x0 + k, stride 1, k < n; the buffer belongs to the cache),
+  // summed in 8 bits, 32 columns per step: only when bytes_suffice(), i.e. every sum of component
+  // values is below 256 (the long-period design for C <= 24; one table of 256 entries). The fast
+  // corner-tiling kernel (lattice_tiling.hpp) uses it.
+  bool bytes_suffice() const { return max_sum_ < 256 && !ext_offset_.empty(); }
+  const std::uint8_t* row_bytes(RowCache& cache, std::int64_t y) const;
+
+ private:
+  // q = ((s * m) >> 16) >> shift equals s / d for every s <= the largest sum (checked when built).
+  struct DivMagic {
+    std::uint32_t d = 1, m = 0, shift = 0;
+    bool exact = false;
+  };
+  static DivMagic div_magic(std::uint32_t d, std::uint32_t max_value);
+  void row_sums(RowCache& cache, std::int64_t y, std::uint16_t* sum) const;
+
   HashKind kind_;
   std::uint32_t colours_;
+  std::uint32_t range_ = 0;
   std::uint64_t period_ = 0;
   std::vector<Component> comps_;
-  std::vector<std::uint16_t> reduce_;           // sum of component values -> (sum % N_j) % C
-  std::vector<std::uint16_t> colour_of_entry_;  // one table: s -> P[s] % C
+  static constexpr std::size_t kChunk = 32, kMaxComponents = 8;
+  std::uint64_t max_sum_ = 0;  // largest sum of component values
+  std::vector<std::uint8_t>
+      ext_;  // row_bytes: per component and y % N_i, P_i[(P_i[t % N_i] + y) % N_i], t < N_i + kChunk
+  std::vector<std::size_t> ext_offset_;  // where each component's table starts in ext_
+  std::uint32_t byte_magic_ = 0;         // row_bytes: s / C = (s * (magic >> 8)) >> (magic & 255) for bytes s
+  std::vector<std::uint16_t> reduce_;    // sum of component values -> (sum % N_j) % C = sum % C
+  DivMagic by_colours_;                  // vectorisable sum % C, when exact for every sum
 };
 
 }  // namespace tilekit

@@ -76,7 +76,7 @@ TEST(AperiodicConvertCli, VerifyRelabelsAPeriodicResultAndStoresTheLabel) {
   auto conv = db.list_conversions();
   ASSERT_EQ(conv.size(), 1u);
   EXPECT_EQ(conv[0].soundness, "periodic");
-  auto ok = run_cli("aperiodic convert kari-14 --method vertical --verify 4 --json");
+  auto ok = run_cli("aperiodic convert kari-14 --method vertical --verify 4 --time-limit 1 --json");
   ASSERT_EQ(ok.code, 0) << ok.err;
   EXPECT_EQ(ok.json()["soundness"], "conjugate");
 }
@@ -98,6 +98,8 @@ TEST(AperiodicCli, BadInputExitsWithCode2AndAClearMessage) {
   EXPECT_EQ(run_cli("aperiodic convert complete-corner-2 --method diagonal").code, 2);
   EXPECT_EQ(run_cli("aperiodic convert culik-13 --method sideways").code, 2);
   EXPECT_EQ(run_cli("aperiodic verify culik-13 --max-period 0").code, 2);
+  EXPECT_EQ(run_cli("aperiodic verify culik-13 --route sideways").code, 2);
+  EXPECT_EQ(run_cli("aperiodic verify culik-13 --time-limit -1").code, 2);
 }
 
 TEST(AperiodicVerifyCli, FindsThePeriodOfASetBuiltToBePeriodic) {
@@ -125,7 +127,7 @@ TEST(AperiodicVerifyCli, FindsThePeriodOfASetBuiltToBePeriodic) {
 }
 
 TEST(AperiodicVerifyCli, Culik13HasNoPeriodUpToEightAndTheFilterSaysWhy) {
-  auto r = run_cli("aperiodic verify culik-13 --max-period 8 --json");
+  auto r = run_cli("aperiodic verify culik-13 --route torus --max-period 8 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = r.json();
   EXPECT_EQ(j["verdict"], "no-period-up-to 8");
@@ -133,17 +135,24 @@ TEST(AperiodicVerifyCli, Culik13HasNoPeriodUpToEightAndTheFilterSaysWhy) {
   EXPECT_EQ(j["shapes_excluded"].get<int>() + j["shapes_searched"].get<int>(), 64);
 }
 
-TEST(AperiodicVerifyCli, ASetThatTilesNoSquareIsCannotTile) {
+TEST(AperiodicVerifyCli, ASetThatTilesNoSquareIsFiniteByBothRoutes) {
   TempDir d;
   write_text(d / "row.tiles", "0 1 0 0\n");  // n=0, s=1: rows never stack
-  auto r = run_cli("aperiodic verify " + d / "row.tiles" + " --max-period 3 --max-square 4 --json");
+  auto r = run_cli("aperiodic verify " + d / "row.tiles" + " --route torus --max-period 3 --max-square 4 --json");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.json()["verdict"], "cannot-tile");
+  EXPECT_EQ(r.json()["verdict"], "finite");
+  EXPECT_EQ(r.json()["route"], "torus");
   EXPECT_EQ(r.json()["largest_square"], 1);
-  // Pruning alone removes its only tile (no tile above it can match): cannot-tile as well.
+  auto t = run_cli("aperiodic verify " + d / "row.tiles" + " --json");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.json()["verdict"], "finite");
+  EXPECT_EQ(t.json()["route"], "transducer");
+  EXPECT_EQ(t.json()["k"], 1);
+  EXPECT_GE(t.json()["square_bound"].get<int>(), 1);
+  // Pruning alone removes its only tile (no tile above it can match): finite as well.
   auto pruned = run_cli("aperiodic verify " + d / "row.tiles" + " --prune 1 --json");
   ASSERT_EQ(pruned.code, 0) << pruned.err;
-  EXPECT_EQ(pruned.json()["verdict"], "cannot-tile");
+  EXPECT_EQ(pruned.json()["verdict"], "finite");
   EXPECT_EQ(pruned.json()["pruned"]["after"], 0);
 }
 

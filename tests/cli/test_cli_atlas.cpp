@@ -36,12 +36,18 @@ TEST(CliAtlas, LookupJsonHasTheContractFieldsAndAnInverse) {
   EXPECT_EQ(check.json()["packing"], true);
 }
 
-TEST(CliAtlas, UnavailableColourCountIsExit1WithAvailableListAndSearchCommand) {
+TEST(CliAtlas, PowersOfTwoAnswerFromThePackingsTheLiftSearchFound) {
   TempDir d;
-  CliResult r = run_cli("atlas lookup --kind corner --colors 8 --db " + q(d / "r.sqlite"));
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("available C up to 16:"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("tilekit pack --kind corner --colors 8 --method search"), std::string::npos) << r.err;
+  for (const char* c : {"8", "16"}) {
+    CliResult r = run_cli(std::string("atlas lookup --kind corner --colors ") + c + " --db " + q(d / "r.sqlite"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.json()["source"], "construct");
+    EXPECT_EQ(r.json()["how"], "stored");
+    write_text(d / "p.json", r.out);
+    CliResult check = run_cli("check " + q(d / "p.json") + " --json");
+    ASSERT_EQ(check.code, 0) << check.err;
+    EXPECT_EQ(check.json()["packing"], true) << c;
+  }
   EXPECT_EQ(run_cli("atlas lookup --kind corner --colors 0 --no-db").code, 2);
   EXPECT_EQ(run_cli("atlas lookup --kind hex --colors 3 --no-db").code, 2);
 }

@@ -80,13 +80,13 @@ TEST(SearchStateCheck, CountersMustBeConsistent) {
   EXPECT_EQ(problem_of(st), "its time so far (-1 s) is not a non-negative number");
 }
 
-TEST(SearchStateCheck, RestartsAreBoundedAndCountNodesOnlyWhenRestarted) {
+TEST(SearchStateCheck, RestartsAreBounded) {
   SearchState st;
   st.restarts = std::uint64_t(1) << 63;  // made the Luby schedule shift by 64 and loop forever
   st.restart_nodes = 10;
   EXPECT_EQ(problem_of(st), "9223372036854775808 restarts is more than the limit of 1099511627776");
-  st.restarts = 0;
-  EXPECT_EQ(problem_of(st), "it counts 10 restart nodes but no restart");
+  st.restarts = 0;  // the first dive cut short by a stop: its nodes are counted, it runs again
+  EXPECT_EQ(problem_of(st), "");
 }
 
 TEST(SearchStateCheck, AgainstTheResumingSearchCountAndShardMustMatch) {

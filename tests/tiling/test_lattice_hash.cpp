@@ -5,6 +5,7 @@
 #include <set>
 
 #include "base/error.hpp"
+#include "tiling/direct_tiling.hpp"
 #include "tiling/lattice_hash.hpp"
 #include "base/random.hpp"
 
@@ -115,6 +116,54 @@ TEST(ColourHash, RowEvaluationEqualsPointEvaluation) {
         h.row(cache, y, row.data());
         for (std::size_t k = 0; k < row.size(); ++k) ASSERT_EQ(row[k], h.colour(x0 + std::int64_t(k), y));
       }
+    }
+}
+
+// The incremental row evaluations (16-bit sums with any stride, 8-bit sums in chunks of 32
+// columns) equal the point evaluation of thesis eq. (3.3) / (3.6) everywhere: negative
+// coordinates, rows that do not end on a chunk, strides that share factors with the table sizes.
+TEST(ColourHash, IncrementalRowsWithStridesAndBytesEqualPointEvaluation) {
+  for (HashKind kind : {HashKind::Permutation, HashKind::LongPeriod})
+    for (std::uint32_t c : {1u, 2u, 3u, 5u, 6u, 8u, 24u, 40u, 300u}) {
+      const ColourHash h(kind, c, 7);
+      if (kind == HashKind::LongPeriod && c <= 24) {
+        EXPECT_TRUE(h.bytes_suffice()) << c;  // sums below 47 + 150
+      }
+      if (kind == HashKind::Permutation) {
+        EXPECT_EQ(h.bytes_suffice(), 256 % c == 0) << c;  // one table of 256 entries
+      }
+      if (c == 300) {
+        EXPECT_FALSE(h.bytes_suffice());
+      }
+      for (std::int64_t stride : {1, 2, 3, 17}) {
+        ColourHash::RowCache cache;
+        const std::int64_t x0 = -1000003;
+        h.prepare(cache, x0, 333, stride);
+        std::vector<std::uint16_t> row(333);
+        for (std::int64_t y : {-77ll, 0ll, 999999937ll}) {
+          h.row(cache, y, row.data());
+          for (std::size_t k = 0; k < row.size(); ++k)
+            ASSERT_EQ(row[k], h.colour(x0 + std::int64_t(k) * stride, y)) << c << " stride " << stride;
+          if (stride == 1 && h.bytes_suffice()) {
+            const std::uint8_t* bytes = h.row_bytes(cache, y);
+            for (std::size_t k = 0; k < row.size(); ++k) ASSERT_EQ(bytes[k], row[k]) << c << " column " << k;
+          }
+        }
+      }
+    }
+}
+
+TEST(DirectCornerTiling, FillIsTheSameOnAnyThreadCountAndEqualsTileByTile) {
+  for (HashKind kind : {HashKind::Permutation, HashKind::LongPeriod})
+    for (std::uint32_t c : {2u, 3u, 17u}) {
+      const DirectCornerTiling t(c, kind, 3);
+      const int rows = 37, cols = 600;
+      std::vector<TileIndex> one(std::size_t(rows) * cols), three(one.size());
+      t.fill(-300, -5, rows, cols, one.data(), 1);
+      t.fill(-300, -5, rows, cols, three.data(), 3);
+      EXPECT_EQ(one, three);
+      for (int r = 0; r < rows; r += 7)
+        for (int k = 0; k < cols; ++k) ASSERT_EQ(one[std::size_t(r) * cols + std::size_t(k)], t.tile(k - 300, r - 5));
     }
 }
 

@@ -1,0 +1,236 @@
+// The torus route of `aperiodic verify` (aperiodic/verify.hpp): periodic tilings as p x q torus
+// tilings found by the solver, and bounded n x n squares, within a deadline.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <mutex>
+
+#include "aperiodic/rows.hpp"
+#include "aperiodic/verify.hpp"
+#include "base/error.hpp"
+#include "base/parallel.hpp"
+#include "base/progress.hpp"
+#include "solver/solve.hpp"
+#include "tilesets/validator.hpp"
+
+namespace tilekit {
+
+namespace {
+
+struct Outcome {
+  bool found = false, complete = false;
+  std::uint64_t nodes = 0;
+  std::optional<Tiling> tiling;
+};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_left(Clock::time_point deadline) {
+  return deadline == Clock::time_point::max() ? 0.0 : std::chrono::duration<double>(deadline - Clock::now()).count();
+}
+
+Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_point deadline) {
+  Outcome out;
+  double time_limit = seconds_left(deadline);
+  if (deadline != Clock::time_point::max() && time_limit <= 0) return out;  // not searched: incomplete
+  TilingProblem p;
+  p.set = set;
+  p.rows = rows;
+  p.cols = cols;
+  p.torus = torus;
+  p.packing = false;
+  SearchOptions o;
+  o.mode = SearchMode::First;
+  o.threads = 1;
+  o.time_limit = time_limit;
+  o.restarts = 0;  // exhaustive: a failure must be a proof
+  SearchResult r = solve(p, o);
+  out.nodes = r.nodes;
+  out.found = !r.found.empty();
+  out.complete = out.found || r.complete;
+  if (out.found) out.tiling = r.found.front();
+  return out;
+}
+
+}  // namespace
+
+VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::time_point deadline) {
+  if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
+  if (opts.max_period < 1) throw InputError(fmt::format("--max-period must be at least 1, got {}", opts.max_period));
+  if (opts.max_square < 0) throw InputError(fmt::format("--max-square must be at least 0, got {}", opts.max_square));
+  // No cap on the sizes: the deadline bounds the work, and the memory they need is checked.
+  if (std::uint64_t(opts.max_period) * std::uint64_t(opts.max_period) > (std::uint64_t(1) << 26) ||
+      std::uint64_t(opts.max_square) * std::uint64_t(opts.max_square) > (std::uint64_t(1) << 28))
+    throw InputError(fmt::format("--max-period {} / --max-square {}: the shapes would not fit in memory",
+                                 opts.max_period, opts.max_square));
+  auto t0 = Clock::now();
+  VerifyResult res;
+  res.threads = opts.threads > 0 ? checked_thread_count(opts.threads) : default_thread_count();
+  StopToken stop;
+  auto out_of_time = [&] {
+    if (deadline != Clock::time_point::max() && Clock::now() >= deadline) stop.request(StopReason::TimeLimit);
+    return stop.requested();
+  };
+
+  // Torus shapes, smallest area first (ties: fewer rows first), so the first witness found
+  // in this order is one of least area. Phase A sends the small shapes (area <= 16) straight
+  // to the solver: periodic sets usually show a small period, and these searches are cheap.
+  // Phase B runs the row/column transducer filter (aperiodic/rows.hpp: a
+  // horizontal period q needs q-periodic rows that stack forever, a vertical period p the
+  // same for columns) and sends only the surviving larger shapes to the solver.
+  const int P = opts.max_period;
+  constexpr int kSmallArea = 16;
+  auto by_area = [](auto x, auto y) { return x.first * x.second < y.first * y.second; };
+  std::vector<std::pair<int, int>> small, large;
+  for (int p = 1; p <= P; ++p)
+    for (int q = 1; q <= P; ++q) (p * q <= kSmallArea ? small : large).emplace_back(p, q);
+  std::stable_sort(small.begin(), small.end(), by_area);
+  std::stable_sort(large.begin(), large.end(), by_area);
+
+  std::atomic<std::uint64_t> nodes{0};
+  std::vector<std::pair<int, int>> shapes;  // the searched shapes of the deciding phase
+  std::vector<Outcome> outcomes;
+  std::size_t best_index = 0;
+  auto search_shapes = [&](const std::vector<std::pair<int, int>>& list) {
+    shapes = list;
+    outcomes.assign(list.size(), Outcome{});
+    std::atomic<std::size_t> best{list.size()};  // index of the earliest shape with a witness
+    std::mutex err_mutex;
+    std::string error;
+    ProgressReporter progress(fmt::format("verify {}", set.name()), double(list.size()), opts.progress);
+    parallel_for(
+        std::int64_t(list.size()), res.threads,
+        [&](std::int64_t i) {
+          const std::size_t k = std::size_t(i);
+          if (k > best.load() || out_of_time()) return;  // a smaller witness is known, or time is up
+          try {
+            outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
+            nodes += outcomes[k].nodes;
+            if (outcomes[k].found) {
+              std::size_t cur = best.load();
+              while (k < cur && !best.compare_exchange_weak(cur, k)) {
+              }
+            }
+          } catch (const std::exception& e) {
+            std::lock_guard<std::mutex> lock(err_mutex);
+            error = e.what();
+          }
+          progress.add(1);
+        },
+        &stop);
+    progress.finish();
+    if (!error.empty()) throw InputError(error);
+    best_index = best.load();
+    for (std::size_t k = 0; k < list.size() && k <= best_index; ++k) {
+      ++res.shapes_searched;
+      if (!outcomes[k].complete && k < best_index) ++res.shapes_incomplete;
+    }
+    if (stop.reason() == StopReason::TimeLimit && best_index == list.size()) ++res.shapes_incomplete;
+    return best_index < list.size();
+  };
+
+  bool found = search_shapes(small);
+  if (!found && !large.empty()) {
+    const std::vector<WangTile> as_wang =
+        set.kind() == TileKind::Wang ? set.wang_tiles() : corner_to_wang(set).wang_tiles();
+    std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
+    auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
+    if (opts.transducer_filter) {
+      parallel_for(
+          P, res.threads,
+          [&](std::int64_t i) {  // longest period first
+            const int q = P - int(i);
+            if (!out_of_time()) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true, 2'000'000, deadline);
+          },
+          &stop);
+    }
+    // Columns matter only when some horizontal period survived.
+    bool any_row = false;
+    for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
+    if (any_row && opts.transducer_filter) {
+      parallel_for(
+          P, res.threads,
+          [&](std::int64_t i) {
+            const int p = P - int(i);
+            if (!out_of_time()) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false, 2'000'000, deadline);
+          },
+          &stop);
+    }
+    for (int q = 1; q <= P; ++q) {
+      res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);
+      res.periodic_cols.push_back(col_info[std::size_t(q)].enumerated ? col_info[std::size_t(q)].rows : 0);
+      if (excluded(row_info[std::size_t(q)])) res.excluded_cols.push_back(q);
+      if (excluded(col_info[std::size_t(q)])) res.excluded_rows.push_back(q);
+    }
+    std::vector<std::pair<int, int>> rest;
+    for (auto [p, q] : large) {
+      if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)]))
+        ++res.shapes_excluded;
+      else
+        rest.emplace_back(p, q);
+    }
+    if (!out_of_time())
+      found = search_shapes(rest);
+    else
+      res.shapes_incomplete += rest.size();
+  }
+  res.nodes = nodes.load();
+
+  if (found) {
+    const Outcome& o = outcomes[best_index];
+    // Independent check of the witness before it is reported.
+    ValidationReport rep = validate(*o.tiling, &set);
+    if (!rep.valid) throw std::runtime_error("solver returned an invalid periodic tiling: " + rep.errors.front());
+    res.witness_validated = true;
+    res.verdict = "periodic";
+    res.period = shapes[best_index];
+    res.witness_tiling = o.tiling;
+    std::map<TileIndex, std::int64_t> number;
+    for (std::size_t k = 0; k < set.size(); ++k) number[set.index_of(k)] = std::int64_t(k);
+    for (int r = 0; r < o.tiling->rows; ++r) {
+      std::vector<std::int64_t> row;
+      for (int c = 0; c < o.tiling->cols; ++c) row.push_back(number.at(o.tiling->at(r, c)));
+      res.witness.push_back(row);
+    }
+  }
+
+  // Square search: the largest n <= max_square with an n x n tiling (downwards from N, so
+  // one success settles it).
+  bool square_incomplete = false;
+  if (opts.max_square > 0 && res.verdict.empty()) {
+    for (int n = opts.max_square; n >= 1; --n) {
+      Outcome o = search(set, n, n, false, deadline);
+      res.nodes += o.nodes;
+      if (o.found) {
+        ValidationReport rep = validate(*o.tiling, &set);
+        if (!rep.valid) throw std::runtime_error("solver returned an invalid square tiling: " + rep.errors.front());
+        res.largest_square = n;
+        break;
+      }
+      if (!o.complete) {
+        square_incomplete = true;
+        break;
+      }
+      res.largest_square = n - 1;
+    }
+    res.square_tileable = res.largest_square == opts.max_square;
+  }
+
+  if (res.verdict.empty()) {
+    if (opts.max_square > 0 && !square_incomplete && !res.square_tileable)
+      res.verdict = "finite";
+    else if (res.shapes_incomplete > 0)
+      res.verdict = "inconclusive";
+    else
+      res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
+  }
+  res.route = res.verdict == "periodic" || res.verdict == "finite" ? "torus" : "";
+  res.torus_verdict = res.verdict;
+  res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace tilekit

@@ -1,0 +1,220 @@
+// Texture tiles, atlases and renderers (issue 13), one JSON line per case, with a baseline timed
+// in the same run. Usage: build/bench_texture [--reps R] [--quick]
+//   synthesis/*  complete corner / Wang sets from grass, one thread (goal: C=2 < 1 s, C=3 < 5 s);
+//                baseline: naive tiles (copying the same pixels)
+//   seams/*      seam ratio of a rendered 32x32-tile window, per texture and tile kind, for the
+//                searched tiles, the first random draw (no search) and naive abutment
+//   cpu-render/* Mpixel/s of the CPU reference renderer, 1 and 2 threads; baseline: plain
+//                trilinear sampling of one texture (no tiling) over the same pixels
+//   glsl-render/* fragments/s through EGL + llvmpipe (LP_NUM_THREADS=2); baseline: one textureLod
+//                per fragment, no tiling
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "atlas/lookup.hpp"
+#include "base/parallel.hpp"
+#include "texture/cpu_renderer.hpp"
+#include "texture/gl_renderer.hpp"
+#include "texture/seam_metrics.hpp"
+#include "texture/texture_atlas.hpp"
+#include "texture/tile_synthesis.hpp"
+
+using namespace tilekit;
+
+namespace {
+
+double seconds_of(const std::function<void()>& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
+}
+
+double load() {
+  double l[1] = {0};
+  return getloadavg(l, 1) == 1 ? l[0] : -1;
+}
+
+void print(nlohmann::json j) {
+  j["bench"] = "texture";
+  j["cores"] = std::thread::hardware_concurrency();
+  j["load"] = load();
+  fmt::print("{}\n", j.dump());
+  std::fflush(stdout);
+}
+
+Exemplar texture(const std::string& name) {
+  const std::string path = real_texture_path(name);
+  if (path.empty()) {
+    fmt::print(stderr, "bench_texture: {} not fetched: run scripts/fetch-textures.sh\n", name);
+    std::exit(1);
+  }
+  return load_exemplar(path);
+}
+
+SynthesisOptions options(TileKind kind, std::uint32_t c, int px, int threads) {
+  SynthesisOptions o;
+  o.kind = kind;
+  o.colours = c;
+  o.tile_px = px;
+  o.threads = threads;
+  return o;
+}
+
+void synthesis(const Exemplar& e, int reps, bool quick) {
+  for (TileKind kind : {TileKind::Corner, TileKind::Wang})
+    for (std::uint32_t c : {2u, 3u}) {
+      if (quick && c == 3) continue;
+      const SynthesisOptions o = options(kind, c, 128, 1);
+      std::vector<double> t, base;
+      double cut = 0, initial = 0;
+      for (int r = 0; r < reps; ++r) {
+        t.push_back(seconds_of([&] {
+          const TextureTileSet s = synthesize_tiles(e, o);
+          cut = s.cut_error, initial = s.cut_error_initial;
+        }));
+        base.push_back(seconds_of([&] { naive_tiles(e, o); }));
+      }
+      print({{"case", fmt::format("synthesis/{}/C={}", kind_name(kind), c)},
+             {"tiles", c * c * c * c},
+             {"tile_px", 128},
+             {"threads", 1},
+             {"reps", reps},
+             {"median_seconds", median(t)},
+             {"baseline_naive_seconds", median(base)},
+             {"cut_error", cut},
+             {"cut_error_first_draw", initial}});
+    }
+}
+
+void seams(int threads, bool quick) {
+  for (const std::string& name : real_texture_names()) {
+    const Exemplar e = texture(name);
+    for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
+      const AtlasLookup lookup = atlas_lookup(kind, 2, {});
+      const Tiling t = kind == TileKind::Corner ? DirectCornerTiling(2, HashKind::LongPeriod, 1).generate(32, 32)
+                                                : DirectWangTiling(2, 2, HashKind::LongPeriod, 1).generate(32, 32);
+      for (const char* method : {"searched", "no-search", "naive"}) {
+        SynthesisOptions o = options(kind, 2, quick ? 64 : 128, threads);
+        if (!std::strcmp(method, "no-search")) o.search = 0;
+        const TextureTileSet s = std::strcmp(method, "naive") ? synthesize_tiles(e, o) : naive_tiles(e, o);
+        std::vector<std::uint32_t> sources;
+        const RgbaImage stitched = stitch_tiles(s, t, &sources);
+        const SeamStatistics cut = seam_statistics(stitched, o.tile_px, &sources);
+        double ratio = cut.seam_ratio;
+        if (std::strcmp(method, "naive")) {  // the seam ratio of the rendered tiling (atlas + CPU renderer)
+          const TextureAtlas atlas = build_texture_atlas(lookup, s.tiles);
+          const RgbaImage img = render_cpu(atlas, View{32 * o.tile_px, 32 * o.tile_px, 1, 0, 0, 0},
+                                           {HashKind::LongPeriod, 1, threads, false});
+          ratio = seam_statistics(img, o.tile_px).seam_ratio;
+        }
+        print({{"case", fmt::format("seams/{}/{}/{}", name, kind_name(kind), method)},
+               {"tile_px", o.tile_px},
+               {"colors", 2},
+               {"window_tiles", "32x32"},
+               {"seam_ratio", ratio},
+               {"cut_ratio", cut.cut_ratio},
+               {"border_step", cut.border_step},
+               {"interior_step", cut.interior_step},
+               {"cut_error", s.cut_error},
+               {"goal", "seam_ratio <= 1.10"}});
+      }
+    }
+  }
+}
+
+// Trilinear sampling of the atlas as one plain texture (no tiling): the baseline of the renderer.
+RgbaImage plain_render(const TextureAtlas& a, const View& v, int threads) {
+  const ViewRows vr = view_rows(v, a.tile_px);
+  RgbaImage out{v.width, v.height, std::vector<std::uint8_t>(std::size_t(v.width) * std::size_t(v.height) * 4)};
+  parallel_for(v.height, threads, [&](std::int64_t j) {
+    const ViewRow& r = vr.rows[std::size_t(j)];
+    for (int x = 0; x < v.width; ++x) {
+      const float u = float(x) / float(v.width), t = float(j) / float(v.height);
+      const auto c = sample_trilinear(a, u, t, view_lod(r, vr.dudy_step, x, a.tile_px));
+      for (int k = 0; k < 4; ++k) out.at(x, int(j))[k] = std::uint8_t(std::lround(c[std::size_t(k)]));
+    }
+  });
+  return out;
+}
+
+void renderers(const TextureAtlas& atlas, int reps) {
+  const View flat{2048, 2048, 1.5, 100, 100, 0}, tilted{2048, 2048, 0.5, 0, 0, 8};
+  for (const auto& [vname, view] : {std::pair{"flat", flat}, std::pair{"tilted", tilted}})
+    for (int threads : {1, 2}) {
+      std::vector<double> t, base;
+      for (int r = 0; r < reps; ++r) {
+        t.push_back(seconds_of([&] { render_cpu(atlas, view, {HashKind::LongPeriod, 1, threads, false}); }));
+        base.push_back(seconds_of([&] { plain_render(atlas, view, threads); }));
+      }
+      const double px = double(view.width) * view.height;
+      print({{"case", fmt::format("cpu-render/{}/long-period", vname)},
+             {"threads", threads},
+             {"reps", reps},
+             {"pixels", px},
+             {"median_seconds", median(t)},
+             {"mpixels_per_second", px / median(t) / 1e6},
+             {"baseline_plain_trilinear_mpixels_per_second", px / median(base) / 1e6},
+             {"ratio_to_baseline", median(t) / median(base)}});
+    }
+  const char* lp = std::getenv("LP_NUM_THREADS");
+  for (const auto& [vname, view] : {std::pair{"flat", flat}, std::pair{"tilted", tilted}})
+    for (HashKind h : {HashKind::LongPeriod, HashKind::Permutation}) {
+      try {
+        const RenderOptions o{h, 1, 1, false};
+        GlRenderer r(atlas, view, o), plain(atlas, view, o, GlslMode::PlainTexture);
+        r.draw(1);
+        plain.draw(1);  // compile and warm up
+        const int frames = 5;
+        std::vector<double> t, base;
+        for (int k = 0; k < reps; ++k) {
+          t.push_back(r.draw(frames));
+          base.push_back(plain.draw(frames));
+        }
+        const double frags = double(view.width) * view.height * frames;
+        print({{"case", fmt::format("glsl-render/{}/{}", vname, hash_kind_name(h))},
+               {"renderer", r.renderer()},
+               {"lp_num_threads", lp ? lp : "unset"},
+               {"reps", reps},
+               {"frames", frames},
+               {"mfragments_per_second", frags / median(t) / 1e6},
+               {"baseline_plain_texture_mfragments_per_second", frags / median(base) / 1e6},
+               {"ratio_to_baseline", median(t) / median(base)},
+               {"goal", ">= 150 M fragments/s on 2 cores"}});
+      } catch (const GlUnavailable& e) {
+        print({{"case", "glsl-render"}, {"skipped", e.what()}});
+        return;
+      }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int reps = 3;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+  }
+  setenv("LP_NUM_THREADS", "2", 0);  // llvmpipe on 2 cores (the goal's setting) unless set
+  const Exemplar grass = texture("grass");
+  synthesis(grass, reps, quick);
+  seams(2, quick);
+  SynthesisOptions o = options(TileKind::Corner, 3, 128, 2);
+  const TextureAtlas atlas =
+      build_texture_atlas(atlas_lookup(TileKind::Corner, 3, {}), synthesize_tiles(grass, o).tiles);
+  renderers(atlas, reps);
+  return 0;
+}

@@ -1,0 +1,287 @@
+#include "points/density.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "base/error.hpp"
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#endif
+#include <stb_image.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+namespace tilekit::points {
+
+namespace {
+
+class Constant : public DensityFunction {
+ public:
+  explicit Constant(double d) : d_(d) {}
+  double operator()(double, double) const override { return d_; }
+  double upper_bound(double, double, double, double) const override { return d_; }
+  std::string describe() const override { return fmt::format("{}", d_); }
+
+ private:
+  double d_;
+};
+
+// ---- expressions: a recursive-descent parser into a small tree --------------------------------
+
+struct Node {
+  enum Kind { Num, X, Y, R, Neg, Add, Sub, Mul, Div, Pow, Call } kind = Num;
+  double value = 0;
+  std::string fn;
+  std::vector<Node> args;
+  double eval(double x, double y) const {
+    switch (kind) {
+      case Num:
+        return value;
+      case X:
+        return x;
+      case Y:
+        return y;
+      case R:
+        return std::hypot(x, y);
+      case Neg:
+        return -args[0].eval(x, y);
+      case Add:
+        return args[0].eval(x, y) + args[1].eval(x, y);
+      case Sub:
+        return args[0].eval(x, y) - args[1].eval(x, y);
+      case Mul:
+        return args[0].eval(x, y) * args[1].eval(x, y);
+      case Div:
+        return args[0].eval(x, y) / args[1].eval(x, y);
+      case Pow:
+        return std::pow(args[0].eval(x, y), args[1].eval(x, y));
+      case Call:
+        return call(x, y);
+    }
+    return 0;
+  }
+  double call(double x, double y) const {
+    const double a = args[0].eval(x, y);
+    if (fn == "sin") return std::sin(a);
+    if (fn == "cos") return std::cos(a);
+    if (fn == "tan") return std::tan(a);
+    if (fn == "exp") return std::exp(a);
+    if (fn == "log") return std::log(a);
+    if (fn == "sqrt") return std::sqrt(a);
+    if (fn == "abs") return std::abs(a);
+    if (fn == "floor") return std::floor(a);
+    if (fn == "min") return std::min(a, args[1].eval(x, y));
+    if (fn == "max") return std::max(a, args[1].eval(x, y));
+    if (fn == "pow") return std::pow(a, args[1].eval(x, y));
+    return std::clamp(a, args[1].eval(x, y), args[2].eval(x, y));  // clamp
+  }
+};
+
+class Parser {
+ public:
+  explicit Parser(const std::string& s) : s_(s) {}
+  Node parse() {
+    Node n = expr();
+    skip();
+    if (pos_ != s_.size()) fail("unexpected text");
+    return n;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(fmt::format("density expression '{}': {} at position {}", s_, what, pos_ + 1));
+  }
+  void skip() {
+    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
+  }
+  bool eat(char c) {
+    skip();
+    if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
+    return false;
+  }
+  static Node bin(Node::Kind k, Node a, Node b) {
+    Node n;
+    n.kind = k;
+    n.args = {std::move(a), std::move(b)};
+    return n;
+  }
+  Node expr() {
+    Node n = term();
+    for (;;) {
+      if (eat('+'))
+        n = bin(Node::Add, std::move(n), term());
+      else if (eat('-'))
+        n = bin(Node::Sub, std::move(n), term());
+      else
+        return n;
+    }
+  }
+  Node term() {
+    Node n = unary();
+    for (;;) {
+      if (eat('*'))
+        n = bin(Node::Mul, std::move(n), unary());
+      else if (eat('/'))
+        n = bin(Node::Div, std::move(n), unary());
+      else
+        return n;
+    }
+  }
+  Node unary() {
+    if (eat('-')) {
+      Node n;
+      n.kind = Node::Neg;
+      n.args = {unary()};
+      return n;
+    }
+    if (eat('+')) return unary();
+    Node base = primary();
+    if (eat('^')) return bin(Node::Pow, std::move(base), unary());
+    return base;
+  }
+  Node primary() {
+    skip();
+    if (pos_ >= s_.size()) fail("expected a value");
+    if (eat('(')) {
+      Node n = expr();
+      if (!eat(')')) fail("expected ')'");
+      return n;
+    }
+    const char c = s_[pos_];
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+      std::size_t used = 0;
+      Node n;
+      try {
+        n.value = std::stod(s_.substr(pos_), &used);
+      } catch (const std::exception&) {
+        fail("bad number");
+      }
+      pos_ += used;
+      return n;
+    }
+    if (!std::isalpha(static_cast<unsigned char>(c))) fail(fmt::format("unexpected '{}'", c));
+    std::string name;
+    while (pos_ < s_.size() && std::isalnum(static_cast<unsigned char>(s_[pos_]))) name += s_[pos_++];
+    Node n;
+    if (name == "x") return n.kind = Node::X, n;
+    if (name == "y") return n.kind = Node::Y, n;
+    if (name == "r") return n.kind = Node::R, n;
+    if (name == "pi") return n.value = std::numbers::pi, n;
+    if (name == "e") return n.value = std::numbers::e, n;
+    static const std::vector<std::pair<std::string, std::size_t>> fns = {
+        {"sin", 1}, {"cos", 1},   {"tan", 1}, {"exp", 1}, {"log", 1}, {"sqrt", 1},
+        {"abs", 1}, {"floor", 1}, {"min", 2}, {"max", 2}, {"pow", 2}, {"clamp", 3}};
+    const auto f = std::find_if(fns.begin(), fns.end(), [&](const auto& p) { return p.first == name; });
+    if (f == fns.end()) fail(fmt::format("unknown name '{}'", name));
+    if (!eat('(')) fail(fmt::format("expected '(' after {}", name));
+    n.kind = Node::Call;
+    n.fn = name;
+    do n.args.push_back(expr());
+    while (eat(','));
+    if (!eat(')')) fail("expected ')'");
+    if (n.args.size() != f->second) fail(fmt::format("{} takes {} argument(s)", name, f->second));
+    return n;
+  }
+
+  const std::string& s_;
+  std::size_t pos_ = 0;
+};
+
+class Expression : public DensityFunction {
+ public:
+  explicit Expression(std::string text) : text_(std::move(text)), root_(Parser(text_).parse()) {}
+  double operator()(double x, double y) const override {
+    const double v = root_.eval(x, y);
+    return v > 0 && std::isfinite(v) ? v : 0;
+  }
+  std::string describe() const override { return text_; }
+
+ private:
+  std::string text_;
+  Node root_;
+};
+
+// ---- images ---------------------------------------------------------------------------------
+
+class ImageDensity : public DensityFunction {
+ public:
+  ImageDensity(const std::string& path, const Window& where, double max_density, bool invert)
+      : path_(path), w_(where), max_(max_density) {
+    int ch = 0;
+    unsigned char* data = stbi_load(path.c_str(), &nx_, &ny_, &ch, 1);
+    if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+    grey_.resize(std::size_t(nx_) * std::size_t(ny_));
+    for (std::size_t i = 0; i < grey_.size(); ++i) grey_[i] = invert ? data[i] / 255.0 : 1 - data[i] / 255.0;
+    stbi_image_free(data);
+    // Block maxima for upper_bound().
+    bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
+    block_.assign(std::size_t(bx_) * std::size_t(by_), 0);
+    for (int y = 0; y < ny_; ++y)
+      for (int x = 0; x < nx_; ++x) {
+        double& b = block_[std::size_t(y / kBlock) * std::size_t(bx_) + std::size_t(x / kBlock)];
+        b = std::max(b, grey_[std::size_t(y) * std::size_t(nx_) + std::size_t(x)]);
+      }
+  }
+  double operator()(double x, double y) const override {
+    const double u = (x - w_.x0) / w_.width() * nx_ - 0.5, v = (y - w_.y0) / w_.height() * ny_ - 0.5;
+    if (u < -0.5 || v < -0.5 || u > nx_ - 0.5 || v > ny_ - 0.5) return 0;
+    const int i = std::clamp(int(std::floor(u)), 0, nx_ - 1), j = std::clamp(int(std::floor(v)), 0, ny_ - 1);
+    const int i1 = std::min(i + 1, nx_ - 1), j1 = std::min(j + 1, ny_ - 1);
+    const double fu = std::clamp(u - i, 0.0, 1.0), fv = std::clamp(v - j, 0.0, 1.0);
+    const auto g = [&](int a, int b) { return grey_[std::size_t(b) * std::size_t(nx_) + std::size_t(a)]; };
+    return max_ * ((g(i, j) * (1 - fu) + g(i1, j) * fu) * (1 - fv) + (g(i, j1) * (1 - fu) + g(i1, j1) * fu) * fv);
+  }
+  double upper_bound(double x0, double y0, double x1, double y1) const override {
+    const auto px = [&](double x) { return (x - w_.x0) / w_.width() * nx_; };
+    const auto py = [&](double y) { return (y - w_.y0) / w_.height() * ny_; };
+    const int a0 = std::clamp(int(std::floor(px(x0))) - 1, 0, nx_ - 1) / kBlock,
+              a1 = std::clamp(int(std::ceil(px(x1))) + 1, 0, nx_ - 1) / kBlock;
+    const int b0 = std::clamp(int(std::floor(py(y0))) - 1, 0, ny_ - 1) / kBlock,
+              b1 = std::clamp(int(std::ceil(py(y1))) + 1, 0, ny_ - 1) / kBlock;
+    if (px(x1) < -1 || py(y1) < -1 || px(x0) > nx_ + 1 || py(y0) > ny_ + 1) return 0;
+    double m = 0;
+    for (int b = b0; b <= b1; ++b)
+      for (int a = a0; a <= a1; ++a) m = std::max(m, block_[std::size_t(b) * std::size_t(bx_) + std::size_t(a)]);
+    return max_ * m;
+  }
+  std::string describe() const override { return fmt::format("image {} ({}x{}) up to {}", path_, nx_, ny_, max_); }
+
+ private:
+  static constexpr int kBlock = 16;
+  std::string path_;
+  Window w_;
+  double max_;
+  int nx_ = 0, ny_ = 0, bx_ = 0, by_ = 0;
+  std::vector<double> grey_, block_;
+};
+
+}  // namespace
+
+std::unique_ptr<DensityFunction> constant_density(double d) {
+  if (!(d > 0) || !std::isfinite(d)) throw InputError(fmt::format("--density must be positive, got {}", d));
+  return std::make_unique<Constant>(d);
+}
+
+std::unique_ptr<DensityFunction> expression_density(const std::string& text) {
+  return std::make_unique<Expression>(text);
+}
+
+std::unique_ptr<DensityFunction> image_density(const std::string& path, const Window& where, double max_density,
+                                               bool invert) {
+  if (!(max_density > 0)) throw InputError(fmt::format("--density must be positive, got {}", max_density));
+  return std::make_unique<ImageDensity>(path, where, max_density, invert);
+}
+
+}  // namespace tilekit::points

@@ -1,0 +1,174 @@
+#include "points/generator.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <regex>
+
+#include "base/error.hpp"
+#include "base/parallel.hpp"
+#include "base/progress.hpp"
+#include "points/tile_parts.hpp"
+#include "tiling/lattice_tiling.hpp"
+
+namespace tilekit::points {
+
+Window parse_window(const std::string& text, const char* flag) {
+  static const std::regex num(R"(\s*([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)\s*)");
+  std::vector<double> v;
+  std::size_t pos = 0;
+  while (pos <= text.size() && v.size() < 5) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string part = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    std::smatch m;
+    if (!std::regex_match(part, m, num)) break;
+    v.push_back(std::stod(m[1]));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (v.size() != 4 || !(v[0] < v[2]) || !(v[1] < v[3]) || !std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]))
+    throw InputError(fmt::format("{} must be x0,y0,x1,y1 with x0 < x1 and y0 < y1, got '{}'", flag, text));
+  return {v[0], v[1], v[2], v[3]};
+}
+
+struct PoissonTileGenerator::Scratch {
+  std::vector<TileIndex> idx;
+  std::vector<std::uint64_t> wide;  // edge-based tile indices
+};
+
+PoissonTileGenerator::PoissonTileGenerator(const PoissonTileSet& set, HashKind hash, std::uint64_t seed,
+                                           std::int64_t period)
+    : set_(set), hash_(hash, set.lattice_colours(), seed), period_(period) {
+  if (period < 0) throw InputError("--period must be positive");
+  offset_.reserve(set.tiles.size() + 1);
+  offset_.push_back(0);
+  for (const auto& t : set.tiles) {
+    for (const Point2& p : t) uv_.insert(uv_.end(), {p.x, p.y});
+    offset_.push_back(std::uint32_t(uv_.size() / 2));
+  }
+  for (double u : uv_) umax_ = std::max(umax_, u);
+}
+
+double PoissonTileGenerator::tile_size(double density) const {
+  if (!(density > 0) || !std::isfinite(density))
+    throw InputError(fmt::format("--density must be positive, got {}", density));
+  return std::sqrt(double(set_.points) / density);
+}
+
+std::uint32_t PoissonTileGenerator::lattice(std::int64_t x, std::int64_t y) const {
+  if (period_ > 0) x = ((x % period_) + period_) % period_, y = ((y % period_) + period_) % period_;
+  return hash_.colour(x, y);
+}
+
+// thesis sec. 3.3.2.3: a Wang edge colour is the hash at the edge's midpoint on the lattice of
+// half-integers (doubled coordinates): (2x+1, 2y) for edge (x,y)-(x+1,y), (2x, 2y+1) for (x,y)-(x,y+1).
+std::uint32_t PoissonTileGenerator::edge(std::int64_t mx, std::int64_t my) const {
+  if (period_ > 0) {
+    const std::int64_t p = 2 * period_;
+    mx = ((mx % p) + p) % p, my = ((my % p) + p) % p;
+  }
+  return hash_.colour(mx, my);
+}
+
+std::uint64_t PoissonTileGenerator::tile_index(std::int64_t tx, std::int64_t ty) const {
+  if (set_.method == PoissonTileMethod::Wang) {
+    const auto H = [&](std::int64_t x, std::int64_t y) { return edge(2 * x + 1, 2 * y); };
+    const auto V = [&](std::int64_t x, std::int64_t y) { return edge(2 * x, 2 * y + 1); };
+    const std::int64_t x = tx, y = ty;
+    const std::uint32_t k[12] = {H(x, y),         V(x + 1, y),     H(x, y + 1),     V(x, y),
+                                 V(x, y - 1),     H(x - 1, y),     V(x + 1, y - 1), H(x + 1, y),
+                                 V(x + 1, y + 1), H(x + 1, y + 1), V(x, y + 1),     H(x - 1, y + 1)};
+    return wang_pd_tile_index(k, set_.colours);
+  }
+  const std::uint32_t l = set_.lattice_colours();
+  return parts::corner_tile_index(lattice(tx, ty), lattice(tx + 1, ty), lattice(tx, ty + 1), lattice(tx + 1, ty + 1),
+                                  l);
+}
+
+void PoissonTileGenerator::row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& sc) const {
+  if (set_.method == PoissonTileMethod::Wang || period_ > 0) {
+    sc.wide.resize(std::size_t(cols));
+    for (std::int64_t i = 0; i < cols; ++i) sc.wide[std::size_t(i)] = tile_index(tx0 + i, ty);
+    return;
+  }
+  // The fast path of the direct corner tiling: each lattice point hashed once per row pair.
+  sc.idx.resize(std::size_t(cols));
+  fill_lattice_corner_tiles(hash_, tx0, ty, 1, int(cols), sc.idx.data());
+  sc.wide.assign(sc.idx.begin(), sc.idx.end());
+}
+
+void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s,
+                               Scratch& sc, std::vector<float>& out) const {
+  const std::int64_t cols = tx1 - tx0 + 1;
+  row_indices(ty, tx0, cols, sc);
+  const double by = double(ty) * s;
+  // A tile whose corner plus the largest fl(u s) stays inside needs no test: every point is
+  // fl(corner + fl(u s)), monotone in u (and u >= 0).
+  const double span = umax_ * s;
+  const bool row_inside = by >= w.y0 && by + span < w.y1;
+  const double* uv = uv_.data();
+  for (std::int64_t i = 0; i < cols; ++i) {
+    const std::uint64_t t = sc.wide[std::size_t(i)];
+    const std::uint32_t b = offset_[t], e = offset_[t + 1];
+    const double bx = double(tx0 + i) * s;
+    if (row_inside && bx >= w.x0 && bx + span < w.x1) {
+      const std::size_t at = out.size();
+      out.resize(at + 2 * std::size_t(e - b));
+      float* o = out.data() + at;
+      const double* q = uv + 2 * std::size_t(b);
+      for (std::uint32_t k = 0; k < 2 * (e - b); k += 2) {
+        o[k] = float(bx + q[k] * s);
+        o[k + 1] = float(by + q[k + 1] * s);
+      }
+    } else {
+      for (std::uint32_t k = b; k < e; ++k) {
+        const double x = bx + uv[2 * std::size_t(k)] * s, y = by + uv[2 * std::size_t(k) + 1] * s;
+        if (x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1) out.insert(out.end(), {float(x), float(y)});
+      }
+    }
+  }
+}
+
+std::vector<float> PoissonTileGenerator::generate(const Window& w, double density, int threads,
+                                                  ProgressReporter* progress) const {
+  const double s = tile_size(density);
+  const double tiles_x = std::floor(w.x1 / s) - std::floor(w.x0 / s) + 1,
+               tiles_y = std::floor(w.y1 / s) - std::floor(w.y0 / s) + 1;
+  if (!(tiles_x * tiles_y * set_.points < 4e9))
+    throw InputError(
+        fmt::format("the window holds about {:.3g} points: at most 2^31 per call", tiles_x * tiles_y * set_.points));
+  const std::int64_t tx0 = std::int64_t(std::floor(w.x0 / s)), tx1 = std::int64_t(std::floor(w.x1 / s));
+  const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / s)), ty1 = std::int64_t(std::floor(w.y1 / s));
+  const std::int64_t rows = ty1 - ty0 + 1;
+  if (progress) progress->set_total(double(rows));
+  std::vector<float> out;
+  if (threads <= 1 || rows < 2) {
+    out.reserve(std::size_t(2 * (w.area() * density * 1.02 + double(set_.points) * (tiles_x + tiles_y) * 2)));
+    Scratch sc;
+    for (std::int64_t ty = ty0; ty <= ty1; ++ty) {
+      row(ty, tx0, tx1, w, s, sc, out);
+      if (progress) progress->add(1);
+    }
+    return out;
+  }
+  std::vector<std::vector<float>> rows_out(static_cast<std::size_t>(rows));
+  parallel_for(rows, threads, [&](std::int64_t r) {
+    thread_local Scratch sc;
+    row(ty0 + r, tx0, tx1, w, s, sc, rows_out[std::size_t(r)]);
+    if (progress) progress->add(1);
+  });
+  std::size_t total = 0;
+  for (const auto& p : rows_out) total += p.size();
+  out.resize(total);
+  std::vector<std::size_t> at(rows_out.size() + 1, 0);
+  for (std::size_t i = 0; i < rows_out.size(); ++i) at[i + 1] = at[i] + rows_out[i].size();
+  parallel_for(rows, threads, [&](std::int64_t r) {
+    std::copy(rows_out[std::size_t(r)].begin(), rows_out[std::size_t(r)].end(),
+              out.begin() + std::ptrdiff_t(at[std::size_t(r)]));
+  });
+  return out;
+}
+
+}  // namespace tilekit::points

@@ -1,0 +1,69 @@
+#pragma once
+// All points of any window of the infinite plane from a Poisson disk tile set, through the
+// direct stochastic tiling (thesis sec. 3.3): the tile at (tx, ty) is computed on its own from
+// lattice hashes, and its points are copied with the offset (tx, ty) times the tile size, so
+// the cost is proportional to the output and any window can be made at any time (random
+// access: two windows agree, bit for bit, on their overlap).
+//
+// Coordinates: tile (tx, ty) covers [tx s, (tx + 1) s) x [ty s, (ty + 1) s) with s =
+// sqrt(N / density); y grows to the south like the tilings of tiling/. A point is
+// float(tx * s + u * s) (u its tile coordinate, all in double), whatever the window.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "points/poisson_tiles.hpp"
+#include "tiling/lattice_hash.hpp"
+
+namespace tilekit {
+class ProgressReporter;
+}
+
+namespace tilekit::points {
+
+// The half-open window [x0, x1) x [y0, y1).
+struct Window {
+  double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
+  double width() const { return x1 - x0; }
+  double height() const { return y1 - y0; }
+  double area() const { return width() * height(); }
+};
+// "x0,y0,x1,y1"; InputError naming `flag` otherwise (x0 < x1, y0 < y1, finite).
+Window parse_window(const std::string& text, const char* flag = "--window");
+
+class PoissonTileGenerator {
+ public:
+  // `period` > 0 makes the lattice colouring repeat every `period` tiles in x and y (hashes of
+  // coordinates modulo the period, thesis sec. 7.6.2.4), so the point set is toroidal.
+  PoissonTileGenerator(const PoissonTileSet& set, HashKind hash, std::uint64_t seed, std::int64_t period = 0);
+
+  const PoissonTileSet& set() const { return set_; }
+  std::int64_t period() const { return period_; }
+  double tile_size(double density) const;
+
+  // Interleaved float32 (x, y) of every point in the window, tile row by tile row (north to
+  // south), tiles west to east, each tile's points in stored order. Rows run on `threads`
+  // threads; the output does not depend on the thread count. `progress` counts rows.
+  std::vector<float> generate(const Window& w, double density, int threads = 1,
+                              ProgressReporter* progress = nullptr) const;
+
+  // The tile index (into set().tiles) of tile (tx, ty).
+  std::uint64_t tile_index(std::int64_t tx, std::int64_t ty) const;
+
+ private:
+  struct Scratch;
+  void row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s, Scratch& scratch,
+           std::vector<float>& out) const;
+  void row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& scratch) const;
+  std::uint32_t lattice(std::int64_t x, std::int64_t y) const;  // corner and dual sets
+  std::uint32_t edge(std::int64_t mx, std::int64_t my) const;   // edge-based sets (doubled lattice)
+
+  const PoissonTileSet& set_;
+  ColourHash hash_;
+  std::int64_t period_;
+  std::vector<std::uint32_t> offset_;  // tile t holds points offset_[t] .. offset_[t+1]
+  std::vector<double> uv_;             // interleaved tile coordinates (u, v)
+  double umax_ = 0;                    // the largest u or v
+};
+
+}  // namespace tilekit::points

@@ -1,0 +1,201 @@
+// Parameters, names and the independent check of Poisson disk tile sets.
+#include "points/poisson_tiles.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include "base/error.hpp"
+#include "base/parallel.hpp"
+#include "base/random.hpp"
+#include "points/tile_parts.hpp"
+
+namespace tilekit::points {
+
+const char* method_name(PoissonTileMethod m) {
+  switch (m) {
+    case PoissonTileMethod::Corner:
+      return "corner";
+    case PoissonTileMethod::Wang:
+      return "wang";
+    case PoissonTileMethod::Dual:
+      return "dual";
+  }
+  return "?";
+}
+
+PoissonTileMethod parse_poisson_tile_method(const std::string& name) {
+  if (name == "corner") return PoissonTileMethod::Corner;
+  if (name == "wang") return PoissonTileMethod::Wang;
+  if (name == "dual") return PoissonTileMethod::Dual;
+  throw InputError(fmt::format("unknown tile method '{}' (expected corner, wang or dual)", name));
+}
+
+double PoissonTileSet::guaranteed_distance() const {
+  return 2 * radius * (1 + kMargin);
+}
+
+void check_poisson_tile_params(const PoissonTileParams& p) {
+  if (p.colours < 1 || p.colours > 64) throw InputError(fmt::format("--colors must be 1..64, got {}", p.colours));
+  if (p.points < 1 || p.points > 65536) throw InputError(fmt::format("--points must be 1..65536, got {}", p.points));
+  if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
+  if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));
+  const double r = p.rho * max_poisson_radius(p.points) * (1 + kMargin);
+  // Two corner regions and the 2r between edge regions must fit along an edge: 2c + 2r <= 1.
+  if (2 * (1 + std::sqrt(2.0)) * r + 2 * r > 1)
+    throw InputError(fmt::format("--points {} is too few for rho {}: corner regions would overlap (N >= {} needed)",
+                                 p.points, p.rho,
+                                 int(std::ceil(std::pow(p.rho * (2 * (2 + std::sqrt(2.0))), 2) / (2 * std::sqrt(3.0)) *
+                                               (1 + kMargin) * (1 + kMargin)))));
+  double tiles = std::pow(double(p.colours), 4);
+  if (p.method == PoissonTileMethod::Dual) {
+    tiles = std::pow(4.0 * p.colours, 4);
+    if (p.points % 4 != 0)
+      throw InputError("--method dual needs --points divisible by 4 (quarter-turn symmetric tiles)");
+  }
+  if (p.method == PoissonTileMethod::Wang) tiles = std::pow(double(p.colours), 12);
+  if (tiles > double(1 << 20) || tiles * p.points > double(1 << 26))
+    throw InputError(fmt::format("{} tiles of {} points is too large a tile set (at most 2^20 tiles, 2^26 points)",
+                                 tiles, p.points));
+}
+
+std::uint64_t wang_pd_tile_index(const std::uint32_t colours12[12], std::uint32_t c) {
+  std::uint64_t i = 0;
+  for (int k = 0; k < 12; ++k) i = i * c + colours12[k];
+  return i;
+}
+
+namespace {
+
+// Smallest squared distance between a point of `a` and a point of `b` shifted by `shift`.
+double closest(const std::vector<Point2>& a, const std::vector<Point2>& b, Point2 shift) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Point2& p : a)
+    for (const Point2& q : b) best = std::min(best, squared_distance(p, {q.x + shift.x, q.y + shift.y}));
+  return best;
+}
+
+// Per tile, the points within distance d of each side and of each corner.
+struct Borders {
+  std::vector<Point2> east, west, north, south, ne, nw, se, sw;
+};
+Borders borders(const std::vector<Point2>& pts, double d) {
+  Borders b;
+  for (const Point2& p : pts) {
+    if (p.x > 1 - d) b.east.push_back(p);
+    if (p.x < d) b.west.push_back(p);
+    if (p.y < d) b.north.push_back(p);
+    if (p.y > 1 - d) b.south.push_back(p);
+    if (p.x > 1 - d && p.y < d) b.ne.push_back(p);
+    if (p.x < d && p.y < d) b.nw.push_back(p);
+    if (p.x > 1 - d && p.y > 1 - d) b.se.push_back(p);
+    if (p.x < d && p.y > 1 - d) b.sw.push_back(p);
+  }
+  return b;
+}
+
+// Random tilings of 8 x 8 tiles with every lattice colour (or Wang edge colour) uniform and
+// independent; the smallest distance between points of different tiles.
+double sampled_across(const PoissonTileSet& set, int samples, std::uint64_t seed) {
+  double best = std::numeric_limits<double>::infinity();
+  const int n = 8;
+  SplitMix64 rng(seed);
+  for (int s = 0; s < samples; ++s) {
+    std::vector<std::vector<Point2>> tile(n * n);
+    if (set.method == PoissonTileMethod::Wang) {
+      const std::uint32_t c = set.colours;
+      // H[y][x]: edge (x, y)-(x+1, y); V[y][x]: edge (x, y)-(x, y+1); one ring of extra edges.
+      auto rnd = [&] { return std::uint32_t(rng.below(c)); };
+      std::vector<std::uint32_t> h((n + 3) * (n + 3)), v((n + 3) * (n + 3));
+      for (auto& e : h) e = rnd();
+      for (auto& e : v) e = rnd();
+      auto H = [&](int x, int y) { return h[std::size_t(y + 1) * (n + 3) + std::size_t(x + 1)]; };
+      auto V = [&](int x, int y) { return v[std::size_t(y + 1) * (n + 3) + std::size_t(x + 1)]; };
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const std::uint32_t k[12] = {H(x, y),         V(x + 1, y),     H(x, y + 1),     V(x, y),
+                                       V(x, y - 1),     H(x - 1, y),     V(x + 1, y - 1), H(x + 1, y),
+                                       V(x + 1, y + 1), H(x + 1, y + 1), V(x, y + 1),     H(x - 1, y + 1)};
+          tile[std::size_t(y * n + x)] = set.tiles[wang_pd_tile_index(k, c)];
+        }
+    } else {
+      const std::uint32_t l = set.lattice_colours();
+      std::vector<std::uint32_t> col((n + 1) * (n + 1));
+      for (auto& k : col) k = std::uint32_t(rng.below(l));
+      auto at = [&](int x, int y) { return col[std::size_t(y) * (n + 1) + std::size_t(x)]; };
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+          tile[std::size_t(y * n + x)] =
+              set.tiles[parts::corner_tile_index(at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1), l)];
+    }
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        for (int dy = 0; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            if ((dy == 0 && dx <= 0) || x + dx < 0 || x + dx >= n || y + dy >= n) continue;
+            best = std::min(best, closest(tile[std::size_t(y * n + x)], tile[std::size_t((y + dy) * n + x + dx)],
+                                          {double(dx), double(dy)}));
+          }
+  }
+  return best;
+}
+
+}  // namespace
+
+TileSetCheck check_poisson_tiles(const PoissonTileSet& set, int threads) {
+  TileSetCheck out;
+  const double d = 3 * set.guaranteed_distance();
+  double within = std::numeric_limits<double>::infinity();
+  for (const auto& t : set.tiles) {
+    if (t.size() != set.points) ++out.points_off_count;
+    within = std::min(within, min_distance(t));
+  }
+  const double rmax = max_poisson_radius(set.points);
+  out.rho_within = relative_radius(within, set.points);
+  double across = std::numeric_limits<double>::infinity();
+  const std::uint64_t l = set.lattice_colours();
+  const bool exhaustive = set.method != PoissonTileMethod::Wang && l * l * l * l * l * l * l <= (1ull << 22);
+  if (exhaustive) {
+    std::vector<Borders> b;
+    b.reserve(set.tiles.size());
+    for (const auto& t : set.tiles) b.push_back(borders(t, d));
+    std::mutex mu;
+    // Horizontal and vertical neighbours share two corners (L^6 pairs each); diagonal ones one
+    // (L^7 pairs each way). Tile A = (nw, ne, sw, se); the neighbour's remaining corners vary.
+    parallel_for(std::int64_t(set.tiles.size()), threads, [&](std::int64_t ti) {
+      const auto k = parts::corners_of(std::uint64_t(ti), std::uint32_t(l));
+      const Borders& a = b[std::size_t(ti)];
+      double local = std::numeric_limits<double>::infinity();
+      for (std::uint32_t u = 0; u < l; ++u)
+        for (std::uint32_t v = 0; v < l; ++v) {
+          // east neighbour (ne, u, se, v); south neighbour (sw, se, u, v)
+          local = std::min(
+              local, closest(a.east, b[parts::corner_tile_index(k.ne, u, k.se, v, std::uint32_t(l))].west, {1, 0}));
+          local = std::min(
+              local, closest(a.south, b[parts::corner_tile_index(k.sw, k.se, u, v, std::uint32_t(l))].north, {0, 1}));
+          for (std::uint32_t w = 0; w < l; ++w) {
+            // south-east neighbour (se, u, v, w); south-west neighbour (u, sw, v, w)
+            local =
+                std::min(local, closest(a.se, b[parts::corner_tile_index(k.se, u, v, w, std::uint32_t(l))].nw, {1, 1}));
+            local = std::min(local,
+                             closest(a.sw, b[parts::corner_tile_index(u, k.sw, v, w, std::uint32_t(l))].ne, {-1, 1}));
+          }
+        }
+      std::lock_guard lock(mu);
+      across = std::min(across, local);
+    });
+    out.pairs_checked = 2 * l * l * l * l * l * l + 2 * l * l * l * l * l * l * l;
+    out.exhaustive = true;
+  } else {
+    const int samples = 64;
+    across = sampled_across(set, samples, derive_seed(set.seed, 99));
+    out.pairs_checked = std::uint64_t(samples);
+  }
+  out.rho_across = 0.5 * std::sqrt(across) / rmax;
+  return out;
+}
+
+}  // namespace tilekit::points

@@ -1,0 +1,132 @@
+#include "points/tile_set_file.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "base/atomic_file.hpp"
+#include "base/error.hpp"
+#include "base/hash.hpp"
+#include "checkpoints/results_db.hpp"
+#include "points/text_format.hpp"
+
+namespace tilekit::points {
+
+namespace {
+
+constexpr const char* kMagic = "TILEKIT-POINT-TILES 1";
+
+}  // namespace
+
+std::string poisson_tiles_to_text(const PoissonTileSet& set) {
+  std::string out;
+  out.reserve(set.tiles.size() * set.points * 40 + 256);
+  out += fmt::format("{}\nmethod {}\ncolors {}\npoints {}\nrho {}\nradius {:.17g}\nlloyd {}\nseed {}\ntiles {}\n",
+                     kMagic, method_name(set.method), set.colours, set.points, set.rho, set.radius, set.lloyd, set.seed,
+                     set.tiles.size());
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    out += fmt::format("tile {}\n", t);
+    for (const Point2& p : set.tiles[t]) out += fmt::format("{:.17g} {:.17g}\n", p.x, p.y);
+  }
+  out += "end\n";
+  return text::with_checksum(std::move(out));
+}
+
+PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::string& source) {
+  text::LineReader in(text, source);
+  if (in.expect("the header") != kMagic) in.fail(fmt::format("not a point tile-set file (expected '{}')", kMagic));
+  PoissonTileSet set;
+  set.method = parse_poisson_tile_method(std::string(in.keyed("method")));
+  set.colours = std::uint32_t(in.count(in.keyed("colors")));
+  set.points = std::uint32_t(in.count(in.keyed("points")));
+  set.rho = in.number(in.keyed("rho"));
+  set.radius = in.number(in.keyed("radius"));
+  set.lloyd = int(in.count(in.keyed("lloyd")));
+  set.seed = in.count(in.keyed("seed"));
+  const std::uint64_t tiles = in.count(in.keyed("tiles"));
+  PoissonTileParams p;
+  p.method = set.method, p.colours = set.colours, p.points = set.points, p.rho = set.rho, p.lloyd = set.lloyd;
+  try {
+    check_poisson_tile_params(p);
+  } catch (const InputError& e) {
+    in.fail(e.what());
+  }
+  const std::uint64_t l = set.lattice_colours();
+  const std::uint64_t expected =
+      set.method == PoissonTileMethod::Wang ? std::uint64_t(std::pow(double(set.colours), 12)) : l * l * l * l;
+  if (tiles != expected)
+    in.fail(fmt::format("{} tiles, but a {} set over {} colours has {}", tiles, method_name(set.method), set.colours,
+                        expected));
+  set.tiles.resize(tiles);
+  for (std::uint64_t t = 0; t < tiles; ++t) {
+    if (in.count(in.keyed("tile")) != t) in.fail(fmt::format("expected tile {}", t));
+    set.tiles[t].resize(set.points);
+    for (Point2& q : set.tiles[t]) {
+      const std::string_view line = in.expect("a point");
+      const std::size_t sp = line.find(' ');
+      if (sp == std::string_view::npos) in.fail(fmt::format("expected 'u v', got '{}'", line));
+      q = {in.number(line.substr(0, sp)), in.number(line.substr(sp + 1))};
+      if (!(q.x >= 0 && q.x < 1 && q.y >= 0 && q.y < 1)) in.fail("tile coordinates must lie in [0, 1)");
+    }
+  }
+  if (in.expect("end") != "end") in.fail("expected 'end'");
+  in.checksum();
+  return set;
+}
+
+void write_poisson_tiles(const std::string& path, const PoissonTileSet& set) {
+  write_file_atomic(path, poisson_tiles_to_text(set));
+}
+
+PoissonTileSet read_poisson_tiles(const std::string& path, const std::string& db_path) {
+  if (path.starts_with("db:")) {
+    std::int64_t id = 0;
+    const std::string num = path.substr(3);
+    const auto r = std::from_chars(num.data(), num.data() + num.size(), id);
+    if (r.ec != std::errc() || r.ptr != num.data() + num.size() || id <= 0)
+      throw InputError(fmt::format("'{}': expected db:ID with a positive tile-set id", path));
+    DbOpenOptions o;
+    o.create = false;
+    o.read_only = true;
+    ResultsDb db(db_path.empty() ? ResultsDb::default_path() : db_path, o);
+    const auto row = db.tileset(id);
+    if (!row) throw NotFound(fmt::format("{}: no tile set with id {}", db.path(), id));
+    return poisson_tiles_from_text(row->text, fmt::format("{} tile set {}", db.path(), id));
+  }
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(fmt::format("{}: cannot open", path));
+  std::stringstream b;
+  b << f.rdbuf();
+  return poisson_tiles_from_text(b.str(), path);
+}
+
+std::string poisson_tiles_name(const PoissonTileSet& set) {
+  return fmt::format("poisson-{}-C{}-N{}-rho{}-seed{}", method_name(set.method), set.colours, set.points, set.rho,
+                     set.seed);
+}
+
+std::int64_t store_poisson_tiles(ResultsDb& db, const PoissonTileSet& set, const std::string& text, int threads) {
+  RunRecord run;
+  run.command = "points tiles";
+  run.params = {{"method", method_name(set.method)},
+                {"colors", set.colours},
+                {"points", set.points},
+                {"rho", set.rho},
+                {"lloyd", set.lloyd},
+                {"seed", set.seed}};
+  run.status = "complete";
+  run.solutions = 1;
+  run.seconds = set.seconds;
+  run.threads = threads;
+  run.id = db.begin_run(run);
+  db.finish_run(run);
+  return db.add_tileset(poisson_tiles_name(set),
+                        set.method == PoissonTileMethod::Wang ? TileKind::Wang : TileKind::Corner, set.tiles.size(),
+                        set.lattice_colours(), fmt::format("{:016x}", stable_hash64(text)),
+                        fmt::format("tilekit points tiles (run {})", run.id), text);
+}
+
+}  // namespace tilekit::points

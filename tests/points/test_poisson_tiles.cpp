@@ -1,0 +1,172 @@
+// Poisson disk tile sets: construction facts (N points per tile, the radius inside and across
+// tiles by an exhaustive neighbour check), the three methods, and the file format.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "base/error.hpp"
+#include "points/poisson_tiles.hpp"
+#include "points/sampler.hpp"
+#include "points/tile_parts.hpp"
+#include "points/tile_set_file.hpp"
+
+using namespace tilekit;
+using namespace tilekit::points;
+
+namespace {
+
+// Brute force over all pairs on a torus w x h.
+double torus_min_distance(const std::vector<Point2>& p, double w, double h) {
+  double best = 1e300;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double dx = wrap_centred(p[i].x - p[j].x, w), dy = wrap_centred(p[i].y - p[j].y, h);
+      best = std::min(best, std::sqrt(dx * dx + dy * dy));
+    }
+  return best;
+}
+
+const PoissonTileSet& corner_set() {
+  static const PoissonTileSet set = [] {
+    PoissonTileParams p;
+    p.colours = 3;
+    p.points = 32;
+    p.rho = 0.75;
+    p.seed = 5;
+    p.threads = 2;
+    return build_poisson_tiles(p);
+  }();
+  return set;
+}
+
+}  // namespace
+
+TEST(Sampler, TorusSetReachesTheRelativeRadiusAskedFor) {
+  SamplingProblem p;
+  p.torus = true;
+  p.count = 100;
+  SamplingOptions o;
+  o.min_distance = 2 * 0.8 * max_poisson_radius(100);
+  const auto r = sample_poisson_disk(p, o, 3);
+  ASSERT_EQ(r.points.size(), 100u);
+  EXPECT_GE(torus_min_distance(r.points, 1, 1), o.min_distance);
+  EXPECT_EQ(r.lloyd_iterations, 0);
+}
+
+TEST(Sampler, FixedPointsAndFreeRegionAreRespected) {
+  SamplingProblem p;
+  p.fixed = {{0.5, 0.5}, {0.2, 0.8}};
+  p.free = [](Point2 q) { return q.x < 0.7; };
+  p.count = 20;
+  SamplingOptions o;
+  o.min_distance = 0.1;
+  const auto r = sample_poisson_disk(p, o, 1);
+  ASSERT_EQ(r.points.size(), 20u);
+  auto all = r.points;
+  all.insert(all.end(), p.fixed.begin(), p.fixed.end());
+  EXPECT_GE(min_distance(all), 0.1);
+  for (const auto& q : r.points) EXPECT_LT(q.x, 0.7);
+}
+
+TEST(Sampler, QuarterTurnSymmetryGivesSymmetricSets) {
+  SamplingProblem p;
+  p.count = 24;
+  p.symmetry_order = 4;
+  p.centre = {0.5, 0.5};
+  SamplingOptions o;
+  o.min_distance = 0.12;
+  const auto r = sample_poisson_disk(p, o, 9);
+  ASSERT_EQ(r.points.size(), 24u);
+  for (const auto& q : r.points) {
+    const Point2 t = rotate_quarter(q, 1, {0.5, 0.5});
+    double best = 1;
+    for (const auto& s : r.points) best = std::min(best, std::sqrt(squared_distance(s, t)));
+    EXPECT_LT(best, 1e-12);
+  }
+}
+
+TEST(Sampler, ImpossibleDensityIsABadInputError) {
+  SamplingProblem p;
+  p.torus = true;
+  p.count = 50;
+  SamplingOptions o;
+  o.min_distance = 2 * 0.99 * max_poisson_radius(50);  // rho 0.99: hexagonal packing only
+  o.tries = 2;
+  o.repair = 10;
+  EXPECT_THROW(sample_poisson_disk(p, o, 1), InputError);
+}
+
+TEST(CornerPoissonTiles, EveryTileHoldsNPointsAndTheRadiusHoldsAcrossEveryNeighbourPair) {
+  const auto& set = corner_set();
+  ASSERT_EQ(set.tiles.size(), 81u);  // the complete corner set over 3 colours
+  for (const auto& t : set.tiles) ASSERT_EQ(t.size(), 32u);
+  const auto check = check_poisson_tiles(set, 2);
+  EXPECT_TRUE(check.exhaustive);
+  EXPECT_EQ(check.points_off_count, 0u);
+  EXPECT_GE(check.rho_within, 0.75);
+  EXPECT_GE(check.rho_across, 0.75);
+  EXPECT_EQ(check.pairs_checked, 2u * 729 + 2u * 2187);  // 2 L^6 + 2 L^7
+}
+
+TEST(CornerPoissonTiles, TilesSharingACornerColourShareTheCornerRegionPoints) {
+  const auto& set = corner_set();
+  const parts::Regions g(set.radius * (1 + kMargin));
+  // Tiles 0 and 1 have different NW corners and the same NE, SE, SW corners (eq. 2.5).
+  auto corner_pts = [&](std::size_t t) {
+    std::vector<Point2> out;
+    for (const auto& q : set.tiles[t])
+      if (g.in_corner({q.x - 1, q.y - 1})) out.push_back(q);  // the SE corner region
+    return out;
+  };
+  EXPECT_EQ(corner_pts(0), corner_pts(1));
+  EXPECT_NE(corner_pts(0), corner_pts(9));  // tile 9: SE = 1 (((0 C + 1) C + 0) C + 0)
+}
+
+TEST(DualPoissonTiles, RotatedPartsFitTogetherAcrossEveryNeighbourPair) {
+  PoissonTileParams p;
+  p.method = PoissonTileMethod::Dual;
+  p.colours = 1;
+  p.points = 32;
+  p.seed = 2;
+  p.threads = 2;
+  const auto set = build_poisson_tiles(p);
+  EXPECT_EQ(set.tiles.size(), 256u);  // 4 states (orientations) per lattice point
+  EXPECT_EQ(set.edge_regions, 10u);   // Li et al. Table I, C = 1: 10 edge tiles
+  EXPECT_EQ(set.interiors, 70u);      // and 70 quad tiles
+  const auto check = check_poisson_tiles(set, 2);
+  EXPECT_EQ(check.points_off_count, 0u);
+  EXPECT_GE(check.rho_across, 0.75);
+}
+
+TEST(WangPoissonTiles, OneColourSetKeepsTheRadiusInRandomTilings) {
+  PoissonTileParams p;
+  p.method = PoissonTileMethod::Wang;
+  p.colours = 1;
+  p.points = 32;
+  const auto set = build_poisson_tiles(p);
+  ASSERT_EQ(set.tiles.size(), 1u);
+  const auto check = check_poisson_tiles(set, 1);
+  EXPECT_FALSE(check.exhaustive);
+  EXPECT_GE(check.rho_across, 0.75);
+}
+
+TEST(PoissonTileParams, TooFewPointsForTheRegionsIsRejected) {
+  PoissonTileParams p;
+  p.points = 4;
+  EXPECT_THROW(check_poisson_tile_params(p), InputError);
+  p.points = 64;
+  p.rho = 1.2;
+  EXPECT_THROW(check_poisson_tile_params(p), InputError);
+}
+
+TEST(PointTileFile, RoundTripsExactlyAndRejectsDamage) {
+  const auto& set = corner_set();
+  const std::string text = poisson_tiles_to_text(set);
+  const auto back = poisson_tiles_from_text(text, "t");
+  EXPECT_EQ(back.tiles, set.tiles);
+  EXPECT_EQ(back.radius, set.radius);
+  std::string bad = text;
+  bad[bad.find("tile 5\n") + 8] ^= 1;  // one digit of a coordinate
+  EXPECT_THROW(poisson_tiles_from_text(bad, "t"), InputError);
+  EXPECT_THROW(poisson_tiles_from_text(text.substr(0, text.size() / 2), "t"), InputError);
+}

@@ -1,0 +1,44 @@
+#pragma once
+// The headless GLSL renderer: the sampler of glsl_sampler.hpp drawn into an offscreen
+// framebuffer through EGL on Mesa's surfaceless platform (EGL_MESA_platform_surfaceless), so
+// no X server and no GPU are needed: Mesa's llvmpipe runs the shader on the CPU (set
+// LP_NUM_THREADS to choose its threads). Where no EGL display or OpenGL ES 3 context can be
+// made, every entry point throws GlUnavailable (an InputError: exit 2) saying why.
+#include <memory>
+#include <string>
+
+#include "base/error.hpp"
+#include "texture/cpu_renderer.hpp"
+#include "texture/glsl_sampler.hpp"
+
+namespace tilekit {
+
+struct GlUnavailable : InputError {
+  using InputError::InputError;
+};
+
+// The GL_RENDERER and GL_VERSION strings of a context, or GlUnavailable.
+std::string gl_renderer_name();
+
+class GlRenderer {
+ public:
+  // Compiles the shader for `mode` and uploads the atlas (all levels) and the view's row table.
+  GlRenderer(const TextureAtlas& atlas, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture);
+  ~GlRenderer();
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+
+  void set_origin(int x, int y);  // tk_origin of the test modes
+  // Draws `frames` times and waits for the GPU (glFinish); returns the seconds that took.
+  double draw(int frames = 1);
+  RgbaImage read();  // the framebuffer, row 0 at the top
+  std::string renderer() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+RgbaImage render_glsl(const TextureAtlas& atlas, const View& view, const RenderOptions& o);
+
+}  // namespace tilekit

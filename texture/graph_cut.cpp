@@ -1,0 +1,103 @@
+#include "texture/graph_cut.hpp"
+
+// GCC 12 at -O3 reports a false -Wmaybe-uninitialized inside Boost.Graph's edge iterator (an
+// optional<pair<iterator, iterator>> it reads only when set).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#include <cassert>
+#include <cmath>
+
+#include "texture/exemplar.hpp"
+
+namespace tilekit {
+
+namespace {
+
+using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+using Graph = boost::adjacency_list<
+    boost::vecS, boost::vecS, boost::directedS,
+    boost::property<boost::vertex_color_t, boost::default_color_type,
+                    boost::property<boost::vertex_distance_t, long,
+                                    boost::property<boost::vertex_predecessor_t, Traits::edge_descriptor>>>,
+    boost::property<boost::edge_capacity_t, std::int64_t,
+                    boost::property<boost::edge_residual_capacity_t, std::int64_t,
+                                    boost::property<boost::edge_reverse_t, Traits::edge_descriptor>>>>;
+
+constexpr double kScale = 1024.0;              // capacities are integers: M in units of 1/1024
+constexpr std::int64_t kInfinite = 1ll << 40;  // forced pixels
+constexpr float kEps = 1.0f;                   // Kwatra's cost in 0..255 colour units
+
+class Builder {
+ public:
+  explicit Builder(std::size_t vertices) : g_(vertices) {}
+  void add(std::size_t u, std::size_t v, std::int64_t cap_uv, std::int64_t cap_vu) {
+    auto e = boost::add_edge(u, v, g_).first, r = boost::add_edge(v, u, g_).first;
+    boost::put(boost::edge_capacity, g_, e, cap_uv);
+    boost::put(boost::edge_capacity, g_, r, cap_vu);
+    boost::put(boost::edge_reverse, g_, e, r);
+    boost::put(boost::edge_reverse, g_, r, e);
+  }
+  Graph& graph() { return g_; }
+
+ private:
+  Graph g_;
+};
+
+}  // namespace
+
+GraphCutResult graph_cut_merge(const RgbaImage& a, const RgbaImage& b, const std::vector<std::uint8_t>& region,
+                               const std::vector<std::uint8_t>& forced) {
+  const int w = a.width, h = a.height;
+  assert(b.width == w && b.height == h && region.size() == std::size_t(w) * std::size_t(h));
+  assert(forced.size() == region.size());
+  std::vector<int> node(region.size(), -1);
+  int nodes = 0;
+  for (std::size_t i = 0; i < region.size(); ++i)
+    if (region[i]) node[i] = nodes++;
+  const std::size_t source = std::size_t(nodes), sink = source + 1;
+  Builder gb(std::size_t(nodes) + 2);
+  // M(s, t) for t = s + (dx, dy), Kwatra et al. 2003 sec. 3.3 (gradient-normalised).
+  auto cost = [&](int x, int y, int dx, int dy) {
+    const int x1 = x + dx, y1 = y + dy, x2 = x1 + dx, y2 = y1 + dy;
+    const float num = colour_distance(a.at(x, y), b.at(x, y)) + colour_distance(a.at(x1, y1), b.at(x1, y1));
+    const float den = colour_distance(a.at(x, y), a.at(x1, y1)) + colour_distance(a.at(x1, y1), a.at(x2, y2)) +
+                      colour_distance(b.at(x, y), b.at(x1, y1)) + colour_distance(b.at(x1, y1), b.at(x2, y2)) + kEps;
+    return std::int64_t(std::llround(double(num / den) * kScale));
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      if (node[i] < 0) continue;
+      assert(x >= 1 && y >= 1 && x + 2 < w && y + 2 < h);
+      const std::size_t s = std::size_t(node[i]);
+      if (forced[i]) gb.add(source, s, kInfinite, 0);
+      // Each undirected neighbour pair once (right and down); a neighbour outside the region
+      // keeps A, so taking B here cuts that pair: a link to the sink (and from the left/top too).
+      for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        const std::size_t j = std::size_t(y + dy) * std::size_t(w) + std::size_t(x + dx);
+        const std::int64_t m = cost(x, y, dx, dy);
+        if (node[j] >= 0)
+          gb.add(s, std::size_t(node[j]), m, m);
+        else
+          gb.add(s, sink, m, 0);
+      }
+      for (auto [dx, dy] : {std::pair{-1, 0}, std::pair{0, -1}}) {
+        const std::size_t j = std::size_t(y + dy) * std::size_t(w) + std::size_t(x + dx);
+        if (node[j] < 0) gb.add(s, sink, cost(x + dx, y + dy, -dx, -dy), 0);
+      }
+    }
+  Graph& g = gb.graph();
+  const std::int64_t flow = boost::boykov_kolmogorov_max_flow(g, source, sink);
+  GraphCutResult r;
+  r.nodes = nodes;
+  r.cost = double(flow) / kScale;
+  r.take_new.assign(region.size(), 0);
+  auto colour = boost::get(boost::vertex_color, g);
+  // After the flow, the source tree (black) is the source side of a minimum cut: those pixels take B.
+  for (std::size_t i = 0; i < region.size(); ++i)
+    if (node[i] >= 0 && boost::get(colour, std::size_t(node[i])) == boost::black_color) r.take_new[i] = 1;
+  return r;
+}
+
+}  // namespace tilekit

@@ -1,0 +1,44 @@
+#pragma once
+// Texture atlases from packings (thesis sec. 5.4): the C^4 texture tiles laid out as the packing
+// of the complete set that `atlas_lookup` finds (atlas/lookup.hpp), with a full mip chain. The
+// atlas is a valid toroidal tiling, so bilinear and trilinear filtering across a tile border
+// (wrap-around included) reads the texels of a correct neighbour: no gutters are needed, and
+// the mip levels equal those of the infinite tiling near every border (tests/texture).
+#include <string>
+#include <vector>
+
+#include "atlas/atlas_image.hpp"
+#include "atlas/lookup.hpp"
+
+namespace tilekit {
+
+struct TextureAtlas {
+  AtlasLookup lookup;  // the packing: cells (atlas cell -> tile) and positions (tile -> cell)
+  int tile_px = 0;
+  std::vector<RgbaImage> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
+  std::string tiles_dir;          // where the tiles came from (informational)
+};
+
+// InputError unless there is one square image of tile_px pixels per tile of the lookup's set.
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<RgbaImage>& tiles);
+// The same from a folder written by `tilekit texture tiles` (or any folder of tile images named
+// by tile index; atlas_from_tile_images reads it).
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir);
+
+// Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
+// atlas.mipL.png, atlas.json (the manifest: tile size, levels, the lookup), atlas.h (C lookup
+// table) and atlas.glsl (the GLSL ES 3.0 sampler, texture/glsl_sampler.hpp, with the given hash).
+struct AtlasFiles {
+  std::vector<std::string> levels;
+  std::string manifest, header, glsl;
+};
+AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source);
+// Reads an atlas written by write_texture_atlas from its level-0 PNG (or its .json manifest).
+// InputError (exit 2) naming the file for a missing or inconsistent file or a manifest whose
+// cells are not a packing (checked by the independent validator).
+TextureAtlas read_texture_atlas(const std::string& png_or_manifest);
+
+// The stem shared by an atlas's files: "dir/atlas" for "dir/atlas.png" or "dir/atlas.json".
+std::string atlas_stem(const std::string& path);
+
+}  // namespace tilekit
