@@ -1,3 +1,8 @@
+// The Wang <-> corner conversions of thesis ch. 8, one short function per construction
+// (translations 8.2, rotation 8.3, subdivision 8.4, corner -> Wang pairs) and the dispatcher
+// over them. Kept in one file (about 460 lines, over the usual 400) because they share the
+// colour maps and block iterators at the top, and reading them side by side is how a reader
+// checks each against the thesis.
 #include "aperiodic/convert.hpp"
 
 #include <fmt/format.h>
