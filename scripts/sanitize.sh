@@ -14,7 +14,9 @@ jobs=$(nproc)
 case "$kind" in
   asan)
     build=$root/build-asan
-    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    # GCC 12 at -O1 with the sanitizers reports false maybe-uninitialized warnings inside
+    # libstdc++ (std::function in <regex>); -Werror would turn them into errors.
+    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
     cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
       -DTILEKIT_BENCH=OFF >/dev/null
