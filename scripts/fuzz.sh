@@ -5,6 +5,8 @@
 # and fails if any harness found a crash, leak, hang or sanitizer report (the input is kept in
 # build-fuzz/crashes/NAME/; turn it into a regression test). Usage:
 #   scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
+#   FUZZ_RUNS=1000000 scripts/fuzz.sh 0   each harness for exactly that many executions (SECONDS 0:
+#                                         no time bound), the issue-15 figure in docs/TESTING.md
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-10}
@@ -83,7 +85,7 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$fz/corpus/$h" "$fz/crashes/$h"
   log=$fz/fuzz_$h.log
   rc=0
-  (cd "$fz" && "./fuzz_$h" -max_total_time="$seconds" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
+  (cd "$fz" && "./fuzz_$h" -max_total_time="$seconds" ${FUZZ_RUNS:+-runs=$FUZZ_RUNS} -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$fz/crashes/$h/" "$fz/corpus/$h" >"$log" 2>&1) || rc=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   took=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)
