@@ -2,7 +2,9 @@
 
 // GCC 12 at -O3 reports a false -Wmaybe-uninitialized inside Boost.Graph's edge iterator (an
 // optional<pair<iterator, iterator>> it reads only when set).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 #include <cassert>
