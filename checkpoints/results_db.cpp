@@ -192,22 +192,29 @@ ResultsDb::ResultsDb(const std::string& path, const DbOpenOptions& opt) : path_(
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
     if (ec) throw InputError(fmt::format("{}: cannot create the directory ({})", parent.string(), ec.message()));
   }
-  const bool needs_write = state == FileState::Missing || state == FileState::Fresh || state == FileState::Older;
-  if (opt.read_only && state == FileState::Older)
-    throw InputError(fmt::format("{}: schema version is older than this build's; open it once with a writing "
-                                 "command (e.g. `tilekit db stats --db {}`) to migrate it",
-                                 path, path));
-  if (opt.read_only && !needs_write) {
-    open_connection(true, opt.busy_timeout_ms);
-    return;
-  }
-  if (opt.read_only && !opt.create) throw NotFound(fmt::format("{}: no results database there", path));
-  open_connection(false, opt.busy_timeout_ms);
-  migrate();
-  if (opt.read_only) {
+  // A constructor that throws runs no destructor: close the connection on the way out.
+  try {
+    const bool needs_write = state == FileState::Missing || state == FileState::Fresh || state == FileState::Older;
+    if (opt.read_only && state == FileState::Older)
+      throw InputError(fmt::format("{}: schema version is older than this build's; open it once with a writing "
+                                   "command (e.g. `tilekit db stats --db {}`) to migrate it",
+                                   path_, path_));
+    if (opt.read_only && !needs_write) {
+      open_connection(true, opt.busy_timeout_ms);
+      return;
+    }
+    if (opt.read_only && !opt.create) throw NotFound(fmt::format("{}: no results database there", path));
+    open_connection(false, opt.busy_timeout_ms);
+    migrate();
+    if (opt.read_only) {
+      sqlite3_close(db_);
+      db_ = nullptr;
+      open_connection(true, opt.busy_timeout_ms);
+    }
+  } catch (...) {
     sqlite3_close(db_);
     db_ = nullptr;
-    open_connection(true, opt.busy_timeout_ms);
+    throw;
   }
 }
 
