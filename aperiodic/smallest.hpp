@@ -14,7 +14,7 @@
 namespace tilekit {
 
 struct ChainStep {
-  std::string step;      // e.g. "labbe-19", "vertical translation (thesis 8.3.2)", "prune R=3"
+  std::string step;  // e.g. "labbe-19", "vertical translation (thesis 8.3.2)", "prune R=3"
   std::size_t tiles = 0;
   std::uint32_t colours = 0;
   std::string kind;      // "wang" or "corner"
@@ -23,7 +23,8 @@ struct ChainStep {
   std::string check;     // a command that re-checks this link (its label, its tile count)
 };
 
-struct Candidate {
+// One aperiodic corner set a chain of conversions yields, with its provenance.
+struct CornerSetCandidate {
   std::string source, method;
   int prune_radius = -1;  // -1: not pruned
   std::size_t tiles = 0;
@@ -37,9 +38,9 @@ struct Candidate {
 const std::vector<std::string>& published_aperiodic_sets();
 
 // Every chain source -> method [-> prune R], sorted by (tiles, colours); sound ones first.
-std::vector<Candidate> aperiodic_corner_candidates(int prune_radius = 3);
+std::vector<CornerSetCandidate> aperiodic_corner_candidates(int prune_radius = 3);
 
 // The least sound candidate (InputError if none, which cannot happen with the built-ins).
-Candidate smallest_aperiodic_corner_set(int prune_radius = 3);
+CornerSetCandidate smallest_aperiodic_corner_set(int prune_radius = 3);
 
 }  // namespace tilekit

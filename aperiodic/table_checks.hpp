@@ -30,7 +30,7 @@ struct TableCheckOptions {
 struct TableRun {
   TablesReport tables;
   std::vector<CellCheck> checks;  // empty with verify off
-  std::optional<Candidate> smallest;
+  std::optional<CornerSetCandidate> smallest;
   VerifyResult smallest_verify;
   double seconds = 0;
 };

@@ -6,8 +6,10 @@
 #   bash bench/lift_search.sh c8                the C=8 cases: default portfolio (seed 0, twice),
 #                                               the lift:4 candidate alone (twice), --lift 4 with
 #                                               cadical (seed 1), and the plain search baseline (30 s)
-#   bash bench/lift_search.sh portfolio C LIMIT one thread of the default portfolio for C colours,
-#                                               stopped after LIMIT s; prints the per-candidate table
+#   bash bench/lift_search.sh portfolio C LIMIT [THREADS]
+#                                               the default portfolio for C colours on THREADS threads
+#                                               (default 1), stopped after LIMIT s; prints the
+#                                               per-candidate table
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 T=${TILEKIT_BIN:-$root/build/tilekit}
@@ -49,8 +51,8 @@ case "${1:-c8}" in
     run 8 plain-baseline --method search --plain --threads 2 --time-limit 30
     ;;
   portfolio)
-    run "$2" "portfolio-c$2" --method search --threads 1 --time-limit "$3"
+    run "$2" "portfolio-c$2" --method search --threads "${4:-1}" --time-limit "$3"
     ;;
-  *) echo "usage: bash bench/lift_search.sh c8 | portfolio C LIMIT" >&2; exit 2 ;;
+  *) echo "usage: bash bench/lift_search.sh c8 | portfolio C LIMIT [THREADS]" >&2; exit 2 ;;
 esac
 load

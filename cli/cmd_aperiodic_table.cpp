@@ -3,7 +3,6 @@
 // whose aperiodicity follows from a sound chain. tilekit aperiodic smallest: that set alone.
 #include <fmt/format.h>
 
-
 #include "aperiodic/json.hpp"
 #include "aperiodic/smallest.hpp"
 #include "aperiodic/table_checks.hpp"
@@ -47,29 +46,36 @@ nlohmann::json tables_json(const TablesReport& r) {
   return {{"tables", tables}, {"largest_set", r.largest}};
 }
 
-nlohmann::json chain_json(const Candidate& c) {
+nlohmann::json chain_json(const CornerSetCandidate& c) {
   nlohmann::json steps = nlohmann::json::array();
   for (auto& s : c.chain)
-    steps.push_back({{"step", s.step}, {"tiles", s.tiles}, {"colors", s.colours}, {"kind", s.kind},
-                     {"label", s.label}, {"argument", s.argument}, {"check", s.check}});
+    steps.push_back({{"step", s.step},
+                     {"tiles", s.tiles},
+                     {"colors", s.colours},
+                     {"kind", s.kind},
+                     {"label", s.label},
+                     {"argument", s.argument},
+                     {"check", s.check}});
   return steps;
 }
 
-nlohmann::json smallest_json(const Candidate& c, const VerifyResult& v) {
+nlohmann::json smallest_json(const CornerSetCandidate& c, const VerifyResult& v) {
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t k = 0; k < c.set.size(); ++k) list.push_back(c.set.file_colours(k));
-  return {{"name", c.set.name()},   {"tiles", c.tiles},  {"colors", c.colours},
-          {"soundness", soundness_name(c.soundness)}, {"chain", chain_json(c)},
-          {"verify", verify_json(v)}, {"format", "nw ne sw se"}, {"list", list}};
+  return {{"name", c.set.name()},    {"tiles", c.tiles},
+          {"colors", c.colours},     {"soundness", soundness_name(c.soundness)},
+          {"chain", chain_json(c)},  {"verify", verify_json(v)},
+          {"format", "nw ne sw se"}, {"list", list}};
 }
 
-void print_smallest(const Candidate& c, const VerifyResult& v) {
+void print_smallest(const CornerSetCandidate& c, const VerifyResult& v) {
   fmt::print("### The smallest corner set that is really aperiodic: {} tiles, {} colours ({})\n\n", c.tiles, c.colours,
              c.set.name());
   fmt::print("Proof chain:\n");
   int k = 1;
   for (auto& s : c.chain)
-    fmt::print("{}. {} -> {} {} tiles, {} colours [{}]: {}\n", k++, s.step, s.tiles, s.kind, s.colours, s.label, s.argument);
+    fmt::print("{}. {} -> {} {} tiles, {} colours [{}]: {}\n", k++, s.step, s.tiles, s.kind, s.colours, s.label,
+               s.argument);
   fmt::print("Check: `aperiodic verify` finds {}.\n", verdict_text(v));
   fmt::print("Re-check each link: {}\n", [&] {
     std::vector<std::string> cmds;
@@ -94,7 +100,8 @@ void run_table_command(const Context& ctx, const TableArgs& a) {
                     {"soundness", soundness_name(c.soundness)},
                     {"verdict", c.plain.verdict},
                     {"route", c.plain.route},
-                    {"period", c.plain.period ? nlohmann::json::array({c.plain.period->first, c.plain.period->second}) : nlohmann::json()},
+                    {"period", c.plain.period ? nlohmann::json::array({c.plain.period->first, c.plain.period->second})
+                                              : nlohmann::json()},
                     {"pruned_tiles", c.pruned_tiles},
                     {"pruned_verdict", c.pruned.verdict},
                     {"status", c.status},
@@ -111,26 +118,30 @@ void run_table_command(const Context& ctx, const TableArgs& a) {
   emit(ctx, j, [&] {
     fmt::print("{}", tables_markdown(r));
     if (!run.checks.empty()) {
-      fmt::print("### Verification of the Table 8.1 corner sets (torus search up to {}, then the transducer method for "
-                 "{} s where no chain is sound; pruned with R={})\n\n",
-                 a.checks.verify.max_period, a.checks.verify.time_limit, a.checks.prune);
-      fmt::print("| Wang set | method | tiles | soundness | verify | pruned tiles | verify (pruned) | thesis' claim |\n");
+      fmt::print(
+          "### Verification of the Table 8.1 corner sets (torus search up to {}, then the transducer method for "
+          "{} s where no chain is sound; pruned with R={})\n\n",
+          a.checks.verify.max_period, a.checks.verify.time_limit, a.checks.prune);
+      fmt::print(
+          "| Wang set | method | tiles | soundness | verify | pruned tiles | verify (pruned) | thesis' claim |\n");
       fmt::print("|---|---|---|---|---|---|---|---|\n");
       for (const CellCheck& c : run.checks)
-        fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} |\n", c.source, c.method, c.tiles, soundness_name(c.soundness),
-                   verdict_text(c.plain), c.pruned_tiles, verdict_text(c.pruned), c.claim);
+        fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} |\n", c.source, c.method, c.tiles,
+                   soundness_name(c.soundness), verdict_text(c.plain), c.pruned_tiles, verdict_text(c.pruned), c.claim);
       fmt::print("\n");
     }
     if (run.smallest) print_smallest(*run.smallest, run.smallest_verify);
-    fmt::print("{} entries differ from the thesis ({} not explained), {} are missing data; largest set {} tiles; {:.2f} s\n",
-               r.differences, r.unexplained, r.missing, r.largest, run.seconds);
+    fmt::print(
+        "{} entries differ from the thesis ({} not explained), {} are missing data; largest set {} tiles; {:.2f} s\n",
+        r.differences, r.unexplained, r.missing, r.largest, run.seconds);
   });
 }
 
 }  // namespace
 
 void add_aperiodic_table_command(CLI::App* ap, Context& ctx) {
-  auto* cmd = ap->add_subcommand("table", "Recompute thesis Tables 8.1-8.7, verify Table 8.1, report the smallest sound corner set");
+  auto* cmd = ap->add_subcommand(
+      "table", "Recompute thesis Tables 8.1-8.7, verify Table 8.1, report the smallest sound corner set");
   static TableArgs ta;
   cmd->add_option("--levels", ta.opts.levels, "Corner sets per iteration column (thesis: 4)")->check(CLI::Range(1, 6));
   ta.checks.verify.time_limit = 5;
@@ -139,7 +150,8 @@ void add_aperiodic_table_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--max-period", ta.checks.verify.max_period,
                   "verify: the torus search up to this period where the transducer reached less (default 8)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--prune", ta.checks.prune, "Pruning radius for the pruned forms (default 3)")->check(CLI::Range(0, 10));
+  cmd->add_option("--prune", ta.checks.prune, "Pruning radius for the pruned forms (default 3)")
+      ->check(CLI::Range(0, 10));
   cmd->add_flag("--no-verify", ta.no_verify, "Only the tables: no verify, no smallest-set report");
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] { run_table_command(ctx, ta); });
@@ -150,13 +162,14 @@ void add_aperiodic_table_command(CLI::App* ap, Context& ctx) {
   static std::string out;
   vo.time_limit = 5;
   sm->add_option("--prune", prune_radius, "Pruning radius (default 3)")->check(CLI::Range(0, 10));
-  sm->add_option("--time-limit", vo.time_limit, "verify: transducer seconds at most (default 5)")->check(CLI::NonNegativeNumber);
+  sm->add_option("--time-limit", vo.time_limit, "verify: transducer seconds at most (default 5)")
+      ->check(CLI::NonNegativeNumber);
   sm->add_option("--max-period", vo.max_period, "verify: the torus search up to this period (default 8)")
       ->check(CLI::PositiveNumber);
   sm->add_option("--out", out, "Write the set as a tile-set file (atomically)");
   add_json_flag(sm, ctx);
   sm->callback([&ctx] {
-    Candidate best = smallest_aperiodic_corner_set(prune_radius);
+    CornerSetCandidate best = smallest_aperiodic_corner_set(prune_radius);
     VerifyResult v = verify_for_table(best.set, vo, false);
     nlohmann::json j = smallest_json(best, v);
     if (!out.empty()) write_file_atomic(out, format_tile_set_text(best.set)), j["out"] = out;

@@ -230,8 +230,7 @@ void ColourHash::row(RowCache& cache, std::int64_t y, std::uint16_t* out) const 
 // One pass over the row in chunks of kChunk columns (one AVX2 register of bytes): each component
 // adds kChunk consecutive entries of its table row ext_[y % N_i], starting at its index
 // x % N_i, which then advances by kChunk mod N_i (the incremental evaluation of thesis eq. 3.6).
-__attribute__((target_clones("avx2", "default"))) const std::uint8_t* ColourHash::row_bytes(RowCache& cache,
-                                                                                            std::int64_t y) const {
+TILEKIT_CLONES const std::uint8_t* ColourHash::row_bytes(RowCache& cache, std::int64_t y) const {
   assert(bytes_suffice() && cache.stride == 1 && comps_.size() <= kMaxComponents);
   const std::size_t chunks = (cache.n + kChunk - 1) / kChunk, m = comps_.size();
   cache.bytes.resize(chunks * kChunk);

@@ -8,6 +8,15 @@
 #include <string>
 #include <vector>
 
+// Hot loops compiled for AVX2 and for the baseline instruction set; the loader picks the one the
+// CPU runs. GCC only: clang 14 leaves a member function's clones unresolved at link time (the
+// clang builds are the sanitizer and fuzz builds, where the baseline loop is enough).
+#if defined(__GNUC__) && !defined(__clang__)
+#define TILEKIT_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TILEKIT_CLONES
+#endif
+
 namespace tilekit {
 
 enum class HashKind { Permutation, LongPeriod };

@@ -1,14 +1,13 @@
 // The vectorised inner loop of the direct corner tiling (lattice_tiling.hpp), compiled for AVX2
 // and for the baseline instruction set; the loader picks the one the CPU runs (GCC
-// target_clones). Plain loops the compiler vectorises: 16-bit lanes throughout.
+// target_clones, TILEKIT_CLONES). Plain loops the compiler vectorises: 16-bit lanes throughout.
+#include "tiling/lattice_hash.hpp"
 #include "tiling/lattice_tiling.hpp"
 
 namespace tilekit {
 
-__attribute__((target_clones("avx2", "default"))) void corner_row_tiles(const std::uint8_t* south,
-                                                                        const std::uint16_t* north_code, std::size_t n,
-                                                                        std::uint32_t colours, TileIndex* out,
-                                                                        std::uint16_t* south_code) {
+TILEKIT_CLONES void corner_row_tiles(const std::uint8_t* south, const std::uint16_t* north_code, std::size_t n,
+                                     std::uint32_t colours, TileIndex* out, std::uint16_t* south_code) {
   const std::uint16_t c1 = std::uint16_t(colours), c2 = std::uint16_t(c1 * c1), c3 = std::uint16_t(c2 * c1);
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint16_t sw = south[k], se = south[k + 1];
@@ -18,8 +17,8 @@ __attribute__((target_clones("avx2", "default"))) void corner_row_tiles(const st
   }
 }
 
-__attribute__((target_clones("avx2", "default"))) void corner_row_code(const std::uint8_t* row, std::size_t n,
-                                                                       std::uint32_t colours, std::uint16_t* code) {
+TILEKIT_CLONES void corner_row_code(const std::uint8_t* row, std::size_t n, std::uint32_t colours,
+                                    std::uint16_t* code) {
   const std::uint16_t c3 = std::uint16_t(colours * colours * colours);
   for (std::size_t k = 0; k < n; ++k) code[k] = std::uint16_t(row[k + 1] * c3 + row[k]);
 }

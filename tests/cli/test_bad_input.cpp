@@ -215,7 +215,7 @@ TEST(BadInput, StoredNonUtf8TextStillExportsListsAndShowsAsJson) {
     CliResult r = run_cli(cmd + " --db " + db);
     ASSERT_EQ(r.code, 0) << cmd << ": " << r.err;
     EXPECT_NE(r.out.find("caf\xef\xbf\xbd"), std::string::npos) << cmd;  // U+FFFD
-    EXPECT_NO_THROW(nlohmann::json::parse(r.out)) << cmd;
+    EXPECT_TRUE(nlohmann::json::accept(r.out)) << cmd;
   }
 }
 

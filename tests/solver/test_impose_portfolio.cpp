@@ -163,6 +163,7 @@ TEST(PortfolioResume, StateCarriesEmptySubspacesBudgetsAndEngineStatesAcrossRuns
     }
   }
   EXPECT_GT(nodes, 0u);
+  EXPECT_GT(budget, 0.0);  // each candidate's budget used is carried
   const double before = state->seconds;
   PortfolioResult b = portfolio_slice(p, cands, 0.3, state);
   if (b.found) GTEST_SKIP() << "found a C=5 packing (lucky seed)";
