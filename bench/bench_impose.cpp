@@ -98,6 +98,7 @@ nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int th
           {"median_cpu_seconds", median(cpus)},
           {"cpu_seconds", cpus},
           {"median_nodes", median(nodes)},
+          {"nodes", nodes},
           {"time_limit", limit}};
 }
 
