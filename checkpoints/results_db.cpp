@@ -1,7 +1,9 @@
 // Opening, checking, migrating and writing the results database. The order of checks on
 // open is the point of this file: a file that is not Tilekit's, or is damaged, is inspected
 // through a read-only connection first, so that it is never modified (not even its journal
-// mode) before we know it is ours and sound.
+// mode) before we know it is ours and sound. Over 400 lines because the open sequence
+// (inspect, connect, migrate) and the writers that share its connection read best in one place;
+// queries, rows, merges and exports have their own files (db_query, db_rows, db_merge, db_export).
 #include "checkpoints/results_db.hpp"
 
 #include <fmt/format.h>
