@@ -20,6 +20,7 @@
 
 #include "atlas/lookup.hpp"
 #include "base/parallel.hpp"
+#include "bench/bench_common.hpp"
 #include "texture/cpu_renderer.hpp"
 #include "texture/gl_renderer.hpp"
 #include "texture/seam_metrics.hpp"
@@ -27,19 +28,10 @@
 #include "texture/tile_synthesis.hpp"
 
 using namespace tilekit;
+using tilekit::bench::median_midpoint;
+using tilekit::bench::seconds_of;
 
 namespace {
-
-double seconds_of(const std::function<void()>& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
-}
 
 double load() {
   double l[1] = {0};
@@ -91,8 +83,8 @@ void synthesis(const Exemplar& e, int reps, bool quick) {
              {"tile_px", 128},
              {"threads", 1},
              {"reps", reps},
-             {"median_seconds", median(t)},
-             {"baseline_naive_seconds", median(base)},
+             {"median_seconds", median_midpoint(t)},
+             {"baseline_naive_seconds", median_midpoint(base)},
              {"cut_error", cut},
              {"cut_error_first_draw", initial}});
     }
@@ -163,10 +155,10 @@ void renderers(const TextureAtlas& atlas, int reps) {
              {"threads", threads},
              {"reps", reps},
              {"pixels", px},
-             {"median_seconds", median(t)},
-             {"mpixels_per_second", px / median(t) / 1e6},
-             {"baseline_plain_trilinear_mpixels_per_second", px / median(base) / 1e6},
-             {"ratio_to_baseline", median(t) / median(base)}});
+             {"median_seconds", median_midpoint(t)},
+             {"mpixels_per_second", px / median_midpoint(t) / 1e6},
+             {"baseline_plain_trilinear_mpixels_per_second", px / median_midpoint(base) / 1e6},
+             {"ratio_to_baseline", median_midpoint(t) / median_midpoint(base)}});
     }
   const char* lp = std::getenv("LP_NUM_THREADS");
   for (const auto& [vname, view] : {std::pair{"flat", flat}, std::pair{"tilted", tilted}})
@@ -188,9 +180,9 @@ void renderers(const TextureAtlas& atlas, int reps) {
                {"lp_num_threads", lp ? lp : "unset"},
                {"reps", reps},
                {"frames", frames},
-               {"mfragments_per_second", frags / median(t) / 1e6},
-               {"baseline_plain_texture_mfragments_per_second", frags / median(base) / 1e6},
-               {"ratio_to_baseline", median(t) / median(base)},
+               {"mfragments_per_second", frags / median_midpoint(t) / 1e6},
+               {"baseline_plain_texture_mfragments_per_second", frags / median_midpoint(base) / 1e6},
+               {"ratio_to_baseline", median_midpoint(t) / median_midpoint(base)},
                {"goal", ">= 150 M fragments/s on 2 cores"}});
       } catch (const GlUnavailable& e) {
         print({{"case", "glsl-render"}, {"skipped", e.what()}});

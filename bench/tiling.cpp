@@ -13,14 +13,17 @@
 #include <thread>
 #include <vector>
 
+#include "bench/bench_common.hpp"
 #include "tilesets/compact_sets.hpp"
+#include "tilesets/tile_set.hpp"
 #include "tiling/controlled_tiling.hpp"
 #include "tiling/direct_tiling.hpp"
 #include "tiling/halton_tiling.hpp"
 #include "tiling/scanline_tiling.hpp"
-#include "tilesets/tile_set.hpp"
 
 using namespace tilekit;
+using tilekit::bench::median_midpoint;
+using tilekit::bench::seconds_of;
 
 namespace {
 
@@ -38,17 +41,6 @@ struct EveryTile {
   void prepare(RowCache& c, std::int64_t x0, std::size_t n) const { h.prepare(c, x0, n); }
   void row(RowCache& c, std::int64_t y, std::uint16_t* out) const { h.row(c, y, out); }
 };
-
-double seconds_of(const std::function<void()>& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
-}
 
 struct Bench {
   int size = 4096, reps = 7;
@@ -76,7 +68,7 @@ struct Bench {
       escape(buffer.data());
       t_base.push_back(seconds_of([&] { baseline(255); }));
     }
-    const double tiles = double(rows) * double(cols), mc = median(t_case), mb = median(t_base);
+    const double tiles = double(rows) * double(cols), mc = median_midpoint(t_case), mb = median_midpoint(t_base);
     // each repetition's case time against the baseline timed right after it (robust to load changes)
     std::vector<double> paired;
     for (std::size_t r = 0; r < t_case.size(); ++r)
@@ -95,7 +87,7 @@ struct Bench {
                         {"baseline_median_seconds", base_per_tile * tiles},
                         {"baseline_tiles_per_second", 1.0 / base_per_tile},
                         {"ratio_to_baseline", mc / (base_per_tile * tiles)},
-                        {"median_paired_ratio", median(paired)}};
+                        {"median_paired_ratio", median_midpoint(paired)}};
     fmt::print("{}\n", j.dump());
     std::fflush(stdout);
   }
@@ -119,7 +111,8 @@ int main(int argc, char** argv) {
       const DirectCornerTiling a(c, h, 1);
       b.run(fmt::format("direct-corner/{}", hash_kind_name(h)), c, n, n, [&] { a.fill(0, 0, n, n, out); });
       if (h == HashKind::LongPeriod)  // rows in parallel (the baseline stays one thread)
-        b.run("direct-corner/long-period/2-threads", c, n, n, [&] { a.fill(0, 0, n, n, out, 2); }, 0, 2);
+        b.run(
+            "direct-corner/long-period/2-threads", c, n, n, [&] { a.fill(0, 0, n, n, out, 2); }, 0, 2);
       if (h == HashKind::Permutation) {
         const EveryTile every{a.hash()};
         b.run("direct-corner/perm/every-tile-evaluated", c, n, n,
