@@ -17,6 +17,16 @@ int lines(const std::string& s) {
   return int(std::count(s.begin(), s.end(), '\n'));
 }
 
+// A 2-colour tile set made from a synthetic exemplar and its atlas, as d/t and d/a.png.
+void make_small_atlas(const TempDir& d) {
+  write_png(d / "ex.png", test::synthetic_image(80, 80));
+  ASSERT_EQ(run_cli("texture tiles --exemplar " + (d / "ex.png") + " --colors 2 --tile-px 16 --search 2 --out " +
+                    (d / "t") + " --quiet")
+                .code,
+            0);
+  ASSERT_EQ(run_cli("texture atlas " + (d / "t") + " --out " + (d / "a.png") + " --no-db").code, 0);
+}
+
 TEST(CliTexture, TilesAtlasAndRenderMakeTheirFilesAndReportJson) {
   TempDir d;
   write_png(d / "ex.png", test::synthetic_image(120, 120));
@@ -66,12 +76,7 @@ TEST(CliTexture, BadExemplarsAndSizesAreExitTwoWithOneLineNamingTheProblem) {
 
 TEST(CliTexture, GlslWithoutAnEglContextIsExitTwoWithASkipMessageAndCpuStillRenders) {
   TempDir d;
-  write_png(d / "ex.png", test::synthetic_image(80, 80));
-  ASSERT_EQ(run_cli("texture tiles --exemplar " + (d / "ex.png") + " --colors 2 --tile-px 16 --search 2 --out " +
-                    (d / "t") + " --quiet")
-                .code,
-            0);
-  ASSERT_EQ(run_cli("texture atlas " + (d / "t") + " --out " + (d / "a.png") + " --no-db").code, 0);
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
   // No EGL vendor library: libglvnd finds no implementation, so no display can be made.
   const std::string no_egl =
       "env __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json __EGL_VENDOR_LIBRARY_DIRS=/nonexistent ";
@@ -85,12 +90,7 @@ TEST(CliTexture, GlslWithoutAnEglContextIsExitTwoWithASkipMessageAndCpuStillRend
 
 TEST(CliTexture, CompareRendersBothWaysAndReportsTheDifference) {
   TempDir d;
-  write_png(d / "ex.png", test::synthetic_image(80, 80));
-  ASSERT_EQ(run_cli("texture tiles --exemplar " + (d / "ex.png") + " --colors 2 --tile-px 16 --search 2 --out " +
-                    (d / "t") + " --quiet")
-                .code,
-            0);
-  ASSERT_EQ(run_cli("texture atlas " + (d / "t") + " --out " + (d / "a.png") + " --no-db").code, 0);
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
   auto r = run_cli("texture render --atlas " + (d / "a.png") +
                    " --size 128x96 --scale 0.7 --tilt 3 --compare --json --quiet --out " + (d / "g.png"));
   if (r.code == 2 && r.err.find("skipped") != std::string::npos) GTEST_SKIP() << r.err;
