@@ -13,7 +13,7 @@
 #include <set>
 #include <unordered_map>
 
-#include "aperiodic/lift.hpp"
+#include "aperiodic/translation_lift.hpp"
 #include "base/error.hpp"
 
 namespace tilekit {
@@ -123,7 +123,7 @@ Conversion translation(const std::vector<WangTile>& w, bool horizontal, std::siz
     c.argument = "lift check skipped";
     return c;
   }
-  // Soundness: decided by the row (column) automata of aperiodic/lift.hpp.
+  // Soundness: decided by the row (column) automata of aperiodic/translation_lift.hpp.
   LiftReport lift = translation_lift(w, horizontal, max_lift_states);
   if (lift.lifts && lift.injective) {
     c.soundness = Soundness::Conjugate;

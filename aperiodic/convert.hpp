@@ -22,7 +22,7 @@ namespace tilekit {
 //               translation-equivariant local map (argued per construction in the .cpp);
 //               so the result is aperiodic exactly when the source is.
 //   Lifts:      every tiling of the result lifts to a tiling of the source, row by row
-//               (checked by automata, aperiodic/lift.hpp). The source's tilings map onto
+//               (checked by automata, aperiodic/translation_lift.hpp). The source's tilings map onto
 //               the result's, and a periodic tiling of the result lifts to a periodic
 //               one of the source: aperiodicity is preserved, but the map may not be 1-1.
 //   Unverified: neither is known; `aperiodic verify` may still find a periodic tiling.
@@ -78,7 +78,7 @@ std::uint32_t wang_vertical_colours(const std::vector<WangTile>& tiles);
 std::uint32_t corner_colours(const std::vector<CornerTile>& tiles);
 
 Conversion diagonal_translation(const std::vector<WangTile>& source);
-// max_lift_states bounds the soundness check (aperiodic/lift.hpp); 0 skips it (unverified).
+// max_lift_states bounds the soundness check (aperiodic/translation_lift.hpp); 0 skips it (unverified).
 Conversion horizontal_translation(const std::vector<WangTile>& source, std::size_t max_lift_states = 200000);
 Conversion vertical_translation(const std::vector<WangTile>& source, std::size_t max_lift_states = 200000);
 Conversion rotation(const std::vector<WangTile>& source);

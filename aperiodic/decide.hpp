@@ -23,7 +23,7 @@
 
 #include "base/parallel.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

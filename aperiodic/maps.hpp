@@ -8,7 +8,7 @@
 
 #include "aperiodic/convert.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

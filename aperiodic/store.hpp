@@ -7,7 +7,7 @@
 #include <string>
 
 #include "aperiodic/verify.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {

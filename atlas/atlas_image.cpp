@@ -9,24 +9,9 @@
 #include <map>
 #include <numbers>
 
-#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 
-// stb as private, static implementations (no symbols shared with other translation units).
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#include <stb_image.h>
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
 
 namespace tilekit {
 
@@ -51,31 +36,31 @@ namespace {
 
 double smooth(double x) { return x * x * (3 - 2 * x); }
 
-struct Rgb {
+struct RgbF {
   double r = 0, g = 0, b = 0;
 };
-Rgb rgb_of(std::uint32_t k, std::uint32_t colours) {
+RgbF rgb_of(std::uint32_t k, std::uint32_t colours) {
   auto c = palette_colour(k, colours);
   return {double(c[0]), double(c[1]), double(c[2])};
 }
 
 }  // namespace
 
-RgbaImage generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int size) {
-  RgbaImage img{size, size, std::vector<std::uint8_t>(std::size_t(size) * std::size_t(size) * 4)};
+Image generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int size) {
+  Image img{size, size, std::vector<std::uint8_t>(std::size_t(size) * std::size_t(size) * 4)};
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const double u = (x + 0.5) / size, v = (y + 0.5) / size;  // v downwards: 0 = north edge
-      Rgb out;
+      RgbF out;
       if (kind == TileKind::Corner) {
         const CornerTile t = corner_tile(tile, colours);  // thesis eq. (2.6)
-        const Rgb nw = rgb_of(t.nw, colours), ne = rgb_of(t.ne, colours), sw = rgb_of(t.sw, colours),
+        const RgbF nw = rgb_of(t.nw, colours), ne = rgb_of(t.ne, colours), sw = rgb_of(t.sw, colours),
                   se = rgb_of(t.se, colours);
         const double a = smooth(u), b = smooth(v);
-        auto mix = [&](double Rgb::*ch) {
+        auto mix = [&](double RgbF::*ch) {
           return (1 - b) * ((1 - a) * nw.*ch + a * ne.*ch) + b * ((1 - a) * sw.*ch + a * se.*ch);
         };
-        out = {mix(&Rgb::r), mix(&Rgb::g), mix(&Rgb::b)};
+        out = {mix(&RgbF::r), mix(&RgbF::g), mix(&RgbF::b)};
       } else {
         const WangTile t = wang_tile(tile, colours);  // thesis eq. (2.3)
         // Each edge's weight is 1 in its middle and 0 at its end points and on the other edges.
@@ -84,9 +69,9 @@ RgbaImage generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, i
         const double sum = wn + ws + ww + we;
         if (sum > 1) wn /= sum, ws /= sum, ww /= sum, we /= sum;
         const double grey = 1 - (wn + ws + ww + we);
-        const Rgb n = rgb_of(t.n, colours), s = rgb_of(t.s, colours), w = rgb_of(t.w, colours), e = rgb_of(t.e, colours);
-        auto mix = [&](double Rgb::*ch) { return wn * n.*ch + ws * s.*ch + ww * w.*ch + we * e.*ch + grey * 128.0; };
-        out = {mix(&Rgb::r), mix(&Rgb::g), mix(&Rgb::b)};
+        const RgbF n = rgb_of(t.n, colours), s = rgb_of(t.s, colours), w = rgb_of(t.w, colours), e = rgb_of(t.e, colours);
+        auto mix = [&](double RgbF::*ch) { return wn * n.*ch + ws * s.*ch + ww * w.*ch + we * e.*ch + grey * 128.0; };
+        out = {mix(&RgbF::r), mix(&RgbF::g), mix(&RgbF::b)};
       }
       std::uint8_t* p = img.at(x, y);
       p[0] = std::uint8_t(std::clamp(std::lround(out.r), 0l, 255l));
@@ -99,13 +84,13 @@ RgbaImage generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, i
 
 namespace {
 
-RgbaImage assemble(const AtlasLookup& a, int tile_size, const std::function<const RgbaImage&(TileIndex)>& tile_image) {
-  RgbaImage atlas{a.cols * tile_size, a.rows * tile_size,
+Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Image&(TileIndex)>& tile_image) {
+  Image atlas{a.cols * tile_size, a.rows * tile_size,
                   std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
                                             std::size_t(tile_size) * 4)};
   for (int r = 0; r < a.rows; ++r)
     for (int c = 0; c < a.cols; ++c) {
-      const RgbaImage& t = tile_image(a.cells[std::size_t(r) * std::size_t(a.cols) + std::size_t(c)]);
+      const Image& t = tile_image(a.cells[std::size_t(r) * std::size_t(a.cols) + std::size_t(c)]);
       for (int y = 0; y < tile_size; ++y)
         std::copy_n(t.at(0, y), std::size_t(tile_size) * 4, atlas.at(c * tile_size, r * tile_size + y));
     }
@@ -114,28 +99,17 @@ RgbaImage assemble(const AtlasLookup& a, int tile_size, const std::function<cons
 
 }  // namespace
 
-RgbaImage atlas_from_generated_tiles(const AtlasLookup& a, int tile_size) {
+Image atlas_from_generated_tiles(const AtlasLookup& a, int tile_size) {
   if (tile_size < 2 || tile_size > 1024) throw InputError(fmt::format("--tile-size must be 2..1024, got {}", tile_size));
   if (std::uint64_t(a.cols) * a.rows * tile_size * tile_size > (1ull << 28))
     throw InputError(fmt::format("a {}x{} atlas of {}-pixel tiles is too large; use a smaller --tile-size", a.rows,
                                  a.cols, tile_size));
-  std::vector<RgbaImage> tiles(a.cells.size());
+  std::vector<Image> tiles(a.cells.size());
   for (TileIndex i = 0; i < tiles.size(); ++i) tiles[i] = generated_tile(a.kind, a.colours, i, tile_size);
-  return assemble(a, tile_size, [&](TileIndex i) -> const RgbaImage& { return tiles[i]; });
+  return assemble(a, tile_size, [&](TileIndex i) -> const Image& { return tiles[i]; });
 }
 
-RgbaImage read_image(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
-  int w = 0, h = 0, n = 0;
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, 4);
-  if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
-  RgbaImage img{w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * 4)};
-  stbi_image_free(data);
-  return img;
-}
-
-RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
+Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("{}: not a directory of tile images", dir));
@@ -159,10 +133,10 @@ RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
       throw InputError(fmt::format("{}: no image for tile {} ({} of {} tiles found; name files by tile index, "
                                    "e.g. {}.png)",
                                    dir, i, files.size(), a.cells.size(), i));
-  std::vector<RgbaImage> tiles(a.cells.size());
+  std::vector<Image> tiles(a.cells.size());
   int size = 0;
   for (auto& [index, path] : files) {
-    RgbaImage img = read_image(path.string());
+    Image img = read_image(path.string());
     const int w = img.width, h = img.height;
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
@@ -173,10 +147,10 @@ RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
       throw InputError(fmt::format("{}: {}x{} pixels, but the other tiles are {}x{}", path.string(), w, h, size, size));
     tiles[index] = std::move(img);
   }
-  return assemble(a, size, [&](TileIndex i) -> const RgbaImage& { return tiles[i]; });
+  return assemble(a, size, [&](TileIndex i) -> const Image& { return tiles[i]; });
 }
 
-SeamReport measure_seams(const RgbaImage& img, int tile_size) {
+SeamReport measure_seams(const Image& img, int tile_size) {
   SeamReport rep;
   auto step = [&](int x0, int y0, int x1, int y1) {
     const std::uint8_t *p = img.at(x0, y0), *q = img.at(x1, y1);
@@ -194,35 +168,6 @@ SeamReport measure_seams(const RgbaImage& img, int tile_size) {
       vs = std::max(vs, v);
     }
   return rep;
-}
-
-void write_png(const std::string& path, const RgbaImage& img) {
-  // The fewest channels that hold the picture exactly (grey, grey+alpha, RGB or RGBA): pictures
-  // of grey textures take a quarter of the space.
-  bool grey = true, opaque = true;
-  for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
-    grey = grey && img.pixels[i] == img.pixels[i + 1] && img.pixels[i] == img.pixels[i + 2];
-    opaque = opaque && img.pixels[i + 3] == 255;
-  }
-  const int channels = (grey ? 1 : 3) + (opaque ? 0 : 1);
-  std::vector<std::uint8_t> packed;
-  const std::uint8_t* data = img.pixels.data();
-  if (channels != 4) {
-    packed.reserve(img.pixels.size() / 4 * std::size_t(channels));
-    for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
-      packed.push_back(img.pixels[i]);
-      if (!grey) packed.insert(packed.end(), {img.pixels[i + 1], img.pixels[i + 2]});
-      if (!opaque) packed.push_back(img.pixels[i + 3]);
-    }
-    data = packed.data();
-  }
-  std::string bytes;
-  auto sink = [](void* ctx, void* d, int size) {
-    static_cast<std::string*>(ctx)->append(static_cast<const char*>(d), std::size_t(size));
-  };
-  if (!stbi_write_png_to_func(sink, &bytes, img.width, img.height, channels, data, img.width * channels))
-    throw InputError(fmt::format("{}: cannot encode the PNG", path));
-  write_file_atomic(path, bytes);
 }
 
 }  // namespace tilekit

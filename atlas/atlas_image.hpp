@@ -9,44 +9,28 @@
 #include <vector>
 
 #include "atlas/lookup.hpp"
+#include "image/image.hpp"
 
 namespace tilekit {
-
-struct RgbaImage {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> pixels;  // RGBA, row-major, row 0 at the top
-  std::uint8_t* at(int x, int y) { return &pixels[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4]; }
-  const std::uint8_t* at(int x, int y) const {
-    return &pixels[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4];
-  }
-};
 
 // One generated tile of `size` x `size` pixels: corner tiles blend their four corner colours
 // (smoothstep-bilinear); Wang tiles blend each edge colour in from its edge, fading to grey
 // at the tile corners (where four tiles meet), so a tile's border depends only on that edge.
-RgbaImage generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int size);
+Image generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int size);
 
 // The colour of colour number k of C (evenly spaced hues).
 std::array<std::uint8_t, 3> palette_colour(std::uint32_t k, std::uint32_t colours);
 
-RgbaImage atlas_from_generated_tiles(const AtlasLookup& a, int tile_size);
+Image atlas_from_generated_tiles(const AtlasLookup& a, int tile_size);
 // Files in `dir` whose name (without extension) ends in a tile index, e.g. 17.png or
 // tile-0017.png; every tile of the set exactly once, all of one size. Throws InputError.
-RgbaImage atlas_from_tile_images(const AtlasLookup& a, const std::string& dir);
+Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir);
 
 // Largest colour step (max over channels) between horizontally or vertically adjacent pixels
 // that straddle a tile border (wrap-around included), and the largest inside tiles.
 struct SeamReport {
   int seam_jump = 0, interior_jump = 0;
 };
-SeamReport measure_seams(const RgbaImage& img, int tile_size);
-
-// An image file (PNG, JPEG, anything stb_image reads) as RGBA. InputError naming the file when it
-// is missing or cannot be decoded.
-RgbaImage read_image(const std::string& path);
-
-// PNG with the fewest channels that hold it exactly (grey, RGB, +alpha), written atomically (temp
-// file, fsync, rename). Throws InputError on failure.
-void write_png(const std::string& path, const RgbaImage& img);
+SeamReport measure_seams(const Image& img, int tile_size);
 
 }  // namespace tilekit

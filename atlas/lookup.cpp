@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "base/error.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "packing/find_packing.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"

@@ -1,7 +1,6 @@
 #include "atlas/render.hpp"
 
 #include <fmt/format.h>
-#include <png.h>
 
 #include <algorithm>
 #include <cmath>
@@ -72,8 +71,6 @@ PlacedTile place(TileKind kind, int row, int col, const std::vector<Colour>& fil
 }
 
 }  // namespace
-
-static_assert(sizeof(Rgb) == 3, "png_write_row reads Rgb rows as packed bytes");
 
 Rgb palette_colour(std::uint32_t c) {
   static constexpr Rgb fixed[] = {{228, 40, 36}, {246, 214, 38},  {52, 172, 60},  {52, 200, 216},
@@ -249,38 +246,14 @@ std::vector<Rgb> rasterise(const Picture& p) {
   return img;
 }
 
-namespace {
-
-void append_png_bytes(png_structp png, png_bytep data, png_size_t length) {
-  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
-  out->append(reinterpret_cast<const char*>(data), length);
-}
-
-}  // namespace
-
 std::string to_png(const Picture& p) {
-  const std::vector<Rgb> img = rasterise(p);
-  const int w = p.width(), h = p.height();
-  std::string out;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info) {
-    png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("libpng: cannot create a write structure");
+  const std::vector<Rgb> rgb = rasterise(p);
+  Image img(p.width(), p.height());
+  for (std::size_t i = 0; i < rgb.size(); ++i) {
+    std::uint8_t* q = &img.pixels[i * 4];
+    q[0] = rgb[i].r, q[1] = rgb[i].g, q[2] = rgb[i].b;
   }
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("libpng: encoding failed");
-  }
-  png_set_write_fn(png, &out, append_png_bytes, nullptr);
-  png_set_IHDR(png, info, png_uint_32(w), png_uint_32(h), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < h; ++y)
-    png_write_row(png, reinterpret_cast<png_const_bytep>(img.data() + std::size_t(y) * std::size_t(w)));
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return out;
+  return encode_png(img);
 }
 
 bool is_picture_path(const std::string& path) {

@@ -3,22 +3,18 @@
 // tile as four triangles meeting at its centre, one per edge colour; a corner tile as a light
 // square with a coloured quarter disc at each corner (so the four tiles around a lattice point
 // show one full disc). Colours 0-4 are red, yellow, green, cyan and blue, then further distinct
-// colours. One Picture feeds both writers: SVG (vector) and PNG (libpng, 4x4 supersampled).
+// colours. One Picture feeds both writers: SVG (vector) and PNG (4x4 supersampled, encoded by image/).
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "image/image.hpp"
 #include "tilesets/tile.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit::atlas {
-
-struct Rgb {
-  std::uint8_t r = 0, g = 0, b = 0;
-  bool operator==(const Rgb&) const = default;
-};
 
 // The colour drawn for colour number `c`: 0 red, 1 yellow, 2 green, 3 cyan, 4 blue, then
 // magenta, orange, purple, brown, pink, olive, grey, then hues spaced by the golden angle.

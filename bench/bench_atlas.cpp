@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
 

@@ -102,12 +102,12 @@ void seams(int threads, bool quick) {
         if (!std::strcmp(method, "no-search")) o.search = 0;
         const TextureTileSet s = std::strcmp(method, "naive") ? synthesize_tiles(e, o) : naive_tiles(e, o);
         std::vector<std::uint32_t> sources;
-        const RgbaImage stitched = stitch_tiles(s, t, &sources);
+        const Image stitched = stitch_tiles(s, t, &sources);
         const SeamStatistics cut = seam_statistics(stitched, o.tile_px, &sources);
         double ratio = cut.seam_ratio;
         if (std::strcmp(method, "naive")) {  // the seam ratio of the rendered tiling (atlas + CPU renderer)
           const TextureAtlas atlas = build_texture_atlas(lookup, s.tiles);
-          const RgbaImage img = render_cpu(atlas, View{32 * o.tile_px, 32 * o.tile_px, 1, 0, 0, 0},
+          const Image img = render_cpu(atlas, View{32 * o.tile_px, 32 * o.tile_px, 1, 0, 0, 0},
                                            {HashKind::LongPeriod, 1, threads, false});
           ratio = seam_statistics(img, o.tile_px).seam_ratio;
         }
@@ -127,9 +127,9 @@ void seams(int threads, bool quick) {
 }
 
 // Trilinear sampling of the atlas as one plain texture (no tiling): the baseline of the renderer.
-RgbaImage plain_render(const TextureAtlas& a, const View& v, int threads) {
+Image plain_render(const TextureAtlas& a, const View& v, int threads) {
   const ViewRows vr = view_rows(v, a.tile_px);
-  RgbaImage out{v.width, v.height, std::vector<std::uint8_t>(std::size_t(v.width) * std::size_t(v.height) * 4)};
+  Image out{v.width, v.height, std::vector<std::uint8_t>(std::size_t(v.width) * std::size_t(v.height) * 4)};
   parallel_for(v.height, threads, [&](std::int64_t j) {
     const ViewRow& r = vr.rows[std::size_t(j)];
     for (int x = 0; x < v.width; ++x) {

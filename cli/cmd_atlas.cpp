@@ -6,7 +6,7 @@
 #include "base/atomic_file.hpp"
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "cli/command.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
@@ -86,7 +86,7 @@ void add_build(CLI::App& atlas, Context& ctx) {
   add_json_flag(cmd, ctx);
   cmd->callback([&ctx] {
     AtlasLookup l = lookup(a);
-    RgbaImage img = tiles_dir.empty() ? atlas_from_generated_tiles(l, tile_size) : atlas_from_tile_images(l, tiles_dir);
+    Image img = tiles_dir.empty() ? atlas_from_generated_tiles(l, tile_size) : atlas_from_tile_images(l, tiles_dir);
     const int size = img.width / l.cols;
     SeamReport seams = measure_seams(img, size);
     write_png(out, img);

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "base/atomic_file.hpp"
-#include "checkpoints/db_rows.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/db_rows.hpp"
+#include "results/results_db.hpp"
 #include "cli/command.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"

@@ -15,7 +15,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/point_io.hpp"

@@ -12,7 +12,7 @@
 #include "points/density.hpp"
 #include "points/generator.hpp"
 #include "points/poisson_tiles.hpp"
-#include "points/raster.hpp"
+#include "image/image.hpp"
 #include "points/recursive_tiles.hpp"
 
 namespace tilekit {
@@ -69,7 +69,7 @@ void add_analysis_commands(CLI::App* points, Context& ctx);   // cmd_points_anal
 void add_recursive_commands(CLI::App* points, Context& ctx);  // cmd_points_recursive.cpp: recursive, objects
 
 // PNG (via atlas/) or SVG by the file name's extension; InputError for others.
-void write_image(const std::string& path, const points::Image& img);
+void write_image(const std::string& path, const Image& img);
 bool is_png(const std::string& path);
 bool is_svg(const std::string& path);
 // Checks before any work that an --out-style path has one of the accepted extensions.

@@ -12,7 +12,7 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/parallel.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "cli/cmd_points.hpp"
 #include "points/object_distribution.hpp"
 

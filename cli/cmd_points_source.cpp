@@ -124,15 +124,7 @@ void check_extension(const std::string& path, const std::vector<std::string>& al
 
 void write_image(const std::string& path, const Image& img) {
   if (!is_png(path)) throw InputError(fmt::format("{}: pictures are written as .png here", path));
-  RgbaImage out;
-  out.width = img.width;
-  out.height = img.height;
-  out.pixels.resize(std::size_t(img.width) * std::size_t(img.height) * 4);
-  for (std::size_t i = 0, j = 0; i < img.rgb.size(); i += 3, j += 4) {
-    out.pixels[j] = img.rgb[i], out.pixels[j + 1] = img.rgb[i + 1], out.pixels[j + 2] = img.rgb[i + 2];
-    out.pixels[j + 3] = 255;
-  }
-  write_png(path, out);
+  write_png(path, img);
 }
 
 }  // namespace tilekit::cli::pts

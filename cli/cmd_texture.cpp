@@ -13,7 +13,7 @@
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "cli/command.hpp"
 #include "texture/gl_renderer.hpp"
 #include "texture/glsl_sampler.hpp"
@@ -160,7 +160,7 @@ struct Difference {
   int max = 0;
   double mean = 0;
 };
-Difference difference(const RgbaImage& a, const RgbaImage& b) {
+Difference difference(const Image& a, const Image& b) {
   Difference d;
   double sum = 0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) {
@@ -214,13 +214,13 @@ void add_render(CLI::App& texture, Context& ctx) {
                         {"threads", o.threads},
                         {"kind", std::string(kind_name(atlas.lookup.kind))},
                         {"colors", atlas.lookup.colours}};
-    RgbaImage img;
+    Image img;
     auto timed = [](auto&& f) {
       const auto t0 = std::chrono::steady_clock::now();
       f();
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
-    RgbaImage cpu;
+    Image cpu;
     if (!glsl || compare) {
       const double s = timed([&] { cpu = render_cpu(atlas, view, o); });
       j["cpu_seconds"] = s;

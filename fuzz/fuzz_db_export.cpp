@@ -1,10 +1,10 @@
-// Database exports read by `db merge OUT export.json` (checkpoints/db_merge.cpp): every row is
+// Database exports read by `db merge OUT export.json` (results/db_merge.cpp): every row is
 // converted and checked before anything would be written.
 #include <cstdint>
 #include <string>
 
 #include "base/error.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -1,4 +1,4 @@
-// Tiling/packing JSON files (tilesets/tiling.hpp), then the independent validator on what parses.
+// Tiling/packing JSON files (tilesets/tile_grid.hpp), then the independent validator on what parses.
 #include <cstdint>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
@@ -6,7 +6,7 @@
 
 #include "base/error.hpp"
 #include "base/json_input.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 #include "tilesets/validator.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

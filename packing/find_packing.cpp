@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "base/error.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -9,7 +9,7 @@
 #include "base/parse.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "packing/find_packing.hpp"
 #include "packing/solution_sink.hpp"
 #include "solver/impose_domain.hpp"
@@ -17,7 +17,7 @@
 #include "solver/symmetry.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/tile_set_io.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {

@@ -20,7 +20,7 @@ struct PackRequest {
   std::string mode = "first";   // first | count | all
   std::string formulation = "auto", ordering = "auto";
   std::string impose;                   // search only packings invariant under this group
-  std::string lift;                     // search only colour-quotient lifts (solver/lift_model.hpp SPEC)
+  std::string lift;                     // search only colour-quotient lifts (solver/colour_lift_model.hpp SPEC)
   bool plain = false;                   // first mode: no portfolio, the plain search alone
   std::vector<std::string> candidates;  // portfolio candidates (empty = the default list)
   std::uint64_t seed = 0;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
 

@@ -1,13 +1,13 @@
 #pragma once
 // Pictures of the analysis (thesis sec. 6.2): point sets, power spectra (log tone-mapped, DC
 // at the centre), the radially averaged power spectrum and the anisotropy of several methods
-// side by side (PNG via points/raster.hpp, or SVG text).
+// side by side (PNG through image/, or SVG text).
 #include <string>
 #include <vector>
 
 #include "points/analysis_spectrum.hpp"
 #include "points/generator.hpp"
-#include "points/raster.hpp"
+#include "image/image.hpp"
 
 namespace tilekit::points {
 

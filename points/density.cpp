@@ -9,19 +9,7 @@
 #include <vector>
 
 #include "base/error.hpp"
-
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#endif
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#include "image/image.hpp"
 
 namespace tilekit::points {
 
@@ -219,12 +207,11 @@ class ImageDensity : public DensityFunction {
  public:
   ImageDensity(const std::string& path, const Window& where, double max_density, bool invert)
       : path_(path), w_(where), max_(max_density) {
-    int ch = 0;
-    unsigned char* data = stbi_load(path.c_str(), &nx_, &ny_, &ch, 1);
-    if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
-    grey_.resize(std::size_t(nx_) * std::size_t(ny_));
-    for (std::size_t i = 0; i < grey_.size(); ++i) grey_[i] = invert ? data[i] / 255.0 : 1 - data[i] / 255.0;
-    stbi_image_free(data);
+    const Image img = read_image(path, 1);
+    nx_ = img.width, ny_ = img.height;
+    grey_.resize(img.pixels.size());
+    for (std::size_t i = 0; i < grey_.size(); ++i)
+      grey_[i] = invert ? img.pixels[i] / 255.0 : 1 - img.pixels[i] / 255.0;
     // Block maxima for upper_bound().
     bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
     block_.assign(std::size_t(bx_) * std::size_t(by_), 0);

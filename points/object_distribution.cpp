@@ -110,7 +110,7 @@ Image ObjectDistribution::texture(const Window& w, int px) const {
   static constexpr Rgb kClass[] = {{46, 125, 50}, {121, 85, 72}, {251, 192, 45}, {30, 136, 229},
                                    {216, 27, 96}, {0, 137, 123}, {94, 53, 177},  {244, 81, 30}};
   const double scale = px / std::max(w.width(), w.height());
-  Image img(std::max(1, int(w.width() * scale)), std::max(1, int(w.height() * scale)), {236, 236, 228});
+  Image img(std::max(1, int(w.width() * scale)), std::max(1, int(w.height() * scale)), Rgb{236, 236, 228});
   for (int j = 0; j < img.height; ++j)
     for (int i = 0; i < img.width; ++i) {
       const Evaluation e = evaluate(w.x0 + (i + 0.5) / scale, w.y0 + (j + 0.5) / scale);

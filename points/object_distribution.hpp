@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "points/generator.hpp"
-#include "points/raster.hpp"
+#include "image/image.hpp"
 
 namespace tilekit::points {
 

@@ -10,7 +10,7 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "points/text_format.hpp"
 
 namespace tilekit::points {

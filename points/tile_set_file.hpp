@@ -1,6 +1,6 @@
 #pragma once
 // Point tile-set files (documented in points/README.md) and their place in the results
-// database (checkpoints/results_db.hpp: a `runs` row for the build and a `tilesets` row whose
+// database (results/results_db.hpp: a `runs` row for the build and a `tilesets` row whose
 // text is the file, so `tilekit db list --table tilesets`, export and merge carry them).
 //
 //   TILEKIT-POINT-TILES 1

@@ -13,7 +13,7 @@
 // has exactly one translate with tile 0 there, and no packing is its own translate (each tile
 // occurs once), so each leaf stands for rows*cols packings (multiplicity()).
 //
-// With a class period P > 0 (colour-quotient lifts, solver/lift_model.hpp) each tile is used
+// With a class period P > 0 (colour-quotient lifts, solver/colour_lift_model.hpp) each tile is used
 // once per residue class of cells (r mod P, c mod P) instead of once overall: the unused tiles
 // are kept per class, forward checking also visits the free cells of the placed tile's class,
 // and a leaf stands for the (rows/P)(cols/P) translates by multiples of P.

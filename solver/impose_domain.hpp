@@ -14,7 +14,7 @@
 
 #include "solver/impose_group.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

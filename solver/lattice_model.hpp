@@ -11,7 +11,7 @@
 // no colour left that gives an allowed, unused tile. Translations of a packing torus are
 // broken like in CellModel (tile 0 fixed at cell (0,0)).
 //
-// With a class period P > 0 (colour-quotient lifts, solver/lift_model.hpp) "no tile twice"
+// With a class period P > 0 (colour-quotient lifts, solver/colour_lift_model.hpp) "no tile twice"
 // becomes "no tile twice within a residue class of cells (r mod P, c mod P)": the packing
 // condition of a lift quotient. Fixing tile 0 at (0,0) then breaks the translations by multiples
 // of P (which map classes to themselves), so a leaf stands for (R/P)(K/P) quotients.

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "base/random.hpp"  // mix_seed
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -14,7 +14,7 @@
 #include "base/error.hpp"
 #include "base/signals.hpp"
 #include "solver/impose_domain.hpp"
-#include "solver/lift_model.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/sat_cnf.hpp"
 #include "tilesets/constructions.hpp"
 
@@ -141,7 +141,7 @@ Candidate make_sat(const TilingProblem& problem, const std::string& name, const 
   return {name, "sat", group, false, false, run};
 }
 
-// Colour-quotient lifts A = B + m*E over a packing B of m colours (lift_model.hpp): the engine's
+// Colour-quotient lifts A = B + m*E over a packing B of m colours (colour_lift_model.hpp): the engine's
 // tile-per-cell quotient, most constrained first ("lift:SPEC"), or its CNF for cadical
 // ("lift-sat:SPEC", one run per slice like "sat:").
 Candidate make_lift(const TilingProblem& problem, const std::string& name, const std::string& spec) {

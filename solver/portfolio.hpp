@@ -11,7 +11,7 @@
 // Candidate names: "plain" (the whole space), "SPEC" or "impose:SPEC" (only the packings
 // invariant under the group SPEC, solver/impose_group.hpp), "sat:SPEC" (the same subspace as
 // CNF for cadical), "lift:M" / "lift-sat:M" (colour-quotient lifts over a packing of M colours,
-// solver/lift_model.hpp, searched by the engine or by cadical). How to add a family:
+// solver/colour_lift_model.hpp, searched by the engine or by cadical). How to add a family:
 // solver/README.md.
 //
 // Shards (options.shard_index/count): every resumable candidate's dives are split between the

@@ -1,6 +1,6 @@
 #pragma once
 // CNF plumbing shared by the SAT encodings (imposed groups: impose_sat.*, colour lifts:
-// lift_sat.*): a DIMACS clause builder with the cardinality encodings they use, and a runner for
+// colour_lift_sat.cpp): a DIMACS clause builder with the cardinality encodings they use, and a runner for
 // the external SAT solver CaDiCaL (Debian package `cadical`, installed by scripts/setup.sh) that
 // a time limit or a stop request (signals) ends by killing the solver process.
 #include <cstdint>

@@ -21,7 +21,7 @@
 #include "solver/impose_model.hpp"
 #include "solver/impose_sat.hpp"
 #include "solver/lattice_model.hpp"
-#include "solver/lift_model.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/validator.hpp"

@@ -11,7 +11,7 @@
 
 #include "solver/search_state.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 
@@ -63,7 +63,7 @@ struct SearchOptions {
   bool catch_signals = false;         // SIGTERM/SIGINT/SIGUSR1 stop the search (result.interrupted)
   bool count_orbits = true;           // Count/All on complete sets: also count orbits
   std::string title;                  // progress line prefix
-  std::string lift;                   // colour-quotient lift SPEC (solver/lift_model.hpp, issue 11):
+  std::string lift;                   // colour-quotient lift SPEC (solver/colour_lift_model.hpp, issue 11):
                                       // search packings B + m*E of the complete set; "" = none.
                                       // Formulation "auto" (the engine) or "sat" (cadical)
   // Checkpoint I/O, injected because the file format lives in checkpoints/ (which depends on

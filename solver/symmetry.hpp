@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "solver/solve.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -35,7 +35,7 @@ std::vector<const ColourHash*> VirtualTiling::hashes() const {
 namespace {
 
 // Bilinear filtering of one level (GL_LINEAR, GL_REPEAT), accumulated into acc with weight w.
-void bilinear(const RgbaImage& img, float s, float t, float w, float* acc) {
+void bilinear(const Image& img, float s, float t, float w, float* acc) {
   const float u = s * float(img.width) - 0.5f, v = t * float(img.height) - 0.5f;
   const float fu = std::floor(u), fv = std::floor(v), a = u - fu, b = v - fv;
   auto wrap = [](long i, int n) { return int(((i % n) + n) % n); };
@@ -64,10 +64,10 @@ std::array<float, 4> sample_trilinear(const TextureAtlas& a, float s, float t, f
   return acc;
 }
 
-RgbaImage render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o) {
+Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o) {
   const ViewRows vr = view_rows(view, a.tile_px);
   const VirtualTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
-  RgbaImage out{view.width, view.height,
+  Image out{view.width, view.height,
                 std::vector<std::uint8_t>(std::size_t(view.width) * std::size_t(view.height) * 4)};
   const float inv_cols = 1.0f / float(a.lookup.cols), inv_rows = 1.0f / float(a.lookup.rows);
   ProgressReporter progress(fmt::format("render {}x{}", view.width, view.height), view.height, o.progress);

@@ -43,6 +43,6 @@ class VirtualTiling {
 // level of detail lambda (OpenGL ES 3.0 sec. 3.8.10-3.8.11): components in 0..255.
 std::array<float, 4> sample_trilinear(const TextureAtlas& a, float s, float t, float lambda);
 
-RgbaImage render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o);
+Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o);
 
 }  // namespace tilekit

@@ -9,7 +9,7 @@
 
 namespace tilekit {
 
-Exemplar exemplar_from_image(RgbaImage image, std::string name) {
+Exemplar exemplar_from_image(Image image, std::string name) {
   if (image.width < kMinExemplarSide || image.height < kMinExemplarSide)
     throw InputError(fmt::format("{}: the exemplar is {}x{} pixels, too small for texture tiles (at least {}x{})", name,
                                  image.width, image.height, kMinExemplarSide, kMinExemplarSide));

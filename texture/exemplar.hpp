@@ -13,7 +13,7 @@
 namespace tilekit {
 
 struct Exemplar {
-  RgbaImage image;
+  Image image;
   std::string name;                 // the file it came from
   double neighbour_difference = 0;  // mean colour distance of 4-adjacent pixels: the unit of seam costs
   double mean_step = 0;             // mean absolute step per channel of 4-adjacent pixels (seam_metrics.hpp)
@@ -29,7 +29,7 @@ inline constexpr int kMinExemplarSide = 16;
 // textures. InputError (exit 2) naming the file when it is missing, cannot be decoded or is
 // smaller than kMinExemplarSide.
 Exemplar load_exemplar(const std::string& path_or_name);
-Exemplar exemplar_from_image(RgbaImage image, std::string name);
+Exemplar exemplar_from_image(Image image, std::string name);
 
 // Euclidean RGB distance between two pixels (0 .. 441.7).
 inline float colour_distance(const std::uint8_t* a, const std::uint8_t* b) {

@@ -183,8 +183,8 @@ double GlRenderer::draw(int frames) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-RgbaImage GlRenderer::read() {
-  RgbaImage img{s_->width, s_->height, std::vector<std::uint8_t>(std::size_t(s_->width) * std::size_t(s_->height) * 4)};
+Image GlRenderer::read() {
+  Image img{s_->width, s_->height, std::vector<std::uint8_t>(std::size_t(s_->width) * std::size_t(s_->height) * 4)};
   std::vector<std::uint8_t> flipped(img.pixels.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, s_->width, s_->height, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
@@ -223,7 +223,7 @@ void GlRenderer::set_origin(int, int) {
 double GlRenderer::draw(int) {
   unavailable();
 }
-RgbaImage GlRenderer::read() {
+Image GlRenderer::read() {
   unavailable();
 }
 std::string GlRenderer::renderer() const {
@@ -235,7 +235,7 @@ std::string gl_renderer_name() {
 
 #endif
 
-RgbaImage render_glsl(const TextureAtlas& a, const View& view, const RenderOptions& o) {
+Image render_glsl(const TextureAtlas& a, const View& view, const RenderOptions& o) {
   GlRenderer r(a, view, o);
   r.draw(1);
   return r.read();

@@ -31,7 +31,7 @@ class GlRenderer {
   void set_origin(int x, int y);  // tk_origin of the test modes
   // Draws `frames` times and waits for the GPU (glFinish); returns the seconds that took.
   double draw(int frames = 1);
-  RgbaImage read();  // the framebuffer, row 0 at the top
+  Image read();  // the framebuffer, row 0 at the top
   std::string renderer() const;
 
  private:
@@ -39,6 +39,6 @@ class GlRenderer {
   std::unique_ptr<State> s_;
 };
 
-RgbaImage render_glsl(const TextureAtlas& atlas, const View& view, const RenderOptions& o);
+Image render_glsl(const TextureAtlas& atlas, const View& view, const RenderOptions& o);
 
 }  // namespace tilekit

@@ -48,7 +48,7 @@ class Builder {
 
 }  // namespace
 
-GraphCutResult graph_cut_merge(const RgbaImage& a, const RgbaImage& b, const std::vector<std::uint8_t>& region,
+GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
                                const std::vector<std::uint8_t>& forced) {
   const int w = a.width, h = a.height;
   assert(b.width == w && b.height == h && region.size() == std::size_t(w) * std::size_t(h));

@@ -22,7 +22,7 @@ struct GraphCutResult {
 
 // A and B are the same size; region and forced hold one byte per pixel. Pixels of the region
 // must not lie on the image border (the gradients look one pixel further).
-GraphCutResult graph_cut_merge(const RgbaImage& a, const RgbaImage& b, const std::vector<std::uint8_t>& region,
+GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
                                const std::vector<std::uint8_t>& forced);
 
 }  // namespace tilekit

@@ -50,7 +50,7 @@ std::vector<std::vector<Tap>> taps(int in, int out, MipEdge edge) {
 
 }  // namespace
 
-RgbaImage downsample(const RgbaImage& img, MipEdge edge) {
+Image downsample(const Image& img, MipEdge edge) {
   const int w = std::max(1, img.width / 2), h = std::max(1, img.height / 2);
   const auto tx = taps(img.width, w, edge), ty = taps(img.height, h, edge);
   // Horizontal pass into 32-bit sums (x 256), then vertical, then round (/ 65536).
@@ -63,7 +63,7 @@ RgbaImage downsample(const RgbaImage& img, MipEdge edge) {
         for (int c = 0; c < 4; ++c) o[c] += t.weight * p[c];
       }
     }
-  RgbaImage out{w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4)};
+  Image out{w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4)};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       std::int32_t acc[4] = {0, 0, 0, 0};
@@ -76,8 +76,8 @@ RgbaImage downsample(const RgbaImage& img, MipEdge edge) {
   return out;
 }
 
-std::vector<RgbaImage> mip_chain(const RgbaImage& level0, MipEdge edge) {
-  std::vector<RgbaImage> levels{level0};
+std::vector<Image> mip_chain(const Image& level0, MipEdge edge) {
+  std::vector<Image> levels{level0};
   while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(downsample(levels.back(), edge));
   return levels;
 }

@@ -16,8 +16,8 @@ enum class MipEdge {
   Clamp,  // the image ends at its border (a window of a tiling)
 };
 
-RgbaImage downsample(const RgbaImage& img, MipEdge edge);
+Image downsample(const Image& img, MipEdge edge);
 // Level 0 (the image itself) down to 1x1.
-std::vector<RgbaImage> mip_chain(const RgbaImage& level0, MipEdge edge);
+std::vector<Image> mip_chain(const Image& level0, MipEdge edge);
 
 }  // namespace tilekit

@@ -6,7 +6,7 @@
 
 namespace tilekit {
 
-SeamStatistics seam_statistics(const RgbaImage& img, int tile_px, const std::vector<std::uint32_t>* src) {
+SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* src) {
   SeamStatistics s;
   double border = 0, interior = 0, cut = 0, same = 0;
   std::size_t interior_pairs = 0, same_pairs = 0;
@@ -38,10 +38,9 @@ SeamStatistics seam_statistics(const RgbaImage& img, int tile_px, const std::vec
   return s;
 }
 
-RgbaImage stitch_tiles(const TextureTileSet& set, const Tiling& t, std::vector<std::uint32_t>* sources) {
+Image stitch_tiles(const TextureTileSet& set, const Tiling& t, std::vector<std::uint32_t>* sources) {
   const int n = set.tile_px;
-  RgbaImage img{t.cols * n, t.rows * n, {}};
-  img.pixels.resize(std::size_t(img.width) * std::size_t(img.height) * 4);
+  Image img(t.cols * n, t.rows * n, Rgb{0, 0, 0});
   if (sources) sources->assign(std::size_t(img.width) * std::size_t(img.height), 0);
   for (int r = 0; r < t.rows; ++r)
     for (int c = 0; c < t.cols; ++c) {

@@ -9,7 +9,7 @@
 
 #include "atlas/atlas_image.hpp"
 #include "texture/tile_synthesis.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 
@@ -22,10 +22,10 @@ struct SeamStatistics {
 // Mean absolute step (over R, G, B) of 4-neighbours of an image of a tiling with tile_px tiles
 // whose borders lie at multiples of tile_px. `sources` (optional, one id per pixel) names the
 // sample each pixel came from.
-SeamStatistics seam_statistics(const RgbaImage& img, int tile_px, const std::vector<std::uint32_t>* sources = nullptr);
+SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* sources = nullptr);
 
 // The tiles of `set` laid out as `tiling` (rows x cols of tile indices), and the matching source
 // map with ids made unique per tile where a sample belongs to one tile only.
-RgbaImage stitch_tiles(const TextureTileSet& set, const Tiling& tiling, std::vector<std::uint32_t>* sources = nullptr);
+Image stitch_tiles(const TextureTileSet& set, const Tiling& tiling, std::vector<std::uint32_t>* sources = nullptr);
 
 }  // namespace tilekit

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-TextureAtlas from_level0(const AtlasLookup& lookup, RgbaImage level0, int tile_px) {
+TextureAtlas from_level0(const AtlasLookup& lookup, Image level0, int tile_px) {
   TextureAtlas a;
   a.lookup = lookup;
   a.tile_px = tile_px;
@@ -27,24 +27,23 @@ TextureAtlas from_level0(const AtlasLookup& lookup, RgbaImage level0, int tile_p
 
 }  // namespace
 
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<RgbaImage>& tiles) {
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles) {
   if (tiles.size() != lookup.cells.size())
     throw InputError(fmt::format("{} tile images for a set of {} tiles", tiles.size(), lookup.cells.size()));
   const int n = tiles.empty() ? 0 : tiles[0].width;
-  for (const RgbaImage& t : tiles)
+  for (const Image& t : tiles)
     if (t.width != n || t.height != n || n < 1) throw InputError("tile images must all be square and of one size");
-  RgbaImage level0{lookup.cols * n, lookup.rows * n, {}};
-  level0.pixels.resize(std::size_t(level0.width) * std::size_t(level0.height) * 4);
+  Image level0(lookup.cols * n, lookup.rows * n, Rgb{0, 0, 0});
   for (int r = 0; r < lookup.rows; ++r)
     for (int c = 0; c < lookup.cols; ++c) {
-      const RgbaImage& t = tiles[lookup.cells[std::size_t(r) * std::size_t(lookup.cols) + std::size_t(c)]];
+      const Image& t = tiles[lookup.cells[std::size_t(r) * std::size_t(lookup.cols) + std::size_t(c)]];
       for (int y = 0; y < n; ++y) std::copy_n(t.at(0, y), std::size_t(n) * 4, level0.at(c * n, r * n + y));
     }
   return from_level0(lookup, std::move(level0), n);
 }
 
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir) {
-  RgbaImage level0 = atlas_from_tile_images(lookup, tiles_dir);
+  Image level0 = atlas_from_tile_images(lookup, tiles_dir);
   TextureAtlas a = from_level0(lookup, std::move(level0), 0);
   a.tile_px = a.levels[0].width / lookup.cols;
   a.tiles_dir = tiles_dir;
@@ -119,7 +118,7 @@ TextureAtlas read_texture_atlas(const std::string& path) {
     const fs::path dir = fs::path(manifest).parent_path();
     for (const auto& level : j.at("levels")) {
       const std::string file = (dir / level.at("file").get<std::string>()).string();
-      RgbaImage img = read_image(file);
+      Image img = read_image(file);
       const int w = img.width, h = img.height;
       const int want_w = a.levels.empty() ? a.lookup.cols * a.tile_px : std::max(1, a.levels.back().width / 2);
       const int want_h = a.levels.empty() ? a.lookup.rows * a.tile_px : std::max(1, a.levels.back().height / 2);

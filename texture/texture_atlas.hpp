@@ -15,12 +15,12 @@ namespace tilekit {
 struct TextureAtlas {
   AtlasLookup lookup;  // the packing: cells (atlas cell -> tile) and positions (tile -> cell)
   int tile_px = 0;
-  std::vector<RgbaImage> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
+  std::vector<Image> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
   std::string tiles_dir;          // where the tiles came from (informational)
 };
 
 // InputError unless there is one square image of tile_px pixels per tile of the lookup's set.
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<RgbaImage>& tiles);
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles);
 // The same from a folder written by `tilekit texture tiles` (or any folder of tile images named
 // by tile index; atlas_from_tile_images reads it).
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir);

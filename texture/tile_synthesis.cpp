@@ -133,7 +133,7 @@ TextureTileSet naive_tiles(const Exemplar& e, const SynthesisOptions& o) {
                     px = std::size_t(o.tile_px) * std::size_t(o.tile_px);
   for (std::size_t t = 0; t < count; ++t) {
     const auto [x0, y0] = random_sample_position(e, o.tile_px, derive_seed(o.seed, t));
-    RgbaImage tile{o.tile_px, o.tile_px, std::vector<std::uint8_t>(px * 4)};
+    Image tile{o.tile_px, o.tile_px, std::vector<std::uint8_t>(px * 4)};
     for (int y = 0; y < o.tile_px; ++y) std::copy_n(e.at(x0, y0 + y), std::size_t(o.tile_px) * 4, tile.at(0, y));
     s.tiles.push_back(std::move(tile));
     s.sources.emplace_back(px, std::uint32_t(t));
@@ -141,11 +141,10 @@ TextureTileSet naive_tiles(const Exemplar& e, const SynthesisOptions& o) {
   return s;
 }
 
-RgbaImage tile_set_sheet(const TextureTileSet& s, int gap) {
+Image tile_set_sheet(const TextureTileSet& s, int gap) {
   const int count = int(s.tiles.size()), cols = std::max(1, int(std::ceil(std::sqrt(double(count))))),
             rows = (count + cols - 1) / cols, n = s.tile_px;
-  RgbaImage sheet{cols * n + (cols + 1) * gap, rows * n + (rows + 1) * gap, {}};
-  sheet.pixels.assign(std::size_t(sheet.width) * std::size_t(sheet.height) * 4, 255);
+  Image sheet(cols * n + (cols + 1) * gap, rows * n + (rows + 1) * gap, Rgb{255, 255, 255});
   for (int t = 0; t < count; ++t) {
     const int x0 = gap + (t % cols) * (n + gap), y0 = gap + (t / cols) * (n + gap);
     for (int y = 0; y < n; ++y) std::copy_n(s.tiles[std::size_t(t)].at(0, y), std::size_t(n) * 4, sheet.at(x0, y0 + y));

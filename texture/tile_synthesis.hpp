@@ -1,7 +1,7 @@
 #pragma once
 // Texture tiles synthesised from an exemplar (thesis sec. 5.3): the complete corner set over C
-// colours by the method of Ng et al. (corner_tiles.cpp) and the complete Wang set by the method
-// of Cohen et al. 2003 (wang_tiles.cpp), with the patch choice searched, not drawn at random.
+// colours by the method of Ng et al. (corner_texture_tiles.cpp) and the complete Wang set by the method
+// of Cohen et al. 2003 (wang_texture_tiles.cpp), with the patch choice searched, not drawn at random.
 // Seeded and deterministic: the same seed gives the same bytes on any thread count.
 #include <array>
 #include <cstdint>
@@ -49,7 +49,7 @@ struct TextureTileSet {
   std::uint32_t colours = 0;
   int tile_px = 0;
   std::uint64_t seed = 0;
-  std::vector<RgbaImage> tiles;  // by tile index (thesis eq. 2.2 / 2.5)
+  std::vector<Image> tiles;  // by tile index (thesis eq. 2.2 / 2.5)
   // Per tile and pixel, the sample it was copied from (corner patch c: c; centre patch of tile t:
   // C + t; Wang horizontal diamond h: h, vertical diamond v: C + v; naive: the tile index).
   std::vector<std::vector<std::uint32_t>> sources;
@@ -114,7 +114,7 @@ void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& 
                     const std::function<SampleScore(std::size_t, const std::vector<std::array<int, 2>>&)>& score);
 
 // The tiles in index order, about square, `gap` pixels apart on white (the README picture).
-RgbaImage tile_set_sheet(const TextureTileSet& s, int gap = 4);
+Image tile_set_sheet(const TextureTileSet& s, int gap = 4);
 nlohmann::json tile_set_json(const TextureTileSet& s);
 // DIR/tile-NNNN.png per tile (named by index, as `tilekit atlas build --tiles` reads them),
 // DIR/tiles.json (the report) and DIR/tileset.png (the sheet); files written atomically.

@@ -3,7 +3,7 @@
 #include <utility>
 #include <vector>
 
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

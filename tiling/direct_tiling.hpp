@@ -9,7 +9,7 @@
 #include "tiling/lattice_hash.hpp"
 #include "tiling/lattice_tiling.hpp"
 #include "tilesets/tile.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -18,7 +18,7 @@
 
 #include "base/parallel.hpp"
 #include "tilesets/tile.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

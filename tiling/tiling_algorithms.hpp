@@ -15,7 +15,7 @@
 #include "tiling/controlled_tiling.hpp"
 #include "tiling/lattice_hash.hpp"
 #include "tilesets/tile_set.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit {
 

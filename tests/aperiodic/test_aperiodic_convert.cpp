@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "aperiodic/convert.hpp"
-#include "aperiodic/lift.hpp"
+#include "aperiodic/translation_lift.hpp"
 #include "base/error.hpp"
 #include "tilesets/tile_set_io.hpp"
 

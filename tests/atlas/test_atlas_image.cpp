@@ -25,7 +25,7 @@ AtlasLookup shuffled(AtlasLookup a) {
 TEST(AtlasImage, GeneratedAtlasIsContinuousAcrossEveryTileBorderIncludingWrapAround) {
   for (auto [kind, c] : {std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}, std::pair{TileKind::Wang, 3u}}) {
     AtlasLookup a = lookup(kind, c);
-    RgbaImage img = atlas_from_generated_tiles(a, 24);
+    Image img = atlas_from_generated_tiles(a, 24);
     EXPECT_EQ(img.width, a.cols * 24);
     SeamReport packed = measure_seams(img, 24);
     // Across a border the colour changes no more than between neighbouring pixels inside a tile.
@@ -36,7 +36,7 @@ TEST(AtlasImage, GeneratedAtlasIsContinuousAcrossEveryTileBorderIncludingWrapAro
 }
 
 TEST(AtlasImage, CornerTilesShowTheirCornerColours) {
-  RgbaImage t = generated_tile(TileKind::Corner, 3, corner_index(CornerTile{1, 2, 0, 1}, 3), 40);
+  Image t = generated_tile(TileKind::Corner, 3, corner_index(CornerTile{1, 2, 0, 1}, 3), 40);
   auto near = [](const std::uint8_t* p, std::array<std::uint8_t, 3> c) {
     return std::abs(p[0] - c[0]) <= 3 && std::abs(p[1] - c[1]) <= 3 && std::abs(p[2] - c[2]) <= 3;
   };
@@ -52,8 +52,8 @@ TEST(AtlasImage, TileImagesNamedByIndexArePlacedWhereThePackingSays) {
   std::filesystem::create_directories(d / "tiles");
   for (TileIndex i = 0; i < a.cells.size(); ++i)
     write_png(d / ("tiles/tile-" + std::to_string(1000 + i).substr(1) + ".png"), generated_tile(a.kind, 3, i, 8));
-  RgbaImage from_files = atlas_from_tile_images(a, d / "tiles");
-  RgbaImage generated = atlas_from_generated_tiles(a, 8);
+  Image from_files = atlas_from_tile_images(a, d / "tiles");
+  Image generated = atlas_from_generated_tiles(a, 8);
   EXPECT_EQ(from_files.width, generated.width);
   EXPECT_TRUE(from_files.pixels == generated.pixels);
 }

@@ -4,7 +4,7 @@
 #include <regex>
 
 #include "atlas/lookup.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/constructions.hpp"
 #include "base/error.hpp"

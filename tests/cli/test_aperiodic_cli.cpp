@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using tilekit::test::run_cli;

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "checkpoints/checkpoint.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit;

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
-#include "checkpoints/results_db.hpp"
-#include "tests/checkpoints/db_test_util.hpp"
+#include "results/results_db.hpp"
+#include "tests/results/db_test_util.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit;

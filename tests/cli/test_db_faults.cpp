@@ -19,7 +19,7 @@
 #include <random>
 #include <thread>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit;
@@ -90,6 +90,17 @@ bool kill_after(const std::vector<std::string>& args, int ms, const TempDir& d) 
   return code == 128 + SIGKILL;
 }
 
+// How long one uninterrupted run of `args` takes here, in milliseconds: kill delays are drawn
+// inside it, so kills land mid-run on a fast machine and on a loaded one alike.
+int run_ms(const std::vector<std::string>& args, const TempDir& d) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = spawn_tilekit(args, d / "out", d / "err");
+  EXPECT_GT(pid, 0);
+  EXPECT_EQ(wait_exit(pid), 0) << slurp(d / "err");
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
+  return std::max(2, int(ms.count()));
+}
+
 // A small file system mounted for one test (tmpfs, or an ext4 loop file), or nothing when this
 // process may not mount (not root, or no CAP_SYS_ADMIN): then the test is skipped and says why.
 struct SmallDisk {
@@ -122,10 +133,12 @@ TEST(DbFaults, SigkillDuringMergeLeavesAllOrNothingOfTheMerge) {
   make_db(d / "in.sqlite", 0, n);
   std::mt19937 rng(15);
   int killed = 0;
+  make_db(d / "timed.sqlite", 1'000'000, 10);
+  const int full = run_ms({"db", "merge", d / "timed.sqlite", d / "in.sqlite", "--quiet"}, d);
   for (int round = 0; round < 12; ++round) {
     const std::string out = d / ("out" + std::to_string(round) + ".sqlite");
     make_db(out, 1'000'000, 10);  // the target already holds 10 solutions of its own
-    if (!kill_after({"db", "merge", out, d / "in.sqlite", "--quiet"}, int(20 + rng() % 600), d)) continue;
+    if (!kill_after({"db", "merge", out, d / "in.sqlite", "--quiet"}, int(full / 10 + rng() % full), d)) continue;
     ++killed;
     const DbState st = state_of(out);
     EXPECT_EQ(st.integrity, "ok") << round;
@@ -149,11 +162,13 @@ TEST(DbFaults, SigkillDuringDbAddStoresTheWholeRunOrNothing) {
   }
   std::mt19937 rng(16);
   int killed = 0;
-  // Rounds until 5 kills landed mid-run (on a loaded machine some adds finish first).
+  make_db(d / "db.sqlite", 0, 5);
+  const int full = run_ms(args, d);
+  // Rounds until 5 kills landed mid-run (a kill drawn near the end may come after the add).
   for (int round = 0; round < 40 && killed < 5; ++round) {
     fs::remove(d / "db.sqlite");
     make_db(d / "db.sqlite", 0, 5);
-    if (!kill_after(args, int(5 + rng() % 150), d)) continue;
+    if (!kill_after(args, int(full / 10 + rng() % full), d)) continue;
     ++killed;
     const DbState st = state_of(d / "db.sqlite");
     EXPECT_EQ(st.integrity, "ok");

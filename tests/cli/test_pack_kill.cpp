@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit::test;

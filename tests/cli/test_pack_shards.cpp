@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit::test;

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "base/error.hpp"
-#include "solver/lift_model.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/sat_cnf.hpp"
 #include "solver/solve.hpp"
 #include "tilesets/construct_internal.hpp"

@@ -27,19 +27,19 @@ TEST(CpuRenderer, ScaleOneAtTexelCentresEqualsTheStitchedTiling) {
   const TextureAtlas& atlas = test::grass_atlas(TileKind::Corner);
   const View v{320, 192, 1.0, 128, 64, 0};  // origin at texel (128, 64): tile (2, 1)
   for (int threads : {1, 2}) {
-    const RgbaImage img = render_cpu(atlas, v, {HashKind::LongPeriod, 9, threads, false});
+    const Image img = render_cpu(atlas, v, {HashKind::LongPeriod, 9, threads, false});
     const Tiling t = DirectCornerTiling(2, HashKind::LongPeriod, 9).generate(3, 5, 2, 1);
-    const RgbaImage truth = stitch_tiles(test::grass_tiles(TileKind::Corner), t);
+    const Image truth = stitch_tiles(test::grass_tiles(TileKind::Corner), t);
     EXPECT_EQ(img.pixels, truth.pixels) << threads << " threads";
   }
 }
 
 // Trilinear sampling (GL_LINEAR_MIPMAP_LINEAR, as sample_trilinear) of the mip chain of a
 // stitched tiling at level-0 texel (u, v) of that image: the ground truth of a render.
-std::array<double, 4> sample_chain(const std::vector<RgbaImage>& chain, double u, double v, float lambda) {
+std::array<double, 4> sample_chain(const std::vector<Image>& chain, double u, double v, float lambda) {
   std::array<double, 4> acc{0, 0, 0, 0};
   auto level = [&](int k, double w) {
-    const RgbaImage& img = chain[std::size_t(k)];
+    const Image& img = chain[std::size_t(k)];
     const double x = u / double(1 << k) - 0.5, y = v / double(1 << k) - 0.5;
     const int i = int(std::floor(x)), j = int(std::floor(y));
     const double a = x - i, b = y - j;
@@ -68,11 +68,11 @@ TEST(CpuRenderer, PackedAtlasFiltersAcrossTileBordersLikeTheTilingAndARandomArra
   const TextureAtlas random = build_texture_atlas(shuffled, tiles.tiles);
   const int n = tiles.tile_px, first = 1, count = 18;  // the stitched window: tiles 1..18 each way
   const Tiling t = DirectCornerTiling(2, HashKind::LongPeriod, 9).generate(count, count, first, first);
-  const std::vector<RgbaImage> chain = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
+  const std::vector<Image> chain = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
   const RenderOptions o{HashKind::LongPeriod, 9, 2, false};
   for (double scale : {0.9, 2.6}) {  // lambda = log2(scale): mip 0 bilinear; levels 1 and 2
     const View v{300, 300, scale, 200.3, 150.7, 0};
-    const RgbaImage packed = render_cpu(atlas, v, o), wrong = render_cpu(random, v, o);
+    const Image packed = render_cpu(atlas, v, o), wrong = render_cpu(random, v, o);
     const ViewRows vr = view_rows(v, n);
     int max_packed = 0, max_random = 0;
     std::size_t differ_random = 0;
@@ -145,7 +145,7 @@ TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
       for (auto [ox, oy] : {std::pair{-150, -40}, std::pair{-1000003, 999979}, std::pair{2147400000, -2147400000}}) {
         r->set_origin(ox, oy);
         r->draw();
-        const RgbaImage img = r->read();
+        const Image img = r->read();
         int wrong = 0;
         for (int y = 0; y < img.height; ++y)
           for (int x = 0; x < img.width; ++x)
@@ -163,7 +163,7 @@ TEST(GlslSampler, VirtualTilesEqualTheCppDirectTiling) {
     SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{200, 100, 1, 0, 0, 0}, o, GlslMode::TileIndex));
     r->set_origin(-100, -37);
     r->draw();
-    const RgbaImage img = r->read();
+    const Image img = r->read();
     const VirtualTiling tiling(kind, 2, HashKind::LongPeriod, 5);
     int wrong = 0;
     for (int y = 0; y < img.height; ++y)
@@ -179,7 +179,7 @@ struct Diff {
   int max = 0;
   double mean = 0;
 };
-Diff diff(const RgbaImage& a, const RgbaImage& b) {
+Diff diff(const Image& a, const Image& b) {
   Diff d;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) {
     const int v = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
@@ -197,7 +197,7 @@ TEST(GlslSampler, A1024SquareRenderEqualsTheCpuReferenceWithinOneAtMipZeroAndTwo
     // mip 0: magnified, off the texel centres (bilinear across tile borders); then a tilted view
     // whose level of detail runs from magnification at the bottom to about level 7 at the top
     const View flat{1024, 1024, 0.37, 1000.3, -77.7, 0}, tilted{1024, 1024, 0.6, -5000, 300, 12};
-    RgbaImage gl_flat, gl_tilted;
+    Image gl_flat, gl_tilted;
     SKIP_WITHOUT_EGL(gl_flat = render_glsl(atlas, flat, o));
     gl_tilted = render_glsl(atlas, tilted, o);
     const Diff d0 = diff(gl_flat, render_cpu(atlas, flat, o)), d1 = diff(gl_tilted, render_cpu(atlas, tilted, o));

@@ -20,7 +20,7 @@ TEST(Seams, RenderedTilingsOfRealTexturesHaveSeamRatioAtMostOnePointOne) {
       SynthesisOptions o = test::small_options(kind, 2, px, 2);
       const TextureTileSet s = synthesize_tiles(e, o);
       const TextureAtlas atlas = build_texture_atlas(atlas_lookup(kind, 2, {}), s.tiles);
-      const RgbaImage img = render_cpu(atlas, View{32 * px, 32 * px, 1, 0, 0, 0}, {HashKind::LongPeriod, 1, 2, false});
+      const Image img = render_cpu(atlas, View{32 * px, 32 * px, 1, 0, 0, 0}, {HashKind::LongPeriod, 1, 2, false});
       const SeamStatistics st = seam_statistics(img, px);
       EXPECT_LE(st.seam_ratio, 1.10) << name << " " << kind_name(kind);
       EXPECT_GT(st.seam_ratio, 0.8) << name << " " << kind_name(kind);

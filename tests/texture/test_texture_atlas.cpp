@@ -13,9 +13,9 @@ namespace tilekit {
 namespace {
 
 TEST(Mipmap, EvenSizesUseTheOneThreeThreeOneTentWithWrapAround) {
-  RgbaImage img{4, 1, {}};
+  Image img(4, 1, std::vector<std::uint8_t>{});
   for (int v : {0, 64, 128, 255}) img.pixels.insert(img.pixels.end(), {std::uint8_t(v), 0, 0, 255});
-  const RgbaImage half = downsample(img, MipEdge::Wrap);
+  const Image half = downsample(img, MipEdge::Wrap);
   ASSERT_EQ(half.width, 2);
   EXPECT_EQ(half.at(0, 0)[0], 72);   // (255 + 3*0 + 3*64 + 128) / 8 = 71.9, the west neighbour wraps
   EXPECT_EQ(half.at(1, 0)[0], 152);  // (64 + 3*128 + 3*255 + 0) / 8 = 151.6
@@ -34,7 +34,7 @@ struct Comparison {
 
 // Level k of `atlas` against level k of a stitched tiling, tile by tile over the tiling's
 // interior tiles (one tile away from its edge, where clamping plays no part).
-Comparison compare(const std::vector<RgbaImage>& atlas, const AtlasLookup& l, const std::vector<RgbaImage>& truth,
+Comparison compare(const std::vector<Image>& atlas, const AtlasLookup& l, const std::vector<Image>& truth,
                    const Tiling& t, int tile_px, int k) {
   Comparison c;
   const int n = tile_px >> k;
@@ -71,7 +71,7 @@ TEST(TextureAtlas, PackedAtlasMipLevelsZeroToTwoEqualTheStitchedTilingAndARandom
   ASSERT_EQ(atlas.levels[0].width, 256);
   // ground truth: the tiles stitched as a 10x10 window of the direct stochastic tiling
   const Tiling t = DirectCornerTiling(2, HashKind::LongPeriod, 11).generate(10, 10);
-  const std::vector<RgbaImage> truth = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
+  const std::vector<Image> truth = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
   for (int k = 0; k <= 2; ++k) {
     const Comparison c = compare(atlas.levels, atlas.lookup, truth, t, 64, k);
     EXPECT_EQ(c.differing, 0u) << "level " << k << ": " << c.differing << " of " << c.texels << " texels differ, max "
@@ -96,7 +96,7 @@ TEST(TextureAtlas, WangAtlasDiffersFromTheTilingOnlyNearTileCorners) {
   const TextureTileSet& tiles = test::grass_tiles(TileKind::Wang);
   const TextureAtlas& atlas = test::grass_atlas(TileKind::Wang);
   const Tiling t = DirectWangTiling(2, 2, HashKind::LongPeriod, 11).generate(10, 10);
-  const std::vector<RgbaImage> truth = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
+  const std::vector<Image> truth = mip_chain(stitch_tiles(tiles, t), MipEdge::Clamp);
   EXPECT_EQ(compare(atlas.levels, atlas.lookup, truth, t, 64, 0).differing, 0u);
   for (int k = 1; k <= 2; ++k) {
     const Comparison c = compare(atlas.levels, atlas.lookup, truth, t, 64, k);

@@ -52,7 +52,7 @@ TEST(CornerTiles, BorderBandsDependOnlyOnTheBordersCornerColours) {
   const Exemplar e = test::synthetic_exemplar();
   const TextureTileSet s = synthesize_corner_tiles(e, test::small_options(TileKind::Corner, 2, 32));
   const TileGeometry g(32);
-  std::map<std::pair<Colour, Colour>, const RgbaImage*> north;
+  std::map<std::pair<Colour, Colour>, const Image*> north;
   int compared = 0;
   for (TileIndex t = 0; t < s.tiles.size(); ++t) {
     const CornerTile c = corner_tile(t, 2);

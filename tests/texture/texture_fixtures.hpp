@@ -18,8 +18,8 @@
 namespace tilekit::test {
 
 // A colourful procedural texture (sines plus seeded noise): no files needed.
-inline RgbaImage synthetic_image(int w, int h, std::uint64_t seed = 3) {
-  RgbaImage img{w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4)};
+inline Image synthetic_image(int w, int h, std::uint64_t seed = 3) {
+  Image img{w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4)};
   SplitMix64 rng(seed);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {

@@ -145,7 +145,7 @@ class WangSynthesis {
   void compose_tiles(TextureTileSet& s) {
     const int n = g_.n, w = g_.overlap;
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
-    s.tiles.assign(count, RgbaImage{n, n, std::vector<std::uint8_t>(px * 4)});
+    s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px));
     ProgressReporter progress(fmt::format("Wang tiles C={} {}px", c_, n), double(count), o_.progress);
     parallel_for(std::int64_t(count), o_.threads, [&](std::int64_t ti) {

@@ -1,12 +1,12 @@
 #pragma once
-// Row <-> record mapping for the results database (internal to checkpoints/): the column
+// Row <-> record mapping for the results database (internal to results/): the column
 // lists in one place, so queries, export and merge read and write rows the same way.
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "base/json_input.hpp"
-#include "checkpoints/db_sqlite.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/db_sqlite.hpp"
+#include "results/results_db.hpp"
 
 namespace tilekit::dbrows {
 

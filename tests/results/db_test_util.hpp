@@ -3,9 +3,9 @@
 #include <filesystem>
 #include <string>
 
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 namespace tilekit::test {
 

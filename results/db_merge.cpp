@@ -11,8 +11,8 @@
 #include <memory>
 #include <set>
 
-#include "checkpoints/db_rows.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/db_rows.hpp"
+#include "results/results_db.hpp"
 #include "base/error.hpp"
 #include "base/input.hpp"
 #include "base/json_input.hpp"

@@ -4,7 +4,7 @@
 // mode) before we know it is ours and sound. Over 400 lines because the open sequence
 // (inspect, connect, migrate) and the writers that share its connection read best in one place;
 // queries, rows, merges and exports have their own files (db_query, db_rows, db_merge, db_export).
-#include "checkpoints/results_db.hpp"
+#include "results/results_db.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -17,9 +17,9 @@
 #include <fstream>
 #include <thread>
 
-#include "checkpoints/db_rows.hpp"
-#include "checkpoints/db_schema.hpp"
-#include "checkpoints/db_sqlite.hpp"
+#include "results/db_rows.hpp"
+#include "results/db_schema.hpp"
+#include "results/db_sqlite.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
 

@@ -1,8 +1,8 @@
 // Read queries of the results database: counts, one record by id, listings.
 #include <fmt/format.h>
 
-#include "checkpoints/db_rows.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/db_rows.hpp"
+#include "results/results_db.hpp"
 
 namespace tilekit {
 

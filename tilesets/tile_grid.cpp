@@ -1,4 +1,4 @@
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 #include <fmt/format.h>
 

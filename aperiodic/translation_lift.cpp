@@ -1,4 +1,4 @@
-#include "aperiodic/lift.hpp"
+#include "aperiodic/translation_lift.hpp"
 
 #include <fmt/format.h>
 

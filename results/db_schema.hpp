@@ -1,5 +1,5 @@
 #pragma once
-// The results database schema as a list of migrations (internal to checkpoints/).
+// The results database schema as a list of migrations (internal to results/).
 // migrations()[v] takes a database at schema version v to v+1; PRAGMA user_version holds
 // the version and PRAGMA application_id marks the file as Tilekit's. Documented for
 // `sqlite3` users in README.md ("Results database").

@@ -1,11 +1,12 @@
-#include "points/raster.hpp"
+// Drawing on RGBA images: lines, discs, rectangles and a 5x7 bitmap font for plot labels.
+#include "image/image.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
 
-namespace tilekit::points {
+namespace tilekit {
 
 namespace {
 
@@ -50,10 +51,6 @@ const Glyph* glyph(char c) {
 
 }  // namespace
 
-Image::Image(int w, int h, Rgb fill) : width(w), height(h), rgb(std::size_t(w) * std::size_t(h) * 3) {
-  for (std::size_t i = 0; i < rgb.size(); i += 3) rgb[i] = fill.r, rgb[i + 1] = fill.g, rgb[i + 2] = fill.b;
-}
-
 void Image::line(double x0, double y0, double x1, double y1, Rgb c, int thickness) {
   const double len = std::max(std::abs(x1 - x0), std::abs(y1 - y0));
   const int steps = std::max(1, int(std::ceil(len * 2)));
@@ -96,19 +93,19 @@ int Image::text(int x, int y, const std::string& s, Rgb c, int scale) {
 
 Image Image::downsampled(int factor) const {
   if (factor <= 1) return *this;
-  Image out(width / factor, height / factor);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x) {
-      int sum[3] = {0, 0, 0};
-      for (int dy = 0; dy < factor; ++dy)
-        for (int dx = 0; dx < factor; ++dx) {
-          const Rgb p = get(x * factor + dx, y * factor + dy);
-          sum[0] += p.r, sum[1] += p.g, sum[2] += p.b;
-        }
-      const int n = factor * factor;
-      out.set(x, y, {std::uint8_t(sum[0] / n), std::uint8_t(sum[1] / n), std::uint8_t(sum[2] / n)});
-    }
+  const int ow = width / factor, oh = height / factor;
+  const std::size_t ch = std::size_t(channels);
+  Image out(ow, oh, std::vector<std::uint8_t>(std::size_t(ow) * std::size_t(oh) * ch), channels);
+  const int n = factor * factor;
+  for (int y = 0; y < oh; ++y)
+    for (int x = 0; x < ow; ++x)
+      for (std::size_t k = 0; k < ch; ++k) {
+        int sum = 0;
+        for (int dy = 0; dy < factor; ++dy)
+          for (int dx = 0; dx < factor; ++dx) sum += at(x * factor + dx, y * factor + dy)[k];
+        out.at(x, y)[k] = std::uint8_t(sum / n);
+      }
   return out;
 }
 
-}  // namespace tilekit::points
+}  // namespace tilekit

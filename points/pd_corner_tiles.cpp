@@ -79,7 +79,7 @@ std::vector<Point2> turned(const std::vector<Point2>& pts, int q, Point2 centre 
 
 }  // namespace
 
-// Declared in wang_tiles.cpp.
+// Declared in pd_wang_tiles.cpp.
 PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Regions& g, ProgressReporter& progress);
 
 PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {

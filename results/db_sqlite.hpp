@@ -1,5 +1,5 @@
 #pragma once
-// Thin RAII helpers over the SQLite C API for the results store (internal to checkpoints/):
+// Thin RAII helpers over the SQLite C API for the results store (internal to results/):
 // prepared statements, immediate transactions, and one mapping of SQLite errors to the
 // project's errors (a corrupt or foreign file is bad input, exit 2).
 #include <sqlite3.h>

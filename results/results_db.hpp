@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "tilesets/tile.hpp"
-#include "tilesets/tiling.hpp"
+#include "tilesets/tile_grid.hpp"
 
 struct sqlite3;
 

@@ -13,7 +13,7 @@
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
-#include "solver/lift_model.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/sat_cnf.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"

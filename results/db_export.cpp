@@ -2,8 +2,8 @@
 // so 203,520 solutions do not need to fit in one JSON tree), or one table as CSV.
 #include <fmt/format.h>
 
-#include "checkpoints/db_rows.hpp"
-#include "checkpoints/results_db.hpp"
+#include "results/db_rows.hpp"
+#include "results/results_db.hpp"
 #include "base/error.hpp"
 
 namespace tilekit {

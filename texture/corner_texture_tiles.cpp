@@ -137,7 +137,7 @@ class CornerSynthesis {
   }
 
   // The tile from its four corner patches, with the source of every pixel.
-  void base_tile(const CornerTile& t, RgbaImage& img, std::vector<std::uint32_t>& src) const {
+  void base_tile(const CornerTile& t, Image& img, std::vector<std::uint32_t>& src) const {
     const int n = g_.n;
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
@@ -168,14 +168,14 @@ class CornerSynthesis {
         forced[i] = cross && r < g_.radius - g_.inner;
         if (r >= g_.radius - g_.inner - 2) ring.push_back(i);
       }
-    s.tiles.assign(count, RgbaImage{n, n, std::vector<std::uint8_t>(px * 4)});
+    s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px));
     std::vector<double> cost(count);
     const int candidates = o_.search > 0 ? o_.centre_candidates : 1, cuts = o_.search > 0 ? o_.centre_cuts : 1;
     ProgressReporter progress(fmt::format("corner tiles C={} {}px", c_, n), double(count), o_.progress);
     parallel_for(std::int64_t(count), o_.threads, [&](std::int64_t ti) {
       const TileIndex t = TileIndex(ti);
-      RgbaImage& img = s.tiles[t];
+      Image& img = s.tiles[t];
       base_tile(corner_tile(t, c_), img, s.sources[t]);
       // Centre patch candidates, scored by their difference to the tile on the ring.
       std::vector<std::pair<double, Pos>> scored;
@@ -188,7 +188,7 @@ class CornerSynthesis {
         scored.push_back({d, q});
       }
       std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      RgbaImage patch{n, n, std::vector<std::uint8_t>(px * 4)}, best_patch;
+      Image patch{n, n, std::vector<std::uint8_t>(px * 4)}, best_patch;
       GraphCutResult best;
       for (int k = 0; k < std::min(cuts, candidates); ++k) {
         const Pos q = scored[std::size_t(k)].second;

@@ -1,4 +1,4 @@
-#include "checkpoints/db_sqlite.hpp"
+#include "results/db_sqlite.hpp"
 
 #include <fmt/format.h>
 

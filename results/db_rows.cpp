@@ -1,4 +1,4 @@
-#include "checkpoints/db_rows.hpp"
+#include "results/db_rows.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "checkpoints/db_schema.hpp"
+#include "results/db_schema.hpp"
 
 namespace tilekit::dbschema {
 

@@ -1,4 +1,4 @@
-#include "solver/lift_model.hpp"
+#include "solver/colour_lift_model.hpp"
 
 #include <fmt/format.h>
 

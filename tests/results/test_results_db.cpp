@@ -5,8 +5,8 @@
 #include <sstream>
 #include <thread>
 
-#include "checkpoints/results_db.hpp"
-#include "tests/checkpoints/db_test_util.hpp"
+#include "results/results_db.hpp"
+#include "tests/results/db_test_util.hpp"
 #include "base/error.hpp"
 
 using namespace tilekit;

@@ -1,0 +1,90 @@
+#include "image/image.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "base/atomic_file.hpp"
+#include "base/error.hpp"
+
+// stb as private, static implementations (no symbols shared with other translation units).
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#include <stb_image.h>
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace tilekit {
+
+Image::Image(int w, int h, Rgb fill) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h) * 4) {
+  for (std::size_t i = 0; i < pixels.size(); i += 4)
+    pixels[i] = fill.r, pixels[i + 1] = fill.g, pixels[i + 2] = fill.b, pixels[i + 3] = 255;
+}
+
+Image read_image(const std::string& path, int channels) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
+  int w = 0, h = 0, n = 0;
+  if (!stbi_info(path.c_str(), &w, &h, &n))
+    throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+  if (std::int64_t(w) * std::int64_t(h) > kMaxImagePixels)
+    throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
+                                 kMaxImagePixels));
+  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, channels);
+  if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+  Image img(w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * std::size_t(channels)),
+            channels);
+  stbi_image_free(data);
+  return img;
+}
+
+std::string encode_png(const Image& img) {
+  // The fewest channels that hold the picture exactly (grey, grey+alpha, RGB or RGBA): pictures
+  // of grey textures take a quarter of the space.
+  const std::size_t ch = std::size_t(img.channels);
+  bool grey = true, opaque = true;
+  if (ch == 4)
+    for (std::size_t i = 0; i < img.pixels.size(); i += 4) {
+      grey = grey && img.pixels[i] == img.pixels[i + 1] && img.pixels[i] == img.pixels[i + 2];
+      opaque = opaque && img.pixels[i + 3] == 255;
+    }
+  const int channels = (grey ? 1 : 3) + (opaque ? 0 : 1);
+  std::vector<std::uint8_t> packed;
+  const std::uint8_t* data = img.pixels.data();
+  if (std::size_t(channels) != ch) {
+    packed.reserve(img.pixels.size() / ch * std::size_t(channels));
+    for (std::size_t i = 0; i < img.pixels.size(); i += ch) {
+      packed.push_back(img.pixels[i]);
+      if (!grey) packed.insert(packed.end(), {img.pixels[i + 1], img.pixels[i + 2]});
+      if (!opaque) packed.push_back(img.pixels[i + 3]);
+    }
+    data = packed.data();
+  }
+  std::string bytes;
+  auto sink = [](void* ctx, void* d, int size) {
+    static_cast<std::string*>(ctx)->append(static_cast<const char*>(d), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(sink, &bytes, img.width, img.height, channels, data, img.width * channels))
+    throw InputError(fmt::format("cannot encode a {}x{} PNG", img.width, img.height));
+  return bytes;
+}
+
+void write_png(const std::string& path, const Image& img) {
+  std::string bytes;
+  try {
+    bytes = encode_png(img);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", path, e.what()));
+  }
+  write_file_atomic(path, bytes);
+}
+
+}  // namespace tilekit
