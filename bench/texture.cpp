@@ -23,6 +23,7 @@
 #include "bench/bench_common.hpp"
 #include "texture/cpu_renderer.hpp"
 #include "texture/gl_renderer.hpp"
+#include "texture/sampling.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -134,7 +135,7 @@ Image plain_render(const TextureAtlas& a, const View& v, int threads) {
     const ViewRow& r = vr.rows[std::size_t(j)];
     for (int x = 0; x < v.width; ++x) {
       const float u = float(x) / float(v.width), t = float(j) / float(v.height);
-      const auto c = sample_trilinear(a, u, t, view_lod(r, vr.dudy_step, x, a.tile_px));
+      const auto c = sample_trilinear(a.levels, u, t, view_lod(r, vr.dudy_step, x, a.tile_px));
       for (int k = 0; k < 4; ++k) out.at(x, int(j))[k] = std::uint8_t(std::lround(c[std::size_t(k)]));
     }
   });

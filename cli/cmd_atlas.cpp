@@ -2,13 +2,14 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <memory>
 
-#include "base/atomic_file.hpp"
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
-#include "results/results_db.hpp"
-#include "cli/command.hpp"
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "cli/command.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -35,29 +36,47 @@ AtlasLookup lookup(const PackingArgs& a) {
   return atlas_lookup(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, o);
 }
 
+struct LookupArgs {
+  PackingArgs packing;
+  std::string format = "json", out, hash = "long-period";
+  std::uint64_t seed = 1;
+};
+
 void add_lookup(CLI::App& atlas, Context& ctx) {
   auto* cmd = atlas.add_subcommand("lookup", "A packing as an atlas layout and its inverse: JSON, C header or GLSL");
-  static PackingArgs a;
-  static std::string format = "json", out;
-  static std::uint64_t seed = 1;
-  add_packing_options(cmd, a);
-  cmd->add_option("--format", format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
+  auto args = std::make_shared<LookupArgs>();
+  add_packing_options(cmd, args->packing);
+  cmd->add_option("--format", args->format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
       ->check(CLI::IsMember({"json", "c", "glsl"}))
       ->capture_default_str();
-  cmd->add_option("--seed", seed, "Seed of the hash permutation table in the GLSL snippet")->capture_default_str();
-  cmd->add_option("--out", out, "Write the lookup to this file (atomically) instead of stdout");
+  cmd->add_option("--hash", args->hash, "Lattice hash of the direct stochastic tiling in the GLSL: perm or long-period")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of that hash")->capture_default_str();
+  cmd->add_option("--out", args->out, "Write the lookup to this file (atomically) instead of stdout");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    AtlasLookup l = lookup(a);
-    std::string text = format == "json" ? lookup_json_text(l) + "\n" : format == "c" ? lookup_c_header(l) : lookup_glsl(l, seed);
+  cmd->callback([args, &ctx] {
+    const LookupArgs& a = *args;
+    const std::string& format = a.format;
+    const std::string& out = a.out;
+    const HashKind hash = parse_hash_kind(a.hash);
+    AtlasLookup l = lookup(a.packing);
+    std::string text = format == "json" ? lookup_json_text(l) + "\n"
+                       : format == "c"  ? lookup_c_header(l)
+                                        : lookup_glsl(l, DirectTiling(l.kind, l.colours, hash, a.seed));
     if (!out.empty()) {
       write_file_atomic(out, text);
-      nlohmann::json s = {{"kind", a.kind}, {"colors", l.colours}, {"rows", l.rows}, {"cols", l.cols},
-                          {"source", l.source}, {"how", l.how}, {"closed_form", l.closed_form},
-                          {"format", format}, {"out", out}};
+      nlohmann::json s = {{"kind", a.packing.kind},
+                          {"colors", l.colours},
+                          {"rows", l.rows},
+                          {"cols", l.cols},
+                          {"source", l.source},
+                          {"how", l.how},
+                          {"closed_form", l.closed_form},
+                          {"format", format},
+                          {"out", out}};
       emit(ctx, s, [&] {
-        fmt::print("{} packing over {} colours ({}: {}) written as {} to {}\n", a.kind, l.colours, l.source, l.how,
-                   format, out);
+        fmt::print("{} packing over {} colours ({}: {}) written as {} to {}\n", a.packing.kind, l.colours, l.source,
+                   l.how, format, out);
       });
       return;
     }

@@ -114,8 +114,9 @@ TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindAndPosition) {
        {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
       for (GlslMode mode : {GlslMode::Texture, GlslMode::LatticeColour, GlslMode::TileIndex}) {
-        const AtlasLookup l = atlas_lookup(kind, c, {});
-        test::write_text(d / "t.frag", glsl_fragment_shader(l, 64, VirtualTiling(kind, c, h, 3), mode));
+        const TextureAtlas a{atlas_lookup(kind, c, {}), 64, {}, ""};
+        test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{RenderMethod::Tiles, &a, nullptr},
+                                                            RenderOptions{h, 3, 1, false}, mode));
         EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
             << test::slurp(d / "log.txt");
       }
@@ -140,7 +141,7 @@ TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
       const RenderOptions o{h, 77, 1, false};
       std::unique_ptr<GlRenderer> r;
       SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{300, 80, 1, 0, 0, 0}, o, GlslMode::LatticeColour));
-      const VirtualTiling tiling(kind, 2, h, 77);
+      const DirectTiling tiling(kind, 2, h, 77);
       const ColourHash& hash = *tiling.hashes()[0];
       for (auto [ox, oy] : {std::pair{-150, -40}, std::pair{-1000003, 999979}, std::pair{2147400000, -2147400000}}) {
         r->set_origin(ox, oy);
@@ -164,7 +165,7 @@ TEST(GlslSampler, VirtualTilesEqualTheCppDirectTiling) {
     r->set_origin(-100, -37);
     r->draw();
     const Image img = r->read();
-    const VirtualTiling tiling(kind, 2, HashKind::LongPeriod, 5);
+    const DirectTiling tiling(kind, 2, HashKind::LongPeriod, 5);
     int wrong = 0;
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) {
