@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Captures one view of a `tilekit texture preview` page with Debian's chromium, headless, WebGL2 on
-# SwiftShader (no GPU, no display), network off. Writes a W x H PNG of the canvas.
+# SwiftShader (no GPU, no display), network off. Writes a W x H PNG of the canvas (H >= 150).
 # Usage: scripts/capture-preview.sh PAGE.html 'u=U&v=V&scale=S&seed=N&tilt=T[&method=M&aniso=A]' WxH OUT.png
 #   TILEKIT_CHROMIUM  the browser (default: chromium)
 set -euo pipefail
@@ -15,6 +15,9 @@ out=$4
 [[ $size =~ ^([0-9]+)x([0-9]+)$ ]] || { echo "capture-preview: size must be WxH, got '$size'" >&2; exit 2; }
 w=${BASH_REMATCH[1]}
 h=${BASH_REMATCH[2]}
+# Chromium 156's headless window shows less than the requested height below about 145 px (the
+# screenshot's lower part stays empty), so captures are at least 150 px tall.
+((h >= 150 && w >= 1)) || { echo "capture-preview: the height must be at least 150 px, got $size" >&2; exit 2; }
 [ -f "$page" ] || { echo "capture-preview: no page $page" >&2; exit 2; }
 browser=${TILEKIT_CHROMIUM:-chromium}
 command -v "$browser" >/dev/null || { echo "capture-preview: $browser is not installed (scripts/setup.sh installs it)" >&2; exit 1; }
