@@ -25,7 +25,7 @@ fi
 # The value of "key" in a one-line JSON object (numbers and strings).
 field() { sed -n "s/.*\"$1\":\"\\{0,1\\}\\([^,\"}]*\\).*/\\1/p" <<<"$2"; }
 analyze=0
-"$tk" texture analyze --help >/dev/null 2>&1 && analyze=1
+"$tk" texture --help 2>/dev/null | grep -q "^  analyze" && analyze=1
 : >"$out/results.jsonl"
 table="| texture | method | fetches/pixel | GLSL M fragments/s | memory MiB | analyze |\n|---|---|---|---|---|---|\n"
 for ex in "$@"; do
