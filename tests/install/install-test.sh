@@ -19,15 +19,15 @@
 # build's own, so that a sanitizer build links it). Needs cmake, jq, dpkg-dev (scripts/setup.sh).
 set -euo pipefail
 mode=${1:?usage: install-test.sh prefix|deb SOURCE_DIR BUILD_DIR}
-src=$(cd "${2:?source dir}" && pwd)
-build=$(cd "${3:?build dir}" && pwd)
+src=${2:?source dir} build=${3:?build dir}
+[ "$mode" = relocated ] || { src=$(cd "$src" && pwd) && build=$(cd "$build" && pwd); }
 fail() {
   echo "install-test: FAIL: $*" >&2
   exit 1
 }
 say() { echo "install-test: $*"; }
 same() {  # same WHAT FILE_A FILE_B
-  cmp -s "$2" "$3" || { diff "$2" "$3" | head -n 5 >&2; fail "$1 differs"; }
+  cmp -s "$2" "$3" || { diff "$2" "$3" | head -n 5 >&2 || true; fail "$1 differs"; }
 }
 
 # The checks that run against the relocated prefix, after the trees were hidden.
@@ -47,9 +47,12 @@ relocated() {  # relocated PREFIX WORK
       >/dev/null
     jq -r --slurpfile l "$work/lookup.json" '.cells[] | map($l[0].positions[.] | "\(.[0]),\(.[1])") | join(" ")' \
       "$work/tiling.json" >"$work/cells.txt"
-    same "C=$c: consumer's lookup vs tilekit atlas lookup" <(sed -n 1p "$work/consumer.out") "$work/lookup.json"
-    same "C=$c: consumer's direct tiling vs tilekit tile" <(sed -n 2p "$work/consumer.out") "$work/tiling.json"
-    same "C=$c: consumer's atlas cells vs the lookup's positions" <(tail -n +3 "$work/consumer.out") "$work/cells.txt"
+    sed -n 1p "$work/consumer.out" >"$work/consumer.lookup"
+    sed -n 2p "$work/consumer.out" >"$work/consumer.tiling"
+    tail -n +3 "$work/consumer.out" >"$work/consumer.cells"
+    same "C=$c: consumer's lookup vs tilekit atlas lookup" "$work/consumer.lookup" "$work/lookup.json"
+    same "C=$c: consumer's direct tiling vs tilekit tile" "$work/consumer.tiling" "$work/tiling.json"
+    same "C=$c: consumer's atlas cells vs the lookup's positions" "$work/consumer.cells" "$work/cells.txt"
   done
   say "consumer output equals tilekit atlas lookup, tilekit tile and the lookup's positions for C = 2 3 4 8"
   for c in 16 32; do
@@ -95,7 +98,6 @@ case "$mode" in
     fail "no mount namespace here (unshare --mount): cannot hide the build tree"
     ;;
   relocated)  # internal: prefix mode's second half, inside the mount namespace
-    src=$2 build=$3
     relocated "$4" "$5"
     ;;
   deb)
@@ -120,8 +122,9 @@ case "$mode" in
       dpkg-query -W -f='${Status}' "$name" 2>/dev/null | grep -q "install ok installed" ||
         fail "dependency $name is not an installed Debian package"
     done < <(tr ',|' '\n\n' <<<"$depends" | sed 's/(.*)//; s/ //g' | grep .)
-    dpkg-deb -c "$dev" | grep -q "usr/lib/cmake/Tilekit/TilekitConfig.cmake" || fail "libtilekit-dev lacks TilekitConfig.cmake"
-    dpkg-deb -c "$dev" | grep -q "usr/include/tilekit/atlas/lookup.hpp" || fail "libtilekit-dev lacks the headers"
+    dpkg-deb -c "$dev" >"$work/dev.list"
+    grep -q "usr/lib/cmake/Tilekit/TilekitConfig.cmake" "$work/dev.list" || fail "libtilekit-dev lacks TilekitConfig.cmake"
+    grep -q "usr/include/tilekit/atlas/lookup.hpp" "$work/dev.list" || fail "libtilekit-dev lacks the headers"
     root=$work/root
     dpkg -x "$deb" "$root"
     [ -x "$root/usr/bin/tilekit" ] || fail "no usr/bin/tilekit in $(basename "$deb")"
