@@ -4,6 +4,8 @@
 
 namespace tilekit {
 
-std::string version_line() { return fmt::format("{} (commit {})", version(), git_commit()); }
+std::string version_line() {
+  return fmt::format("{} (commit {})", version(), git_commit());
+}
 
 }  // namespace tilekit

@@ -1,7 +1,6 @@
 #include "cli/cluster_scripts.hpp"
 
 #include <fmt/format.h>
-
 #include <unistd.h>
 
 #include <algorithm>

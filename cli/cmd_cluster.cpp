@@ -131,11 +131,12 @@ void submit(const Context& ctx, SubmitOptions& o) {
   if (o.dry_run) {
     nlohmann::json js = nlohmann::json::object();
     for (const auto& [name, text] : scripts) js[(dir / name).string()] = text;
-    emit(ctx, {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"scripts", js}},
+    emit(ctx,
+         {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"scripts", js}},
          [&] {
-      for (const auto& [name, text] : scripts) fmt::print("==> {} <==\n{}\n", (dir / name).string(), text);
-      fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
-    });
+           for (const auto& [name, text] : scripts) fmt::print("==> {} <==\n{}\n", (dir / name).string(), text);
+           fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
+         });
     return;
   }
 
@@ -162,8 +163,13 @@ void submit(const Context& ctx, SubmitOptions& o) {
   std::strftime(when, sizeof when, "%FT%TZ", std::gmtime(&now));
   record["submissions"].push_back({{"array_job", array}, {"merge_job", merge}, {"time", when}});
   write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
-  emit(ctx, {{"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"array_job", array},
-             {"merge_job", merge}, {"submissions", record["submissions"].size()}},
+  emit(ctx,
+       {{"run_dir", p.run_dir},
+        {"shards", p.shards},
+        {"tilekit", p.tilekit},
+        {"array_job", array},
+        {"merge_job", merge},
+        {"submissions", record["submissions"].size()}},
        [&] {
          fmt::print("submitted {} shards to Slurm: array job {}, merge job {} (afterok:{})\n", p.shards,
                     array, merge, array);
@@ -323,7 +329,8 @@ void add_cluster_commands(CLI::App& app, Context& ctx) {
   sub->add_option("--run-dir", o.run_dir,
                   "Run directory on the shared filesystem (default: ./tilekit-run-KINDC-MODE)");
   sub->add_option("--job-name", o.job_name, "Slurm job name (default: tk-KINDC)");
-  sub->add_option("--tilekit", o.tilekit, "The tilekit binary the jobs run (default: `tilekit` on PATH, else this one)");
+  sub->add_option("--tilekit", o.tilekit,
+                  "The tilekit binary the jobs run (default: `tilekit` on PATH, else this one)");
   sub->add_option("--sbatch-arg", o.plan.sbatch_args, "Another #SBATCH directive, e.g. --account=NAME (repeatable)");
   sub->add_option("--sbatch", o.sbatch, "The sbatch command")->capture_default_str();
   sub->add_flag("--dry-run", o.dry_run, "Print the scripts; write and queue nothing");

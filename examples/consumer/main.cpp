@@ -18,5 +18,6 @@ int main(int argc, char** argv) {
   std::cout << tilekit::lookup_json_text(atlas) << "\n" << tilekit::tiling_to_json(window).dump() << "\n";
   for (int r = 0; r < window.rows; ++r, std::cout << "\n")
     for (int c = 0; c < window.cols; ++c)
-      std::cout << (c ? " " : "") << atlas.positions[window.at(r, c)].first << "," << atlas.positions[window.at(r, c)].second;
+      std::cout << (c ? " " : "") << atlas.positions[window.at(r, c)].first << ","
+                << atlas.positions[window.at(r, c)].second;
 }

@@ -13,7 +13,8 @@ TEST(Cli, VersionNamesTheCommitAndEveryJsonResultAndStoredRunCarriesIt) {
   CliResult v = run_cli("--version");
   ASSERT_EQ(v.code, 0) << v.err;
   std::smatch m;
-  ASSERT_TRUE(std::regex_match(v.out, m, std::regex(R"(tilekit (\d+\.\d+\.\d+ \(commit ([0-9a-f]{12}(-dirty)?|unknown)\))\n)")))
+  ASSERT_TRUE(
+      std::regex_match(v.out, m, std::regex(R"(tilekit (\d+\.\d+\.\d+ \(commit ([0-9a-f]{12}(-dirty)?|unknown)\))\n)")))
       << v.out;
   const std::string line = m[1];
   TempDir d;
