@@ -85,7 +85,7 @@ SearchOptions search_options(const PackRequest& a) {
   if (o.run.checkpoint_path.empty()) o.run.checkpoint_path = a.run.resume_path;  // keep checkpointing to it
   if (a.run.checkpoint_every < 0 && a.run.checkpoint_every != -1)
     throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.run.checkpoint_every));
-  if (o.run.checkpoint_every < 0) o.run.checkpoint_every = o.run.checkpoint_path.empty() ? 0 : 300;
+  if (!(o.run.checkpoint_every >= 0)) o.run.checkpoint_every = o.run.checkpoint_path.empty() ? 0 : 300;  // -1 (or NaN)
   o.estimate_probes = o.run.progress && o.mode != SearchMode::First ? 200 : 0;
   return o;
 }

@@ -83,7 +83,7 @@ struct SearchResult {
   // ---- how it ended ----
   bool complete = false;     // the search space of this run/shard was exhausted: counts are final
   bool interrupted = false;  // stopped by a signal after writing the checkpoint (CLI exit 3)
-  bool timed_out = false;    // stopped by time_limit
+  bool timed_out = false;    // stopped by run.time_limit
   int signal = 0;            // the signal that interrupted the run
 
   // ---- what it found ----
