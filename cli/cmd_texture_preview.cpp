@@ -18,7 +18,7 @@ struct PreviewArgs {
   std::string out;
 };
 
-void run(const PreviewArgs& a, const Context& ctx) {
+void run_preview(const PreviewArgs& a, const Context& ctx) {
   if (a.source.atlas.empty()) throw InputError("--atlas is required (written by `tilekit texture atlas`)");
   SourceArgs args = a.source;
   args.method = "tiles";
@@ -54,7 +54,7 @@ void add_texture_preview(CLI::App& texture, Context& ctx) {
       "--atlas is required; with --exemplar the page can also show the hex and hpn baselines.\n"
       "Query: ?capture=1&size=WxH&u=U&v=V&scale=S&seed=N&tilt=T[&method=tiles|hex|hpn&aniso=A] shows only the "
       "canvas with that view (u,v: the texel at the top-left, as `texture render --origin U,V`).");
-  cmd->callback([a, &ctx] { run(*a, ctx); });
+  cmd->callback([a, &ctx] { run_preview(*a, ctx); });
 }
 
 }  // namespace tilekit::cli

@@ -51,7 +51,7 @@ double seconds_of(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void run(const RenderArgs& a, const Context& ctx) {
+void run_render(const RenderArgs& a, const Context& ctx) {
   View view = parse_view(a.size, a.scale, a.origin, a.tilt);
   const std::unique_ptr<LoadedSource> loaded = load_source(a.source);
   const RenderSource& src = loaded->source;
@@ -139,7 +139,7 @@ void add_texture_render(CLI::App& texture, Context& ctx) {
   cmd->add_flag("--compare", a->compare, "Render both ways, write the GLSL image, report the largest difference");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { run(*a, ctx); });
+  cmd->callback([a, &ctx] { run_render(*a, ctx); });
 }
 
 }  // namespace tilekit::cli
