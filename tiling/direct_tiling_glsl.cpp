@@ -25,14 +25,7 @@ std::string glsl_floor_mod() {
          "int tk_mod(int v, int n, int wrap) {\n"
          "  uint r = uint(v) % uint(n);\n"
          "  return v < 0 ? int((r + uint(n - wrap)) % uint(n)) : int(r);\n"
-         "}\n"
-         "// s mod n for 0 <= s < 2n, without a division\n"
-         "int tk_wrap(int s, int n) { return s >= n ? s - n : s; }\n"
-         "ivec4 tk_wrap(ivec4 s, int n) { return s - n * ivec4(greaterThanEqual(s, ivec4(n))); }\n"
-         "// s mod c for 0 <= s < 2^16: (s + 1/2) / c lies at least 1/(2c) away from an integer, far\n"
-         "// more than a float quotient's error (s / c * 2^-22, even with a division a few ulps off)\n"
-         "int tk_reduce(int s, int c) { return s - c * int((float(s) + 0.5) / float(c)); }\n"
-         "ivec4 tk_reduce(ivec4 s, int c) { return s - c * ivec4((vec4(s) + 0.5) / float(c)); }\n";
+         "}\n";
 }
 
 std::vector<std::int32_t> glsl_hash_uniforms(const ColourHash& h) {
@@ -57,33 +50,28 @@ std::string colour_hash_glsl(const ColourHash& h, const std::string& name, GlslT
     };
   }
   const std::string P = name + "_P";
-  std::uint64_t max_sum = 0;
-  for (const ColourHash::Component& c : h.components()) max_sum += c.n - 1;
-  const std::string reduce = max_sum < 65536 ? fmt::format("tk_reduce(s, {})", h.colours())
-                                             : fmt::format("(s % {}) % {}", h.range(), h.colours());
   std::string one, four;
   std::uint32_t off = 0;
   for (const ColourHash::Component& c : h.components()) {
     const std::uint32_t n = c.n, wrap = std::uint32_t((std::uint64_t(1) << 32) % n);
     auto p = [&](const std::string& i) { return at(P, fmt::format("{} + {}", off, i)); };
     one += fmt::format("  a = {}; s += {};\n", p(fmt::format("tk_mod(p.x, {}, {})", n, wrap)),
-                       p(fmt::format("tk_wrap(a + tk_mod(p.y, {}, {}), {})", n, wrap, n)));
+                       p(fmt::format("(a + tk_mod(p.y, {}, {})) % {}", n, wrap, n)));
     four += fmt::format(
         "  a = tk_mod(p.x, {n}, {w}); b = a + 1 == {n} ? 0 : a + 1;\n"
         "  ya = tk_mod(p.y, {n}, {w}); yb = ya + 1 == {n} ? 0 : ya + 1;\n"
         "  a = {pa}; b = {pb};\n"
         "  s += ivec4({q0}, {q1},\n             {q2}, {q3});\n",
         fmt::arg("n", n), fmt::arg("w", wrap), fmt::arg("pa", p("a")), fmt::arg("pb", p("b")),
-        fmt::arg("q0", p(fmt::format("tk_wrap(a + ya, {})", n))), fmt::arg("q1", p(fmt::format("tk_wrap(b + ya, {})", n))),
-        fmt::arg("q2", p(fmt::format("tk_wrap(a + yb, {})", n))), fmt::arg("q3", p(fmt::format("tk_wrap(b + yb, {})", n))));
+        fmt::arg("q0", p(fmt::format("(a + ya) % {}", n))), fmt::arg("q1", p(fmt::format("(b + ya) % {}", n))),
+        fmt::arg("q2", p(fmt::format("(a + yb) % {}", n))), fmt::arg("q3", p(fmt::format("(b + yb) % {}", n))));
     off += n;
   }
-  // (s mod N_j) mod C = s mod C: both hash designs make N_j a multiple of C (lattice_hash.hpp)
-  g += fmt::format("int {}(ivec2 p) {{  // thesis eq. ({})\n  int s = 0, a;\n{}  return {};\n}}\n", name,
-                   h.components().size() == 1 ? "3.3" : "3.6", one, reduce);
+  g += fmt::format("int {}(ivec2 p) {{  // thesis eq. ({})\n  int s = 0, a;\n{}  return (s % {}) % {};\n}}\n", name,
+                   h.components().size() == 1 ? "3.3" : "3.6", one, h.range(), h.colours());
   g += fmt::format("ivec4 {}4(ivec2 p) {{  // at p, p + (1,0), p + (0,1), p + (1,1)\n", name);
   g += "  ivec4 s = ivec4(0);\n  int a, b, ya, yb;\n" + four;
-  g += fmt::format("  return {};\n}}\n", reduce);
+  g += fmt::format("  return (s % {}) % {};\n}}\n", h.range(), h.colours());
   return g;
 }
 
