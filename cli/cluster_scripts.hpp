@@ -1,5 +1,5 @@
 #pragma once
-// The Slurm job scripts of `tilekit cluster submit` (issue 6): a job array with one task per
+// The Slurm job scripts of `tilekit cluster submit`: a job array with one task per
 // shard of `tilekit pack`, a merge job that runs after it (afterok), and submit.sh that queues
 // both. Each script is a header of commented #SBATCH directives and variables written here,
 // followed by a body kept in scripts/slurm/*.body.sh and embedded in the binary at build time.

@@ -1,5 +1,5 @@
 #pragma once
-// The search portfolio of `tilekit pack --method auto|search` (issues 7 and 11): a scheduler
+// The search portfolio of `tilekit pack --method auto|search`: a scheduler
 // over solve(). Candidates are subspace searches (the plain search, imposed groups, the SAT
 // encoding of a group, ...); they run in rounds of time slices that double each round (Luby
 // and Zuckerman's doubling idea: the total work is within a constant of the best candidate's
