@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "tilesets/reference_data.hpp"
+
 namespace tilekit::cli {
 
 struct ClusterPlan {
@@ -42,8 +44,11 @@ std::string pack_array_script(const ClusterPlan& plan);
 std::string merge_script(const ClusterPlan& plan);
 std::string submit_script(const ClusterPlan& plan);
 
-// The embedded body scripts/slurm/NAME.body.sh ("pack-array", "merge"); empty if unknown.
-// Defined in the build's generated slurm_script_bodies.cpp (scripts/slurm/embed.cmake).
+// The embedded bodies scripts/slurm/NAME.body.sh, named NAME ("pack-array", "merge"). Defined in
+// the build's generated slurm_script_bodies.cpp (cmake/embed_files.cmake).
+const std::vector<EmbeddedFile>& slurm_script_bodies();
+
+// The body named `name`; empty if unknown.
 std::string_view slurm_script_body(std::string_view name);
 
 }  // namespace tilekit::cli
