@@ -11,12 +11,16 @@ namespace {
 
 // The renderer's tiling of the permutation hash is one look-up texture: the tiling repeats with
 // the hash's period N in x and in y (thesis 3.4.1), so the atlas cell of every tile is known from
-// N x N of them.
-bool cell_texture(const DirectTiling& t, GlslTables tables) {
-  return tables == GlslTables::Texture && t.hash_kind() == HashKind::Permutation;
+// N x N of them. A texel holds the cell's row and column in one byte each.
+bool cell_texture(const AtlasLookup& l, const DirectTiling& t, GlslTables tables) {
+  return tables == GlslTables::Texture && glsl_tile_cell_texture(l, t.hash_kind());
 }
 
 }  // namespace
+
+bool glsl_tile_cell_texture(const AtlasLookup& l, HashKind hash) {
+  return hash == HashKind::Permutation && l.rows <= 256 && l.cols <= 256;
+}
 
 std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const DirectTiling& tiling, GlslTables tables) {
   check_same_set(l, tiling);
@@ -27,7 +31,7 @@ std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const Direct
   g += fmt::format("const float TK_INV_ROWS = {:.9g}, TK_INV_COLS = {:.9g};\n", 1.0f / float(l.rows),
                    1.0f / float(l.cols));
   g += "uniform highp sampler2D tk_atlas;\n";
-  if (cell_texture(tiling, tables)) {
+  if (cell_texture(l, tiling, tables)) {
     const std::uint32_t n = std::uint32_t(tiling.hashes()[0]->x_period());
     g += glsl_floor_mod();
     g += fmt::format(
@@ -115,10 +119,7 @@ std::vector<GlslTableTexture> glsl_table_textures(const RenderSource& s, const R
   const AtlasLookup& l = s.atlas->lookup;
   const DirectTiling tiling(l.kind, l.colours, o.hash, o.seed);
   std::vector<GlslTableTexture> textures;
-  if (cell_texture(tiling, GlslTables::Texture)) {
-    if (l.rows > 256 || l.cols > 256)
-      throw InputError(fmt::format("the GLSL sampler takes atlases of up to 256 x 256 tiles, not {} x {}", l.rows,
-                                   l.cols));
+  if (cell_texture(l, tiling, GlslTables::Texture)) {
     const int n = int(tiling.hashes()[0]->x_period());
     std::vector<TileIndex> tiles(std::size_t(n) * std::size_t(n));
     tiling.fill(0, 0, n, n, tiles.data());

@@ -42,8 +42,8 @@ enum class GlslMode {
 std::string glsl_sampler_library(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling, GlslTables tables);
 // The tiles library as a file (atlas.glsl): a header comment with the API and how it was made.
 std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o);
-// The library of any method, tables as uniforms (one text for every seed; the browser preview
-// uses this same text).
+// The library of any method, its tables as uniforms or integer textures (one text for every seed;
+// the browser preview uses this same text).
 std::string glsl_method_library(const RenderSource& source, const RenderOptions& o);
 // The complete fragment shader of the renderer and of the preview (#version 300 es, main()).
 std::string glsl_fragment_shader(const RenderSource& source, const RenderOptions& o, GlslMode mode);
@@ -59,8 +59,11 @@ struct GlslTableTexture {
   int unit = 0, width = 0, height = 0, channels = 4;
   std::vector<std::uint8_t> texels;
 };
-// The tiles method's tiling for the seed and hash of o: `tk_tiles` (permutation hash: (row, col)
-// of tile (x, y), x, y < N) or `tk_latticeK_T` (long-period: tiling/direct_tiling_glsl.hpp's
+// Whether the tiles method reads its tiling as one `tk_tiles` texture of atlas cells: with the
+// permutation hash (period N = 256 both ways) and an atlas of at most 256 x 256 tiles.
+bool glsl_tile_cell_texture(const AtlasLookup& lookup, HashKind hash);
+// The tiles method's tiling for the seed and hash of o: `tk_tiles` (glsl_tile_cell_texture: (row,
+// col) of tile (x, y), x, y < N) or else `tk_latticeK_T` (tiling/direct_tiling_glsl.hpp's
 // glsl_hash_texture of each hash). Units from 3 (0: the atlas, 1: the view's rows, 2: hpn's
 // look-up table). None for hex and hpn.
 std::vector<GlslTableTexture> glsl_table_textures(const RenderSource& source, const RenderOptions& o);

@@ -404,7 +404,7 @@ std::string preview_html(const TextureAtlas& atlas, const ExemplarSurface* exemp
     }
     nlohmann::json spec = {{"kind", kind_name(atlas.lookup.kind)}, {"colors", atlas.lookup.colours},
                            {"tables", recipes}};
-    if (o.hash == HashKind::Permutation) spec["positions"] = atlas.lookup.positions;
+    if (glsl_tile_cell_texture(atlas.lookup, o.hash)) spec["positions"] = atlas.lookup.positions;
     nlohmann::json t = page.png_levels(atlas.levels);
     t["unit"] = 0;
     t["sampler"] = "tk_atlas";
