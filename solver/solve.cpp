@@ -75,7 +75,7 @@ void plan_window(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
   if (!o.impose.empty() && !o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
   if (!o.impose.empty()) pl.group = build_group(p, o.impose);
   if (!o.lift.empty())
-    pl.window_lift = std::make_shared<const WindowLiftProblem>(make_window_lift_problem(p, parse_lift_spec(o.lift)));
+    pl.window_lift = std::make_shared<const WindowLiftProblem>(make_window_lift_problem(p, o.lift));
   if (pl.formulation == "auto") pl.formulation = "pegs";
   if (pl.formulation != "pegs" && pl.formulation != "sat")
     throw InputError(fmt::format("window tori are searched over their symbols (--formulation pegs, i.e. auto) or as "
@@ -214,7 +214,7 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
   if (pl.window_lift) {
     StableHash base;
     for (TileIndex t : pl.window_lift->base.cells) base.add(t, 4);
-    j["lift"] = {{"spec", pl.window_lift->spec.text()},
+    j["lift"] = {{"spec", pl.window_lift->row_difference ? std::string("rows") : pl.window_lift->spec.text()},
                  {"base", {pl.window_lift->base.rows, pl.window_lift->base.cols}},
                  {"base_hash", fmt::format("{:016x}", base.fnv())}};
   }
@@ -373,13 +373,16 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.run.catch_signals) signals.emplace();
-  if (pl.window && pl.formulation == "sat")
-    return solve_window_sat(problem, pl.window_lift.get(), pl.group ? &*pl.group : nullptr, options,
-                            fingerprint(problem, options, pl));
-  if (pl.window_lift) return run_model(WindowLiftModel(*pl.window_lift), problem, options, pl);
-  if (pl.window)
-    return run_model(WindowModel(problem, 0, 0, pl.group ? pl.group->elements() : std::vector<GroupElement>{}), problem,
-                     options, pl);
+  if (pl.window) {
+    const SymbolTies ties = pl.group         ? group_ties(problem, pl.group->elements())
+                            : pl.window_lift ? window_lift_ties(problem, *pl.window_lift)
+                                             : SymbolTies{};
+    const WindowLiftProblem* colour_lift = pl.window_lift && !pl.window_lift->row_difference ? &*pl.window_lift : nullptr;
+    if (pl.formulation == "sat")
+      return solve_window_sat(problem, colour_lift, ties, options, fingerprint(problem, options, pl));
+    if (colour_lift) return run_model(WindowLiftModel(*colour_lift), problem, options, pl);
+    return run_model(WindowModel(problem, 0, 0, ties), problem, options, pl);
+  }
   if (pl.lift && pl.formulation == "sat")
     return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
   if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);

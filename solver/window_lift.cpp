@@ -8,7 +8,34 @@
 
 namespace tilekit {
 
-WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const LiftSpec& spec) {
+namespace {
+
+WindowLiftProblem row_difference_problem(const TilingProblem& problem, const std::string& text) {
+  WindowLiftProblem p;
+  p.row_difference = true;
+  p.spec.base_file = text.substr(5);
+  if (p.spec.base_file.empty()) throw InputError("--lift rows=FILE: give the file of the torus of differences");
+  try {
+    p.base = read_tiling_file(p.spec.base_file);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--lift {}: {}", text, e.what()));
+  }
+  p.base_how = p.spec.base_file;
+  if (!validate(p.base).packing) throw InputError(fmt::format("--lift {}: the base is not a de Bruijn torus", text));
+  p.colours = problem.set.horizontal_radix();
+  row_difference_ties(problem, p.base);  // checks that A fits (InputError)
+  return p;
+}
+
+}  // namespace
+
+SymbolTies window_lift_ties(const TilingProblem& problem, const WindowLiftProblem& lift) {
+  return lift.row_difference ? row_difference_ties(problem, lift.base) : SymbolTies{};
+}
+
+WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const std::string& text) {
+  if (text.rfind("rows=", 0) == 0) return row_difference_problem(problem, text);
+  const LiftSpec spec = parse_lift_spec(text);
   const TileSet& set = problem.set;
   const std::uint32_t C = set.horizontal_radix(), m = spec.base_colours;
   const int K = set.window_rows(), L = set.window_cols();

@@ -8,6 +8,10 @@
 // SPEC (`pack --kind window --lift SPEC`): "M" or "m=M,base=FILE" (solver/colour_lift_model.hpp);
 // without base= the base is a stored or constructed torus over M symbols with the same windows
 // whose sides divide the torus's (tilesets/window_torus.hpp, construct_window_torus()).
+//
+// SPEC "rows=FILE" is the row-difference lift instead (solver/window_model.hpp,
+// row_difference_ties()): B(i+1,j) - B(i,j) = A(i mod r, j mod s) with A the (K-1) x L torus in
+// FILE over the same C symbols; the search decides B's top row.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -21,6 +25,7 @@
 namespace tilekit {
 
 struct WindowLiftProblem {
+  bool row_difference = false;  // "rows=FILE": the row-difference lift (then spec.base_file is A)
   LiftSpec spec;
   Tiling base;           // B: a de Bruijn torus over m symbols (checked by the validator)
   std::string base_how;  // where B came from
@@ -29,8 +34,13 @@ struct WindowLiftProblem {
 };
 
 // Throws InputError when C is not k*m with k >= 2, no base torus fits or the base file is not one.
-WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const LiftSpec& spec);
+WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const std::string& spec);
 
+// The ties of the row-difference lift (empty for a colour lift).
+SymbolTies window_lift_ties(const TilingProblem& problem, const WindowLiftProblem& lift);
+
+// The colour lift's quotient model whose leaves are lifted (the row-difference lift needs no
+// wrapper: it is WindowModel with window_lift_ties()).
 class WindowLiftModel {
  public:
   explicit WindowLiftModel(const WindowLiftProblem& p)

@@ -27,8 +27,57 @@ struct WindowModel::Tables {
   std::vector<int> image;                   // element * C + symbol -> its image
 };
 
-WindowModel::WindowModel(const TilingProblem& p, int period_rows, int period_cols,
-                         const std::vector<GroupElement>& group) {
+SymbolTies group_ties(const TilingProblem& p, const std::vector<GroupElement>& elements) {
+  const int R = p.rows, S = p.cols, C = int(p.set.horizontal_radix());
+  SymbolTies ties;
+  ties.images.resize(elements.size() * std::size_t(C));
+  for (std::size_t g = 0; g < elements.size(); ++g)
+    for (int x = 0; x < C; ++x) ties.images[g * std::size_t(C) + std::size_t(x)] = int(elements[g].ph[std::size_t(x)]);
+  std::vector<char> seen(std::size_t(R) * std::size_t(S), 0);
+  for (int v = 0; v < R * S; ++v) {
+    if (seen[std::size_t(v)]) continue;
+    ties.orbits.emplace_back();
+    for (std::size_t g = 0; g < elements.size(); ++g) {
+      const int u = ((v / S + elements[g].dr) % R) * S + (v % S + elements[g].dc) % S;
+      assert(!seen[std::size_t(u)]);  // the group acts freely on cells (|orbit| = |G|)
+      seen[std::size_t(u)] = 1;
+      ties.orbits.back().push_back({u, int(g)});
+    }
+  }
+  return ties;
+}
+
+SymbolTies row_difference_ties(const TilingProblem& p, const Tiling& a) {
+  const TileSet& set = p.set;
+  const int R = p.rows, S = p.cols, C = int(set.horizontal_radix());
+  if (a.kind != TileKind::Window || a.window_rows != set.window_rows() - 1 || a.window_cols != set.window_cols() ||
+      int(a.colours) != C || !a.torus || R % a.rows != 0 || S % a.cols != 0)
+    throw InputError(fmt::format("the row-difference lift of {}x{} windows over {} symbols on {}x{} needs a torus with "
+                                 "{}x{} windows over {} symbols whose sides divide {}x{}",
+                                 set.window_rows(), set.window_cols(), C, R, S, set.window_rows() - 1,
+                                 set.window_cols(), C, R, S));
+  const std::vector<Colour> d = pegs_of_window_torus(a);
+  SymbolTies ties;
+  ties.break_translations = false;  // translations by other than multiples of A's sides change the differences
+  ties.images.resize(std::size_t(C) * std::size_t(C));
+  for (int m = 0; m < C; ++m)
+    for (int x = 0; x < C; ++x) ties.images[std::size_t(m * C + x)] = (x + m) % C;  // map m: add m
+  for (int j = 0; j < S; ++j) {
+    ties.orbits.emplace_back();
+    int sum = 0;  // B(i, j) - B(0, j)
+    for (int i = 0; i < R; ++i) {
+      ties.orbits.back().push_back({i * S + j, sum});
+      sum = (sum + int(d[std::size_t(i % a.rows) * std::size_t(a.cols) + std::size_t(j % a.cols)])) % C;
+    }
+    if (sum != 0)
+      throw InputError(fmt::format("the row-difference lift: column {} of the base sums to {} mod {} over {} rows, so "
+                                   "the lifted columns do not close on the {}x{} torus",
+                                   j % a.cols, sum, C, R, R, S));
+  }
+  return ties;
+}
+
+WindowModel::WindowModel(const TilingProblem& p, int period_rows, int period_cols, const SymbolTies& given) {
   const TileSet& set = p.set;
   if (set.kind() != TileKind::Window) throw InputError("the window model searches window tori (--kind window)");
   auto t = std::make_shared<Tables>();
@@ -75,33 +124,37 @@ WindowModel::WindowModel(const TilingProblem& p, int period_rows, int period_col
     t->var_cells.insert(t->var_cells.end(), h.begin(), h.end());
     t->var_cells_start.push_back(int(t->var_cells.size()));
   }
-  // Orbits of the symbols under the group (each symbol alone without one); the representative is
-  // the orbit's first symbol in scanline order, and the group's identity comes first.
+  // Orbits of tied symbols (each symbol alone without ties); the first member is decided.
   const int C = t->colours;
-  const std::vector<GroupElement> elements = group.empty() ? std::vector<GroupElement>{GroupElement{}} : group;
-  t->image.resize(elements.size() * std::size_t(C));
-  for (std::size_t g = 0; g < elements.size(); ++g)
-    for (int x = 0; x < C; ++x)
-      t->image[g * std::size_t(C) + std::size_t(x)] = elements[g].ph.empty() ? x : int(elements[g].ph[std::size_t(x)]);
+  SymbolTies alone;
+  if (given.orbits.empty()) {
+    alone.images.resize(std::size_t(C));
+    for (int x = 0; x < C; ++x) alone.images[std::size_t(x)] = x;
+    for (int v = 0; v < cells_; ++v) alone.orbits.push_back({{v, 0}});
+  }
+  const SymbolTies& ties = given.orbits.empty() ? alone : given;
+  break_translations_ = ties.break_translations;
+  t->image = ties.images;
   t->rep.assign(std::size_t(cells_), -1);
   t->orbit_start.assign(std::size_t(cells_) + 1, 0);
   std::vector<std::vector<std::pair<int, int>>> orbits(static_cast<std::size_t>(cells_));
-  for (int v = 0; v < cells_; ++v) {
-    if (t->rep[std::size_t(v)] >= 0) continue;
-    for (std::size_t g = 0; g < elements.size(); ++g) {
-      const int u = ((v / S + elements[g].dr) % R) * S + (v % S + elements[g].dc) % S;
-      assert(t->rep[std::size_t(u)] < 0);  // the group acts freely on cells (|orbit| = |G|)
-      t->rep[std::size_t(u)] = v;
-      orbits[std::size_t(v)].push_back({u, int(g)});
+  for (const auto& o : ties.orbits) {
+    assert(!o.empty() && t->image[std::size_t(o.front().second) * std::size_t(C)] == 0);  // decided: identity
+    for (const auto& [u, map] : o) {
+      assert(t->rep[std::size_t(u)] < 0);  // every symbol in one orbit
+      t->rep[std::size_t(u)] = o.front().first;
     }
+    orbits[std::size_t(o.front().first)] = o;
   }
   for (int v = 0; v < cells_; ++v) {
+    assert(t->rep[std::size_t(v)] >= 0);
     t->orbit.insert(t->orbit.end(), orbits[std::size_t(v)].begin(), orbits[std::size_t(v)].end());
     t->orbit_start[std::size_t(v) + 1] = int(t->orbit.size());
   }
   // Translation breaking: the zero window at cell (0,0), i.e. its K x L symbols are 0.
   std::vector<char> fixed(std::size_t(cells_), 0);
-  for (int d = 0; d < D; ++d) fixed[std::size_t(t->rep[std::size_t(t->cell_vars[std::size_t(d)])])] = 1;
+  if (break_translations_)
+    for (int d = 0; d < D; ++d) fixed[std::size_t(t->rep[std::size_t(t->cell_vars[std::size_t(d)])])] = 1;
   for (int v = 0; v < cells_; ++v)
     if (t->rep[std::size_t(v)] == v && !fixed[std::size_t(v)]) t->order.push_back(v);
   t_ = std::move(t);
@@ -109,7 +162,7 @@ WindowModel::WindowModel(const TilingProblem& p, int period_rows, int period_col
   missing_.assign(std::size_t(cells_), D);
   used_.assign(std::size_t(classes_) * t_->windows, 0);
   marked_.assign(std::size_t(cells_), 0);
-  for (int d = 0; d < D && !infeasible_; ++d) {
+  for (int d = 0; d < D && break_translations_ && !infeasible_; ++d) {
     const int v = t_->cell_vars[std::size_t(d)], r = t_->rep[std::size_t(v)];
     if (value_[std::size_t(v)] >= 0) {  // set through another symbol of its orbit
       infeasible_ = value_[std::size_t(v)] != 0;

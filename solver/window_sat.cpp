@@ -9,7 +9,8 @@
 //     many cells as there are windows), but the at-most-one with the implied y propagates a
 //     repeated window as soon as its symbols are set (cadical found nothing in 300 s without).
 //   - the zero window sits at cell (0,0) (translations, as in the engine).
-//   - under an imposed group, x(v, s) <-> x(v + t, pi(s)) for every element.
+//   - tied symbols (an imposed group: x(v, s) <-> x(v + t, pi(s)); the row-difference lift: a
+//     column is its top symbol plus fixed sums) as equivalences of their value literals.
 // Binary 3x3 windows on 16x32: 512 symbol and 262,144 window variables, 3.6 M clauses.
 #include <fmt/format.h>
 
@@ -36,7 +37,7 @@ struct WindowCnf {
   }
 };
 
-WindowCnf build_window_cnf(const TilingProblem& q, int period_rows, int period_cols) {
+WindowCnf build_window_cnf(const TilingProblem& q, int period_rows, int period_cols, bool fix_zero_window = true) {
   WindowCnf e;
   const TileSet& set = q.set;
   e.rows = q.rows, e.cols = q.cols, e.K = set.window_rows(), e.L = set.window_cols(), e.C = set.horizontal_radix();
@@ -74,7 +75,7 @@ WindowCnf build_window_cnf(const TilingProblem& q, int period_rows, int period_c
         e.cnf.clause(back);
         per_class_window[std::size_t(cls) * std::size_t(windows) + std::size_t(w)].push_back(first_y + w);
       }
-      if (r == 0 && c == 0) e.cnf.clause({first_y});  // the zero window at (0,0)
+      if (r == 0 && c == 0 && fix_zero_window) e.cnf.clause({first_y});  // the zero window at (0,0)
     }
   for (const auto& lits : per_class_window) e.cnf.exactly_one(lits);
   return e;
@@ -105,7 +106,7 @@ std::string window_cnf(const TilingProblem& quotient, int period_rows, int perio
   return e.cnf.dimacs();
 }
 
-SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProblem* lift, const ImposedGroup* group,
+SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProblem* lift, const SymbolTies& ties,
                               const SearchOptions& o, const std::string& fingerprint) {
   if (o.mode != SearchMode::First) throw InputError("--formulation sat finds one torus: use it with --mode first");
   if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
@@ -119,17 +120,17 @@ SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProb
   res.ordering = "cadical";
   res.threads = 1;
   res.fingerprint = fingerprint;
-  WindowCnf e = lift ? build_window_cnf(lift->quotient, lift->base.rows, lift->base.cols) : build_window_cnf(problem, 0, 0);
-  if (group)  // P(x + t) = pi(P(x)) for every generator: symbol literals tied by equivalences
-    for (const GroupElement& g : group->elements())
-      for (int v = 0; v < e.rows * e.cols; ++v) {
-        const int u = ((v / e.cols + g.dr) % e.rows) * e.cols + (v % e.cols + g.dc) % e.cols;
-        for (int s = e.C == 2 ? 1 : 0; s < int(e.C); ++s) {
-          const int a = e.lit(v, s), b = e.lit(u, int(g.ph[std::size_t(s)]));
-          e.cnf.clause({-a, b});
-          e.cnf.clause({a, -b});
-        }
+  WindowCnf e = lift ? build_window_cnf(lift->quotient, lift->base.rows, lift->base.cols)
+                     : build_window_cnf(problem, 0, 0, ties.orbits.empty() || ties.break_translations);
+  for (const auto& orbit : ties.orbits)  // tied symbols: x(first, s) <-> x(u, image of s)
+    for (std::size_t k = 1; k < orbit.size(); ++k) {
+      const auto [u, map] = orbit[k];
+      for (int s = e.C == 2 ? 1 : 0; s < int(e.C); ++s) {
+        const int a = e.lit(orbit.front().first, s), b = e.lit(u, ties.images[std::size_t(map) * e.C + std::size_t(s)]);
+        e.cnf.clause({-a, b});
+        e.cnf.clause({a, -b});
       }
+    }
   auto stop = [&] {
     if (o.run.catch_signals && SignalCatcher::caught()) return true;
     return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;

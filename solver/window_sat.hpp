@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "solver/impose_group.hpp"
 #include "solver/problem.hpp"
 #include "solver/window_lift.hpp"
+#include "solver/window_model.hpp"
 
 namespace tilekit {
 
@@ -16,8 +16,9 @@ inline constexpr std::uint64_t kMaxWindowCnfIndicators = std::uint64_t(1) << 23;
 
 // Solves `problem` (or, with `lift`, its lift quotient, then lifts) with cadical and validates
 // the torus found. Called by solve() for window problems with formulation "sat".
-// With `group`, only tori invariant under it (P(x + t) = pi(P(x)) as clauses).
-SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProblem* lift, const ImposedGroup* group,
+// With ties (an imposed group, the row-difference lift), only tori that keep them: each tied
+// symbol's value literals are equivalent to its orbit's first symbol's.
+SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProblem* lift, const SymbolTies& ties,
                               const SearchOptions& options, const std::string& fingerprint);
 
 // The CNF of a window problem whose classes are residues mod (period_rows, period_cols) (0: the
