@@ -20,6 +20,7 @@ WindowLiftProblem row_difference_problem(const TilingProblem& problem, const std
   } catch (const InputError& e) {
     throw InputError(fmt::format("--lift {}: {}", text, e.what()));
   }
+  if (p.base.kind == TileKind::Corner && p.base.torus) p.base = window_torus_of_corner_torus(p.base);  // 2x2 windows
   p.base_how = p.spec.base_file;
   if (!validate(p.base).packing) throw InputError(fmt::format("--lift {}: the base is not a de Bruijn torus", text));
   p.colours = problem.set.horizontal_radix();
