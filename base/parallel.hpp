@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 
@@ -43,6 +44,20 @@ inline int checked_thread_count(std::int64_t threads, const char* flag = "--thre
   if (threads < 1 || threads > kMaxThreads)
     throw InputError(fmt::format("{} must be between 1 and {}, got {}", flag, kMaxThreads, threads));
   return int(threads);
+}
+
+// Ends the idle OpenMP threads of the calling thread's pool. OpenMP keeps a team's threads for
+// the next parallel region, and libgomp's default wait policy has each of them spin first (300,000
+// pause loops, GOMP_SPINCOUNT, about 10-20 ms of a core on the machines measured) before it
+// sleeps: a short search ended that way burns a core while the caller validates, stores and
+// prints alone (a quarter of a C=4 `pack` run's CPU, BENCHMARKS.md). A soft pause (OpenMP 5.0
+// omp_pause_resource) lets them exit instead; the next region starts new ones (tens of
+// microseconds each), so call it where a caller goes on alone for a while (the end of a search),
+// not between back-to-back regions. A no-op inside a parallel region, and when the user chose a
+// wait policy (OMP_WAIT_POLICY or GOMP_SPINCOUNT set).
+inline void release_idle_threads() {
+  static const bool chosen = std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT");
+  if (!chosen && omp_get_level() == 0) omp_pause_resource(omp_pause_soft, omp_get_initial_device());
 }
 
 // Runs body(thread) once on each of `threads` threads (a team whose members take their own

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -54,7 +55,12 @@ std::optional<nlohmann::json> read_json(const fs::path& p) {
 
 ClusterPlan make_plan(const SubmitArgs& o) {
   ClusterPlan p = o.plan;
-  if (o.kind != "wang" && o.kind != "corner") throw InputError("--kind must be wang or corner");
+  if (o.kind != "wang" && o.kind != "corner" && o.kind != "window")
+    throw InputError("--kind must be wang, corner or window");
+  const bool has_window = std::any_of(o.pack_extra.begin(), o.pack_extra.end(),
+                                      [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
+  if (o.kind == "window" && !has_window)
+    throw InputError("--kind window needs --pack-arg=--window=KxL (and --pack-arg=--size=RxS)");
   if (o.colors < 1) throw InputError("--colors must be at least 1");
   p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
   if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
@@ -310,7 +316,9 @@ void add_submit(CLI::App& cluster, Context& ctx) {
       "submit",
       "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
   auto a = std::make_shared<SubmitArgs>();
-  cmd->add_option("--kind", a->kind, "Tile kind: wang or corner")->required();
+  cmd->add_option("--kind", a->kind,
+                  "Tile kind: wang, corner or window (de Bruijn tori: --pack-arg=--window=KxL --pack-arg=--size=RxS)")
+      ->required();
   cmd->add_option("--colors", a->colors, "Number of colours C")->required();
   cmd->add_option("--method", a->method, "Passed to pack: auto, search or construct");
   cmd->add_option("--mode", a->mode, "Passed to pack: first, count or all")->capture_default_str();

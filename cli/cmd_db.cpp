@@ -59,7 +59,8 @@ void run_list(const ListArgs& a, const Context& ctx) {
   std::vector<std::string> lines;
   if (a.table == "solutions") {
     SolutionFilter f;
-    if (!a.kind.empty()) f.kind = a.kind == "wang" ? TileKind::Wang : TileKind::Corner;
+    if (!a.kind.empty())
+      f.kind = a.kind == "wang" ? TileKind::Wang : a.kind == "window" ? TileKind::Window : TileKind::Corner;
     f.colours = a.colours;
     f.run_id = a.run_id;
     f.limit = a.limit;
@@ -103,7 +104,7 @@ void add_list(CLI::App& db, Context& ctx) {
   cmd->add_option("--table", a->table, "solutions, runs, tilesets or conversions")
       ->check(CLI::IsMember(kTables))
       ->capture_default_str();
-  cmd->add_option("--kind", a->kind, "Only solutions of this kind")->check(CLI::IsMember({"wang", "corner"}));
+  cmd->add_option("--kind", a->kind, "Only solutions of this kind")->check(CLI::IsMember({"wang", "corner", "window"}));
   cmd->add_option("--colors", a->colours, "Only solutions over this many colours");
   cmd->add_option("--run", a->run_id, "Only solutions of this run id");
   cmd->add_option("--limit", a->limit, "At most this many rows (0 = all)")->capture_default_str();

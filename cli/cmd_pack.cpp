@@ -27,8 +27,14 @@ struct PackArgs {
   std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
 };
 
+// A window torus as its symbols (one digit each, tile_grid.hpp's peg form); other tilings as
+// their tile indices.
 std::string grid_text(const Tiling& t) {
   std::string s;
+  if (t.kind == TileKind::Window && t.colours <= 62) {
+    for (const auto& row : tiling_to_peg_json(t)["pegs"]) s += row.get<std::string>() + "\n";
+    return s;
+  }
   for (int r = 0; r < t.rows; ++r) {
     for (int c = 0; c < t.cols; ++c) s += fmt::format("{:>4}", t.at(r, c));
     s += "\n";
@@ -85,11 +91,13 @@ nlohmann::json outcome_json(const PackOutcome& o, const std::string& out_file) {
   if (!o.construction.empty()) j["construction"] = o.construction;
   if (!o.portfolio.is_null()) j["portfolio"] = o.portfolio;
   if (!o.checkpoint.empty()) j["checkpoint"] = o.checkpoint;
+  if (p.set.kind() == TileKind::Window) j["window"] = {p.set.window_rows(), p.set.window_cols()};
   if (!r.found.empty()) {
     const Tiling& t = r.found.front();
     ValidationReport rep = validate(t, &p.set);
     j["valid"] = rep.valid && rep.packing;
     j["cells"] = tiling_to_json(t)["cells"];
+    if (t.kind == TileKind::Window && t.colours <= 62) j["pegs"] = tiling_to_peg_json(t)["pegs"];
     if (o.orbit_size) j["orbit_size"] = *o.orbit_size;
     if (!out_file.empty()) j["out"] = out_file;
   }
@@ -99,7 +107,9 @@ nlohmann::json outcome_json(const PackOutcome& o, const std::string& out_file) {
 void print_outcome(const PackOutcome& o) {
   const SearchResult& r = o.result;
   const TilingProblem& p = o.problem;
-  const std::string kind(kind_name(p.set.kind()));
+  const std::string kind = p.set.kind() == TileKind::Window
+                               ? fmt::format("window {}x{}", p.set.window_rows(), p.set.window_cols())
+                               : std::string(kind_name(p.set.kind()));
   const std::uint32_t colours = p.set.colours();
   if (o.method == "search")
     fmt::print("{} C={} {}x{} packing by search, mode {}, {} ({} formulation, {} threads, shard {})\n", kind, colours,
@@ -134,7 +144,10 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   PackOutcome o = run_pack(req, given);
   std::string out_file;
   if (!a.out.empty() && !o.result.found.empty()) {
-    write_file_atomic(a.out, tiling_to_json(o.result.found.front()).dump(1) + "\n");
+    const Tiling& t = o.result.found.front();  // window tori in the compact peg form
+    write_file_atomic(a.out, (t.kind == TileKind::Window && t.colours <= 62 ? tiling_to_peg_json(t) : tiling_to_json(t))
+                                     .dump(1) +
+                                 "\n");
     out_file = a.out;
   }
   emit(ctx, outcome_json(o, out_file), [&] { print_outcome(o); });
@@ -153,17 +166,22 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   auto a = std::make_shared<PackArgs>();
   PackRequest& r = a->request;
   auto* cmd = app.add_subcommand("pack", "Tile packing: every tile of a set exactly once on a torus (thesis sec. 5.5)");
-  cmd->add_option("--kind", r.kind, "Tile kind of the complete set: corner or wang");
+  cmd->add_option("--kind", r.kind,
+                  "Tile kind of the complete set: corner, wang, or window (every KxL window over C symbols once: a "
+                  "de Bruijn torus)");
   cmd->add_option("--colors", r.colours, "Number of colours C (the complete set on the C^2 x C^2 torus)");
+  cmd->add_option("--window", r.window, "--kind window: the window KxL (rows x columns)");
   cmd->add_option("--set", r.set, "Pack this tile set instead (built-in name or file)");
-  cmd->add_option("--size", r.size, "Torus size ROWSxCOLS for --set (default: square)");
+  cmd->add_option("--size", r.size,
+                  "Torus size ROWSxCOLS for --set (default: square) and for --kind window (R*S = C^(K*L); default "
+                  "C^2 x C^2 for 2x2 windows)");
   cmd->add_option("--method", r.method, "auto (database, construction, search), search or construct")
       ->capture_default_str();
   cmd->add_option("--mode", r.mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)");
   cmd->add_option("--seed", r.run.seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", r.formulation,
-                  "auto, cell, pegs (corner), edges (Wang) or sat (with --impose or --lift)")
+                  "auto, cell, pegs (corner, window), edges (Wang) or sat (with --impose or --lift; window tori)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", r.run.checkpoint_path, "Write checkpoints to this file");
@@ -181,8 +199,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "Search only packings invariant under this group: generators 't=DR,DC:pi=P0,P1,...' separated "
                   "by ';' (Wang: pih=/piv= per edge direction; cycles like pi=(0 1)(2 3) also work)");
   cmd->add_option("--lift", r.lift,
-                  "Search packings A = B + M*E over a known packing B of M colours (colour-quotient lift): "
-                  "'M' or 'm=M,base=FILE'; --formulation sat solves it with cadical");
+                  "Search packings A = B + M*E over a known packing B of M colours (colour-quotient lift; --kind "
+                  "window: over a known de Bruijn torus B): 'M' or 'm=M,base=FILE'; --formulation sat solves it "
+                  "with cadical");
   cmd->add_flag("--plain", r.plain, "First mode: plain search only (no portfolio)");
   cmd->add_option("--candidate", r.candidates,
                   "A portfolio candidate (repeatable): plain, a group SPEC, impose:SPEC or sat:SPEC (default: the "

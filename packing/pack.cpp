@@ -21,6 +21,7 @@
 #include "tilesets/tile_grid.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
+#include "tilesets/window_torus.hpp"
 
 namespace tilekit {
 namespace {
@@ -32,7 +33,25 @@ SearchMode parse_mode(const std::string& m) {
   throw InputError(fmt::format("unknown mode '{}' (first, count or all)", m));
 }
 
+// --kind window --window KxL --colors C --size RxS: every K x L window over C symbols once on the
+// R x S torus (a de Bruijn torus); --size defaults to C^2 x C^2 for 2x2 windows (the corner case).
+TilingProblem window_problem(const PackRequest& a) {
+  if (a.window.empty())
+    throw InputError("--kind window needs --window KxL (e.g. --window 3x3), --colors C and --size RxS");
+  if (!a.set.empty()) throw InputError("--kind window packs every window over --colors symbols, not --set");
+  const Dimensions w = parse_dimensions(a.window, kMaxTilingSide, kMaxTilingCells, "--window KxL");
+  check_colour_count(a.colours, "--colors");
+  Dimensions size{std::int64_t(a.colours) * a.colours, std::int64_t(a.colours) * a.colours};
+  if (!a.size.empty())
+    size = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "--size RxS");
+  else if (w.first != 2 || w.second != 2)
+    throw InputError(fmt::format("--kind window --window {} needs --size RxS, the torus (R*S = C^(K*L))", a.window));
+  return window_torus_problem(a.colours, int(w.first), int(w.second), int(size.first), int(size.second));
+}
+
 TilingProblem make_problem(const PackRequest& a) {
+  if (a.kind == "window") return window_problem(a);
+  if (!a.window.empty()) throw InputError("--window is for --kind window (de Bruijn tori)");
   if (!a.set.empty()) {
     TilingProblem p;
     p.set = resolve_tile_set(a.set);
@@ -54,9 +73,10 @@ TilingProblem make_problem(const PackRequest& a) {
     }
     return p;
   }
-  if (a.kind.empty()) throw InputError("pack needs --kind corner|wang and --colors C (or --set SET, or --resume FILE)");
+  if (a.kind.empty())
+    throw InputError("pack needs --kind corner|wang|window and --colors C (or --set SET, or --resume FILE)");
   if (a.kind != "corner" && a.kind != "wang")
-    throw InputError(fmt::format("unknown tile kind '{}' (corner or wang)", a.kind));
+    throw InputError(fmt::format("unknown tile kind '{}' (corner, wang or window)", a.kind));
   check_colour_count(a.colours, "--colors");
   return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
 }
@@ -91,6 +111,7 @@ SearchOptions search_options(const PackRequest& a) {
 }
 
 bool is_complete_set_problem(const TilingProblem& p) {
+  if (p.set.kind() == TileKind::Window) return false;  // window tori have their own first-mode path
   const std::uint32_t c = p.set.colours();
   return p.set.size() == complete_size(p.set.horizontal_radix(), p.set.vertical_radix()) && p.rows == int(c * c) &&
          p.cols == p.rows;
@@ -113,8 +134,9 @@ void check_runnable(const PackRequest& a, const TilingProblem& problem, const Se
   if (!a.candidates.empty() && !use_portfolio)
     throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
   const std::uint32_t colours = problem.set.colours();
-  const std::vector<std::uint32_t> constructible =
-      a.set.empty() ? constructible_colours(problem.set.kind(), colours) : std::vector<std::uint32_t>{};
+  const std::vector<std::uint32_t> constructible = a.set.empty() && problem.set.kind() != TileKind::Window
+                                                       ? constructible_colours(problem.set.kind(), colours)
+                                                       : std::vector<std::uint32_t>{};
   const bool may_construct = a.method != "search" && o.mode == SearchMode::First && a.impose.empty() &&
                              std::find(constructible.begin(), constructible.end(), colours) != constructible.end();
   if (a.method != "construct" && !may_construct) check_searchable(problem);
@@ -194,6 +216,43 @@ void find_first(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int threads
                                kind_name(kind), colours));
 }
 
+// First mode for window tori without a lift: the database, a construction (stored tori; 2x2
+// windows: the corner packing), then `search`, as --method allows.
+void find_first_window(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int threads,
+                       const std::function<void()>& search) {
+  const PackRequest& a = out.request;
+  const TilingProblem& p = out.problem;
+  const TileSet& set = p.set;
+  SearchResult& r = out.result;
+  auto answer = [&](Tiling t, const std::string& method) {
+    if (!validate(t, &set).packing)
+      throw std::logic_error("a stored or constructed window torus failed the validator");  // data or library bug
+    r.found = {std::move(t)};
+    r.solutions = 1;
+    r.threads = threads;
+    out.method = method;
+  };
+  if (a.method == "auto")
+    if (auto s = db.find_solution(TileKind::Window, set.horizontal_radix(), p.rows, p.cols, set.window_rows(),
+                                  set.window_cols());
+        s && validate(s->tiling, &set).packing)
+      return answer(std::move(s->tiling), "db");
+  if (a.method != "search")
+    if (auto c = construct_window_torus(set.horizontal_radix(), set.window_rows(), set.window_cols(), p.rows, p.cols)) {
+      answer(std::move(c->tiling), "construct");
+      out.construction = c->how;
+      sink.method = "construct";
+      sink.add(r.found.front());
+      sink.flush();
+      return;
+    }
+  if (a.method == "construct")
+    throw NotFound(fmt::format("no construction is known for {}x{} windows over {} symbols on {}x{} (try --method search)",
+                               set.window_rows(), set.window_cols(), set.horizontal_radix(), p.rows, p.cols));
+  out.method = "search";
+  search();
+}
+
 // Why first mode found no packing (exit 1).
 std::string not_found_reason(const PackOutcome& out) {
   const PackRequest& a = out.request;
@@ -246,7 +305,10 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   SearchOptions o = search_options(a);
   const bool complete_set = is_complete_set_problem(problem);
   const bool use_portfolio = uses_portfolio(a, o.mode, complete_set);
-  o.title = fmt::format("pack {} C={} {}", kind_name(problem.set.kind()), problem.set.colours(), a.mode);
+  o.title = problem.set.kind() == TileKind::Window
+                ? fmt::format("pack window {}x{} C={} {}x{} {}", problem.set.window_rows(), problem.set.window_cols(),
+                              problem.set.horizontal_radix(), problem.rows, problem.cols, a.mode)
+                : fmt::format("pack {} C={} {}", kind_name(problem.set.kind()), problem.set.colours(), a.mode);
   PortfolioOptions po;
   po.stats_path = a.portfolio_stats;
   po.candidates = a.candidates;
@@ -274,6 +336,8 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   try {
     if (o.mode == SearchMode::First && complete_set && a.impose.empty() && a.lift.empty() && a.set.empty()) {
       find_first(out, db, sink, o.run.threads, search);
+    } else if (o.mode == SearchMode::First && problem.set.kind() == TileKind::Window && a.lift.empty()) {
+      find_first_window(out, db, sink, o.run.threads, search);
     } else {
       out.method = "search";
       search();

@@ -28,6 +28,7 @@ struct Field {
 const Field kFields[] = {
     TILEKIT_FIELD("--kind", "kind", kind, std::string),
     TILEKIT_FIELD("--colors", "colors", colours, std::int64_t),
+    TILEKIT_FIELD("--window", "window", window, std::string),
     TILEKIT_FIELD("--set", "set", set, std::string),
     TILEKIT_FIELD("--size", "size", size, std::string),
     TILEKIT_FIELD("--method", "method", method, std::string),

@@ -15,8 +15,9 @@ namespace tilekit {
 
 struct PackRequest {
   // ---- identity: fixed by a checkpoint (with run.seed and run.shard) ----
-  std::string kind;  // "corner" | "wang" (the complete set over `colours`)
+  std::string kind;  // "corner" | "wang" (the complete set over `colours`) | "window" (de Bruijn tori)
   std::int64_t colours = 0;
+  std::string window;           // --kind window: the window KxL (the torus is `size`)
   std::string set, size;        // or: a tile set (built-in name or file) and ROWSxCOLS
   std::string method = "auto";  // auto (database, construction, search) | search | construct
   std::string mode = "first";   // first | count | all

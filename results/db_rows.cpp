@@ -27,8 +27,9 @@ nlohmann::json stored_json(const std::string& text, nlohmann::json fallback) {
 
 const char* const kInsertSolution =
     "INSERT OR IGNORE INTO solutions(run_id, kind, colors, vertical_colors, rows, cols, torus, cells, method, "
-    "solution_hash, canonical_hash, orbit_size, validated, group_json, created_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
-    "?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, COALESCE(NULLIF(?15, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')))";
+    "solution_hash, canonical_hash, orbit_size, validated, group_json, created_at, window_rows, window_cols) VALUES "
+    "(?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, COALESCE(NULLIF(?15, ''), "
+    "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')), ?16, ?17)";
 
 void bind_solution(Statement& s, const SolutionRecord& r, const std::string& hash) {
   const Tiling& t = r.tiling;
@@ -49,12 +50,14 @@ void bind_solution(Statement& s, const SolutionRecord& r, const std::string& has
       .bind(13, std::int64_t(r.validated ? 1 : 0));
   if (!r.group.is_null()) s.bind(14, r.group.dump());
   s.bind(15, r.created_at);
+  s.bind(16, std::int64_t(t.kind == TileKind::Window ? t.window_rows : 0))
+      .bind(17, std::int64_t(t.kind == TileKind::Window ? t.window_cols : 0));
 }
 
 #define TK_SOLUTION_COLUMNS                                                                                        \
   "id, COALESCE(run_id, 0), kind, colors, vertical_colors, rows, cols, torus, method, solution_hash, "            \
-  "canonical_hash, orbit_size, validated, group_json, created_at"
-const char* const kSelectSolution = "SELECT " TK_SOLUTION_COLUMNS ", cells FROM solutions";
+  "canonical_hash, orbit_size, validated, group_json, created_at, window_rows, window_cols"
+const char* const kSelectSolution = "SELECT " TK_SOLUTION_COLUMNS ", cells FROM solutions";  // cells: column 17
 const char* const kSelectSolutionNoCells = "SELECT " TK_SOLUTION_COLUMNS ", '[]' FROM solutions";
 #undef TK_SOLUTION_COLUMNS
 
@@ -62,7 +65,8 @@ SolutionRecord read_solution(const Statement& s, bool with_cells) {
   SolutionRecord r;
   r.id = s.int64(0);
   r.run_id = s.int64(1);
-  r.tiling.kind = s.text(2) == "wang" ? TileKind::Wang : TileKind::Corner;
+  const std::string kind = s.text(2);
+  r.tiling.kind = kind == "wang" ? TileKind::Wang : kind == "window" ? TileKind::Window : TileKind::Corner;
   r.tiling.colours = std::uint32_t(s.int64(3));
   r.tiling.vertical_colours = std::uint32_t(s.int64(4));
   r.tiling.rows = int(s.int64(5));
@@ -75,8 +79,10 @@ SolutionRecord read_solution(const Statement& s, bool with_cells) {
   r.validated = s.int64(12) != 0;
   if (!s.is_null(13)) r.group = stored_json(s.text(13), nullptr);
   r.created_at = s.text(14);
+  r.tiling.window_rows = int(s.int64(15));
+  r.tiling.window_cols = int(s.int64(16));
   if (with_cells) {
-    r.tiling.cells = sqlitedb::cells_from_text(s.text(15));
+    r.tiling.cells = sqlitedb::cells_from_text(s.text(17));
     if (r.tiling.cells.size() != std::size_t(r.tiling.rows) * std::size_t(r.tiling.cols))
       throw InputError(fmt::format("solution {}: {} stored cells for a {}x{} grid (damaged row)", r.id,
                                    r.tiling.cells.size(), r.tiling.rows, r.tiling.cols));
@@ -176,6 +182,7 @@ nlohmann::json to_json(const SolutionRecord& r, bool with_cells) {
       j["horizontal_colors"] = r.tiling.ch();
       j["vertical_colors"] = r.tiling.cv();
     }
+    if (r.tiling.kind == TileKind::Window) j["window"] = {r.tiling.window_rows, r.tiling.window_cols};
   }
   j["id"] = r.id;
   j["run_id"] = r.run_id > 0 ? nlohmann::json(r.run_id) : nlohmann::json(nullptr);

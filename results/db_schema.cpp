@@ -83,10 +83,44 @@ CREATE TABLE conversions (
 CREATE INDEX conversions_by_result ON conversions(result_set);
 )SQL";
 
+// Version 1 -> 2: window tori (de Bruijn tori, kind 'window') and their window size. SQLite
+// cannot change a CHECK constraint in place, so the solutions table is rebuilt with every row.
+constexpr std::string_view kSchemaV2 = R"SQL(
+CREATE TABLE solutions_v2 (
+  id              INTEGER PRIMARY KEY,
+  run_id          INTEGER REFERENCES runs(id) ON DELETE SET NULL,
+  kind            TEXT NOT NULL CHECK (kind IN ('wang', 'corner', 'window')),
+  colors          INTEGER NOT NULL,
+  vertical_colors INTEGER NOT NULL DEFAULT 0,
+  rows            INTEGER NOT NULL,
+  cols            INTEGER NOT NULL,
+  torus           INTEGER NOT NULL DEFAULT 1,
+  cells           TEXT NOT NULL,
+  method          TEXT NOT NULL DEFAULT '',
+  solution_hash   TEXT NOT NULL UNIQUE,
+  canonical_hash  TEXT NOT NULL DEFAULT '',
+  orbit_size      INTEGER NOT NULL DEFAULT 0,
+  validated       INTEGER NOT NULL DEFAULT 0,
+  group_json      TEXT,
+  created_at      TEXT NOT NULL,
+  window_rows     INTEGER NOT NULL DEFAULT 0,
+  window_cols     INTEGER NOT NULL DEFAULT 0
+);
+INSERT INTO solutions_v2(id, run_id, kind, colors, vertical_colors, rows, cols, torus, cells, method, solution_hash,
+                         canonical_hash, orbit_size, validated, group_json, created_at)
+  SELECT id, run_id, kind, colors, vertical_colors, rows, cols, torus, cells, method, solution_hash, canonical_hash,
+         orbit_size, validated, group_json, created_at FROM solutions;
+DROP TABLE solutions;
+ALTER TABLE solutions_v2 RENAME TO solutions;
+CREATE INDEX solutions_by_shape ON solutions(kind, colors, rows, cols, validated);
+CREATE INDEX solutions_by_canonical ON solutions(canonical_hash);
+CREATE INDEX solutions_by_run ON solutions(run_id);
+)SQL";
+
 }  // namespace
 
 const std::vector<std::string_view>& migrations() {
-  static const std::vector<std::string_view> list = {kSchemaV1};
+  static const std::vector<std::string_view> list = {kSchemaV1, kSchemaV2};
   return list;
 }
 

@@ -198,15 +198,14 @@ ResultsDb::ResultsDb(const std::string& path, const DbOpenOptions& opt) : path_(
   // A constructor that throws runs no destructor: close the connection on the way out.
   try {
     const bool needs_write = state == FileState::Missing || state == FileState::Fresh || state == FileState::Older;
-    if (opt.read_only && state == FileState::Older)
-      throw InputError(fmt::format("{}: schema version is older than this build's; open it once with a writing "
-                                   "command (e.g. `tilekit db stats --db {}`) to migrate it",
-                                   path_, path_));
     if (opt.read_only && !needs_write) {
       open_connection(true, opt.busy_timeout_ms);
       return;
     }
-    if (opt.read_only && !opt.create) throw NotFound(fmt::format("{}: no results database there", path));
+    // An older schema is migrated in place even by a reader (the queries know only the current
+    // one); the migration keeps every row (db_schema.cpp) and runs in one transaction.
+    if (opt.read_only && !opt.create && state != FileState::Older)
+      throw NotFound(fmt::format("{}: no results database there", path));
     open_connection(false, opt.busy_timeout_ms);
     migrate();
     if (opt.read_only) {
@@ -352,11 +351,17 @@ std::size_t ResultsDb::add_run_with_solutions(RunRecord& run, std::vector<Soluti
   return added;
 }
 
-std::optional<SolutionRecord> ResultsDb::find_solution(TileKind kind, std::uint32_t colours, int rows, int cols) {
+std::optional<SolutionRecord> ResultsDb::find_solution(TileKind kind, std::uint32_t colours, int rows, int cols,
+                                                      int window_rows, int window_cols) {
   Statement s(db_, std::string(dbrows::kSelectSolution) +
                        " WHERE kind = ?1 AND colors = ?2 AND rows = ?3 AND cols = ?4 AND validated = 1 "
-                       "ORDER BY id LIMIT 1");
-  s.bind(1, std::string(kind_name(kind))).bind(2, std::int64_t(colours)).bind(3, std::int64_t(rows)).bind(4, std::int64_t(cols));
+                       "AND window_rows = ?5 AND window_cols = ?6 ORDER BY id LIMIT 1");
+  s.bind(1, std::string(kind_name(kind)))
+      .bind(2, std::int64_t(colours))
+      .bind(3, std::int64_t(rows))
+      .bind(4, std::int64_t(cols))
+      .bind(5, std::int64_t(window_rows))
+      .bind(6, std::int64_t(window_cols));
   if (!s.step()) return std::nullopt;
   return dbrows::read_solution(s, true);
 }
@@ -419,9 +424,10 @@ std::int64_t ResultsDb::add_conversion(std::int64_t source_set, const std::strin
 // StableHash over a fixed little-endian serialisation of the tiling.
 std::string solution_hash(const Tiling& t) {
   StableHash h;
-  h.add(t.kind == TileKind::Wang ? 1 : 2, 1);
+  h.add(t.kind == TileKind::Wang ? 1 : t.kind == TileKind::Corner ? 2 : 3, 1);
   h.add(t.colours, 4);
   if (t.kind == TileKind::Wang && t.cv() != t.ch()) h.add(t.cv(), 4);  // mixed radix only
+  if (t.kind == TileKind::Window) h.add(std::uint64_t(t.window_rows), 4).add(std::uint64_t(t.window_cols), 4);
   h.add(std::uint64_t(t.rows), 4);
   h.add(std::uint64_t(t.cols), 4);
   h.add(t.torus ? 1 : 0, 1);

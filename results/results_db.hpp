@@ -45,7 +45,7 @@ struct RunRecord {
 
 struct SolutionRecord {
   std::int64_t id = 0, run_id = 0;
-  Tiling tiling;              // kind, colours, rows, cols, torus, cells
+  Tiling tiling;              // kind, colours, rows, cols, torus, cells (window tori: and the window)
   std::string method;         // "search", "construct", ...
   std::string canonical_hash; // orbit id under symmetry ("" if not computed)
   std::uint64_t orbit_size = 0;
@@ -98,14 +98,14 @@ struct MergeReport {
 
 struct DbOpenOptions {
   bool create = true;            // create a missing file (and its directory)
-  bool read_only = false;        // never write; an older schema is an error instead of a migration
+  bool read_only = false;        // never write (but an older schema is migrated first)
   bool integrity_check = true;   // PRAGMA integrity_check on open (O(size); lookups may skip it)
   int busy_timeout_ms = 120000;  // a second writer waits this long instead of failing
 };
 
 class ResultsDb {
  public:
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
   static constexpr std::int32_t kApplicationId = 0x544B4954;  // "TKIT" (PRAGMA application_id)
 
   // Opens or creates (create=true) a Tilekit database and migrates it to the current schema.
@@ -130,8 +130,10 @@ class ResultsDb {
   // A whole finished run in one transaction: the run row (run.id is set), its solutions (their
   // run_id is set) and its final counts; a kill leaves all of it or none. Returns the number added.
   std::size_t add_run_with_solutions(RunRecord& run, std::vector<SolutionRecord>& batch);
-  // Any stored, validated solution for this kind/colours/shape (e.g. a packing for the atlas).
-  std::optional<SolutionRecord> find_solution(TileKind kind, std::uint32_t colours, int rows, int cols);
+  // Any stored, validated solution for this kind/colours/shape (e.g. a packing for the atlas);
+  // window tori also by their window (0 x 0 for the other kinds).
+  std::optional<SolutionRecord> find_solution(TileKind kind, std::uint32_t colours, int rows, int cols,
+                                              int window_rows = 0, int window_cols = 0);
 
   // Tile sets and conversions for the aperiodic engine. Both are idempotent: the same
   // (name, content_hash) or (source_set, method, result_set) returns the existing id (a

@@ -59,7 +59,10 @@ std::vector<std::array<int, 2>> scan_order(int rows, int cols, const std::vector
 }  // namespace
 
 ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) {
-  return ImposedGroup::build(parse_group_spec(spec), problem.set.kind(), problem.set.horizontal_radix(),
+  // A window torus's symbols are permuted like the pegs of a corner torus (the same packing rules:
+  // a permutation with a fixed point fixes a constant window).
+  const TileKind kind = problem.set.kind() == TileKind::Window ? TileKind::Corner : problem.set.kind();
+  return ImposedGroup::build(parse_group_spec(spec), kind, problem.set.horizontal_radix(),
                              problem.set.vertical_radix(), problem.rows, problem.cols, problem.packing);
 }
 

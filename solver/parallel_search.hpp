@@ -336,6 +336,7 @@ class ParallelSearch {
       }
     } join{*this, done, monitor};
     parallel_team(threads, work, &stop_);
+    release_idle_threads();  // the caller goes on alone: no idle worker spins meanwhile
   }
 
   void monitor_loop(std::atomic<bool>& done) {

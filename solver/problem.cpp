@@ -7,6 +7,7 @@
 
 #include "base/error.hpp"
 #include "solver/model.hpp"
+#include "tilesets/window_torus.hpp"
 
 namespace tilekit {
 
@@ -23,8 +24,19 @@ TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours) {
   return p;
 }
 
+TilingProblem window_torus_problem(std::int64_t colours, int window_rows, int window_cols, int rows, int cols) {
+  check_colour_count(colours, "--colors");
+  check_window_torus_shape(std::uint32_t(colours), window_rows, window_cols, rows, cols);
+  TilingProblem p;
+  p.set = complete_window_set(std::uint32_t(colours), window_rows, window_cols);
+  p.rows = rows, p.cols = cols;
+  p.torus = p.packing = true;
+  return p;
+}
+
 void check_searchable(const TilingProblem& p) {
   const TileSet& set = p.set;
+  if (set.kind() == TileKind::Window) return;  // the window model sizes itself (window_model.cpp)
   const std::uint64_t labels = set.kind() == TileKind::Corner
                                    ? std::uint64_t(set.horizontal_radix()) * set.horizontal_radix()
                                    : std::max(set.horizontal_radix(), set.vertical_radix());

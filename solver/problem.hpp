@@ -34,6 +34,10 @@ inline constexpr std::uint32_t kMaxPackingColours = 64;
 // torus. InputError for C outside 1..kMaxPackingColours.
 TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours);
 
+// A de Bruijn torus: every K x L window over C symbols once on the R x S torus
+// (tilesets/window_torus.hpp). InputError naming the reason when the shape cannot hold them.
+TilingProblem window_torus_problem(std::int64_t colours, int window_rows, int window_cols, int rows, int cols);
+
 // Throws InputError when searching `p` needs a model larger than kMaxModelTable (the cell
 // model's masks: 4 x edge labels x tiles/64 words), e.g. a corner packing over 40 colours. A
 // command calls it before it touches any file; the models check again when they are built.

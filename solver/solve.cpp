@@ -24,7 +24,11 @@
 #include "solver/colour_lift_model.hpp"
 #include "solver/parallel_search.hpp"
 #include "solver/symmetry.hpp"
+#include "solver/window_lift.hpp"
+#include "solver/window_model.hpp"
+#include "solver/window_sat.hpp"
 #include "tilesets/validator.hpp"
+#include "tilesets/window_torus.hpp"
 
 namespace tilekit {
 
@@ -41,19 +45,48 @@ struct Plan {
   std::optional<ImposedGroup> group;  // --impose
   std::optional<FundamentalDomain> domain;
   std::shared_ptr<const LiftProblem> lift;  // --lift: the subspace searched
+  bool window = false;                      // a de Bruijn torus (window set)
+  std::shared_ptr<const WindowLiftProblem> window_lift;  // --kind window --lift
 };
 
-// A model's leaf stands for its translates by multiples of this step (lifts: the period).
+// A model's leaf stands for its translates by multiples of these steps (rows, columns; lifts:
+// the period).
 template <SearchModel M>
-int translation_step(const M& m) {
-  if constexpr (requires { m.translation_step(); })
-    return m.translation_step();
+std::pair<int, int> translation_steps(const M& m) {
+  if constexpr (requires { m.translation_steps(); })
+    return m.translation_steps();
+  else if constexpr (requires { m.translation_step(); })
+    return {m.translation_step(), m.translation_step()};
   else
-    return 1;
+    return {1, 1};
 }
 
 const char* mode_name(SearchMode m) {
   return m == SearchMode::First ? "first" : m == SearchMode::Count ? "count" : "all";
+}
+
+// Window tori (de Bruijn tori, tilesets/window_torus.hpp): the window model over the symbols
+// (formulation "pegs"), optionally a lift quotient (--lift), or the same as CNF ("sat").
+void plan_window(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  const TileSet& set = p.set;
+  if (!p.packing || !p.torus) throw InputError("a window torus holds every window once: a packing of a torus");
+  check_window_torus_shape(set.horizontal_radix(), set.window_rows(), set.window_cols(), p.rows, p.cols);
+  pl.window = true;
+  if (!o.impose.empty() && !o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
+  if (!o.impose.empty()) pl.group = build_group(p, o.impose);
+  if (!o.lift.empty())
+    pl.window_lift = std::make_shared<const WindowLiftProblem>(make_window_lift_problem(p, o.lift));
+  if (pl.formulation == "auto") pl.formulation = "pegs";
+  if (pl.formulation != "pegs" && pl.formulation != "sat")
+    throw InputError(fmt::format("window tori are searched over their symbols (--formulation pegs, i.e. auto) or as "
+                                 "CNF (sat), not '{}'",
+                                 o.formulation));
+  if (pl.ordering == "auto") pl.ordering = pl.formulation == "sat" ? "cadical" : "static";
+  if (pl.ordering != "static" && pl.ordering != "cadical")
+    throw InputError(fmt::format("window tori are searched in scanline order (--ordering static), not '{}'", o.ordering));
+  pl.restarts = o.mode == SearchMode::First && o.restarts != 0;
+  pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
+  pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count));
 }
 
 Plan plan(const TilingProblem& p, const SearchOptions& o) {
@@ -84,6 +117,10 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   const bool wang = set.kind() == TileKind::Wang;
   pl.formulation = o.formulation;
   pl.ordering = o.ordering;
+  if (set.kind() == TileKind::Window) {
+    plan_window(p, o, pl);
+    return pl;
+  }
   if (!o.impose.empty()) {
     // Under a group the model is the fundamental domain of pegs (corner) or edges (Wang).
     pl.group = build_group(p, o.impose);
@@ -173,6 +210,14 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
     for (TileIndex t : pl.lift->base.cells) base.add(t, 4);
     j["lift"] = {{"spec", pl.lift->spec.text()}, {"base_hash", fmt::format("{:016x}", base.fnv())}};
   }
+  if (pl.window) j["window"] = {p.set.window_rows(), p.set.window_cols()};
+  if (pl.window_lift) {
+    StableHash base;
+    for (TileIndex t : pl.window_lift->base.cells) base.add(t, 4);
+    j["lift"] = {{"spec", pl.window_lift->row_difference ? std::string("rows") : pl.window_lift->spec.text()},
+                 {"base", {pl.window_lift->base.rows, pl.window_lift->base.cols}},
+                 {"base_hash", fmt::format("{:016x}", base.fnv())}};
+  }
   if (pl.group) {
     j["impose"] = pl.group->spec_text();
     j["patterns"] = o.impose_patterns;
@@ -182,12 +227,27 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
 
 // Every solution leaves through here: the independent validator and, under a group, the
 // invariance check. A failure is a solver bug, never bad input.
+// A window torus is invariant under an imposed group when P(x + t) = pi(P(x)) for every
+// generator, read on its symbols (the group acts on them as on the pegs of a corner torus).
+bool window_torus_invariant(const Tiling& t, const ImposedGroup& g) {
+  const std::vector<Colour> p = pegs_of_window_torus(t);
+  for (const GroupElement& e : g.elements())
+    for (int r = 0; r < t.rows; ++r)
+      for (int c = 0; c < t.cols; ++c) {
+        const std::size_t to = std::size_t((r + e.dr) % t.rows) * std::size_t(t.cols) + std::size_t((c + e.dc) % t.cols);
+        if (p[to] != e.ph[p[std::size_t(r) * std::size_t(t.cols) + std::size_t(c)]]) return false;
+      }
+  return true;
+}
+
 void check_solution(const Tiling& t, const TilingProblem& p, const Plan& pl) {
   ValidationReport rep = validate(t, &p.set);
   if (!rep.valid || (p.packing && p.torus && !rep.packing))
     throw std::logic_error("the solver produced a solution the validator rejects: " +
                            (rep.errors.empty() ? std::string("not a packing") : rep.errors.front()));
-  if (pl.group && !pl.group->is_invariant(t))
+  if (pl.window && pl.group && !window_torus_invariant(t, *pl.group))
+    throw std::logic_error("the solver produced a window torus that is not invariant under the imposed group");
+  if (!pl.window && pl.group && !pl.group->is_invariant(t))
     throw std::logic_error("the solver produced a solution that is not invariant under the imposed group");
 }
 
@@ -200,7 +260,7 @@ SearchResult new_result(const TilingProblem& p, const SearchOptions& o, const Pl
   if (pl.group) {
     res.group = pl.group->spec_text();
     res.group_order = pl.group->order();
-    res.sites = pl.domain->num_sites;
+    res.sites = pl.domain ? pl.domain->num_sites : p.rows * p.cols / int(pl.group->order());
   }
   return res;
 }
@@ -213,8 +273,9 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   std::optional<PackingSymmetry> sym;
   const bool translations = root.multiplicity() > 1;
-  const int step = translation_step(root);  // orbits are counted for whole-torus translations only
-  if (o.mode != SearchMode::First && o.count_orbits && translations && step == 1) sym = PackingSymmetry::for_problem(p);
+  const auto [step_r, step_c] = translation_steps(root);  // orbits are counted for whole-torus translations only
+  if (o.mode != SearchMode::First && o.count_orbits && translations && step_r == 1 && step_c == 1)
+    sym = PackingSymmetry::for_problem(p);
   if (sym) res.symmetry_order = sym->full_order();
 
   std::mutex emit_mu;
@@ -234,8 +295,8 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
       emit(t);
       res.found.push_back(t);
     } else if (translations) {
-      for (int r = 0; r < t.rows; r += step)
-        for (int col = 0; col < t.cols; col += step) emit(translate(t, r, col));
+      for (int r = 0; r < t.rows; r += step_r)
+        for (int col = 0; col < t.cols; col += step_c) emit(translate(t, r, col));
     } else {
       emit(t);
     }
@@ -312,6 +373,16 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.run.catch_signals) signals.emplace();
+  if (pl.window) {
+    const SymbolTies ties = pl.group         ? group_ties(problem, pl.group->elements())
+                            : pl.window_lift ? window_lift_ties(problem, *pl.window_lift)
+                                             : SymbolTies{};
+    const WindowLiftProblem* colour_lift = pl.window_lift && !pl.window_lift->row_difference ? &*pl.window_lift : nullptr;
+    if (pl.formulation == "sat")
+      return solve_window_sat(problem, colour_lift, ties, options, fingerprint(problem, options, pl));
+    if (colour_lift) return run_model(WindowLiftModel(*colour_lift), problem, options, pl);
+    return run_model(WindowModel(problem, 0, 0, ties), problem, options, pl);
+  }
   if (pl.lift && pl.formulation == "sat")
     return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
   if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);

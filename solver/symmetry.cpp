@@ -30,7 +30,8 @@ std::uint64_t factorial(std::uint32_t n) {
 }  // namespace
 
 std::optional<PackingSymmetry> PackingSymmetry::for_problem(const TilingProblem& p, std::size_t max_order) {
-  if (!p.packing || !p.torus || !is_complete(p.set)) return std::nullopt;
+  // Window tori (de Bruijn tori) get no orbits: their symmetries are not this group's.
+  if (!p.packing || !p.torus || p.set.kind() == TileKind::Window || !is_complete(p.set)) return std::nullopt;
   const TileSet& set = p.set;
   const std::uint32_t ch = set.horizontal_radix(), cv = set.vertical_radix();
   const bool wang = set.kind() == TileKind::Wang;

@@ -11,9 +11,13 @@ namespace tilekit {
 using Colour = std::uint32_t;
 using TileIndex = std::uint32_t;
 
-enum class TileKind { Wang, Corner };
+// Window: the K x L windows of a colouring of the lattice over C symbols (a de Bruijn torus or
+// perfect map holds each once; tilesets/window_torus.hpp). Corner tiles are the 2 x 2 case.
+enum class TileKind { Wang, Corner, Window };
 
-constexpr std::string_view kind_name(TileKind k) { return k == TileKind::Wang ? "wang" : "corner"; }
+constexpr std::string_view kind_name(TileKind k) {
+  return k == TileKind::Wang ? "wang" : k == TileKind::Corner ? "corner" : "window";
+}
 
 // A Wang tile: one colour per edge. N and S edges are horizontal (C_h colours),
 // E and W edges are vertical (C_v colours).

@@ -9,6 +9,7 @@
 #include "base/error.hpp"
 #include "base/json_input.hpp"
 #include "tilesets/tile_set.hpp"
+#include "tilesets/window_torus.hpp"
 
 namespace tilekit {
 
@@ -28,6 +29,7 @@ nlohmann::json tiling_to_json(const Tiling& t) {
     j["horizontal_colors"] = t.ch();
     j["vertical_colors"] = t.cv();
   }
+  if (t.kind == TileKind::Window) j["window"] = {t.window_rows, t.window_cols};
   j["cells"] = std::move(cells);
   return j;
 }
@@ -37,7 +39,7 @@ namespace {
 constexpr std::string_view kPegDigits = "0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
 
 Tiling tiling_from_pegs_json(const Tiling& head, const JsonIn& rows) {
-  if (head.kind != TileKind::Corner || !head.torus) throw rows.error("\"pegs\" describes a corner torus only");
+  if (head.kind == TileKind::Wang || !head.torus) throw rows.error("\"pegs\" describes a corner or window torus only");
   if (head.colours > kPegDigits.size())
     throw rows.error(fmt::format("\"pegs\" holds at most {} colours", kPegDigits.size()));
   rows.array(std::size_t(head.rows), std::size_t(head.rows));
@@ -54,6 +56,8 @@ Tiling tiling_from_pegs_json(const Tiling& head, const JsonIn& rows) {
       pegs.push_back(Colour(d));
     }
   }
+  if (head.kind == TileKind::Window)
+    return window_torus_from_pegs(pegs, head.rows, head.cols, head.colours, head.window_rows, head.window_cols);
   return corner_torus_from_pegs(pegs, head.rows, head.cols, head.colours);
 }
 
@@ -78,20 +82,26 @@ std::vector<Colour> pegs_of_corner_torus(const Tiling& t) {
 }
 
 nlohmann::json tiling_to_peg_json(const Tiling& t) {
-  if (t.kind != TileKind::Corner || !t.torus) throw InputError("the peg form is for corner tori only");
+  if (t.kind == TileKind::Wang || !t.torus) throw InputError("the peg form is for corner and window tori only");
   if (t.colours > kPegDigits.size())
     throw InputError(fmt::format("the peg form holds at most {} colours, got {}", kPegDigits.size(), t.colours));
-  const std::vector<Colour> pegs = pegs_of_corner_torus(t);
-  if (corner_torus_from_pegs(pegs, t.rows, t.cols, t.colours).cells != t.cells)
-    throw InputError("neighbouring corners do not match: the tiling is not the window grid of a peg colouring");
+  const bool window = t.kind == TileKind::Window;
+  const std::vector<Colour> pegs = window ? pegs_of_window_torus(t) : pegs_of_corner_torus(t);
+  const Tiling again = window ? window_torus_from_pegs(pegs, t.rows, t.cols, t.colours, t.window_rows, t.window_cols)
+                              : corner_torus_from_pegs(pegs, t.rows, t.cols, t.colours);
+  if (again.cells != t.cells)
+    throw InputError("neighbouring windows do not match: the tiling is not the window grid of a peg colouring");
   nlohmann::json rows = nlohmann::json::array();
   for (int r = 0; r < t.rows; ++r) {
     std::string row;
     for (int c = 0; c < t.cols; ++c) row += kPegDigits[pegs[std::size_t(r) * std::size_t(t.cols) + std::size_t(c)]];
     rows.push_back(std::move(row));
   }
-  return {{"kind", "corner"}, {"colors", t.colours}, {"rows", t.rows}, {"cols", t.cols}, {"torus", true},
-          {"pegs", std::move(rows)}};
+  nlohmann::json j = {{"kind", std::string(kind_name(t.kind))}, {"colors", t.colours}, {"rows", t.rows},
+                      {"cols", t.cols}, {"torus", true}};
+  if (window) j["window"] = {t.window_rows, t.window_cols};
+  j["pegs"] = std::move(rows);
+  return j;
 }
 
 Tiling tiling_from_json(const nlohmann::json& doc, const std::string& origin) {
@@ -105,7 +115,8 @@ Tiling tiling_from_json(const JsonIn& j) {
   const std::string k = kind.string();
   if (k == "wang") t.kind = TileKind::Wang;
   else if (k == "corner") t.kind = TileKind::Corner;
-  else throw kind.error(fmt::format("unknown kind {} (expected \"wang\" or \"corner\")", kind.raw().dump()));
+  else if (k == "window") t.kind = TileKind::Window;
+  else throw kind.error(fmt::format("unknown kind {} (expected \"wang\", \"corner\" or \"window\")", kind.raw().dump()));
   // Colour counts as in tile sets (tilesets/tile_set.hpp): indices must fit in 32 bits.
   if (j.has("horizontal_colors")) {
     t.colours = std::uint32_t(j.at("horizontal_colors").integer(1, std::int64_t(kMaxWangColourProduct)));
@@ -114,8 +125,18 @@ Tiling tiling_from_json(const JsonIn& j) {
     t.colours = std::uint32_t(j.at("colors").integer(1, std::int64_t(kMaxWangColourProduct)));
   }
   const std::uint64_t product = std::uint64_t(t.ch()) * t.cv();
-  if (t.kind == TileKind::Corner ? t.colours > kMaxCornerColours : product > kMaxWangColourProduct)
+  if (t.kind == TileKind::Wang ? product > kMaxWangColourProduct : t.colours > kMaxCornerColours)
     throw j.error(fmt::format("{} colours: tile indices (thesis eq. 2.2/2.5) would not fit in 32 bits", product));
+  if (t.kind == TileKind::Window) {
+    // Window indices (window_torus.hpp) fit 32 bits while there are at most kMaxTiles windows.
+    const JsonIn w = j.at("window");
+    w.array(2, 2);
+    t.window_rows = int(w[0].integer(1, kMaxTilingSide));
+    t.window_cols = int(w[1].integer(1, kMaxTilingSide));
+    if (window_count(t.colours, t.window_rows, t.window_cols, kMaxTiles) == 0)
+      throw w.error(fmt::format("{}x{} windows over {} symbols are more than the limit of {} windows", t.window_rows,
+                                t.window_cols, t.colours, kMaxTiles));
+  }
   t.rows = int(j.at("rows").integer(1, kMaxTilingSide));
   t.cols = int(j.at("cols").integer(1, kMaxTilingSide));
   if (std::int64_t(t.rows) * t.cols > kMaxTilingCells)

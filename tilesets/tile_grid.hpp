@@ -23,6 +23,9 @@ struct Tiling {
   std::uint32_t colours = 0;           // C (the radix of N/S edges for Wang sets)
   std::uint32_t vertical_colours = 0;  // Wang only: radix of E/W edges; 0 means == colours
   int rows = 0, cols = 0;
+  // Window tori only (tilesets/window_torus.hpp): the window is K x L symbols, and cell (r,c)
+  // holds the index of the window whose top-left symbol is at (r,c).
+  int window_rows = 0, window_cols = 0;
   bool torus = false;
   std::vector<TileIndex> cells;        // rows*cols tile indices (thesis eq. 2.2 / 2.5)
 
@@ -47,9 +50,10 @@ Tiling tiling_from_json(const JsonIn& j);  // a tiling inside a larger document 
 // (C^2,C^2;2,2)_C de Bruijn torus of pegs: every 2x2 window of pegs occurs exactly once.
 Tiling corner_torus_from_pegs(const std::vector<Colour>& pegs, int rows, int cols, std::uint32_t colours);
 std::vector<Colour> pegs_of_corner_torus(const Tiling& t);  // the nw corner of every cell
-// The compact file form of a corner torus: "pegs" holds one string per row with one digit per
-// peg (0-9, a-z, A-Z, so at most 62 colours) instead of "cells" (a C=16 packing: 64 KiB instead
-// of 400 KiB). Throws InputError unless `t` is a corner torus whose cells are its pegs' windows.
+// The compact file form of a corner or window torus: "pegs" holds one string per row with one
+// digit per peg (0-9, a-z, A-Z, so at most 62 colours) instead of "cells" (a C=16 packing: 64 KiB
+// instead of 400 KiB). Throws InputError unless `t` is a corner or window torus whose cells are
+// its pegs' windows.
 nlohmann::json tiling_to_peg_json(const Tiling& t);
 Tiling read_tiling_file(const std::string& path);
 

@@ -78,12 +78,14 @@ void TileSet::check_distinct() const {
 }
 
 const std::vector<WangTile>& TileSet::wang_tiles() const {
-  if (kind_ != TileKind::Wang) throw InputError(fmt::format("tile set '{}' is a corner set, not a Wang set", name_));
+  if (kind_ != TileKind::Wang)
+    throw InputError(fmt::format("tile set '{}' is a {} set, not a Wang set", name_, kind_name(kind_)));
   return wang_;
 }
 
 const std::vector<CornerTile>& TileSet::corner_tiles() const {
-  if (kind_ != TileKind::Corner) throw InputError(fmt::format("tile set '{}' is a Wang set, not a corner set", name_));
+  if (kind_ != TileKind::Corner)
+    throw InputError(fmt::format("tile set '{}' is a {} set, not a corner set", name_, kind_name(kind_)));
   return corner_;
 }
 
@@ -97,20 +99,28 @@ std::uint32_t TileSet::vertical_colours() const {
 
 std::uint32_t TileSet::colours() const {
   if (kind_ == TileKind::Wang) return std::max(horizontal_colours(), vertical_colours());
+  if (kind_ == TileKind::Window) return ch_;  // every window: every symbol occurs
   return distinct(corner_, &CornerTile::ne, &CornerTile::se, &CornerTile::sw, &CornerTile::nw);
 }
 
 TileIndex TileSet::index_of(std::size_t k) const {
+  if (kind_ == TileKind::Window) return TileIndex(k);
   return kind_ == TileKind::Wang ? wang_index(wang_[k], ch_, cv_) : corner_index(corner_[k], ch_);
 }
 
 std::optional<std::size_t> TileSet::find_index(TileIndex i) const {
+  if (kind_ == TileKind::Window) return i < window_count_ ? std::optional<std::size_t>(i) : std::nullopt;
   for (std::size_t k = 0; k < size(); ++k)
     if (index_of(k) == i) return k;
   return std::nullopt;
 }
 
 std::vector<Colour> TileSet::file_colours(std::size_t k) const {
+  if (kind_ == TileKind::Window) {
+    std::vector<Colour> digits(std::size_t(window_rows_) * std::size_t(window_cols_));
+    for (std::size_t d = digits.size(); d-- > 0; k /= ch_) digits[d] = Colour(k % ch_);  // most significant first
+    return digits;
+  }
   if (kind_ == TileKind::Wang) {
     const WangTile& t = wang_[k];
     return {t.n, t.s, t.w, t.e};
@@ -140,6 +150,27 @@ TileSet complete_corner_set(std::uint32_t c) {
   for (TileIndex i = 0; i < n; ++i) tiles[i] = corner_tile(i, c);
   return TileSet::corner(std::move(tiles), fmt::format("complete-corner-{}", c),
                          "complete corner set (thesis sec. 2.7)", c);
+}
+
+TileSet complete_window_set(std::uint32_t colours, int rows, int cols) {
+  check_colour_count(colours);
+  if (rows < 1 || cols < 1) throw InputError(fmt::format("a window needs at least 1x1 symbols, got {}x{}", rows, cols));
+  std::uint64_t n = 1;
+  for (int d = 0; d < rows * cols; ++d) {
+    n *= colours;
+    if (n > kMaxTiles)
+      throw InputError(fmt::format("{}x{} windows over {} symbols are more than the limit of {} windows", rows, cols,
+                                   colours, kMaxTiles));
+  }
+  TileSet s;
+  s.kind_ = TileKind::Window;
+  s.ch_ = s.cv_ = colours;
+  s.window_rows_ = rows;
+  s.window_cols_ = cols;
+  s.window_count_ = std::size_t(n);
+  s.name_ = fmt::format("complete-window-{}x{}-{}", rows, cols, colours);
+  s.source_ = "every window of a de Bruijn torus (perfect map)";
+  return s;
 }
 
 TileSet corner_to_wang(const TileSet& corner) {

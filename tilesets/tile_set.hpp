@@ -34,7 +34,12 @@ class TileSet {
                         std::uint32_t c = 0);
 
   TileKind kind() const { return kind_; }
-  std::size_t size() const { return kind_ == TileKind::Wang ? wang_.size() : corner_.size(); }
+  std::size_t size() const {
+    return kind_ == TileKind::Wang ? wang_.size() : kind_ == TileKind::Corner ? corner_.size() : window_count_;
+  }
+  // Window sets (complete_window_set()): the window's rows K and columns L; 0 for other sets.
+  int window_rows() const { return window_rows_; }
+  int window_cols() const { return window_cols_; }
   bool empty() const { return size() == 0; }
   const std::vector<WangTile>& wang_tiles() const;
   const std::vector<CornerTile>& corner_tiles() const;
@@ -52,7 +57,8 @@ class TileSet {
   TileIndex index_of(std::size_t k) const;
   // Tile number of the tile with this index, if the set holds it.
   std::optional<std::size_t> find_index(TileIndex i) const;
-  // The four colours of tile k in file order: n s w e (Wang) or nw ne sw se (corner).
+  // The colours of tile k in file order: n s w e (Wang), nw ne sw se (corner), or the window's
+  // K x L symbols row by row.
   std::vector<Colour> file_colours(std::size_t k) const;
 
   const std::string& name() const { return name_; }
@@ -66,13 +72,19 @@ class TileSet {
   std::vector<WangTile> wang_;
   std::vector<CornerTile> corner_;
   std::uint32_t ch_ = 0, cv_ = 0;
+  int window_rows_ = 0, window_cols_ = 0;
+  std::size_t window_count_ = 0;
   std::string name_, source_;
+  friend TileSet complete_window_set(std::uint32_t colours, int rows, int cols);
 };
 
 // Complete sets: every combination of colours (thesis sec. 2.7, Fig. 2.4).
 // Tiles are listed in index order, so tile number == tile index.
 TileSet complete_wang_set(std::uint32_t ch, std::uint32_t cv);
 TileSet complete_corner_set(std::uint32_t c);
+// Every K x L window over C symbols (a perfect map's "tiles"), tile number == window index
+// (tilesets/window_torus.hpp); nothing is stored per window. InputError beyond kMaxTiles windows.
+TileSet complete_window_set(std::uint32_t colours, int rows, int cols);
 
 // Corner set -> equivalent Wang set (thesis sec. 2.9): the pair of corner colours along an
 // edge becomes one edge colour, pair (a, b) -> a*C + b read clockwise from the tile's

@@ -48,9 +48,82 @@ class IndexSet {
   std::unordered_set<TileIndex> sparse_;
 };
 
+// Window tori (tilesets/window_torus.hpp), decoded here on their own: each cell's index gives
+// its K x L symbols (row by row, the first most significant); neighbouring windows must agree
+// where they overlap (the right one shifted by a column, the lower one by a row), which on a
+// torus is exactly "the windows of one colouring"; a packing holds every window once.
+ValidationReport validate_windows(const Tiling& t, const TileSet* set, std::size_t max_errors) {
+  ValidationReport rep;
+  std::size_t error_count = 0;
+  auto error = [&](std::string msg) {
+    if (rep.errors.size() < max_errors) rep.errors.push_back(std::move(msg));
+    ++error_count;
+  };
+  const int K = t.window_rows, L = t.window_cols;
+  const std::uint64_t C = t.colours;
+  std::uint64_t windows = 1;
+  for (int d = 0; d < K * L && windows <= (std::uint64_t(1) << 32); ++d) windows *= C;
+  if (K < 1 || L < 1 || C < 1 || windows > (std::uint64_t(1) << 32)) {
+    rep.errors.push_back(fmt::format("a {}x{} window over {} symbols has no 32-bit index", K, L, C));
+    return rep;
+  }
+  if (t.rows < 1 || t.cols < 1 || t.cells.size() != std::size_t(t.rows) * std::size_t(t.cols)) {
+    rep.errors.push_back(fmt::format("grid has {} cells, expected {}x{}", t.cells.size(), t.rows, t.cols));
+    return rep;
+  }
+  if (set && (set->kind() != TileKind::Window || set->window_rows() != K || set->window_cols() != L ||
+              set->horizontal_radix() != C))
+    error(fmt::format("the tiling's {}x{} windows over {} symbols are not those of tile set '{}'", K, L, C,
+                      set->name()));
+  const std::size_t per = std::size_t(K) * std::size_t(L);
+  std::vector<std::uint32_t> digits(t.cells.size() * per);
+  for (std::size_t i = 0; i < t.cells.size(); ++i) {
+    std::uint64_t v = t.cells[i];
+    if (v >= windows) {
+      error(fmt::format("cell ({},{}): window index {} is out of range (< {})", i / std::size_t(t.cols),
+                        i % std::size_t(t.cols), v, windows));
+      continue;
+    }
+    for (std::size_t d = per; d-- > 0; v /= C) digits[i * per + d] = std::uint32_t(v % C);
+  }
+  auto sym = [&](int r, int c, int a, int b) {
+    return digits[(std::size_t(r) * std::size_t(t.cols) + std::size_t(c)) * per + std::size_t(a) * std::size_t(L) +
+                  std::size_t(b)];
+  };
+  if (error_count == 0)
+    for (int r = 0; r < t.rows; ++r)
+      for (int c = 0; c < t.cols; ++c) {
+        if (c + 1 < t.cols || t.torus) {
+          const int c1 = (c + 1) % t.cols;
+          bool ok = true;
+          for (int a = 0; a < K; ++a)
+            for (int b = 0; b + 1 < L; ++b) ok = ok && sym(r, c, a, b + 1) == sym(r, c1, a, b);
+          if (!ok) error(fmt::format("the windows at ({},{}) and ({},{}) do not overlap consistently", r, c, r, c1));
+        }
+        if (r + 1 < t.rows || t.torus) {
+          const int r1 = (r + 1) % t.rows;
+          bool ok = true;
+          for (int a = 0; a + 1 < K; ++a)
+            for (int b = 0; b < L; ++b) ok = ok && sym(r, c, a + 1, b) == sym(r1, c, a, b);
+          if (!ok) error(fmt::format("the windows at ({},{}) and ({},{}) do not overlap consistently", r, c, r1, c));
+        }
+      }
+  rep.valid = error_count == 0;
+  if (rep.valid && t.torus) {
+    IndexSet seen(windows);
+    std::size_t distinct = 0;
+    for (TileIndex i : t.cells) distinct += seen.insert(i);
+    rep.packing = t.cells.size() == windows && distinct == windows;
+  }
+  if (error_count > rep.errors.size())
+    rep.errors.push_back(fmt::format("... and {} more errors", error_count - rep.errors.size()));
+  return rep;
+}
+
 }  // namespace
 
 ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_errors) {
+  if (t.kind == TileKind::Window) return validate_windows(t, set, max_errors);
   ValidationReport rep;
   std::size_t error_count = 0;
   auto error = [&](std::string msg) {
@@ -66,6 +139,10 @@ ValidationReport validate(const Tiling& t, const TileSet* set, std::size_t max_e
   }
   if (t.cells.size() != std::size_t(t.rows) * std::size_t(t.cols)) {
     rep.errors.push_back(fmt::format("grid has {} cells, expected {}x{}", t.cells.size(), t.rows, t.cols));
+    return rep;
+  }
+  if (set && set->kind() == TileKind::Window) {
+    rep.errors.push_back(fmt::format("a {} tiling is not made of the windows of '{}'", kind_name(t.kind), set->name()));
     return rep;
   }
   if (set) {

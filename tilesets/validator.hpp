@@ -1,7 +1,8 @@
 #pragma once
 // The independent validator. It shares no code with any generator or search: it decodes
-// tile indices itself (thesis eq. 2.3 / 2.6) and checks every edge of the grid, torus
-// wrap-around included, and, for packings, that every tile occurs exactly once.
+// tile indices itself (thesis eq. 2.3 / 2.6; window indices as tilesets/window_torus.hpp defines
+// them) and checks every edge of the grid (every overlap of neighbouring windows), torus
+// wrap-around included, and, for packings, that every tile (window) occurs exactly once.
 #include <string>
 #include <vector>
 

@@ -78,7 +78,7 @@ TEST(PackCli, BadFlagsAreExit2WithAClearMessage) {
   for (Case c :
        {Case{"--kind wang --colors 0", "--colors must be between 1 and 255, got 0"},
         Case{"--kind wang --colors 2 --threads 0", "--threads must be between 1 and 4096, got 0"},
-        Case{"--kind hexagon --colors 2", "unknown tile kind 'hexagon' (corner or wang)"},
+        Case{"--kind hexagon --colors 2", "unknown tile kind 'hexagon' (corner, wang or window)"},
         Case{"--kind wang --colors 2 --mode most", "unknown mode 'most'"},
         Case{"--kind wang --colors 2 --shard 4/4", "--shard must be I/N with 0 <= I < N <= 1000000, got '4/4'"},
         Case{"--kind wang --colors 2 --formulation pegs", "pegs formulation is for corner tiles"},
