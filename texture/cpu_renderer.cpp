@@ -67,8 +67,7 @@ std::array<float, 4> sample_trilinear(const TextureAtlas& a, float s, float t, f
 Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o) {
   const ViewRows vr = view_rows(view, a.tile_px);
   const VirtualTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
-  Image out{view.width, view.height,
-                std::vector<std::uint8_t>(std::size_t(view.width) * std::size_t(view.height) * 4)};
+  Image out{view.width, view.height, std::vector<std::uint8_t>(std::size_t(view.width) * std::size_t(view.height) * 4)};
   const float inv_cols = 1.0f / float(a.lookup.cols), inv_rows = 1.0f / float(a.lookup.rows);
   ProgressReporter progress(fmt::format("render {}x{}", view.width, view.height), view.height, o.progress);
   parallel_for(view.height, o.threads, [&](std::int64_t j) {

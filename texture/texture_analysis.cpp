@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "base/fft.hpp"
 #include "base/parallel.hpp"
+#include "texture/exemplar.hpp"
 #include "texture/seam_metrics.hpp"
 
 namespace tilekit {
@@ -164,8 +165,7 @@ std::vector<float> luminance(const Image& img) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const std::uint8_t* p = img.at(x, y);
-      lum[std::size_t(y) * std::size_t(img.width) + std::size_t(x)] =
-          img.channels == 1 ? float(p[0]) : 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2];
+      lum[std::size_t(y) * std::size_t(img.width) + std::size_t(x)] = img.channels == 1 ? float(p[0]) : luma(p);
     }
   return lum;
 }
