@@ -37,46 +37,71 @@ HashKind hash_option(const std::string& name) {
   return parse_hash_kind(name);
 }
 
+struct TilesArgs {
+  std::string exemplar, kind = "corner", out, period = "auto";
+  SynthesisOptions o;
+  int threads = 0;
+  bool tileable = false, quiet = false;
+};
+
 void add_tiles(CLI::App& texture, Context& ctx) {
   auto* cmd =
       texture.add_subcommand("tiles", "Synthesise the complete corner or Wang texture tile set from an exemplar");
-  static std::string exemplar, kind = "corner", out;
-  static SynthesisOptions o;
-  static int threads = 0;
-  static bool quiet = false;
-  cmd->add_option("--exemplar", exemplar,
-                  "Example texture (PNG or JPEG), or a fetched real texture by name: brick, grass, gravel")
+  auto a = std::make_shared<TilesArgs>();
+  cmd->add_option("--exemplar", a->exemplar,
+                  "Example texture (PNG, JPEG, TGA, PPM), or a fetched real texture by name: brick, grass, gravel, "
+                  "gimp-stone33, gimp-walnut, oa-dirt, oa-brick, oa-rock")
       ->required();
-  cmd->add_option("--kind", kind, "corner (Ng et al., thesis 5.3) or wang (Cohen et al. 2003)")
-      ->check(CLI::IsMember({"corner", "wang"}))
+  cmd->add_flag("--tileable", a->tileable,
+                "The exemplar repeats seamlessly (a pattern or game texture): sample it as a torus "
+                "(the fetched gimp-* and oa-* textures are)");
+  cmd->add_option("--kind", a->kind, "corner or wang")->check(CLI::IsMember({"corner", "wang"}))->capture_default_str();
+  cmd->add_option("--colors", a->o.colours, "Colours C: the complete set has C^4 tiles")->required();
+  cmd->add_option("--tile-px", a->o.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
+  cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")
+      ->required();
+  cmd->add_option("--seed", a->o.seed, "Seed: the same seed gives the same tiles on any thread count")
       ->capture_default_str();
-  cmd->add_option("--colors", o.colours, "Colours C: the complete set has C^4 tiles")->required();
-  cmd->add_option("--tile-px", o.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
-  cmd->add_option("--out", out, "Folder for tile-NNNN.png (by tile index), tiles.json and tileset.png")->required();
-  cmd->add_option("--seed", o.seed, "Seed: the same seed gives the same tiles on any thread count")
+  cmd->add_option("--threads", a->threads, "Threads (default: every core)");
+  cmd->add_option("--search", a->o.search,
+                  "Candidate shared samples per sample and round (0: the first random draw, no search)")
       ->capture_default_str();
-  cmd->add_option("--threads", threads, "Threads (default: every core)");
-  cmd->add_option("--search", o.search, "Candidate samples per colour and round (0: the first random draw, no search)")
+  cmd->add_option("--centre-candidates", a->o.centre_candidates, "Centre patches scored per tile")
       ->capture_default_str();
-  cmd->add_flag("--quiet", quiet, "No progress output on stderr");
+  cmd->add_option("--centre-cuts", a->o.centre_cuts, "Of those, how many get the full graph cut")
+      ->capture_default_str();
+  cmd->add_option("--period", a->period,
+                  "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
+                  "phase); off: never")
+      ->check(CLI::IsMember({"auto", "off"}))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    o.kind = kind == "wang" ? TileKind::Wang : TileKind::Corner;
-    o.threads = threads_or_default(threads);
-    o.progress = !quiet;
-    const Exemplar e = load_exemplar(exemplar);
+  cmd->callback([a, &ctx] {
+    SynthesisOptions o = a->o;
+    o.kind = a->kind == "wang" ? TileKind::Wang : TileKind::Corner;
+    o.threads = threads_or_default(a->threads);
+    o.progress = !a->quiet;
+    o.keep_period = a->period == "auto";
+    const Exemplar e = load_exemplar(a->exemplar, a->tileable);
     const TextureTileSet s = synthesize_tiles(e, o);
-    write_tile_set(s, out, e.name);
+    write_tile_set(s, a->out, e.name);
     nlohmann::json j = tile_set_json(s);
     j["exemplar"] = e.name;
-    j["out"] = out;
-    j["sheet"] = (fs::path(out) / "tileset.png").string();
+    j["tileable"] = e.wrap_w > 0;
+    j["out"] = a->out;
+    j["sheet"] = (fs::path(a->out) / "tileset.png").string();
+    j["labels"] = (fs::path(a->out) / "labels").string();
     j["threads"] = o.threads;
     emit(ctx, j, [&] {
-      fmt::print("{}: {} {} texture tiles over {} colours, {}x{} px, from {} ({}, {:.2f} s)\n", out, s.tiles.size(),
-                 kind, o.colours, o.tile_px, o.tile_px, e.name, s.method, s.seconds);
+      fmt::print("{}: {} {} texture tiles over {} colours, {}x{} px, from {} ({}, {:.2f} s)\n", a->out, s.tiles.size(),
+                 a->kind, o.colours, o.tile_px, o.tile_px, e.name, s.method, s.seconds);
       fmt::print("boundary-cut error {:.1f} (first draw {:.1f}); picture of the set: {}\n", s.cut_error,
                  s.cut_error_initial, j["sheet"].get<std::string>());
+      if (s.exemplar_scale[0] != 1 || s.exemplar_scale[1] != 1)
+        fmt::print(
+            "periodic exemplar (period {:g} x {:g} px): resampled by {:.3f} x {:.3f} to whole periods per tile\n",
+            s.period.x, s.period.y, s.exemplar_scale[0], s.exemplar_scale[1]);
     });
   });
 }

@@ -43,9 +43,12 @@ class CornerSynthesis {
     draws_.emplace_back(e_, side, side);
     draws_.emplace_back(e_, band, 2 * E);
     draws_.emplace_back(e_, 2 * E, band);
-    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0});
-    for (std::uint32_t k = 0; k < c_ * c_; ++k) slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1});
-    for (std::uint32_t k = 0; k < c_ * c_; ++k) slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2});
+    for (std::uint32_t c = 0; c < c_; ++c)
+      slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0, c, c_});
+    for (std::uint32_t k = 0; k < c_ * c_; ++k)
+      slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1, k, c_ * c_});
+    for (std::uint32_t k = 0; k < c_ * c_; ++k)
+      slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2, k, c_ * c_});
   }
 
   TextureTileSet run() {
@@ -135,8 +138,7 @@ class CornerSynthesis {
   void choose_samples(TextureTileSet& s) {
     for (std::size_t j = 0; j < slots_.size(); ++j) {
       const SampleSlot& sl = slots_[j];
-      Pos p = draws_[std::size_t(sl.draw)](derive_seed(o_.seed, j));
-      if (j == 0) x_.set_phase(p, sl.u, sl.v);  // the first corner fixes the phase of all
+      const Pos p = draws_[std::size_t(sl.draw)](derive_seed(o_.seed, j), sl.stratum, sl.strata);
       pos_.push_back(x_.in_phase(p, sl.u, sl.v, sl.w, sl.h));
     }
     s.cut_error_initial = total_error(pos_);

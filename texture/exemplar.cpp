@@ -134,7 +134,14 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
       }
       lowest = std::min(lowest, here);
     }
-    (axis == 0 ? p.x : p.y) = best;
+    double period = best;
+    if (best > 0) {  // the peak between lags, by a parabola through it and its neighbours
+      const double a = v[std::size_t(best) - 1], b = v[std::size_t(best)], c = v[std::size_t(best) + 1];
+      if (a - 2 * b + c < 0) period += 0.5 * (a - c) / (a - 2 * b + c);
+      const int wrap = axis == 0 ? e.wrap_w : e.wrap_h;  // a torus holds a whole number of periods
+      if (wrap) period = wrap / std::max(1.0, std::round(wrap / period));
+    }
+    (axis == 0 ? p.x : p.y) = period;
     (axis == 0 ? p.strength_x : p.strength_y) = strength;
   }
   return p;

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <numeric>
 
 #include "base/atomic_file.hpp"
@@ -19,7 +21,7 @@ namespace tilekit {
 
 TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
   margin = std::max(3, n / 16);
-  strip = margin + std::max(2, n / 16);
+  strip = margin + std::max(2, 3 * n / 32);
   extent = strip + 2;
 }
 
@@ -73,6 +75,32 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
     step_[std::size_t(axis)] = o.tile_px / k;
   }
   if (scale_[0] != 1 || scale_[1] != 1) e_ = resample_exemplar(e, scale_[0], scale_[1]);
+  // The phase: that of a tile-sized window in the middle of the exemplar, shown at a tile corner.
+  const int n = o.tile_px;
+  const std::array<int, 2> p{std::max(0, (e_.width() - n) / 2), std::max(0, (e_.height() - n) / 2)};
+  for (std::size_t k = 0; k < 2; ++k)
+    if (step_[k] > 0) {
+      phase_[k] = std::fmod(p[k], step_[k]);
+      lines_[k] = line_phase(p, 0, std::min(n, e_.width() - p[0] - 1), std::min(n, e_.height() - p[1] - 1), k);
+    }
+}
+
+double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const {
+  const double step = step_[axis];
+  std::complex<double> sum = 0;
+  double total = 0;
+  const int along = axis == 0 ? w : h, across = axis == 0 ? h : w;
+  for (int c = 0; c + 1 < along; ++c) {
+    double g = 0;  // the gradient along the axis, summed across the window
+    for (int r = 0; r < across; ++r) {
+      const int x = p[0] + (axis == 0 ? c : r), y = p[1] + (axis == 0 ? r : c);
+      g += std::abs(luma(e_.at(x + (axis == 0), y + (axis == 1))) - luma(e_.at(x, y)));
+    }
+    sum += g * std::polar(1.0, -2 * std::numbers::pi * (u + c + 0.5) / step);
+    total += g;
+  }
+  if (total <= 0 || std::abs(sum) < 0.1 * total) return std::nan("");
+  return std::fmod(-std::arg(sum) / (2 * std::numbers::pi) * step + step, step);
 }
 
 std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int v, int w, int h) const {
@@ -85,14 +113,13 @@ std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int 
     while (q > extent[k] - size[k]) q -= step;
     while (q < 0) q += step;
     p[k] = std::clamp(int(std::lround(q)), 0, extent[k] - size[k]);
+    const double lines = line_phase(p, uv[k], w, h, k);
+    if (std::isnan(lines) || std::isnan(lines_[k])) continue;
+    // moving the window by s moves its lines by -s in lattice coordinates
+    const double s = std::remainder(lines - lines_[k], step);
+    if (std::abs(s) <= step / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);
   }
   return p;
-}
-
-void SynthesisExemplar::set_phase(std::array<int, 2> p, int u, int v) {
-  const int uv[2] = {u, v};
-  for (std::size_t k = 0; k < 2; ++k)
-    if (step_[k] > 0) phase_[k] = std::fmod(std::fmod(p[k] - uv[k], step_[k]) + step_[k], step_[k]);
 }
 
 SampleDraw::SampleDraw(const Exemplar& e, int w, int h) : e_(&e), w_(w), h_(h) {
@@ -178,7 +205,8 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
       std::vector<SampleScore> scores(cand.size());
       const std::uint64_t stream = derive_seed(o.seed, 1000 + std::uint64_t(round) * samples.size() + j);
       for (std::size_t k = 0; k < cand.size(); ++k)
-        cand[k] = x.in_phase(draws[std::size_t(s.draw)](derive_seed(stream, k)), s.u, s.v, s.w, s.h);
+        cand[k] =
+            x.in_phase(draws[std::size_t(s.draw)](derive_seed(stream, k), s.stratum, s.strata), s.u, s.v, s.w, s.h);
       parallel_for(std::int64_t(cand.size()), o.threads, [&](std::int64_t k) {
         std::vector<std::array<int, 2>> pos = samples;
         pos[j] = cand[std::size_t(k)];
@@ -211,31 +239,63 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (region[i] && !forced[i]) band.push_back(i);
     }
   const SampleDraw draw(e, n, n);
-  std::vector<std::size_t> stratum(count);
-  std::iota(stratum.begin(), stratum.end(), 0);
-  SplitMix64 rng(derive_seed(o.seed, 6000));
-  shuffle(stratum.begin(), stratum.end(), rng);
-  std::vector<double> cost(count);
   const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
-  ProgressReporter progress(title, double(count), o.progress);
+  ProgressReporter progress(title, 2.0 * double(count), o.progress);
+  // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on
+  //    the band where the cut runs.
+  using Scored = std::pair<double, std::array<int, 2>>;
+  std::vector<std::vector<Scored>> ranked(count);
   parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
     const std::size_t t = std::size_t(ti);
-    Image& img = s.tiles[t];
-    std::vector<std::pair<double, std::array<int, 2>>> scored;
+    const Image& img = s.tiles[t];
     for (int k = 0; k < candidates; ++k) {
       const std::array<int, 2> q =
-          x.in_phase(draw(derive_seed(derive_seed(o.seed, 7000 + t), std::uint64_t(k)), stratum[t], count), 0, 0, n, n);
+          x.in_phase(draw(derive_seed(derive_seed(o.seed, 7000 + t), std::uint64_t(k))), 0, 0, n, n);
       double d = 0;
       for (std::size_t i : band)
         d += colour_distance(img.pixels.data() + 4 * i,
                              e.at(q[0] + int(i % std::size_t(n)), q[1] + int(i / std::size_t(n))));
-      scored.push_back({d, q});
+      ranked[t].push_back({d, q});
     }
-    std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(ranked[t].begin(), ranked[t].end(),
+                     [](const Scored& a, const Scored& b) { return a.first < b.first; });
+    progress.add(1);
+  });
+  // 2. Distinct regions: in a seeded order, each tile keeps its best candidates that lie at least
+  //    `apart` (in x or y, on the torus of a tileable exemplar) from every patch kept before, half
+  //    the side of an equal share of the exemplar (the best one anyway when none does).
+  const double area = double(e.wrap_w ? e.wrap_w : e.width() - n) * double(e.wrap_h ? e.wrap_h : e.height() - n);
+  const int apart = std::max(1, int(0.5 * std::sqrt(area / double(count))));
+  auto gap = [&](int a, int b, int wrap) {
+    const int d = std::abs(a - b);
+    return wrap ? std::min(d % wrap, wrap - d % wrap) : d;
+  };
+  std::vector<std::size_t> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  SplitMix64 rng(derive_seed(o.seed, 6000));
+  shuffle(order.begin(), order.end(), rng);
+  std::vector<std::array<int, 2>> kept;
+  std::vector<std::vector<std::array<int, 2>>> chosen(count);
+  for (std::size_t t : order) {
+    for (const Scored& c : ranked[t]) {
+      if (int(chosen[t].size()) == cuts) break;
+      const bool far = std::all_of(kept.begin(), kept.end(), [&](const std::array<int, 2>& p) {
+        return gap(p[0], c.second[0], e.wrap_w) >= apart || gap(p[1], c.second[1], e.wrap_h) >= apart;
+      });
+      if (far) chosen[t].push_back(c.second);
+    }
+    if (chosen[t].empty()) chosen[t].push_back(ranked[t].front().second);
+    kept.insert(kept.end(), chosen[t].begin(), chosen[t].end());
+  }
+  // 3. The full graph cut for each tile's kept candidates; the cheapest wins.
+  std::vector<double> cost(count);
+  parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
+    const std::size_t t = std::size_t(ti);
+    Image& img = s.tiles[t];
     Image patch{n, n, std::vector<std::uint8_t>(px * 4)}, best_patch;
     GraphCutResult best;
-    for (int k = 0; k < std::min(cuts, candidates); ++k) {
-      const std::array<int, 2> q = scored[std::size_t(k)].second;
+    for (std::size_t k = 0; k < chosen[t].size(); ++k) {
+      const std::array<int, 2> q = chosen[t][k];
       for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
       GraphCutResult r = graph_cut_merge(img, patch, region, forced);
       if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch;

@@ -100,7 +100,11 @@ double seam_goal_miss(double border_to_own_activity);
 // period (keep_period), and the phase every sample keeps. A sample shown with its top-left at
 // (u, v) in lattice coordinates (tile corners at multiples of n) is taken from an exemplar
 // position congruent to (u, v) + phase modulo the period, so that bricks continue across every
-// cut and every tile border (exemplar.hpp, dominant_period).
+// cut and every tile border (exemplar.hpp, dominant_period). A photographed wall is periodic
+// only roughly (perspective bends and spreads its mortar lines), so the position is then
+// refined by up to a quarter period: where the window's lines (the period's Fourier component of
+// its gradient profile along the axis) are clear, they are put where the lines of a tile-sized
+// window in the middle of the exemplar are, shown at a tile corner.
 class SynthesisExemplar {
  public:
   SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o);
@@ -110,13 +114,16 @@ class SynthesisExemplar {
   bool periodic() const { return step_[0] > 0 || step_[1] > 0; }
   // The position nearest p that keeps the phase for a w x h sample shown at lattice (u, v).
   std::array<int, 2> in_phase(std::array<int, 2> p, int u, int v, int w, int h) const;
-  // Fixes the phase so that position p keeps it for a sample shown at (u, v).
-  void set_phase(std::array<int, 2> p, int u, int v);
 
  private:
+  // Where the lines of a w x h window at p lie along an axis, in lattice coordinates modulo the
+  // step (the window shown at lattice u), and how clear they are (0..1); NaN when unclear.
+  double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const;
+
   Exemplar e_;
   ExemplarPeriod found_;
   std::array<double, 2> scale_{1, 1}, step_{0, 0}, phase_{0, 0};  // step: the period after resampling
+  std::array<double, 2> lines_{0, 0};                             // the reference's line phase (NaN: unclear)
 };
 
 // Draws positions of w x h samples uniformly among the typical ones: those whose activity (mean
@@ -150,6 +157,10 @@ struct SampleSlot {
   int line_x = 0, line_y = 0, line_length = 0;
   bool line_horizontal = true;
   int draw = 0;  // which SampleDraw (one per window size)
+  // Drawn from stratum k of `strata` of the exemplar (SampleDraw): the samples of one kind
+  // spread over the whole exemplar, so they are far apart and differ in appearance as the
+  // exemplar's regions do.
+  std::size_t stratum = 0, strata = 1;
 };
 
 // The score of a sample in the search: first how far its border line misses the seam goal (0

@@ -43,8 +43,8 @@ class WangSynthesis {
     const int n = g_.n, E = g_.extent;
     draws_.emplace_back(e_, n, 2 * E);
     draws_.emplace_back(e_, 2 * E, n);
-    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0});
-    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1});
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0, c, c_});
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1, c, c_});
   }
 
   TextureTileSet run() {
@@ -131,8 +131,7 @@ class WangSynthesis {
   void choose_samples(TextureTileSet& s) {
     for (std::size_t j = 0; j < slots_.size(); ++j) {
       const SampleSlot& sl = slots_[j];
-      Pos p = draws_[std::size_t(sl.draw)](derive_seed(o_.seed, j));
-      if (j == 0) x_.set_phase(p, sl.u, sl.v);  // the first sample fixes the phase of all
+      const Pos p = draws_[std::size_t(sl.draw)](derive_seed(o_.seed, j), sl.stratum, sl.strata);
       pos_.push_back(x_.in_phase(p, sl.u, sl.v, sl.w, sl.h));
     }
     s.cut_error_initial = total_error(pos_);
