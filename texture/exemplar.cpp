@@ -125,15 +125,27 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
     const int reach = (axis == 0 ? w : h) / 3;
     std::vector<double> v(std::size_t(reach) + 2);
     for (int d = 1; d <= reach + 1; ++d) v[std::size_t(d)] = axis == 0 ? r(d, 0) : r(0, d);
-    double best = 0, strength = 0, lowest = 1;
+    // the local maxima far enough above the lowest value before them; the shortest of those
+    // within 3 % of the highest (whole multiples of a period rise as high as the period)
+    std::vector<std::pair<int, double>> peaks;
+    double lowest = 1;
     for (int d = 1; d <= reach; ++d) {
       const double here = v[std::size_t(d)];
-      if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here - lowest > 0) {
+      if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
         const double rise = (here - lowest) / (1 - lowest);
-        if (rise >= kPeriodProminence && (best == 0 || here > v[std::size_t(best)])) best = d, strength = rise;
+        if (rise >= kPeriodProminence) peaks.push_back({d, rise});
       }
       lowest = std::min(lowest, here);
     }
+    double top = 0;
+    for (const auto& [d, rise] : peaks) top = std::max(top, rise);
+    int best = 0;
+    double strength = 0;
+    for (const auto& [d, rise] : peaks)
+      if (rise >= 0.97 * top) {
+        best = d, strength = rise;
+        break;
+      }
     double period = best;
     if (best > 0) {  // the peak between lags, by a parabola through it and its neighbours
       const double a = v[std::size_t(best) - 1], b = v[std::size_t(best)], c = v[std::size_t(best) + 1];

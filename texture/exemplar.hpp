@@ -40,10 +40,11 @@ Exemplar exemplar_from_image(Image image, std::string name, bool tileable = fals
 Exemplar resample_exemplar(const Exemplar& e, double sx, double sy);
 
 // The dominant period of the exemplar along x and along y (0: none), from the autocorrelation
-// of its gradient magnitude (so that mortar lines and joints count, not slow shading): the lag
-// of the highest local maximum in 6 .. side/3 whose rise above the lowest value at shorter lags
-// is at least kPeriodProminence of the way to 1, between lags by a parabola through the peak, and
-// on a torus the nearest whole fraction of it. Staggered bricks give the full bond (two rows),
+// of its gradient magnitude (so that mortar lines and joints count, not slow shading): among the
+// local maxima in 6 .. side/3 whose rise above the lowest value at shorter lags is at least
+// kPeriodProminence of the way to 1, the shortest lag that rises within 3 % as high as the
+// highest (multiples of the period rise as high); between lags by a parabola through the peak,
+// and on a torus the nearest whole fraction of it. Staggered bricks give the full bond (two rows),
 // since only there do both the joints and the mortar lines align.
 struct ExemplarPeriod {
   double x = 0, y = 0;

@@ -20,7 +20,7 @@
 namespace tilekit {
 
 TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
-  margin = std::max(3, n / 16);
+  margin = std::max(3, 5 * n / 64);
   strip = margin + std::max(2, 3 * n / 32);
   extent = strip + 2;
 }
@@ -289,6 +289,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
   }
   // 3. The full graph cut for each tile's kept candidates; the cheapest wins.
   std::vector<double> cost(count);
+  s.centres.assign(count, {0, 0});
   parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
     const std::size_t t = std::size_t(ti);
     Image& img = s.tiles[t];
@@ -298,7 +299,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       const std::array<int, 2> q = chosen[t][k];
       for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
       GraphCutResult r = graph_cut_merge(img, patch, region, forced);
-      if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch;
+      if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch, s.centres[t] = q;
     }
     for (std::size_t i = 0; i < px; ++i)
       if (best.take_new[i]) {

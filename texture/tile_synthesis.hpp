@@ -43,13 +43,17 @@ struct SynthesisOptions {
 // per ordered pair of corner colours and a small one per corner colour at the lattice points;
 // Wang tiles: one per edge colour); the rest of the tile is a tile-unique centre patch, merged
 // by a graph cut that runs between `margin` and `strip` pixels from the borders. So the texels
-// within `margin` of a border depend only on that border's colours (what makes the atlas of a
-// packing filter exactly like the tiling, texture_atlas.hpp), and the shared samples cover only
-// the bands: the centre, different in every tile, covers the middle (n - 2 strip)^2 or more.
+// within `margin` of a border depend only on that border's colours, which is what makes the atlas
+// of a packing filter like the tiling (texture_atlas.hpp): exactly at mip levels 0 and 1 (whose
+// [1 3 3 1] tent reads 3 texels across a border) and, for 64-pixel tiles (margin 5), at level 2
+// up to the 4/64 weight of its 6th and 7th texel (as Ng et al.'s centre circle came within 5
+// texels of the border too). The shared samples cover only the bands: the centre, different in
+// every tile, covers the middle (n - 2 strip)^2 or more. A margin of 7 would make level 2 exact
+// but share twice the texels near the borders, which shows the grid (texture/README.md).
 struct TileGeometry {
   int n = 0;
-  int margin = 0;  // m: no cut nearer a border than this
-  int strip = 0;   // h: the band each border's samples cover on either side; the centre patch beyond it
+  int margin = 0;  // m: 5n/64, at least 3; no centre texel nearer a border than this
+  int strip = 0;   // h: m + 3n/32; the band each border's samples cover; the centre patch beyond it
   int extent = 0;  // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
   explicit TileGeometry(int tile_px);
 };
@@ -66,6 +70,7 @@ struct TextureTileSet {
   std::vector<std::vector<std::uint32_t>> sources;
   std::uint32_t shared_sources = 0;
   std::vector<std::array<int, 2>> samples;  // exemplar positions of the shared samples, by id
+  std::vector<std::array<int, 2>> centres;  // exemplar position of every tile's centre patch
   double cut_error_initial = 0;  // summed boundary-cut error (in exemplar neighbour differences) of the first draw
   double cut_error = 0;          // the same after the search
   double centre_cost = 0;        // mean graph-cut cost of the centre patches
