@@ -366,6 +366,9 @@ void add_analyze(CLI::App& texture, Context& ctx) {
       if (!fs::is_directory(dir, ec))
         throw InputError(fmt::format("{}: no folder {} to write the plot in", a->plot, dir.string()));
     }
+    if (std::error_code ec; !a->plot.empty() && fs::is_directory(a->plot, ec)) {
+      throw InputError(fmt::format("{}: is a folder, not a file to write the plot to", a->plot));
+    }
     const TextureAnalysis r =
         analyze_texture(img, l, exemplar ? &*exemplar : nullptr, labels ? &*labels : nullptr, threads);
     if (!a->plot.empty()) write_png(a->plot, spectrum_plot(r, fs::path(a->image).filename().string()));
