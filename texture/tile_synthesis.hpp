@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -128,7 +129,7 @@ class SynthesisExemplar {
   Exemplar e_;
   ExemplarPeriod found_;
   std::array<double, 2> scale_{1, 1}, step_{0, 0}, phase_{0, 0};  // step: the period after resampling
-  std::array<double, 2> lines_{0, 0};                             // the reference's line phase (NaN: unclear)
+  std::array<double, 2> lines_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
 };
 
 // Draws positions of w x h samples uniformly among the typical ones: those whose activity (mean
