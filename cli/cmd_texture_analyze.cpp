@@ -10,6 +10,7 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "cli/cmd_texture.hpp"
 #include "cli/command.hpp"
 #include "texture/exemplar.hpp"
 #include "texture/texture_analysis.hpp"
@@ -124,7 +125,7 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
 
 }  // namespace
 
-void add_texture_analyze_command(CLI::App& texture, Context& ctx) {
+void add_texture_analyze(CLI::App& texture, Context& ctx) {
   auto* cmd = texture.add_subcommand(
       "analyze", "Measure how a rendered texture shows its tiles: grid repetition, seams, cuts, histogram, spectrum");
   auto a = std::make_shared<AnalyzeArgs>();

@@ -35,6 +35,5 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx);
 void add_cluster_commands(CLI::App& app, Context& ctx);
 void add_points_commands(CLI::App& app, Context& ctx);
 void add_texture_commands(CLI::App& app, Context& ctx);
-void add_texture_analyze_command(CLI::App& texture, Context& ctx);  // under `texture`
 
 }  // namespace tilekit::cli

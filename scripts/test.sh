@@ -26,8 +26,10 @@ if [ "$mode" = sanitize ]; then
   exec "$root/scripts/sanitize.sh" asan "${args[@]}"
 fi
 "$root/scripts/build.sh"
-# setup.sh installed Mesa's EGL: the GLSL-vs-CPU tests must run (fail, not skip, without a context).
+# setup.sh installed Mesa's EGL and chromium: the GLSL-vs-CPU tests and the browser test of the
+# preview page must run (fail, not skip, without a context or a browser).
 export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
+export TILEKIT_REQUIRE_BROWSER=${TILEKIT_REQUIRE_BROWSER:-1}
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)" "${args[@]}")
 if [ "${TILEKIT_SKIP_SANITIZE:-0}" = 1 ]; then
   echo "test.sh: the sanitizer and fuzz runs were SKIPPED (TILEKIT_SKIP_SANITIZE=1)" >&2

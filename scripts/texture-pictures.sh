@@ -2,7 +2,9 @@
 # The README's texture pictures (docs/images/texture-*.png), each from a tilekit command:
 #   texture-gravel-{corner-tiles,atlas,surface}.png  the corner tile set (C = 2, 64 px) from the
 #       fetched CC0 gravel texture, its atlas laid out by the packing from `atlas lookup`, and a
-#       tilted render of the infinite virtual texture;
+#       tilted render of the infinite virtual texture (16x anisotropic filtering);
+#   texture-gravel-surface-{trilinear,hex,hpn}.png  the same view with trilinear filtering, and with
+#       the hex and hpn baselines;
 #   texture-grid-{grass,gravel,oa-dirt,gimp-stone33}.png  flat 256x256 renders of corner tiles
 #       (C = 4, 64 px) of four real textures, the grid hidden;
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
@@ -18,7 +20,12 @@ trap 'rm -rf "$work"' EXIT
 "$root/scripts/fetch-textures.sh"
 "$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --out "$work/tiles" --quiet
 "$tk" texture atlas "$work/tiles" --out "$work/atlas.png" --no-db
-"$tk" texture render --atlas "$work/atlas.png" --size 640x360 --scale 1 --tilt 2 --out "$img/texture-gravel-surface.png" --quiet
+view=(--size 640x360 --scale 1 --tilt 2 --quiet)
+"$tk" texture render --atlas "$work/atlas.png" "${view[@]}" --out "$img/texture-gravel-surface.png"
+"$tk" texture render --atlas "$work/atlas.png" "${view[@]}" --aniso 1 --out "$img/texture-gravel-surface-trilinear.png"
+for m in hex hpn; do
+  "$tk" texture render --method "$m" --exemplar gravel "${view[@]}" --out "$img/texture-gravel-surface-$m.png"
+done
 cp "$work/tiles/tileset.png" "$img/texture-gravel-corner-tiles.png"
 cp "$work/atlas.png" "$img/texture-gravel-atlas.png"
 for t in grass gravel oa-dirt gimp-stone33; do
@@ -31,4 +38,4 @@ done
 "$tk" texture render --atlas "$work/grass-labels/atlas.png" --size 256x256 --out "$img/texture-grid-labels.png" --quiet
 "$tk" texture render --atlas "$work/grass/atlas.png" --size 1024x1024 --out "$work/grass-1024.png" --quiet
 "$tk" texture analyze "$work/grass-1024.png" --tile-px 64 --exemplar grass --plot "$img/texture-grid-spectrum.png"
-echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface}.png, $img/texture-grid-*.png"
+echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface,surface-trilinear,surface-hex,surface-hpn}.png, $img/texture-grid-*.png"
