@@ -16,7 +16,7 @@ namespace tilekit {
 
 // The largest atlas: C = 64, a 4096 x 4096-tile atlas (C^4 = 16.8 M tiles, 64 MB of cells and
 // as much again of positions). With tiles of at least 4 pixels that is a 16384-pixel texture,
-// the largest most GPUs take; larger C (up to 255) ended in std::bad_alloc (issue 15).
+// the largest most GPUs take; larger C (up to 255) ended in std::bad_alloc.
 inline constexpr std::uint32_t kMaxAtlasColours = 64;
 
 struct AtlasLookup {

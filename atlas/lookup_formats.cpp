@@ -142,7 +142,7 @@ std::string lookup_glsl_position(const AtlasLookup& a) {
          "  return ivec2(tk_pair_position(n, s), tk_pair_position(w, e));\n"
          "}\n";
   } else {
-    s += "ivec2 tk_tile_position(int t) {  // de Bruijn rows shifted by triangular numbers (DESIGN.md)\n"
+    s += "ivec2 tk_tile_position(int t) {  // de Bruijn rows shifted by triangular numbers\n"
          "  int nw = t % TK_COLORS, sw = (t / TK_COLORS) % TK_COLORS;\n"
          "  int se = (t / (TK_COLORS * TK_COLORS)) % TK_COLORS, ne = t / (TK_COLORS * TK_COLORS * TK_COLORS);\n"
          "  int n = TK_COLORS * TK_COLORS;\n"

@@ -1,4 +1,4 @@
-// Texture tiles, atlases and renderers (issue 13), one JSON line per case, with a baseline timed
+// Texture tiles, atlases and renderers, one JSON line per case, with a baseline timed
 // in the same run. Usage: build/bench_texture [--reps R] [--quick] [--only PREFIX]
 //   synthesis/*  complete corner / Wang sets from grass, one thread (goal: C=2 < 1 s, C=3 < 5 s);
 //                baseline: naive tiles (copying the same pixels)

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs the whole test suite (docs/TESTING.md):
+#   0. the layer check (scripts/check-layers.sh: includes against each folder README's
+#      "May include" line, no cycles), before anything is built;
 #   1. ctest on the Release build (build/);
 #   2. ctest again on the AddressSanitizer + UndefinedBehaviorSanitizer build (build-asan/,
 #      LeakSanitizer on): the whole suite;
@@ -22,6 +24,7 @@ for a in "$@"; do
   esac
 done
 "$root/scripts/setup.sh"
+bash "$root/scripts/check-layers.sh"
 if [ "$mode" = sanitize ]; then
   exec "$root/scripts/sanitize.sh" asan "${args[@]}"
 fi

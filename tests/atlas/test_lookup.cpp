@@ -79,7 +79,7 @@ TEST(AtlasLookup, AStoredPackingInTheDatabaseComesFirst) {
 }
 
 TEST(AtlasLookup, EveryCornerColourCountFromTwoToThirtyTwoAnswersAValidatedPacking) {
-  // Issue 11: the odd closed form, coprime products, the stored packings and the binary lift.
+  // The odd closed form, coprime products, the stored packings and the binary lift.
   for (std::uint32_t c = 2; c <= 32; ++c) {
     AtlasLookup a = no_db(TileKind::Corner, c);
     EXPECT_EQ(a.source, "construct") << c;
