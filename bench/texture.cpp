@@ -95,7 +95,7 @@ void synthesis(const Exemplar& e, int reps, bool quick) {
 }
 
 void seams(int threads, bool quick) {
-  for (const std::string& name : real_texture_names()) {
+  for (const std::string name : {"brick", "grass", "gravel"}) {
     const Exemplar e = texture(name);
     for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
       const AtlasLookup lookup = atlas_lookup(kind, 2, {});

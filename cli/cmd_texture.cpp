@@ -1,6 +1,8 @@
 // tilekit texture tiles|atlas|render: texture tiles from an exemplar (thesis sec. 5.3), atlases
 // laid out by packings with mip chains (5.4), and renders of the infinite virtual texture on
 // the CPU or through GLSL (headless EGL, Mesa llvmpipe).
+#include "cli/cmd_texture.hpp"
+
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -9,9 +11,8 @@
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
-#include "results/results_db.hpp"
-#include "cli/cmd_texture.hpp"
 #include "cli/command.hpp"
+#include "results/results_db.hpp"
 #include "texture/glsl_sampler.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -31,10 +32,10 @@ HashKind hash_option(const std::string& name) {
 }
 
 struct TilesArgs {
-  std::string exemplar, kind = "corner", out;
-  SynthesisOptions synthesis;  // kind, threads and progress come from the fields here
+  std::string exemplar, kind = "corner", out, period = "auto";
+  SynthesisOptions synthesis;  // kind, threads, progress and keep_period come from the fields here
   int threads = 0;
-  bool quiet = false;
+  bool tileable = false, quiet = false;
 };
 
 void run_tiles(const TilesArgs& a, const Context& ctx) {
@@ -42,19 +43,25 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.kind = a.kind == "wang" ? TileKind::Wang : TileKind::Corner;
   o.threads = threads_or_default(a.threads);
   o.progress = !a.quiet;
-  const Exemplar e = load_exemplar(a.exemplar);
+  o.keep_period = a.period == "auto";
+  const Exemplar e = load_exemplar(a.exemplar, a.tileable);
   const TextureTileSet s = synthesize_tiles(e, o);
   write_tile_set(s, a.out, e.name);
   nlohmann::json j = tile_set_json(s);
   j["exemplar"] = e.name;
+  j["tileable"] = e.wrap_w > 0;
   j["out"] = a.out;
   j["sheet"] = (fs::path(a.out) / "tileset.png").string();
+  j["labels"] = (fs::path(a.out) / "labels").string();
   j["threads"] = o.threads;
   emit(ctx, j, [&] {
     fmt::print("{}: {} {} texture tiles over {} colours, {}x{} px, from {} ({}, {:.2f} s)\n", a.out, s.tiles.size(),
                a.kind, o.colours, o.tile_px, o.tile_px, e.name, s.method, s.seconds);
     fmt::print("boundary-cut error {:.1f} (first draw {:.1f}); picture of the set: {}\n", s.cut_error,
                s.cut_error_initial, j["sheet"].get<std::string>());
+    if (s.exemplar_scale[0] != 1 || s.exemplar_scale[1] != 1)
+      fmt::print("periodic exemplar (period {:g} x {:g} px): resampled by {:.3f} x {:.3f} to whole periods per tile\n",
+                 s.period.x, s.period.y, s.exemplar_scale[0], s.exemplar_scale[1]);
   });
 }
 
@@ -63,19 +70,33 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       texture.add_subcommand("tiles", "Synthesise the complete corner or Wang texture tile set from an exemplar");
   auto a = std::make_shared<TilesArgs>();
   cmd->add_option("--exemplar", a->exemplar,
-                  "Example texture (PNG or JPEG), or a fetched real texture by name: brick, grass, gravel")
+                  "Example texture (PNG, JPEG, TGA, PPM), or a fetched real texture by name: brick, grass, gravel, "
+                  "gimp-stone33, gimp-walnut, oa-dirt, oa-brick, oa-rock")
       ->required();
+  cmd->add_flag("--tileable", a->tileable,
+                "The exemplar repeats seamlessly (a pattern or game texture): sample it as a torus "
+                "(the fetched gimp-* and oa-* textures are)");
   cmd->add_option("--kind", a->kind, "corner (Ng et al., thesis 5.3) or wang (Cohen et al. 2003)")
       ->check(CLI::IsMember({"corner", "wang"}))
       ->capture_default_str();
   cmd->add_option("--colors", a->synthesis.colours, "Colours C: the complete set has C^4 tiles")->required();
   cmd->add_option("--tile-px", a->synthesis.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
-  cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json and tileset.png")->required();
+  cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")
+      ->required();
   cmd->add_option("--seed", a->synthesis.seed, "Seed: the same seed gives the same tiles on any thread count")
       ->capture_default_str();
   cmd->add_option("--threads", a->threads, "Threads (default: every core)");
   cmd->add_option("--search", a->synthesis.search,
-                  "Candidate samples per colour and round (0: the first random draw, no search)")
+                  "Candidate shared samples per sample and round (0: the first random draw, no search)")
+      ->capture_default_str();
+  cmd->add_option("--centre-candidates", a->synthesis.centre_candidates, "Centre patches scored per tile")
+      ->capture_default_str();
+  cmd->add_option("--centre-cuts", a->synthesis.centre_cuts, "Of those, how many get the full graph cut")
+      ->capture_default_str();
+  cmd->add_option("--period", a->period,
+                  "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
+                  "phase); off: never")
+      ->check(CLI::IsMember({"auto", "off"}))
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
@@ -152,6 +173,7 @@ void add_texture_commands(CLI::App& app, Context& ctx) {
   add_atlas(*texture, ctx);
   add_texture_render(*texture, ctx);
   add_texture_preview(*texture, ctx);
+  add_texture_analyze(*texture, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "base/error.hpp"
-#include "points/fft.hpp"
+#include "base/fft.hpp"
 
 namespace tilekit::points {
 

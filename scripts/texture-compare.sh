@@ -5,8 +5,10 @@
 # read) and a tilted 1024x576 view (what people look at), all from one seed.
 # Per texture and method it measures what needs no analysis: texture fetches per pixel, GLSL
 # M fragments/s on llvmpipe (LP_NUM_THREADS=2, 1024x1024 flat, 10 frames after a warm-up) and
-# texture memory; with `tilekit texture analyze` it adds that command's JSON for the flat render
-# (grid repetition, seam ratio, cut visibility, histogram distance).
+# texture memory; `tilekit texture analyze` adds its JSON for the flat render: grid repetition
+# (tiles on their square lattice, hex and hpn on their own triangle lattice of side cell_px),
+# seam ratio (square lattices only), cut visibility (tiles: with the labels of the same view;
+# hex and hpn blend and have no cuts) and histogram distance.
 # Usage: scripts/texture-compare.sh [EXEMPLAR...]   (default: every PNG in the texture cache)
 #   TILEKIT_COMPARE_OUT  output folder (default: out/texture-compare in the repository)
 # Writes OUT/NAME/{flat,tilted}-METHOD.png, OUT/results.jsonl (one JSON object per texture and
@@ -35,6 +37,10 @@ for ex in "$@"; do
   echo "texture-compare: $name" >&2
   "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 --out "$dir/tiles" --quiet >/dev/null
   "$tk" texture atlas "$dir/tiles" --out "$dir/atlas.png" --no-db >/dev/null
+  mkdir -p "$dir/labels"
+  "$tk" texture atlas "$dir/tiles/labels" --out "$dir/labels/atlas.png" --no-db >/dev/null
+  "$tk" texture render --atlas "$dir/labels/atlas.png" --seed 1 --quiet --size 1024x1024 --scale 1 \
+    --out "$dir/flat-labels.png" >/dev/null
   for m in tiles hex hpn; do
     src=(--method "$m" --atlas "$dir/atlas.png" --exemplar "$ex" --seed 1 --quiet)
     "$tk" texture render "${src[@]}" --size 1024x1024 --scale 1 --out "$dir/flat-$m.png" >/dev/null
@@ -46,11 +52,14 @@ for ex in "$@"; do
     memory=$(field memory_bytes "$j")
     a='null'
     if ((analyze)); then
-      # hex and hpn have no square tile lattice: their grid repetition is measured at the triangle
-      # grid's side (the cell), as `texture analyze` documents.
-      px=64
-      [ "$m" = tiles ] || px=$(field cell_px "$j")
-      a=$("$tk" texture analyze "$dir/flat-$m.png" --tile-px "${px%.*}" --exemplar "$ex" --json 2>/dev/null || echo null)
+      # hex and hpn: their triangle grid of side S = cell_px, basis (S,0) and (S/2, S sqrt(3)/2)
+      # (texture/baseline_samplers.hpp's skew, inverted), a vertex at the origin.
+      lattice=(--tile-px 64 --labels "$dir/flat-labels.png")
+      if [ "$m" != tiles ]; then
+        s=$(field cell_px "$j")
+        lattice=(--lattice "$(awk -v s="$s" 'BEGIN { printf "%g,0,%g,%g", s, s / 2, s * sqrt(3) / 2 }')")
+      fi
+      a=$("$tk" texture analyze "$dir/flat-$m.png" "${lattice[@]}" --exemplar "$ex" --json 2>/dev/null || echo null)
     fi
     echo "{\"texture\":\"$name\",\"method\":\"$m\",\"fetches_per_pixel\":${fetches:-null},\"glsl_mfragments_per_second\":${speed:-null},\"memory_bytes\":${memory:-null},\"analyze\":$a}" >>"$out/results.jsonl"
     mib=$(awk -v b="${memory:-0}" 'BEGIN { printf "%.2f", b / 1048576 }')

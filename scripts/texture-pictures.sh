@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
-# The README's texture pictures (docs/images/texture-*.png), each from a tilekit command: the
-# corner tile set (C = 2, 64 px) synthesised from the fetched CC0 gravel texture, its atlas laid
-# out by the packing from `atlas lookup`, a tilted render of the infinite virtual texture (16x
-# anisotropic filtering), the same view with trilinear filtering, and with the hex and hpn baselines.
-# The exemplar itself is never copied into the repository (scripts/fetch-textures.sh caches it).
+# The README's texture pictures (docs/images/texture-*.png), each from a tilekit command:
+#   texture-gravel-{corner-tiles,atlas,surface}.png  the corner tile set (C = 2, 64 px) from the
+#       fetched CC0 gravel texture, its atlas laid out by the packing from `atlas lookup`, and a
+#       tilted render of the infinite virtual texture (16x anisotropic filtering);
+#   texture-gravel-surface-{trilinear,hex,hpn}.png  the same view with trilinear filtering, and with
+#       the hex and hpn baselines;
+#   texture-grid-{grass,gravel,oa-dirt,gimp-stone33}.png  flat 256x256 renders of corner tiles
+#       (C = 4, 64 px) of four real textures, the grid hidden;
+#   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
+#       the borders, the corner squares, a centre patch per tile);
+#   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
+# The exemplars are never copied into the repository (scripts/fetch-textures.sh caches them).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tk="$root/build/tilekit"
@@ -21,4 +28,14 @@ for m in hex hpn; do
 done
 cp "$work/tiles/tileset.png" "$img/texture-gravel-corner-tiles.png"
 cp "$work/atlas.png" "$img/texture-gravel-atlas.png"
-echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface,surface-trilinear,surface-hex,surface-hpn}.png (exemplar: ${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}/gravel.png)"
+for t in grass gravel oa-dirt gimp-stone33; do
+  mkdir -p "$work/$t" "$work/$t-labels"
+  "$tk" texture tiles --exemplar "$t" --kind corner --colors 4 --tile-px 64 --seed 1 --out "$work/$t/tiles" --quiet
+  "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
+  "$tk" texture render --atlas "$work/$t/atlas.png" --size 256x256 --out "$img/texture-grid-$t.png" --quiet
+done
+"$tk" texture atlas "$work/grass/tiles/labels" --out "$work/grass-labels/atlas.png" --no-db
+"$tk" texture render --atlas "$work/grass-labels/atlas.png" --size 256x256 --out "$img/texture-grid-labels.png" --quiet
+"$tk" texture render --atlas "$work/grass/atlas.png" --size 1024x1024 --out "$work/grass-1024.png" --quiet
+"$tk" texture analyze "$work/grass-1024.png" --tile-px 64 --exemplar grass --plot "$img/texture-grid-spectrum.png"
+echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface,surface-trilinear,surface-hex,surface-hpn}.png, $img/texture-grid-*.png"

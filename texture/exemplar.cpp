@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -9,11 +10,40 @@
 
 namespace tilekit {
 
-Exemplar exemplar_from_image(Image image, std::string name) {
+namespace {
+
+// `img` repeated k times each way.
+Image repeated(const Image& img, int k) {
+  Image out(img.width * k, img.height * k, std::vector<std::uint8_t>(img.pixels.size() * std::size_t(k * k)),
+            img.channels);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) std::copy_n(img.at(x % img.width, y % img.height), img.channels, out.at(x, y));
+  return out;
+}
+
+}  // namespace
+
+Exemplar exemplar_from_image(Image image, std::string name, bool tileable) {
   if (image.width < kMinExemplarSide || image.height < kMinExemplarSide)
     throw InputError(fmt::format("{}: the exemplar is {}x{} pixels, too small for texture tiles (at least {}x{})", name,
                                  image.width, image.height, kMinExemplarSide, kMinExemplarSide));
+  if (image.channels == 1) {  // the exemplar is RGBA throughout
+    Image rgba(image.width, image.height);
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const std::uint8_t v = image.at(x, y)[0];
+        rgba.set(x, y, {v, v, v});
+      }
+    image = std::move(rgba);
+  }
   Exemplar e;
+  if (tileable) {
+    e.wrap_w = image.width;
+    e.wrap_h = image.height;
+    // copies enough for a window as large as the torus anywhere on it, and at least 512 pixels
+    const int k = std::max(2, (511 + std::min(image.width, image.height)) / std::min(image.width, image.height));
+    image = repeated(image, k);
+  }
   e.image = std::move(image);
   e.name = std::move(name);
   double sum = 0, steps = 0;
@@ -29,14 +59,104 @@ Exemplar exemplar_from_image(Image image, std::string name) {
   return e;
 }
 
-Exemplar load_exemplar(const std::string& path_or_name) {
+Exemplar load_exemplar(const std::string& path_or_name, bool tileable) {
   std::error_code ec;
   std::string path = path_or_name;
   if (!std::filesystem::exists(path, ec)) {
     const std::string cached = real_texture_path(path_or_name);
-    if (!cached.empty()) path = cached;
+    if (!cached.empty()) path = cached, tileable = tileable || is_tileable_real_texture(path_or_name);
   }
-  return exemplar_from_image(read_image(path), path);
+  return exemplar_from_image(read_image(path), path, tileable);
+}
+
+Exemplar resample_exemplar(const Exemplar& e, double sx, double sy) {
+  // the torus resamples as a torus; a plain exemplar loses no more than a pixel at its edges
+  const Image& src = e.image;
+  const int w0 = e.wrap_w ? e.wrap_w : src.width, h0 = e.wrap_h ? e.wrap_h : src.height;
+  const int w = std::max(kMinExemplarSide, int(std::lround(w0 * sx))),
+            h = std::max(kMinExemplarSide, int(std::lround(h0 * sy)));
+  Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double fx = (x + 0.5) * w0 / w - 0.5, fy = (y + 0.5) * h0 / h - 0.5;
+      const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+      const double ax = fx - x0, ay = fy - y0;
+      auto texel = [&](int xx, int yy) {
+        xx = e.wrap_w ? (xx % w0 + w0) % w0 : std::clamp(xx, 0, w0 - 1);
+        yy = e.wrap_h ? (yy % h0 + h0) % h0 : std::clamp(yy, 0, h0 - 1);
+        return src.at(xx, yy);
+      };
+      for (int c = 0; c < 4; ++c) {
+        const double v = (1 - ay) * ((1 - ax) * texel(x0, y0)[c] + ax * texel(x0 + 1, y0)[c]) +
+                         ay * ((1 - ax) * texel(x0, y0 + 1)[c] + ax * texel(x0 + 1, y0 + 1)[c]);
+        out.at(x, y)[c] = std::uint8_t(std::clamp(std::lround(v), 0l, 255l));
+      }
+    }
+  return exemplar_from_image(std::move(out), e.name, e.wrap_w > 0);
+}
+
+ExemplarPeriod dominant_period(const Exemplar& e) {
+  const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();
+  std::vector<float> g(std::size_t(w) * std::size_t(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c = luma(e.at(x, y));  // the torus' last column and row step onto its first ones
+      const float dx = luma(e.at(std::min(x + 1, e.width() - 1), y)) - c,
+                  dy = luma(e.at(x, std::min(y + 1, e.height() - 1))) - c;
+      g[std::size_t(y) * std::size_t(w) + std::size_t(x)] = std::hypot(dx, dy);
+    }
+  double mean = 0, var = 0;
+  for (float v : g) mean += v;
+  mean /= double(g.size());
+  for (float v : g) var += (v - mean) * (v - mean);
+  ExemplarPeriod p;
+  if (var <= 0) return p;
+  // R(d) along one axis: over the pairs inside the image, or round the torus
+  auto r = [&](int dx, int dy) {
+    double sum = 0;
+    std::size_t pairs = 0;
+    for (int y = 0; y < (e.wrap_h ? h : h - dy); ++y)
+      for (int x = 0; x < (e.wrap_w ? w : w - dx); ++x, ++pairs)
+        sum += (g[std::size_t(y) * std::size_t(w) + std::size_t(x)] - mean) *
+               (g[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)] - mean);
+    return sum / double(pairs) / (var / double(g.size()));
+  };
+  for (int axis = 0; axis < 2; ++axis) {
+    const int reach = (axis == 0 ? w : h) / 3;
+    std::vector<double> v(std::size_t(reach) + 2);
+    for (int d = 1; d <= reach + 1; ++d) v[std::size_t(d)] = axis == 0 ? r(d, 0) : r(0, d);
+    // the local maxima far enough above the lowest value before them; the shortest of those
+    // within 3 % of the highest (whole multiples of a period rise as high as the period)
+    std::vector<std::pair<int, double>> peaks;
+    double lowest = 1;
+    for (int d = 1; d <= reach; ++d) {
+      const double here = v[std::size_t(d)];
+      if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
+        const double rise = (here - lowest) / (1 - lowest);
+        if (rise >= kPeriodProminence) peaks.push_back({d, rise});
+      }
+      lowest = std::min(lowest, here);
+    }
+    double top = 0;
+    for (const auto& [d, rise] : peaks) top = std::max(top, rise);
+    int best = 0;
+    double strength = 0;
+    for (const auto& [d, rise] : peaks)
+      if (rise >= 0.97 * top) {
+        best = d, strength = rise;
+        break;
+      }
+    double period = best;
+    if (best > 0) {  // the peak between lags, by a parabola through it and its neighbours
+      const double a = v[std::size_t(best) - 1], b = v[std::size_t(best)], c = v[std::size_t(best) + 1];
+      if (a - 2 * b + c < 0) period += 0.5 * (a - c) / (a - 2 * b + c);
+      const int wrap = axis == 0 ? e.wrap_w : e.wrap_h;  // a torus holds a whole number of periods
+      if (wrap) period = wrap / std::max(1.0, std::round(wrap / period));
+    }
+    (axis == 0 ? p.x : p.y) = period;
+    (axis == 0 ? p.strength_x : p.strength_y) = strength;
+  }
+  return p;
 }
 
 std::string texture_cache_dir() {
@@ -46,16 +166,28 @@ std::string texture_cache_dir() {
   return std::string(home && *home ? home : ".") + "/.cache/tilekit/textures";
 }
 
-const std::vector<std::string>& real_texture_names() {
-  static const std::vector<std::string> names = {"brick", "grass", "gravel"};
-  return names;
+const std::vector<RealTexture>& real_textures() {
+  static const std::vector<RealTexture> list = {
+      {"brick", false},      {"grass", false},  {"gravel", false},  {"gimp-stone33", true},
+      {"gimp-walnut", true}, {"oa-dirt", true}, {"oa-brick", true}, {"oa-rock", true},
+  };
+  return list;
+}
+
+bool is_tileable_real_texture(const std::string& name) {
+  for (const RealTexture& t : real_textures())
+    if (t.name == name) return t.tileable;
+  return false;
 }
 
 std::string real_texture_path(const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos) return "";
   std::error_code ec;
-  const std::string path = texture_cache_dir() + "/" + name + ".png";
-  return std::filesystem::is_regular_file(path, ec) ? path : "";
+  for (const char* ext : {".png", ".jpg", ".tga", ".ppm"}) {
+    const std::string path = texture_cache_dir() + "/" + name + ext;
+    if (std::filesystem::is_regular_file(path, ec)) return path;
+  }
+  return "";
 }
 
 }  // namespace tilekit

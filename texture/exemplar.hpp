@@ -1,7 +1,8 @@
 #pragma once
-// The example texture that texture tiles are synthesised from (thesis sec. 5.3), and where the
-// real textures live: CC0 brick, grass and gravel from the Debian package python3-skimage,
-// fetched by scripts/fetch-textures.sh (never committed).
+// The example texture that texture tiles are synthesised from (thesis sec. 5.3), its dominant
+// period, and where the real textures live: scikit-image's brick, grass and gravel, GIMP's
+// patterns and OpenArena's textures, fetched from Debian packages by scripts/fetch-textures.sh
+// (never committed).
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -14,7 +15,11 @@ namespace tilekit {
 
 struct Exemplar {
   Image image;
-  std::string name;                 // the file it came from
+  std::string name;  // the file it came from
+  // A tileable exemplar (a pattern made to repeat, like GIMP's and games' textures) is held as
+  // copies side by side, so any sample of the torus is a plain window; wrap_w x wrap_h is the
+  // torus (0: not tileable).
+  int wrap_w = 0, wrap_h = 0;
   double neighbour_difference = 0;  // mean colour distance of 4-adjacent pixels: the unit of seam costs
   double mean_step = 0;             // mean absolute step per channel of 4-adjacent pixels (seam_metrics.hpp)
   int width() const { return image.width; }
@@ -28,13 +33,34 @@ inline constexpr int kMinExemplarSide = 16;
 // Reads a PNG or JPEG; a name without a file ("grass") is looked up among the fetched real
 // textures. InputError (exit 2) naming the file when it is missing, cannot be decoded or is
 // smaller than kMinExemplarSide.
-Exemplar load_exemplar(const std::string& path_or_name);
-Exemplar exemplar_from_image(Image image, std::string name);
+Exemplar load_exemplar(const std::string& path_or_name, bool tileable = false);
+Exemplar exemplar_from_image(Image image, std::string name, bool tileable = false);
+
+// The exemplar resampled (bilinear) by sx horizontally and sy vertically (the torus with it).
+Exemplar resample_exemplar(const Exemplar& e, double sx, double sy);
+
+// The dominant period of the exemplar along x and along y (0: none), from the autocorrelation
+// of its gradient magnitude (so that mortar lines and joints count, not slow shading): among the
+// local maxima in 6 .. side/3 whose rise above the lowest value at shorter lags is at least
+// kPeriodProminence of the way to 1, the shortest lag that rises within 3 % as high as the
+// highest (multiples of the period rise as high); between lags by a parabola through the peak,
+// and on a torus the nearest whole fraction of it. Staggered bricks give the full bond (two rows),
+// since only there do both the joints and the mortar lines align.
+struct ExemplarPeriod {
+  double x = 0, y = 0;
+  double strength_x = 0, strength_y = 0;  // that rise, as a fraction of the way to 1
+};
+inline constexpr double kPeriodProminence = 0.2;
+ExemplarPeriod dominant_period(const Exemplar& e);
 
 // Euclidean RGB distance between two pixels (0 .. 441.7).
 inline float colour_distance(const std::uint8_t* a, const std::uint8_t* b) {
   const int dr = int(a[0]) - int(b[0]), dg = int(a[1]) - int(b[1]), db = int(a[2]) - int(b[2]);
   return std::sqrt(float(dr * dr + dg * dg + db * db));
+}
+// Luminance with Rec. 601 weights (texture_analysis.hpp measures the same).
+inline float luma(const std::uint8_t* p) {
+  return 0.299f * p[0] + 0.587f * p[1] + 0.114f * p[2];
 }
 // Mean absolute difference over R, G and B (what the seam ratio averages).
 inline float channel_step(const std::uint8_t* a, const std::uint8_t* b) {
@@ -45,9 +71,16 @@ inline float channel_step(const std::uint8_t* a, const std::uint8_t* b) {
 // The folder of fetched real textures: $TILEKIT_TEXTURES, else $XDG_CACHE_HOME/tilekit/textures,
 // else ~/.cache/tilekit/textures.
 std::string texture_cache_dir();
-// The fetched real textures the tests, benchmarks and the main job use.
-const std::vector<std::string>& real_texture_names();  // brick, grass, gravel
-// The file of a fetched real texture, or "" when it has not been fetched.
+// The fetched real textures the benchmarks and the main job compare on: scikit-image's brick,
+// grass and gravel, GIMP's patterns (gimp-*) and OpenArena's textures (oa-*); the last two are
+// tileable.
+struct RealTexture {
+  std::string name;
+  bool tileable = false;
+};
+const std::vector<RealTexture>& real_textures();
+bool is_tileable_real_texture(const std::string& name);
+// The file of a fetched real texture (NAME.png, .jpg, .tga or .ppm in the cache), or "".
 std::string real_texture_path(const std::string& name);
 
 }  // namespace tilekit

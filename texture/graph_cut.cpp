@@ -26,9 +26,8 @@ using Graph = boost::adjacency_list<
                     boost::property<boost::edge_residual_capacity_t, std::int64_t,
                                     boost::property<boost::edge_reverse_t, Traits::edge_descriptor>>>>;
 
-constexpr double kScale = 1024.0;              // capacities are integers: M in units of 1/1024
+constexpr double kScale = 16.0;                // capacities are integers: M in units of 1/16
 constexpr std::int64_t kInfinite = 1ll << 40;  // forced pixels
-constexpr float kEps = 1.0f;                   // Kwatra's cost in 0..255 colour units
 
 class Builder {
  public:
@@ -59,13 +58,12 @@ GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector
     if (region[i]) node[i] = nodes++;
   const std::size_t source = std::size_t(nodes), sink = source + 1;
   Builder gb(std::size_t(nodes) + 2);
-  // M(s, t) for t = s + (dx, dy), Kwatra et al. 2003 sec. 3.3 (gradient-normalised).
+  // The cost of a seam between neighbours s and t = s + (dx, dy): the steps it would show, A(s)
+  // next to B(t) and B(s) next to A(t), whichever side takes which patch.
   auto cost = [&](int x, int y, int dx, int dy) {
-    const int x1 = x + dx, y1 = y + dy, x2 = x1 + dx, y2 = y1 + dy;
-    const float num = colour_distance(a.at(x, y), b.at(x, y)) + colour_distance(a.at(x1, y1), b.at(x1, y1));
-    const float den = colour_distance(a.at(x, y), a.at(x1, y1)) + colour_distance(a.at(x1, y1), a.at(x2, y2)) +
-                      colour_distance(b.at(x, y), b.at(x1, y1)) + colour_distance(b.at(x1, y1), b.at(x2, y2)) + kEps;
-    return std::int64_t(std::llround(double(num / den) * kScale));
+    const int x1 = x + dx, y1 = y + dy;
+    const float m = colour_distance(a.at(x, y), b.at(x1, y1)) + colour_distance(b.at(x, y), a.at(x1, y1));
+    return std::int64_t(std::llround(double(m) * kScale));
   };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {

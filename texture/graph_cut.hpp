@@ -3,10 +3,11 @@
 // Ng et al. use it to lay a tile-unique centre patch over the cross-shaped seam of a corner tile
 // (thesis sec. 5.3). Every pixel of `region` is a node that may keep the old image A or take the
 // new patch B; pixels outside the region keep A, pixels in `forced` take B. The seam between
-// neighbours s and t costs Kwatra's gradient-normalised match cost
-//   M(s, t) = (|A(s) - B(s)| + |A(t) - B(t)|) / (|G_A(s)| + |G_A(t)| + |G_B(s)| + |G_B(t)| + eps),
-// G the gradient along the direction s -> t, so a seam prefers to run through busy texture where
-// it is hard to see. The minimum cut is Boost.Graph's boykov_kolmogorov_max_flow.
+// neighbours s and t costs the steps it would show, |A(s) - B(t)| + |B(s) - A(t)| (the two ways
+// round; Kwatra et al.'s match cost compares A and B at the same pixel instead, and their
+// gradient-normalised one divides by the local gradients, which sends seams through busy texture
+// where the step across them is large: both saw more visible cuts, by texture/README.md's cut
+// visibility, on every texture tried). The minimum cut is Boost.Graph's boykov_kolmogorov_max_flow.
 #include <cstdint>
 #include <vector>
 

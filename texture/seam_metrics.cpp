@@ -6,13 +6,17 @@
 
 namespace tilekit {
 
-SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* src) {
+SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* src, int x0, int y0) {
   SeamStatistics s;
   double border = 0, interior = 0, cut = 0, same = 0;
   std::size_t interior_pairs = 0, same_pairs = 0;
+  const int ch = img.channels == 1 ? 0 : 1;  // grey images: the one channel three times
   auto step = [&](const std::uint8_t* p, const std::uint8_t* q) {
-    return (std::abs(int(p[0]) - int(q[0])) + std::abs(int(p[1]) - int(q[1])) + std::abs(int(p[2]) - int(q[2]))) / 3.0;
+    return (std::abs(int(p[0]) - int(q[0])) + std::abs(int(p[ch]) - int(q[ch])) +
+            std::abs(int(p[2 * ch]) - int(q[2 * ch]))) /
+           3.0;
   };
+  auto on_border = [&](int v, int origin) { return ((v - origin) % tile_px + tile_px) % tile_px == 0; };
   auto pair = [&](int x0, int y0, int x1, int y1, bool across) {
     const double d = step(img.at(x0, y0), img.at(x1, y1));
     (across ? border : interior) += d;
@@ -26,8 +30,8 @@ SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<
   };
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
-      if (x + 1 < img.width) pair(x, y, x + 1, y, (x + 1) % tile_px == 0);
-      if (y + 1 < img.height) pair(x, y, x, y + 1, (y + 1) % tile_px == 0);
+      if (x + 1 < img.width) pair(x, y, x + 1, y, on_border(x + 1, x0));
+      if (y + 1 < img.height) pair(x, y, x, y + 1, on_border(y + 1, y0));
     }
   s.border_step = s.border_pairs ? border / double(s.border_pairs) : 0;
   s.interior_step = interior_pairs ? interior / double(interior_pairs) : 0;

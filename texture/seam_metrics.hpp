@@ -20,9 +20,10 @@ struct SeamStatistics {
 };
 
 // Mean absolute step (over R, G, B) of 4-neighbours of an image of a tiling with tile_px tiles
-// whose borders lie at multiples of tile_px. `sources` (optional, one id per pixel) names the
-// sample each pixel came from.
-SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* sources = nullptr);
+// whose borders lie at x0 and y0 plus multiples of tile_px. `sources` (optional, one id per
+// pixel) names the sample each pixel came from.
+SeamStatistics seam_statistics(const Image& img, int tile_px, const std::vector<std::uint32_t>* sources = nullptr,
+                               int x0 = 0, int y0 = 0);
 
 // The tiles of `set` laid out as `tiling` (rows x cols of tile indices), and the matching source
 // map with ids made unique per tile where a sample belongs to one tile only.

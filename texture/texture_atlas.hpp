@@ -16,7 +16,7 @@ struct TextureAtlas {
   AtlasLookup lookup;  // the packing: cells (atlas cell -> tile) and positions (tile -> cell)
   int tile_px = 0;
   std::vector<Image> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
-  std::string tiles_dir;          // where the tiles came from (informational)
+  std::string tiles_dir;      // where the tiles came from (informational)
 };
 
 // InputError unless there is one square image of tile_px pixels per tile of the lookup's set.

@@ -4,23 +4,25 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <numeric>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "base/progress.hpp"
 #include "base/random.hpp"
+#include "texture/graph_cut.hpp"
 
 namespace tilekit {
 
-TileGeometry::TileGeometry(int tile_px) : n(tile_px), half(tile_px / 2) {
-  overlap = std::max(2, n / 16);
-  patch = n + 2 * overlap;
-  margin = std::max(5, n / 16);
-  radius = half - margin;
-  inner = std::max(2, n / 32);
-  arm = margin + inner + 2;
+TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
+  margin = std::max(3, 5 * n / 64);
+  strip = margin + std::max(2, 3 * n / 32);
+  extent = strip + 2;
 }
 
 void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
@@ -29,8 +31,7 @@ void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
   if (o.colours < 1 || o.colours > 16) throw InputError(fmt::format("--colors must be 1..16, got {}", o.colours));
   if (o.search < 0 || o.rounds < 0 || o.centre_candidates < 1 || o.centre_cuts < 1)
     throw InputError("--search and the centre candidates must not be negative");
-  const TileGeometry g(o.tile_px);
-  const int need = g.patch + 8;  // a sample of n + 2w pixels, with room to choose where
+  const int need = o.tile_px + 16;  // a centre patch of n pixels, with room to choose where
   if (e.width() < need || e.height() < need)
     throw InputError(
         fmt::format("{}: a {}x{} exemplar is too small for {}-pixel tiles: the samples need at least "
@@ -49,64 +50,163 @@ std::array<int, 2> random_sample_position(const Exemplar& e, int side, std::uint
   return {x, y};
 }
 
-double border_activity(const Exemplar& e, std::array<int, 2> c, int half, bool row, bool column) {
+double line_activity(const Exemplar& e, int x, int y, int length, bool horizontal) {
   double sum = 0;
-  int pairs = 0;
-  for (int i = -half; i < half; ++i) {
-    if (row) sum += channel_step(e.at(c[0] + i, c[1] - 1), e.at(c[0] + i, c[1])), ++pairs;
-    if (column) sum += channel_step(e.at(c[0] - 1, c[1] + i), e.at(c[0], c[1] + i)), ++pairs;
-  }
-  return pairs ? sum / pairs : 0.0;
+  for (int i = 0; i < length; ++i)
+    sum += horizontal ? channel_step(e.at(x + i, y - 1), e.at(x + i, y))
+                      : channel_step(e.at(x - 1, y + i), e.at(x, y + i));
+  return length ? sum / length : 0.0;
 }
 
-SampleDraw::SampleDraw(const Exemplar& e, int side) : e_(&e), side_(side) {
-  const int w = e.width(), h = e.height();
-  integral_.assign(std::size_t(w + 1) * std::size_t(h + 1), 0.0);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
+double seam_goal_miss(double ratio) {
+  return std::max(0.0, std::abs(ratio - 1) - kBorderTolerance);
+}
+
+SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o) : e_(e) {
+  if (!o.keep_period) return;
+  found_ = dominant_period(e);
+  // the tile holds k whole periods, k the nearest whole number; at most 25 % of stretch
+  for (int axis = 0; axis < 2; ++axis) {
+    const double p = axis == 0 ? found_.x : found_.y;
+    if (p <= 0) continue;
+    const double k = std::max(1.0, std::round(o.tile_px / p)), s = o.tile_px / (k * p);
+    if (std::abs(s - 1) > 0.25) continue;
+    scale_[std::size_t(axis)] = s;
+    step_[std::size_t(axis)] = o.tile_px / k;
+  }
+  if (scale_[0] != 1 || scale_[1] != 1) e_ = resample_exemplar(e, scale_[0], scale_[1]);
+  // The phase: that of a tile-sized window in the middle of the exemplar, shown at a tile corner.
+  const int n = o.tile_px;
+  const std::array<int, 2> p{std::max(0, (e_.width() - n) / 2), std::max(0, (e_.height() - n) / 2)};
+  for (std::size_t k = 0; k < 2; ++k)
+    if (step_[k] > 0) {
+      phase_[k] = std::fmod(p[k], step_[k]);
+      lines_[k] = line_phase(p, 0, std::min(n, e_.width() - p[0] - 1), std::min(n, e_.height() - p[1] - 1), k);
+    }
+}
+
+double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const {
+  const double step = step_[axis];
+  std::complex<double> sum = 0;
+  double total = 0;
+  const int along = axis == 0 ? w : h, across = axis == 0 ? h : w;
+  for (int c = 0; c + 1 < along; ++c) {
+    double g = 0;  // the gradient along the axis, summed across the window
+    for (int r = 0; r < across; ++r) {
+      const int x = p[0] + (axis == 0 ? c : r), y = p[1] + (axis == 0 ? r : c);
+      g += std::abs(luma(e_.at(x + (axis == 0), y + (axis == 1))) - luma(e_.at(x, y)));
+    }
+    sum += g * std::polar(1.0, -2 * std::numbers::pi * (u + c + 0.5) / step);
+    total += g;
+  }
+  if (total <= 0 || std::abs(sum) < 0.1 * total) return std::nan("");
+  return std::fmod(-std::arg(sum) / (2 * std::numbers::pi) * step + step, step);
+}
+
+std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int v, int w, int h) const {
+  const int uv[2] = {u, v}, size[2] = {w, h}, extent[2] = {e_.width(), e_.height()};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double step = step_[k];
+    if (step <= 0) continue;
+    const double target = uv[k] + phase_[k];
+    double q = target + step * std::round((p[k] - target) / step);
+    while (q > extent[k] - size[k]) q -= step;
+    while (q < 0) q += step;
+    p[k] = std::clamp(int(std::lround(q)), 0, extent[k] - size[k]);
+    const double lines = line_phase(p, uv[k], w, h, k);
+    if (std::isnan(lines) || std::isnan(lines_[k])) continue;
+    // moving the window by s moves its lines by -s in lattice coordinates
+    const double s = std::remainder(lines - lines_[k], step);
+    if (std::abs(s) <= step / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);
+  }
+  return p;
+}
+
+SampleDraw::SampleDraw(const Exemplar& e, int w, int h) : e_(&e), w_(w), h_(h) {
+  const int ew = e.width(), eh = e.height();
+  range_x_ = e.wrap_w && ew - w + 1 >= e.wrap_w ? e.wrap_w : ew - w + 1;
+  range_y_ = e.wrap_h && eh - h + 1 >= e.wrap_h ? e.wrap_h : eh - h + 1;
+  integral_.assign(std::size_t(ew + 1) * std::size_t(eh + 1), 0.0);
+  for (int y = 0; y < eh; ++y)
+    for (int x = 0; x < ew; ++x) {
       double a = 0;  // the steps to the east and south neighbours, averaged
-      if (x + 1 < w && y + 1 < h)
+      if (x + 1 < ew && y + 1 < eh)
         a = (channel_step(e.at(x, y), e.at(x + 1, y)) + channel_step(e.at(x, y), e.at(x, y + 1))) / 2;
-      const std::size_t i = std::size_t(y + 1) * std::size_t(w + 1) + std::size_t(x + 1);
-      integral_[i] = a + integral_[i - 1] + integral_[i - std::size_t(w + 1)] - integral_[i - std::size_t(w + 1) - 1];
+      const std::size_t i = std::size_t(y + 1) * std::size_t(ew + 1) + std::size_t(x + 1);
+      integral_[i] = a + integral_[i - 1] + integral_[i - std::size_t(ew + 1)] - integral_[i - std::size_t(ew + 1) - 1];
     }
   std::vector<double> all;
-  const int step = std::max(1, std::max(w, h) / 64);
-  for (int y = 0; y + side <= h; y += step)
-    for (int x = 0; x + side <= w; x += step) all.push_back(activity(x, y));
+  const int step = std::max(1, std::max(range_x_, range_y_) / 64);
+  for (int y = 0; y < range_y_; y += step)
+    for (int x = 0; x < range_x_; x += step) all.push_back(activity(x, y));
   std::nth_element(all.begin(), all.begin() + std::ptrdiff_t(all.size() / 2), all.end());
   median_ = all[all.size() / 2];
 }
 
 double SampleDraw::activity(int x, int y) const {
-  const std::size_t W = std::size_t(e_->width() + 1), s = std::size_t(side_ - 1);
+  const std::size_t W = std::size_t(e_->width() + 1), sx = std::size_t(w_ - 1), sy = std::size_t(h_ - 1);
   auto at = [&](std::size_t xx, std::size_t yy) { return integral_[yy * W + xx]; };
   const std::size_t x0 = std::size_t(x), y0 = std::size_t(y);
-  return (at(x0 + s, y0 + s) - at(x0, y0 + s) - at(x0 + s, y0) + at(x0, y0)) / double(s * s);
+  return (at(x0 + sx, y0 + sy) - at(x0, y0 + sy) - at(x0 + sx, y0) + at(x0, y0)) /
+         double(std::max<std::size_t>(1, sx * sy));
 }
 
-std::array<int, 2> SampleDraw::operator()(std::uint64_t seed) const {
+std::array<int, 2> SampleDraw::operator()(std::uint64_t seed, std::size_t stratum, std::size_t strata) const {
+  // the stratum: cell k of a gx x gy grid over the positions, gx / gy about range_x / range_y
+  const double aspect = double(range_x_) / double(range_y_);
+  const std::size_t gx = std::clamp<std::size_t>(std::size_t(std::ceil(std::sqrt(double(strata) * aspect))), 1,
+                                                 std::size_t(range_x_)),
+                    gy = std::min<std::size_t>((strata + gx - 1) / gx, std::size_t(range_y_));
+  const std::size_t cx = stratum % gx, cy = (stratum / gx) % gy;
+  const int x0 = int(cx * std::size_t(range_x_) / gx), x1 = int((cx + 1) * std::size_t(range_x_) / gx);
+  const int y0 = int(cy * std::size_t(range_y_) / gy), y1 = int((cy + 1) * std::size_t(range_y_) / gy);
   SplitMix64 rng(seed);
   std::array<int, 2> p{0, 0};
   for (int attempt = 0; attempt < 256; ++attempt) {
-    p = {int(rng.below(std::uint64_t(e_->width() - side_ + 1))),
-         int(rng.below(std::uint64_t(e_->height() - side_ + 1)))};
+    p = {x0 + int(rng.below(std::uint64_t(std::max(1, x1 - x0)))),
+         y0 + int(rng.below(std::uint64_t(std::max(1, y1 - y0))))};
     const double a = activity(p[0], p[1]);
     if (a >= 0.85 * median_ && a <= 1.25 * median_) break;
   }
   return p;
 }
 
-double seam_goal_miss(double ratio) { return std::max(0.0, std::abs(ratio - 1) - kBorderTolerance); }
+double window_overlap(const Exemplar& e, std::array<int, 2> pa, int w, int h, std::array<int, 2> pb, int wb, int hb) {
+  auto along = [](int a, int la, int b, int lb, int wrap) {
+    if (!wrap) return std::max(0, std::min(a + la, b + lb) - std::max(a, b));
+    int best = 0;  // the torus: b's copies one wrap either way
+    for (int k = -2; k <= 2; ++k)
+      best = std::max(best, std::min(a + la, b + k * wrap + lb) - std::max(a, b + k * wrap));
+    return std::max(0, std::min(best, la));
+  };
+  return double(along(pa[0], w, pb[0], wb, e.wrap_w)) * along(pa[1], h, pb[1], hb, e.wrap_h) / (double(w) * h);
+}
 
-void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& draw, const SynthesisOptions& o,
-                    const std::function<SampleScore(std::size_t, const std::vector<std::array<int, 2>>&)>& score) {
+double search_samples(std::vector<std::array<int, 2>>& samples, const std::vector<SampleSlot>& slots,
+                      const std::vector<SampleDraw>& draws, const SynthesisExemplar& x, const SynthesisOptions& o,
+                      const std::function<double(std::size_t, const std::vector<std::array<int, 2>>&)>& cut_error) {
+  const Exemplar& e = x.exemplar();
+  auto overlap = [&](std::size_t j, const std::vector<std::array<int, 2>>& pos) {
+    double sum = 0;
+    for (std::size_t k = 0; k < pos.size(); ++k)
+      if (k != j) sum += window_overlap(e, pos[j], slots[j].w, slots[j].h, pos[k], slots[k].w, slots[k].h);
+    return sum;
+  };
+  auto score = [&](std::size_t j, const std::vector<std::array<int, 2>>& pos) {
+    const SampleSlot& s = slots[j];
+    const double line = line_activity(e, pos[j][0] + s.line_x, pos[j][1] + s.line_y, s.line_length, s.line_horizontal);
+    const double own = draws[std::size_t(s.draw)].activity(pos[j][0], pos[j][1]);
+    return SampleScore{seam_goal_miss(own > 0 ? line / own : 1), cut_error(j, pos) + kOverlapWeight * overlap(j, pos)};
+  };
   for (int round = 0; o.search > 0 && round < o.rounds; ++round)
     for (std::size_t j = 0; j < samples.size(); ++j) {
+      const SampleSlot& s = slots[j];
       std::vector<std::array<int, 2>> cand(std::size_t(o.search));
       std::vector<SampleScore> scores(cand.size());
       const std::uint64_t stream = derive_seed(o.seed, 1000 + std::uint64_t(round) * samples.size() + j);
-      for (std::size_t k = 0; k < cand.size(); ++k) cand[k] = draw(derive_seed(stream, k));
+      for (std::size_t k = 0; k < cand.size(); ++k)
+        cand[k] =
+            x.in_phase(draws[std::size_t(s.draw)](derive_seed(stream, k), s.stratum, s.strata), s.u, s.v, s.w, s.h);
       parallel_for(std::int64_t(cand.size()), o.threads, [&](std::int64_t k) {
         std::vector<std::array<int, 2>> pos = samples;
         pos[j] = cand[std::size_t(k)];
@@ -115,6 +215,102 @@ void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& 
       const std::size_t best = std::size_t(std::min_element(scores.begin(), scores.end()) - scores.begin());
       if (scores[best] < score(j, samples)) samples[j] = cand[best];
     }
+  double sum = 0;
+  for (std::size_t j = 0; j < samples.size(); ++j) sum += overlap(j, samples);
+  return samples.empty() ? 0.0 : sum / double(samples.size());
+}
+
+double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const SynthesisOptions& o,
+                            const std::string& title) {
+  const Exemplar& e = x.exemplar();
+  const TileGeometry g(s.tile_px);
+  const int n = g.n;
+  const std::size_t count = s.tiles.size(), px = std::size_t(n) * std::size_t(n);
+  // The pixels the centre may take (at least `margin` from every border), the ones it must take
+  // (beyond `strip`, where no shared sample reaches), and the band between, where the cut runs.
+  std::vector<std::uint8_t> region(px, 0), forced(px, 0);
+  std::vector<std::size_t> band;
+  for (int y = 0; y < n; ++y)
+    for (int xx = 0; xx < n; ++xx) {
+      const int d = std::min({xx, y, n - 1 - xx, n - 1 - y});
+      const std::size_t i = std::size_t(y) * std::size_t(n) + std::size_t(xx);
+      region[i] = d >= g.margin;
+      forced[i] = d >= g.strip;
+      if (region[i] && !forced[i]) band.push_back(i);
+    }
+  const SampleDraw draw(e, n, n);
+  const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
+  ProgressReporter progress(title, 2.0 * double(count), o.progress);
+  // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on
+  //    the band where the cut runs.
+  using Scored = std::pair<double, std::array<int, 2>>;
+  std::vector<std::vector<Scored>> ranked(count);
+  parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
+    const std::size_t t = std::size_t(ti);
+    const Image& img = s.tiles[t];
+    for (int k = 0; k < candidates; ++k) {
+      const std::array<int, 2> q =
+          x.in_phase(draw(derive_seed(derive_seed(o.seed, 7000 + t), std::uint64_t(k))), 0, 0, n, n);
+      double d = 0;
+      for (std::size_t i : band)
+        d += colour_distance(img.pixels.data() + 4 * i,
+                             e.at(q[0] + int(i % std::size_t(n)), q[1] + int(i / std::size_t(n))));
+      ranked[t].push_back({d, q});
+    }
+    std::stable_sort(ranked[t].begin(), ranked[t].end(),
+                     [](const Scored& a, const Scored& b) { return a.first < b.first; });
+    progress.add(1);
+  });
+  // 2. Distinct regions: in a seeded order, each tile keeps its best candidates that lie at least
+  //    `apart` (in x or y, on the torus of a tileable exemplar) from every patch kept before, half
+  //    the side of an equal share of the exemplar (the best one anyway when none does).
+  const double area = double(e.wrap_w ? e.wrap_w : e.width() - n) * double(e.wrap_h ? e.wrap_h : e.height() - n);
+  const int apart = std::max(1, int(0.5 * std::sqrt(area / double(count))));
+  auto gap = [&](int a, int b, int wrap) {
+    const int d = std::abs(a - b);
+    return wrap ? std::min(d % wrap, wrap - d % wrap) : d;
+  };
+  std::vector<std::size_t> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  SplitMix64 rng(derive_seed(o.seed, 6000));
+  shuffle(order.begin(), order.end(), rng);
+  std::vector<std::array<int, 2>> kept;
+  std::vector<std::vector<std::array<int, 2>>> chosen(count);
+  for (std::size_t t : order) {
+    for (const Scored& c : ranked[t]) {
+      if (int(chosen[t].size()) == cuts) break;
+      const bool far = std::all_of(kept.begin(), kept.end(), [&](const std::array<int, 2>& p) {
+        return gap(p[0], c.second[0], e.wrap_w) >= apart || gap(p[1], c.second[1], e.wrap_h) >= apart;
+      });
+      if (far) chosen[t].push_back(c.second);
+    }
+    if (chosen[t].empty()) chosen[t].push_back(ranked[t].front().second);
+    kept.insert(kept.end(), chosen[t].begin(), chosen[t].end());
+  }
+  // 3. The full graph cut for each tile's kept candidates; the cheapest wins.
+  std::vector<double> cost(count);
+  s.centres.assign(count, {0, 0});
+  parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
+    const std::size_t t = std::size_t(ti);
+    Image& img = s.tiles[t];
+    Image patch{n, n, std::vector<std::uint8_t>(px * 4)}, best_patch;
+    GraphCutResult best;
+    for (std::size_t k = 0; k < chosen[t].size(); ++k) {
+      const std::array<int, 2> q = chosen[t][k];
+      for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
+      GraphCutResult r = graph_cut_merge(img, patch, region, forced);
+      if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch, s.centres[t] = q;
+    }
+    for (std::size_t i = 0; i < px; ++i)
+      if (best.take_new[i]) {
+        std::copy_n(best_patch.pixels.data() + 4 * i, 4, img.pixels.data() + 4 * i);
+        s.sources[t][i] = s.shared_sources + std::uint32_t(t);
+      }
+    cost[t] = best.cost;
+    progress.add(1);
+  });
+  progress.finish();
+  return std::accumulate(cost.begin(), cost.end(), 0.0) / double(count);
 }
 
 TextureTileSet synthesize_tiles(const Exemplar& e, const SynthesisOptions& o) {
@@ -165,7 +361,22 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"cut_error_initial", s.cut_error_initial},
           {"cut_error", s.cut_error},
           {"centre_cost", s.centre_cost},
+          {"sample_overlap", s.overlap},
+          {"period", {s.period.x, s.period.y}},
+          {"exemplar_scale", s.exemplar_scale},
           {"seconds", s.seconds}};
+}
+
+Image source_labels(const TextureTileSet& s, TileIndex t) {
+  const int n = s.tile_px;
+  Image img(n, n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      // a bijection of 24-bit ids (an odd multiplier), so neighbouring ids get unlike colours
+      const std::uint32_t v = (s.sources[t][std::size_t(y) * std::size_t(n) + std::size_t(x)] + 1) * 2654435761u;
+      img.set(x, y, {std::uint8_t(v >> 16), std::uint8_t(v >> 8), std::uint8_t(v)});
+    }
+  return img;
 }
 
 void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar) {
@@ -178,7 +389,14 @@ void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::
   write_png((fs::path(dir) / "tileset.png").string(), tile_set_sheet(s));
   nlohmann::json j = tile_set_json(s);
   j["exemplar"] = exemplar;
-  j["files"] = "tile-NNNN.png, named by tile index (thesis eq. 2.2 / 2.5)";
+  j["files"] = "tile-NNNN.png, named by tile index (thesis eq. 2.2 / 2.5); labels/: the sample of every pixel";
+  const fs::path labels = fs::path(dir) / "labels";
+  fs::create_directories(labels, ec);
+  for (std::size_t t = 0; t < s.sources.size(); ++t)
+    write_png((labels / fmt::format("tile-{:04d}.png", t)).string(), source_labels(s, TileIndex(t)));
+  nlohmann::json jl = j;
+  jl["files"] = "tile-NNNN.png: the sample each pixel was copied from, one colour per sample (texture_analysis.hpp)";
+  write_file_atomic((labels / "tiles.json").string(), jl.dump(2) + "\n");
   write_file_atomic((fs::path(dir) / "tiles.json").string(), j.dump(2) + "\n");
 }
 

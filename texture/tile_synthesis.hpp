@@ -1,11 +1,16 @@
 #pragma once
-// Texture tiles synthesised from an exemplar (thesis sec. 5.3): the complete corner set over C
-// colours by the method of Ng et al. (corner_texture_tiles.cpp) and the complete Wang set by the method
-// of Cohen et al. 2003 (wang_texture_tiles.cpp), with the patch choice searched, not drawn at random.
-// Seeded and deterministic: the same seed gives the same bytes on any thread count.
+// Texture tiles synthesised from an exemplar (thesis sec. 5.3) for the complete corner set
+// (corner_texture_tiles.cpp, after Ng et al.) and the complete Wang set (wang_texture_tiles.cpp,
+// after Cohen et al. 2003) over C colours, made so that a surface does not show the tile grid:
+// the samples that tiles share cover only narrow bands along the borders, and a tile-unique
+// centre patch, from a region of the exemplar no other tile uses, covers the rest. The shared
+// samples are searched for low cut error and for diversity (no two cover the same exemplar
+// pixels), and periodic textures stay in phase. Seeded and deterministic: the same seed gives
+// the same bytes on any thread count.
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -22,25 +27,35 @@ struct SynthesisOptions {
   int tile_px = 128;
   std::uint64_t seed = 1;
   int threads = 1;
-  // Candidate exemplar positions tried per corner patch (or diamond) and round of the search;
-  // 0 keeps the first random draw (no search: the "plain minimum-error cut" baseline).
+  // Candidate exemplar positions tried per corner/edge sample and round of the search; 0 keeps
+  // the first random draw (no search: the "plain minimum-error cut" baseline).
   int search = 96;
   int rounds = 3;
-  int centre_candidates = 32;  // corner tiles: centre patches scored per tile on the ring where the cut runs
+  int centre_candidates = 32;  // centre patches scored per tile on the band where the cut runs
   int centre_cuts = 2;         // of those, the best this many get the full graph cut
+  // Structured textures: resample the exemplar so that the tile holds whole periods of it and
+  // keep every sample in phase with the lattice (exemplar.hpp's dominant_period); off: never.
+  bool keep_period = true;
   bool progress = false;
 };
 
-// What one sample covers, relative to the tile: how far samples overlap (w), and for corner
-// tiles the margin between the centre patch's circle and the tile border.
+// Where the samples of a tile lie, relative to the tile (n x n pixels). Every border has a band
+// of `strip` pixels on either side covered by the border's own samples (corner tiles: one sample
+// per ordered pair of corner colours and a small one per corner colour at the lattice points;
+// Wang tiles: one per edge colour); the rest of the tile is a tile-unique centre patch, merged
+// by a graph cut that runs between `margin` and `strip` pixels from the borders. So the texels
+// within `margin` of a border depend only on that border's colours, which is what makes the atlas
+// of a packing filter like the tiling (texture_atlas.hpp): exactly at mip levels 0 and 1 (whose
+// [1 3 3 1] tent reads 3 texels across a border) and, for 64-pixel tiles (margin 5), at level 2
+// up to the 4/64 weight of its 6th and 7th texel (as Ng et al.'s centre circle came within 5
+// texels of the border too). The shared samples cover only the bands: the centre, different in
+// every tile, covers the middle (n - 2 strip)^2 or more. A margin of 7 would make level 2 exact
+// but share twice the texels near the borders, which shows the grid (texture/README.md).
 struct TileGeometry {
-  int n = 0, half = 0;
-  int overlap = 0;  // w: half-width of the band in which two samples overlap and a cut runs
-  int patch = 0;    // side of a corner patch / Wang diamond sample: n + 2w
-  int margin = 0;   // corner tiles: the centre patch stays inside the circle of radius n/2 - margin
-  int radius = 0;   // n/2 - margin
-  int inner = 0;    // the cross is forced under the centre patch up to radius - inner
-  int arm = 0;      // rows of a corner pair cut on each side of the tile border
+  int n = 0;
+  int margin = 0;  // m: 5n/64, at least 3; no centre texel nearer a border than this
+  int strip = 0;   // h: m + 3n/32; the band each border's samples cover; the centre patch beyond it
+  int extent = 0;  // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
   explicit TileGeometry(int tile_px);
 };
 
@@ -50,16 +65,21 @@ struct TextureTileSet {
   int tile_px = 0;
   std::uint64_t seed = 0;
   std::vector<Image> tiles;  // by tile index (thesis eq. 2.2 / 2.5)
-  // Per tile and pixel, the sample it was copied from (corner patch c: c; centre patch of tile t:
-  // C + t; Wang horizontal diamond h: h, vertical diamond v: C + v; naive: the tile index).
+  // Per tile and pixel, the sample it was copied from: ids below shared_sources are samples that
+  // several tiles share (see corner_texture_tiles.cpp / wang_texture_tiles.cpp), shared_sources +
+  // t the centre patch of tile t (naive: the tile index).
   std::vector<std::vector<std::uint32_t>> sources;
-  std::uint32_t shared_sources = 0;  // ids below this are samples shared by several tiles, the rest belong to one tile
-  std::vector<std::array<int, 2>> samples;  // exemplar positions of the corner patches / diamonds
+  std::uint32_t shared_sources = 0;
+  std::vector<std::array<int, 2>> samples;  // exemplar positions of the shared samples, by id
+  std::vector<std::array<int, 2>> centres;  // exemplar position of every tile's centre patch
   double cut_error_initial = 0;  // summed boundary-cut error (in exemplar neighbour differences) of the first draw
   double cut_error = 0;          // the same after the search
-  double centre_cost = 0;        // corner tiles: mean graph-cut cost of the centre patches
+  double centre_cost = 0;        // mean graph-cut cost of the centre patches
+  double overlap = 0;            // shared samples: mean fraction of a sample's window another one also covers
+  ExemplarPeriod period;         // of the exemplar as given (0: none found, or keep_period off)
+  std::array<double, 2> exemplar_scale{1, 1};  // the resampling that fits whole periods into a tile
   double seconds = 0;
-  std::string method;  // "ng-corner", "cohen-wang" or "naive"
+  std::string method;  // "corner-strips", "wang-strips" or "naive"
 };
 
 // InputError (exit 2) for options the exemplar cannot serve: tile size odd, out of 16..1024 or
@@ -74,50 +94,119 @@ TextureTileSet naive_tiles(const Exemplar& e, const SynthesisOptions& o);
 // A uniformly random exemplar position for a side x side sample.
 std::array<int, 2> random_sample_position(const Exemplar& e, int side, std::uint64_t seed);
 
-// Draws positions of side x side samples uniformly among the typical ones: those whose activity
-// (mean step per channel between neighbouring pixels inside the sample) lies within [0.85, 1.25] times
+// The mean step (per channel) across a line of `length` pixel pairs starting at (x, y) in the
+// exemplar: between rows y - 1 and y (horizontal) or columns x - 1 and x. The seam goal of the
+// search: a tile border, which runs through a sample, steps within kBorderTolerance of the
+// sample's own mean step (SampleDraw::activity), so that it looks like the texture around it.
+double line_activity(const Exemplar& e, int x, int y, int length, bool horizontal);
+inline constexpr double kBorderTolerance = 0.04;
+double seam_goal_miss(double border_to_own_activity);
+
+// The exemplar as the samples see it: resampled to whole periods per tile when it has a dominant
+// period (keep_period), and the phase every sample keeps. A sample shown with its top-left at
+// (u, v) in lattice coordinates (tile corners at multiples of n) is taken from an exemplar
+// position congruent to (u, v) + phase modulo the period, so that bricks continue across every
+// cut and every tile border (exemplar.hpp, dominant_period). A photographed wall is periodic
+// only roughly (perspective bends and spreads its mortar lines), so the position is then
+// refined by up to a quarter period: where the window's lines (the period's Fourier component of
+// its gradient profile along the axis) are clear, they are put where the lines of a tile-sized
+// window in the middle of the exemplar are, shown at a tile corner.
+class SynthesisExemplar {
+ public:
+  SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o);
+  const Exemplar& exemplar() const { return e_; }
+  const ExemplarPeriod& period() const { return found_; }  // as found in the given exemplar
+  std::array<double, 2> scale() const { return scale_; }
+  bool periodic() const { return step_[0] > 0 || step_[1] > 0; }
+  // The position nearest p that keeps the phase for a w x h sample shown at lattice (u, v).
+  std::array<int, 2> in_phase(std::array<int, 2> p, int u, int v, int w, int h) const;
+
+ private:
+  // Where the lines of a w x h window at p lie along an axis, in lattice coordinates modulo the
+  // step (the window shown at lattice u), and how clear they are (0..1); NaN when unclear.
+  double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const;
+
+  Exemplar e_;
+  ExemplarPeriod found_;
+  std::array<double, 2> scale_{1, 1}, step_{0, 0}, phase_{0, 0};  // step: the period after resampling
+  std::array<double, 2> lines_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+};
+
+// Draws positions of w x h samples uniformly among the typical ones: those whose activity (mean
+// step per channel between neighbouring pixels inside the sample) lies within [0.85, 1.25] times
 // the median over all positions. Without it, a search for low cut error drifts to bland samples
 // (a flat brick face) whose seams are invisible only because there is nothing to see.
-// The mean step (per channel) across the tile border lines a sample supplies: they run through
-// the sample's centre (pixel boundary `centre`, exemplar coordinates), `half` pixels to either
-// side, along the row boundary (a horizontal border) and/or the column boundary (a vertical
-// border). The seam goal of the search: within kBorderTolerance of the sample's own mean step
-// (SampleDraw::activity), so that tile borders look like the texture on either side of them.
-double border_activity(const Exemplar& e, std::array<int, 2> centre, int half, bool row, bool column);
-inline constexpr double kBorderTolerance = 0.04;
-
+// `stratum` k of `strata` restricts the draw to the k-th cell of a grid of about that many
+// cells over the positions (distinct tiles draw from distinct exemplar regions).
 class SampleDraw {
  public:
-  SampleDraw(const Exemplar& e, int side);
-  std::array<int, 2> operator()(std::uint64_t seed) const;
+  SampleDraw(const Exemplar& e, int w, int h);
+  std::array<int, 2> operator()(std::uint64_t seed, std::size_t stratum = 0, std::size_t strata = 1) const;
   double activity(int x, int y) const;  // of the sample with top-left (x, y)
   double median_activity() const { return median_; }
+  int width() const { return w_; }
+  int height() const { return h_; }
 
  private:
   const Exemplar* e_;
-  int side_;
+  int w_, h_;
+  int range_x_, range_y_;         // positions 0..range-1 (the torus, for a tileable exemplar)
   std::vector<double> integral_;  // (width + 1) x (height + 1) summed-area table of pixel activity
   double median_ = 0;
 };
 
-// The score of a sample in the search: first how far its border lines miss the seam goal (0 within
-// kBorderTolerance of its own activity, see border_activity), then the cut error it takes part in.
-using SampleScore = std::pair<double, double>;
-double seam_goal_miss(double border_to_own_activity);
+// One shared sample of the search: its window size, where it is shown (lattice coordinates of the
+// window's top-left) and the border line it carries (for the seam goal), in window coordinates.
+struct SampleSlot {
+  int w = 0, h = 0;
+  int u = 0, v = 0;
+  int line_x = 0, line_y = 0, line_length = 0;
+  bool line_horizontal = true;
+  int draw = 0;  // which SampleDraw (one per window size)
+  // Drawn from stratum k of `strata` of the exemplar (SampleDraw): the samples of one kind
+  // spread over the whole exemplar, so they are far apart and differ in appearance as the
+  // exemplar's regions do.
+  std::size_t stratum = 0, strata = 1;
+};
 
-// The search over sample positions (corner patches, Wang diamonds): coordinate descent, `o.rounds`
-// rounds over the samples; each round draws `o.search` candidates for sample j (from `draw`,
-// seeded by o.seed, the round and j), scores them in parallel with score(j, samples with j
-// replaced), and keeps the best if it beats the current one (ties by candidate order, so the
-// result does not depend on the thread count).
-void search_samples(std::vector<std::array<int, 2>>& samples, const SampleDraw& draw, const SynthesisOptions& o,
-                    const std::function<SampleScore(std::size_t, const std::vector<std::array<int, 2>>&)>& score);
+// The score of a sample in the search: first how far its border line misses the seam goal (0
+// within kBorderTolerance of its own activity, see line_activity), then the cut error it takes
+// part in plus kOverlapWeight times the fraction of its window that other samples also cover.
+using SampleScore = std::pair<double, double>;
+inline constexpr double kOverlapWeight = 50;
+
+// The fraction of a's window (w x h at pa) that b's window (at pb, wb x hb) covers, on the torus
+// of a tileable exemplar.
+double window_overlap(const Exemplar& e, std::array<int, 2> pa, int w, int h, std::array<int, 2> pb, int wb, int hb);
+
+// The search over the shared samples: coordinate descent, `o.rounds` rounds over the samples;
+// each round draws `o.search` candidates for sample j (from its SampleDraw, seeded by o.seed,
+// the round and j, put in phase), scores them in parallel with
+// (goal miss, cut_error(j, samples with j replaced) + overlap penalty), and keeps the best if it
+// beats the current one (ties by candidate order, so the result does not depend on the thread
+// count). Returns the mean overlap of the result.
+double search_samples(std::vector<std::array<int, 2>>& samples, const std::vector<SampleSlot>& slots,
+                      const std::vector<SampleDraw>& draws, const SynthesisExemplar& x, const SynthesisOptions& o,
+                      const std::function<double(std::size_t, const std::vector<std::array<int, 2>>&)>& cut_error);
+
+// The tile-unique centre patch of every tile, merged over the tile by a graph cut (Kwatra et al.
+// 2003) inside the pixels at least `margin` from every border, forced beyond `strip`. Candidates
+// come from the tile's own stratum of the exemplar (distinct tiles, distinct regions), in phase,
+// scored by their difference to the tile on the band where the cut runs; the best
+// o.centre_cuts get the full cut. Returns the mean cut cost.
+double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const SynthesisOptions& o,
+                            const std::string& title);
 
 // The tiles in index order, about square, `gap` pixels apart on white (the README picture).
 Image tile_set_sheet(const TextureTileSet& s, int gap = 4);
 nlohmann::json tile_set_json(const TextureTileSet& s);
+// Tile t's sources as colours, one per sample (texture_analysis.hpp's labels): a bijection of the
+// ids, so two samples never share a colour.
+Image source_labels(const TextureTileSet& s, TileIndex t);
 // DIR/tile-NNNN.png per tile (named by index, as `tilekit atlas build --tiles` reads them),
-// DIR/tiles.json (the report) and DIR/tileset.png (the sheet); files written atomically.
+// DIR/tiles.json (the report), DIR/tileset.png (the sheet) and DIR/labels/ (the same files for
+// the source labels: `texture atlas DIR/labels` and `texture render` of that atlas give the
+// labels of a render); files written atomically.
 void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar);
 
 }  // namespace tilekit

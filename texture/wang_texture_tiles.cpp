@@ -1,12 +1,17 @@
-// Wang texture tiles by the method of Cohen et al. 2003 (sec. 3.2; thesis sec. 5.3, fig. 5.4a):
-// one diamond-shaped sample of the exemplar per edge colour (horizontal and vertical edges have
-// their own samples), centred on the edge's midpoint, so that a tile with north colour c holds
-// the lower half of c's diamond and the tile above it the upper half. A tile joins its four
-// half-diamonds along its diagonals by minimum-error boundary cuts (Efros & Freeman 2001), one
-// per corner and pair of colours, that end exactly in the tile corner, so every tile border
-// shows a single diamond. The samples are re-drawn to lower the total cut error (the sum over
-// all 4 C^2 cuts, Cohen et al.'s "overall quilting error"): coordinate descent over random
-// candidates, searched rather than accepted at the first draw.
+// Wang texture tiles (thesis sec. 5.3, fig. 5.4a, after Cohen et al. 2003) that do not show
+// their grid. Cohen et al. fill a tile with four half-diamonds, one per edge colour, so every
+// texel is shared with every tile of the same edge colour: on a surface a texel repeats at a
+// lattice lag once in C (grid repetition 0.38-0.47 at C = 2..3 in texture/README.md's measure).
+//
+// Here each edge colour's sample covers only the band along its border (tile_synthesis.hpp,
+// TileGeometry: `extent` pixels on either side), and a tile-unique centre patch covers the rest,
+// merged by a graph cut between `margin` and `strip` pixels from the borders
+// (merge_centre_patches). Where two bands cross, in a tile corner, a minimum-error boundary cut
+// (Efros & Freeman 2001) along the corner's diagonal separates them, one per corner and pair of
+// colours; it ends exactly in the corner, so every border pixel comes from its own edge's sample
+// (the Wang corner problem, thesis 5.4, stays confined to the corner). The samples are searched
+// (search_samples): seam goal first, then the summed cut error (Cohen et al.'s "overall quilting
+// error") plus overlap with the other samples.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,7 +19,6 @@
 #include <chrono>
 
 #include "base/parallel.hpp"
-#include "base/progress.hpp"
 #include "base/random.hpp"
 #include "texture/seam_cut.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -25,20 +29,23 @@ namespace {
 
 using Pos = std::array<int, 2>;
 
-// The tile's quadrants, each with the diagonal from the tile centre to one corner; sx, sy point
-// to the corner (y grows to the south).
+// The tile's corners; sx, sy point to the corner (y grows to the south).
 struct Corner {
   int sx, sy;
 };
 constexpr Corner kCorners[4] = {{1, -1}, {1, 1}, {-1, 1}, {-1, -1}};  // NE, SE, SW, NW
-int corner_of(int sx, int sy) {
-  return sy < 0 ? (sx > 0 ? 0 : 3) : (sx > 0 ? 1 : 2);
-}
 
 class WangSynthesis {
  public:
   WangSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : e_(e), o_(o), g_(o.tile_px), c_(o.colours), draw_(e, g_.patch) {}
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px), c_(o.colours) {
+    check_synthesis_options(e_, o);
+    const int n = g_.n, E = g_.extent;
+    draws_.emplace_back(e_, n, 2 * E);
+    draws_.emplace_back(e_, 2 * E, n);
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0, c, c_});
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1, c, c_});
+  }
 
   TextureTileSet run() {
     const auto t0 = std::chrono::steady_clock::now();
@@ -47,135 +54,135 @@ class WangSynthesis {
     s.colours = c_;
     s.tile_px = g_.n;
     s.seed = o_.seed;
-    s.method = "cohen-wang";
+    s.method = "wang-strips";
     s.shared_sources = 2 * c_;
+    s.period = x_.period();
+    s.exemplar_scale = x_.scale();
     choose_samples(s);
     compose_tiles(s);
-    s.samples = sample_;
+    s.centre_cost = merge_centre_patches(s, x_, o_, fmt::format("Wang tiles C={} {}px", c_, g_.n));
+    s.samples = pos_;
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
   }
 
  private:
-  // Tile pixel (x, y) from the sample at `p` centred on the midpoint of the edge at (mx2/2, my2/2).
-  const std::uint8_t* pix(const Pos& p, int x, int y, int mx2, int my2) const {
-    const int dx = x - mx2 / 2, dy = y - my2 / 2;
-    const int ex = p[0] + g_.half + g_.overlap + dx, ey = p[1] + g_.half + g_.overlap + dy;
-    assert(ex >= p[0] && ex < p[0] + g_.patch && ey >= p[1] && ey < p[1] + g_.patch);
-    return e_.at(ex, ey);
+  // Tile pixel (x, y) from the sample of the horizontal border above (sy < 0) or below it, or of
+  // the vertical border to the west (sx < 0) or east.
+  const std::uint8_t* hpix(const std::vector<Pos>& pos, Colour c, int sy, int x, int y) const {
+    const int t = sy < 0 ? y : y - g_.n;
+    return e_.at(pos[c][0] + x, pos[c][1] + t + g_.extent);
   }
-  // Pixel of the horizontal-edge (north or south) and vertical-edge (east or west) sample.
-  const std::uint8_t* hpix(const Pos& p, int sy, int x, int y) const {
-    return pix(p, x, y, g_.n, sy < 0 ? 0 : 2 * g_.n);
-  }
-  const std::uint8_t* vpix(const Pos& p, int sx, int x, int y) const {
-    return pix(p, x, y, sx < 0 ? 0 : 2 * g_.n, g_.n);
+  const std::uint8_t* vpix(const std::vector<Pos>& pos, Colour c, int sx, int x, int y) const {
+    const int s = sx < 0 ? x : x - g_.n;
+    return e_.at(pos[c_ + c][0] + s + g_.extent, pos[c_ + c][1] + y);
   }
 
-  // Pixel (x, y) of diagonal coordinates (a, d) in corner k: a = sx X + sy Y (0 at the centre,
-  // n at the corner), d = sx X - sy Y (negative on the horizontal edge's side), where (X, Y) is
-  // the pixel centre relative to the tile centre.
-  std::array<int, 2> pixel_of(int k, int a, int d) const {
-    const int x2 = kCorners[k].sx * (a + d), y2 = kCorners[k].sy * (a - d);  // 2X, 2Y
-    return {(x2 + g_.n - 1) / 2, (y2 + g_.n - 1) / 2};
+  // Pixel of corner k at distance dh from the horizontal border and dv from the vertical one.
+  std::array<int, 2> pixel_of(int k, int dh, int dv) const {
+    const int n = g_.n;
+    return {kCorners[k].sx > 0 ? n - 1 - dv : dv, kCorners[k].sy < 0 ? dh : n - 1 - dh};
   }
 
-  // The cut in corner k between horizontal sample h and vertical sample v: d_a for a = 1..n-1.
-  // It starts at the centre (d = 0), stays within w of the diagonal and inside the quadrant, and
-  // ends in the corner: every border pixel lies on its own edge's side.
-  CutPath cut(int k, const Pos& h, const Pos& v) const {
-    const int n = g_.n, w = g_.overlap;
+  // The cut in corner k between horizontal-border sample h and vertical-border sample v, by
+  // anti-diagonals a = dh + dv = 1 .. 2 extent - 3 of the square where the two bands cross: the
+  // boundary P(a) between offsets d = dv - dh (pixels with d > P come from the horizontal
+  // border's sample). |P| < a keeps every border pixel on its own side, and the boundary's
+  // neighbours stay inside the square.
+  CutPath cut(int k, const std::vector<Pos>& pos, Colour h, Colour v) const {
+    const int E = g_.extent, A = 2 * E - 3;
     CutBand band;
-    band.rows = n - 1;
-    band.width = 2 * w + 1;
+    band.rows = A;
+    band.width = 2 * A + 1;
     band.diagonal = true;
     band.cost.assign(std::size_t(band.rows) * std::size_t(band.width), 0.0f);
     const float unit = float(e_.neighbour_difference);
-    for (int a = 1; a < n; ++a) {
-      const int below = std::min({w, a - 1, n - 1 - a}), above = a == n - 1 ? 0 : std::min({w, a - 1, n - 2 - a});
-      band.lo.push_back(w - below);
-      band.hi.push_back(w + above);
-      for (int d = -below; d <= above; ++d) {
-        if ((a + d) % 2 == 0) continue;  // not a pixel centre
-        const auto [x, y] = pixel_of(k, a, d);
-        band.at(a - 1, d + w) = colour_distance(hpix(h, kCorners[k].sy, x, y), vpix(v, kCorners[k].sx, x, y)) / unit;
+    for (int a = 1; a <= A; ++a) {
+      const int reach = std::min(a - 1, 2 * E - 3 - a);
+      band.lo.push_back(A - reach);
+      band.hi.push_back(A + reach);
+      for (int p = -reach; p <= reach; ++p) {
+        if ((a + p) % 2 == 0) continue;  // a boundary lies between pixel centres
+        float cost = 0;
+        for (int d : {p - 1, p + 1}) {
+          const auto [x, y] = pixel_of(k, (a - d) / 2, (a + d) / 2);
+          cost += colour_distance(hpix(pos, h, kCorners[k].sy, x, y), vpix(pos, v, kCorners[k].sx, x, y));
+        }
+        band.at(a - 1, p + A) = cost / unit;
       }
     }
     return min_error_cut(band);
   }
 
-  const Pos& hsample(std::uint32_t c, const std::vector<Pos>& s) const { return s[c]; }
-  const Pos& vsample(std::uint32_t c, const std::vector<Pos>& s) const { return s[c_ + c]; }
-
   // Summed error of every cut that involves sample j (0..C-1 horizontal, C..2C-1 vertical).
-  double sample_error(const std::vector<Pos>& s, std::uint32_t j) const {
+  double sample_error(std::size_t j, const std::vector<Pos>& pos) const {
     double sum = 0;
     for (int k = 0; k < 4; ++k)
-      for (std::uint32_t other = 0; other < c_; ++other)
-        sum += j < c_ ? cut(k, s[j], vsample(other, s)).cost : cut(k, hsample(other, s), s[j]).cost;
+      for (Colour other = 0; other < c_; ++other)
+        sum += j < c_ ? cut(k, pos, Colour(j), other).cost : cut(k, pos, other, Colour(j - c_)).cost;
     return sum;
   }
-  double total_error(const std::vector<Pos>& s) const {
+  double total_error(const std::vector<Pos>& pos) const {
     double sum = 0;
-    for (std::uint32_t h = 0; h < c_; ++h) sum += sample_error(s, h);
+    for (std::size_t h = 0; h < c_; ++h) sum += sample_error(h, pos);
     return sum;
   }
 
-  // The seam goal: the tile border through the diamond's centre (a row for a horizontal edge, a
-  // column for a vertical one) steps like the texture.
-  double goal_miss(const Pos& p, std::size_t j) const {
-    const Pos centre{p[0] + g_.half + g_.overlap, p[1] + g_.half + g_.overlap};
-    return seam_goal_miss(border_activity(e_, centre, g_.half, j < c_, j >= c_) / draw_.activity(p[0], p[1]));
-  }
-
-  // The diamonds: a random draw, then the search (search_samples): on the seam goal first, then
-  // the least error of the cuts the diamond takes part in.
   void choose_samples(TextureTileSet& s) {
-    for (std::uint32_t j = 0; j < 2 * c_; ++j) sample_.push_back(draw_(derive_seed(o_.seed, j)));
-    s.cut_error_initial = total_error(sample_);
-    search_samples(sample_, draw_, o_, [&](std::size_t j, const std::vector<Pos>& pos) {
-      return SampleScore{goal_miss(pos[j], j), sample_error(pos, std::uint32_t(j))};
-    });
+    for (std::size_t j = 0; j < slots_.size(); ++j) {
+      const SampleSlot& sl = slots_[j];
+      const Pos p = draws_[std::size_t(sl.draw)](derive_seed(o_.seed, j), sl.stratum, sl.strata);
+      pos_.push_back(x_.in_phase(p, sl.u, sl.v, sl.w, sl.h));
+    }
+    s.cut_error_initial = total_error(pos_);
+    s.overlap = search_samples(pos_, slots_, draws_, x_, o_,
+                               [&](std::size_t j, const std::vector<Pos>& pos) { return sample_error(j, pos); });
     for (int k = 0; k < 4; ++k)
-      for (std::uint32_t h = 0; h < c_; ++h)
-        for (std::uint32_t v = 0; v < c_; ++v) cuts_.push_back(cut(k, hsample(h, sample_), vsample(v, sample_)).pos);
-    s.cut_error = total_error(sample_);
+      for (Colour h = 0; h < c_; ++h)
+        for (Colour v = 0; v < c_; ++v) cuts_.push_back(cut(k, pos_, h, v).pos);
+    s.cut_error = total_error(pos_);
   }
 
+  // The bands of every tile, split in the corners by the diagonal cuts; the middle, which no band
+  // reaches, is left for the centre patch.
   void compose_tiles(TextureTileSet& s) {
-    const int n = g_.n, w = g_.overlap;
+    const int n = g_.n, E = g_.extent, A = 2 * E - 3;
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
     s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
-    s.sources.assign(count, std::vector<std::uint32_t>(px));
-    ProgressReporter progress(fmt::format("Wang tiles C={} {}px", c_, n), double(count), o_.progress);
+    s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
     parallel_for(std::int64_t(count), o_.threads, [&](std::int64_t ti) {
       const WangTile t = wang_tile(TileIndex(ti), c_);  // thesis eq. (2.3)
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-          const int x2 = 2 * x + 1 - n, y2 = 2 * y + 1 - n;
-          const int sx = x2 > 0 ? 1 : -1, sy = y2 > 0 ? 1 : -1, k = corner_of(sx, sy);
-          const int a = (sx * x2 + sy * y2) / 2, d = (sx * x2 - sy * y2) / 2;
+          const int sx = 2 * x + 1 > n ? 1 : -1, sy = 2 * y + 1 > n ? 1 : -1;
+          const int dh = sy < 0 ? y : n - 1 - y, dv = sx > 0 ? n - 1 - x : x;
           const Colour h = sy < 0 ? t.n : t.s, v = sx > 0 ? t.e : t.w;
-          const std::vector<int>& path = cuts_[(std::size_t(k) * c_ + h) * c_ + v];
-          const bool horizontal = d <= path[std::size_t(a - 1)] - w;
-          const std::uint8_t* p =
-              horizontal ? hpix(hsample(h, sample_), sy, x, y) : vpix(vsample(v, sample_), sx, x, y);
+          bool horizontal;
+          if (dh >= E && dv >= E) continue;  // the centre's
+          if (dh >= E || dv >= E) {
+            horizontal = dh < E;
+          } else {
+            const int k = sy < 0 ? (sx > 0 ? 0 : 3) : (sx > 0 ? 1 : 2), a = dh + dv, d = dv - dh;
+            const std::vector<int>& path = cuts_[(std::size_t(k) * c_ + h) * c_ + v];
+            horizontal = a == 0 || (a <= A ? d > path[std::size_t(a - 1)] - A : d >= 0);
+          }
+          const std::uint8_t* p = horizontal ? hpix(pos_, h, sy, x, y) : vpix(pos_, v, sx, x, y);
           const std::size_t i = std::size_t(y) * std::size_t(n) + std::size_t(x);
           std::copy_n(p, 4, s.tiles[std::size_t(ti)].pixels.data() + 4 * i);
           s.sources[std::size_t(ti)][i] = horizontal ? h : c_ + v;
         }
-      progress.add(1);
     });
-    progress.finish();
   }
 
+  SynthesisExemplar x_;
   const Exemplar& e_;
   const SynthesisOptions& o_;
   const TileGeometry g_;
   const std::uint32_t c_;
-  const SampleDraw draw_;               // typical diamond samples
-  std::vector<Pos> sample_;             // diamonds: C horizontal-edge colours, then C vertical-edge colours
-  std::vector<std::vector<int>> cuts_;  // (corner * C + h) * C + v -> path position (d + w) per a - 1
+  std::vector<SampleDraw> draws_;       // horizontal-border bands, vertical-border bands
+  std::vector<SampleSlot> slots_;       // C horizontal-edge colours, then C vertical-edge colours
+  std::vector<Pos> pos_;                // the samples' exemplar positions, by slot
+  std::vector<std::vector<int>> cuts_;  // (corner * C + h) * C + v -> boundary position (P + A) per a - 1
 };
 
 }  // namespace

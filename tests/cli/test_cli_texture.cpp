@@ -38,7 +38,7 @@ TEST(CliTexture, TilesAtlasAndRenderMakeTheirFilesAndReportJson) {
                    (d / "tiles") + " --search 8 --seed 3 --json --quiet");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.json()["tiles"], 16);
-  EXPECT_EQ(t.json()["method"], "ng-corner");
+  EXPECT_EQ(t.json()["method"], "corner-strips");
   auto a = run_cli("texture atlas " + (d / "tiles") + " --out " + (d / "atlas.png") + " --no-db --json");
   ASSERT_EQ(a.code, 0) << a.err;
   EXPECT_EQ(a.json()["width"], 128);
@@ -55,6 +55,50 @@ TEST(CliTexture, TilesAtlasAndRenderMakeTheirFilesAndReportJson) {
       run_cli("texture render --atlas " + (d / "atlas.json") + " --size 20x10 --out " + (d / "h.png") + " --quiet");
   EXPECT_EQ(human.code, 0);
   EXPECT_NE(human.out.find("cpu renderer"), std::string::npos) << human.out;
+}
+
+// texture analyze on a render of a small atlas: the measures in JSON, the labels of the same
+// view for the cut visibility, the spectrum plot; and bad input is exit 2 with nothing written.
+TEST(CliTexture, AnalyzeReportsTheMeasuresAndRefusesBadInputWritingNothing) {
+  TempDir d;
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
+  ASSERT_EQ(run_cli("texture atlas " + (d / "t/labels") + " --out " + (d / "l.png") + " --no-db").code, 0);
+  const std::string view = " --size 128x128 --quiet --out ";
+  ASSERT_EQ(run_cli("texture render --atlas " + (d / "a.png") + view + (d / "r.png")).code, 0);
+  ASSERT_EQ(run_cli("texture render --atlas " + (d / "l.png") + view + (d / "rl.png")).code, 0);
+  auto r = run_cli("texture analyze " + (d / "r.png") + " --tile-px 16 --exemplar " + (d / "ex.png") + " --labels " +
+                   (d / "rl.png") + " --plot " + (d / "p.png") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = r.json();
+  for (const char* k : {"grid_repetition", "seam_ratio", "cut_visibility", "histogram_distance", "lattice_peak_db"})
+    EXPECT_TRUE(j[k].is_number()) << k;
+  EXPECT_EQ(j["lattice_lags"].size(), 5u);
+  EXPECT_GT(j["cut_visibility"].get<double>(), 0.5);
+  EXPECT_EQ(read_image(d / "p.png").width, 640);
+  auto hex = run_cli("texture analyze " + (d / "r.png") + " --lattice 16,0,8,13.86 --json");
+  ASSERT_EQ(hex.code, 0) << hex.err;
+  EXPECT_TRUE(hex.json()["seam_ratio"].is_null());
+  test::write_text(d / "corrupt.png", "not an image");
+  std::filesystem::create_directory(d / "dir.png");
+  const std::string img = (d / "r.png") + " --tile-px 16";
+  for (const auto& [args, what] :
+       std::vector<std::pair<std::string, std::string>>{{(d / "missing.png") + " --tile-px 16", "missing.png"},
+                                                        {(d / "corrupt.png") + " --tile-px 16", "corrupt.png"},
+                                                        {img + " --plot " + (d / "no/such/folder/p2.png"), "p2.png"},
+                                                        {img + " --plot " + (d / "dir.png"), "dir.png"},
+                                                        {img + " --exemplar " + (d / "none.png"), "none.png"},
+                                                        {img + " --labels " + (d / "ex.png"), "labels"},
+                                                        {(d / "r.png") + " --tile-px 64", "too small"},
+                                                        {(d / "r.png") + " --lattice 16,0,x,4", "--lattice"},
+                                                        {(d / "r.png") + " --tile-px 16 --lattice 16,0,0,16", "either"},
+                                                        {(d / "r.png"), "either"}}) {
+    auto bad = run_cli("texture analyze " + args + " --json");
+    EXPECT_EQ(bad.code, 2) << args << "\n" << bad.err;
+    EXPECT_EQ(lines(bad.err), 1) << bad.err;
+    EXPECT_NE(bad.err.find(what), std::string::npos) << bad.err;
+    EXPECT_TRUE(bad.out.empty()) << bad.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(d / "no"));
 }
 
 TEST(CliTexture, BadExemplarsAndSizesAreExitTwoWithOneLineNamingTheProblem) {

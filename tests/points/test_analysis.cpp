@@ -11,7 +11,7 @@
 #include "base/error.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/analysis_spectrum.hpp"
-#include "points/fft.hpp"
+#include "base/fft.hpp"
 #include "points/reference_sets.hpp"
 #include "points/zone_plate.hpp"
 

@@ -1,11 +1,12 @@
 #pragma once
-// A small radix-2 FFT (iterative Cooley-Tukey, decimation in time), in 1-D and 2-D, for the
-// periodograms of the spectral analysis. Forward transform: X[k] = sum_n x[n] e^{-2 pi i k n / N}.
+// The one FFT: radix-2 (iterative Cooley-Tukey, decimation in time), in 1-D and 2-D, for the
+// periodograms of the point-set and texture analyses. Forward transform:
+// X[k] = sum_n x[n] e^{-2 pi i k n / N}.
 #include <complex>
 #include <cstddef>
 #include <vector>
 
-namespace tilekit::points {
+namespace tilekit {
 
 using Complex = std::complex<double>;
 
@@ -19,4 +20,4 @@ inline bool is_power_of_two(std::size_t n) {
   return n > 0 && (n & (n - 1)) == 0;
 }
 
-}  // namespace tilekit::points
+}  // namespace tilekit

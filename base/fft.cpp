@@ -1,4 +1,4 @@
-#include "points/fft.hpp"
+#include "base/fft.hpp"
 
 #include <cassert>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "base/parallel.hpp"
 
-namespace tilekit::points {
+namespace tilekit {
 
 namespace {
 
@@ -59,4 +59,4 @@ void fft2d(std::vector<Complex>& a, std::size_t n, int threads) {
   });
 }
 
-}  // namespace tilekit::points
+}  // namespace tilekit
