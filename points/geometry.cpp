@@ -44,6 +44,12 @@ void PointGrid::insert(int id, Point2 p) {
   ++count_;
 }
 
+void PointGrid::erase(int id, Point2 p) {
+  int* link = &head_[std::size_t(cell_index(p))];
+  while (*link >= 0 && *link != id) link = &next_[std::size_t(*link)];
+  if (*link == id) *link = next_[std::size_t(id)];
+}
+
 int PointGrid::nearest(Point2 p, const std::vector<Point2>& pos) const {
   if (count_ == 0) return -1;
   int best = -1;

@@ -67,6 +67,8 @@ class PointGrid {
   void clear();
   // Adds point `id` at p (ids index the caller's arrays; any order, each at most once).
   void insert(int id, Point2 p);
+  // Removes point `id`, inserted at p.
+  void erase(int id, Point2 p);
 
   double cell() const { return cell_; }
   bool torus() const { return torus_; }
