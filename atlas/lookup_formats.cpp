@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atlas/lookup.hpp"
+#include "base/version.hpp"
 
 namespace tilekit {
 
@@ -27,6 +28,7 @@ nlohmann::json lookup_json(const AtlasLookup& a) {
                       {"how", a.how},
                       {"closed_form", a.closed_form}};
   if (a.solution_id) j["solution_id"] = a.solution_id;
+  j["tilekit_version"] = version_line();  // which build made it, as in every JSON result
   return j;
 }
 
@@ -60,7 +62,8 @@ std::string lookup_json_text(const AtlasLookup& a) {
   }
   out += fmt::format("],\"rows\":{},", a.rows);
   if (a.solution_id) out += fmt::format("\"solution_id\":{},", a.solution_id);
-  out += fmt::format("\"source\":{},\"torus\":true}}", nlohmann::json(a.source).dump());
+  out += fmt::format("\"source\":{},\"tilekit_version\":{},\"torus\":true}}", nlohmann::json(a.source).dump(),
+                     nlohmann::json(version_line()).dump());
   return out;
 }
 

@@ -10,7 +10,7 @@
 namespace tilekit::cli {
 
 struct ClusterPlan {
-  std::string tilekit;                 // absolute path of the binary the jobs run
+  std::string tilekit;                 // absolute path of the binary the jobs run (default_job_binary)
   std::string run_dir;                 // absolute; on the filesystem shared by the nodes
   std::string job_name;                // squeue's name; the merge job adds "-merge"
   std::vector<std::string> pack_args;  // `tilekit pack` arguments common to every shard
@@ -34,6 +34,12 @@ int default_signal_seconds(long seconds);
 
 // `text` quoted for bash (single quotes), unchanged when it needs no quoting.
 std::string shell_quote(std::string_view text);
+
+// The binary the jobs run when `cluster submit` has no --tilekit: the first executable file named
+// tilekit in the directories of `path_env` (PATH: an installed binary, which a rebuild of a
+// checkout does not replace under a running array), else `self` (the binary running submit, e.g.
+// a build tree's build/tilekit). The result is absolute, with links resolved.
+std::string default_job_binary(std::string_view path_env, const std::string& self);
 
 // Throws InputError when the plan cannot make working scripts (bad counts, odd paths).
 void check_plan(const ClusterPlan& plan);

@@ -35,7 +35,8 @@ struct RunRecord {
   std::optional<std::uint64_t> orbits;
   double seconds = 0;
   int threads = 1;
-  std::string host, version, started_at, finished_at;
+  std::string host, started_at, finished_at;
+  std::string version;  // the build that ran it; "" = this one (base/version.hpp version_line())
   // Globally unique id of the run (begin_run() makes one when empty); merges use it so that a
   // run merged twice is stored once.
   std::string uid;

@@ -6,7 +6,8 @@ set -euo pipefail
 PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt-dev libgtest-dev
       libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
       glslang-tools cadical libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-      clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev)  # fuzzing and the sanitizer builds (issue 15)
+      clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev  # fuzzing and the sanitizer builds (issue 15)
+      jq dpkg-dev)  # the install and Debian package tests (tests/install/install-test.sh)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -28,6 +28,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 TK=${TILEKIT_BINARY:-$root/build/tilekit}
+# `cluster submit` gives the jobs the tilekit on PATH (an installed one) unless --tilekit says
+# otherwise: this build's goes first, so that the jobs run the binary under test.
+PATH="$(dirname "$(readlink -f "$TK")"):$PATH"
 SLURM=$root/scripts/slurm/local-slurm.sh
 DEADLINE=$((SECONDS + ${TILEKIT_SLURM_TEST_BUDGET:-280}))  # whole test < 5 minutes
 passed=0
@@ -166,6 +169,7 @@ out=$("$TK" cluster submit --kind wang --colors 2 --mode all --method search --s
 array=$(submitted_id array_job "$out")
 merge=$(submitted_id merge_job "$out")
 [ -n "$array" ] && [ -n "$merge" ] || fatal "no job ids in: $out"
+check "the jobs run the tilekit on PATH" grep -qF "\"tilekit\":\"$(readlink -f "$TK")\"" <<<"$out"
 check "the merge job waits for the whole array (afterok)" \
   test "$(field "$merge" Dependency)" = "afterok:${array}_*(unfulfilled)"
 
