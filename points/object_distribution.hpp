@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "points/generator.hpp"
 #include "image/image.hpp"
+#include "points/generator.hpp"
 
 namespace tilekit::points {
 
