@@ -12,9 +12,9 @@
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/parallel.hpp"
+#include "results/results_db.hpp"
 #include "cli/cmd_points.hpp"
 #include "points/object_distribution.hpp"
-#include "results/results_db.hpp"
 
 namespace tilekit::cli::pts {
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "image/image.hpp"
 #include "points/analysis_spectrum.hpp"
 #include "points/generator.hpp"
+#include "image/image.hpp"
 
 namespace tilekit::points {
 

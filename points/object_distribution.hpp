@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "image/image.hpp"
 #include "points/generator.hpp"
+#include "image/image.hpp"
 
 namespace tilekit::points {
 

@@ -5,8 +5,8 @@
 // B = C = 1/3). 262,144 points make one sample per pixel. The origin is at the lower left.
 #include <vector>
 
-#include "image/image.hpp"
 #include "points/generator.hpp"
+#include "image/image.hpp"
 
 namespace tilekit::points {
 

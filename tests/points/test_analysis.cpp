@@ -53,8 +53,8 @@ TEST(Periodogram, WhiteNoiseIsFlatAtOneWithBackgroundAnisotropy) {
   double mean = 0, mean_db = 0;
   int n = 0;
   for (std::size_t i = 4; i < r.power.size(); ++i) mean += r.power[i], mean_db += r.anisotropy_db[i], ++n;
-  EXPECT_NEAR(mean / n, 1.0, 0.02);       // flat at 1 (P normalised by N)
-  EXPECT_NEAR(mean_db / n, -10.0, 0.35);  // var(P) = P^2 / K, K = 10 (thesis eq. 6.2)
+  EXPECT_NEAR(mean / n, 1.0, 0.02);        // flat at 1 (P normalised by N)
+  EXPECT_NEAR(mean_db / n, -10.0, 0.35);   // var(P) = P^2 / K, K = 10 (thesis eq. 6.2)
   EXPECT_EQ(ps.sets, 10u);
 }
 
