@@ -136,20 +136,23 @@ class Sampler {
       for (std::size_t base = f0; base < pos_.size(); base += std::size_t(g_), ++tried) {
         const Point2 moved =
             wrapped({pos_[base].x + (2 * rng.uniform() - 1) * step, pos_[base].y + (2 * rng.uniform() - 1) * step});
-        for (int k = 0; k < g_; ++k) grid_.erase(int(base) + k, pos_[base + std::size_t(k)]);
-        if (dart_fits(moved, d_)) {
-          for (int k = 0; k < g_; ++k) pos_[base + std::size_t(k)] = image(moved, k);
-          ++taken;
+        if (!dart_fits(moved, d_, base)) continue;
+        ++taken;
+        for (int k = 0; k < g_; ++k) {
+          const std::size_t i = base + std::size_t(k);
+          const Point2 to = image(moved, k);
+          if (grid_.cell_index(to) != grid_.cell_index(pos_[i])) grid_.erase(int(i), pos_[i]), grid_.insert(int(i), to);
+          pos_[i] = to;
         }
-        for (int k = 0; k < g_; ++k) grid_.insert(int(base) + k, pos_[base + std::size_t(k)]);
       }
       if (tried > 0) step = std::clamp(step * (0.5 + double(taken) / double(tried) / 0.8), 0.01 * d_, d_);
     }
   }
 
-  // Whether q's orbit may be added: every image at least `radius` from every point and from the
-  // other images, and in the free region (tested last: it is the costly part near curved borders).
-  bool dart_fits(Point2 q, double radius) const {
+  // Whether q's orbit may be added: every image at least `radius` from every point (but the orbit
+  // starting at `moving`, the one being moved) and from the other images, and in the free region
+  // (tested last: it is the costly part near curved borders).
+  bool dart_fits(Point2 q, double radius, std::size_t moving = std::numeric_limits<std::size_t>::max() - 4) const {
     const int rings = int(std::ceil(radius / grid_.cell()));
     const double r2 = radius * radius;
     Point2 orbit[4];
@@ -159,12 +162,12 @@ class Sampler {
         const Point2 dd = grid_.delta(orbit[k], orbit[m]);
         if (dd.x * dd.x + dd.y * dd.y < r2) return false;
       }
-      bool ok = true;
-      grid_.for_near(orbit[k], rings, [&](int id) {
+      const bool blocked = grid_.any_near(orbit[k], rings, [&](int id) {
+        if (std::size_t(id) >= moving && std::size_t(id) < moving + std::size_t(g_)) return false;
         const Point2 dd = grid_.delta(orbit[k], pos_[std::size_t(id)]);
-        if (dd.x * dd.x + dd.y * dd.y < r2) ok = false;
+        return dd.x * dd.x + dd.y * dd.y < r2;
       });
-      if (!ok) return false;
+      if (blocked) return false;
     }
     for (int k = 0; k < g_; ++k)
       if (!in_region(orbit[k])) return false;
