@@ -44,7 +44,7 @@ nlohmann::json radius_json(const RadiusStats& r) {
 
 struct TilesArgs {
   std::string method = "corner", out, picture, db;
-  std::uint32_t colors = 4, edge_colors = 1, points = 64;
+  std::uint32_t colors = 4, edge_colors = 1, points = 0;  // points 0: the method's default
   double rho = 0.75;
   int lloyd = 0, threads = 0;
   std::uint64_t seed = 1;
@@ -189,7 +189,8 @@ void add_tiles_command(CLI::App* points, Context& ctx) {
   cmd->add_option("--edge-colors", a->edge_colors,
                   "corner: edge colours E hashed per lattice edge, C^4 E^4 tiles (thesis sec. 6.11; default 1)")
       ->check(CLI::Range(1, 16));
-  cmd->add_option("--points", a->points, "Points per tile N (default 64)")->check(CLI::Range(1, 65536));
+  cmd->add_option("--points", a->points, "Points per tile N (default 1024 for corner, 64 for wang and dual)")
+      ->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a->rho, "Relative radius: no two points closer than 2 rho r_max(N) (default 0.75)");
   cmd->add_option("--lloyd", a->lloyd, "Lloyd iterations at least per region (default 0: only until rho is met)")
       ->check(CLI::Range(0, 10000));

@@ -26,8 +26,8 @@ inline constexpr const char* kMethods = "corner | wang | dual | recursive | brid
 
 struct SourceArgs {
   std::string method = "corner";
-  std::string tiles;  // a tile-set file (or db:ID); empty: build one in memory
-  std::uint32_t colors = 4, edge_colors = 1, points = 64;
+  std::string tiles;                                      // a tile-set file (or db:ID); empty: build one in memory
+  std::uint32_t colors = 4, edge_colors = 1, points = 0;  // points 0: the method's default
   double rho = 0.75;
   int lloyd = 0, subdivision = 2, levels = 20;
   std::uint64_t tile_seed = 1;

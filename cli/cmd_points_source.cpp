@@ -21,7 +21,8 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
   cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1, 64));
   cmd->add_option("--edge-colors", a.edge_colors, "corner: edge colours of a tile set built in memory (default 1)")
       ->check(CLI::Range(1, 16));
-  cmd->add_option("--points", a.points, "Points per tile of a set built in memory (default 64)")
+  cmd->add_option("--points", a.points,
+                  "Points per tile of a set built in memory (default 1024 for corner, 64 for the others)")
       ->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a.rho,
                   "Relative radius of a tile set built in memory, or of Bridson's sampler (default 0.75)");
@@ -61,7 +62,7 @@ Source::Source(const SourceArgs& a, int threads, bool progress) : a_(a) {
       recursive_ = read_recursive_tiles(a.tiles);
     } else {
       RecursiveTileParams p;
-      p.points = a.points;
+      p.points = a.points ? a.points : 64;
       p.subdivision = a.subdivision;
       p.seed = a.tile_seed;
       p.threads = threads;

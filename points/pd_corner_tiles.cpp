@@ -88,8 +88,10 @@ std::vector<Point2> turned(const std::vector<Point2>& pts, int q, Point2 centre 
 // Declared in pd_wang_tiles.cpp.
 PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Regions& g, ProgressReporter& progress);
 
-PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
-  check_poisson_tile_params(p);
+PoissonTileSet build_poisson_tiles(const PoissonTileParams& asked) {
+  check_poisson_tile_params(asked);
+  PoissonTileParams p = asked;
+  if (p.points == 0) p.points = default_tile_points(p.method);
   const auto start = std::chrono::steady_clock::now();
   const double r = p.rho * max_poisson_radius(p.points);
   const Regions g(r * (1 + kMargin), p.method == PoissonTileMethod::Dual);

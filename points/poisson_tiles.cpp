@@ -38,7 +38,13 @@ double PoissonTileSet::guaranteed_distance() const {
   return 2 * radius * (1 + kMargin);
 }
 
-void check_poisson_tile_params(const PoissonTileParams& p) {
+std::uint32_t default_tile_points(PoissonTileMethod m) {
+  return m == PoissonTileMethod::Corner ? 1024 : 64;
+}
+
+void check_poisson_tile_params(const PoissonTileParams& asked) {
+  PoissonTileParams p = asked;
+  if (p.points == 0) p.points = default_tile_points(p.method);
   if (p.colours < 1 || p.colours > 64) throw InputError(fmt::format("--colors must be 1..64, got {}", p.colours));
   if (p.edge_colours < 1 || p.edge_colours > 16)
     throw InputError(fmt::format("--edge-colors must be 1..16, got {}", p.edge_colours));

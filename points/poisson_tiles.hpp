@@ -51,7 +51,7 @@ struct PoissonTileParams {
   PoissonTileMethod method = PoissonTileMethod::Corner;
   std::uint32_t colours = 4;       // C
   std::uint32_t edge_colours = 1;  // E, corner method only
-  std::uint32_t points = 64;       // N, points per tile
+  std::uint32_t points = 0;        // N, points per tile; 0: default_tile_points(method)
   double rho = 0.75;               // relative radius (thesis eq. 4.3): no two points closer than 2 rho r_max(N)
   int lloyd = 0;                   // Lloyd iterations at least per region (0: only until rho is met)
   std::uint64_t seed = 1;
@@ -91,6 +91,14 @@ std::uint64_t edged_tile_index(std::uint32_t nw, std::uint32_t ne, std::uint32_t
 // Relative safety margin on the distance: the construction keeps points 2r (1 + kMargin) apart
 // so that float32 output (24-bit mantissa) of windows up to ~10^4 points across keeps 2r.
 inline constexpr double kMargin = 1e-3;
+
+// N when none is asked for: 1024 for corner sets, 64 for the others. A corner set's C corner
+// regions, C^2 E edge regions and C^4 E^4 interiors recur across a tiling, so their share of a
+// set's power at the tile lattice's harmonics grows with the tiles per set: about 16,384 / (N V)
+// for a region type of V variants. With N = 64 and C = 4 the corner regions alone put +4 dB peaks
+// into a 16,384-point spectrum; with N = 1024 all three stay near the -10 dB background
+// (points/README.md, "Spectrum and points per tile").
+std::uint32_t default_tile_points(PoissonTileMethod m);
 
 // Throws InputError for parameters no tile set can meet (C < 1, N too small for the regions
 // to fit, rho outside (0, 1), tile sets over 2^20 tiles, edge colours with another method).

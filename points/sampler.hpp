@@ -41,7 +41,7 @@ struct SamplingProblem {
 
 struct SamplingOptions {
   double min_distance = 0;           // between any two points, new-new and new-fixed
-  int hard_disk_sweeps = 100;        // hard-disk Monte Carlo sweeps after the darts
+  int hard_disk_sweeps = 30;         // hard-disk Monte Carlo sweeps after the darts (100 gave the same spectra)
   int lloyd = 0;                     // Lloyd iterations before the push-apart repair
   int repair = 80;                   // push-apart steps before a try starts over
   int tries = 24;                    // tries before giving up (InputError)
