@@ -58,11 +58,11 @@ struct Options {
   bool quick = false;
 };
 
-PoissonTileSet build(PoissonTileMethod m, std::uint32_t c, std::uint32_t e = 1, int threads = 2) {
+PoissonTileSet build(PoissonTileMethod m, std::uint32_t c, std::uint32_t n = 0, int threads = 2) {
   PoissonTileParams p;
   p.method = m;
   p.colours = c;
-  p.edge_colours = e;
+  p.points = n;  // 0: the method's default
   p.threads = threads;
   return build_poisson_tiles(p);
 }
@@ -139,12 +139,12 @@ Method tile_method(std::string name, std::string key, std::shared_ptr<const Pois
 std::vector<Method> methods(const Options& o) {
   std::vector<Method> out;
   if (!o.before.empty())
-    out.push_back(tile_method("corner C=4 N=64, before (" + std::filesystem::path(o.before).filename().string() + ")",
+    out.push_back(tile_method("corner, before (" + std::filesystem::path(o.before).filename().string() + ")",
                               "corner-before", std::make_shared<PoissonTileSet>(read_poisson_tiles(o.before))));
-  out.push_back(tile_method("corner C=4 N=64 (default)", "corner",
+  out.push_back(tile_method("corner C=4 N=1024 (default)", "corner",
                             std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Corner, 4))));
-  out.push_back(tile_method("corner C=4 E=2 N=64", "corner-e2",
-                            std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Corner, 4, 2))));
+  out.push_back(tile_method("corner C=4 N=64", "corner-n64",
+                            std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Corner, 4, 64))));
   if (!o.quick) {
     out.push_back(
         tile_method("dual (Li) C=2 N=64", "dual", std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Dual, 2))));
@@ -233,13 +233,13 @@ void build_time(const Options& o) {
   for (int i = 0; i < std::max(1, o.reps / 2); ++i) {
     const double c0 = bench::cpu_seconds();
     std::optional<PoissonTileSet> set;
-    wall1.push_back(seconds_of([&] { set = build(PoissonTileMethod::Corner, 4, 1, 1); }));
+    wall1.push_back(seconds_of([&] { set = build(PoissonTileMethod::Corner, 4, 0, 1); }));
     cpu1.push_back(bench::cpu_seconds() - c0);
-    wall2.push_back(seconds_of([&] { escape(build(PoissonTileMethod::Corner, 4, 1, 2).tiles.data()); }));
+    wall2.push_back(seconds_of([&] { escape(build(PoissonTileMethod::Corner, 4, 0, 2).tiles.data()); }));
     rho = check_poisson_tiles(*set, 2).rho_across;
   }
   emit({{"case", "build_tile_set"},
-        {"tiles", "corner C=4 N=64 rho=0.75"},
+        {"tiles", "corner C=4 N=1024 rho=0.75"},
         {"seconds_1_thread", median(wall1)},
         {"cpu_seconds_1_thread", median(cpu1)},
         {"seconds_2_threads", median(wall2)},
@@ -254,7 +254,7 @@ void radius_across(const Options& o) {
   const auto xy = PoissonTileGenerator(set, HashKind::LongPeriod, 11).generate(w, set.points, 2);
   const auto r = radius_stats(xy, w.area(), 1.0);
   emit({{"case", "radius"},
-        {"tiles", "corner C=4 N=64 rho=0.75"},
+        {"tiles", "corner C=4 N=1024 rho=0.75"},
         {"points", r.count},
         {"rho", r.rho},
         {"rho_within", r.rho_within},

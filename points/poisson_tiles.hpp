@@ -97,7 +97,7 @@ inline constexpr double kMargin = 1e-3;
 // set's power at the tile lattice's harmonics grows with the tiles per set: about 16,384 / (N V)
 // for a region type of V variants. With N = 64 and C = 4 the corner regions alone put +4 dB peaks
 // into a 16,384-point spectrum; with N = 1024 all three stay near the -10 dB background
-// (points/README.md, "Spectrum and points per tile").
+// (points/README.md, "Why the tiles showed").
 std::uint32_t default_tile_points(PoissonTileMethod m);
 
 // Throws InputError for parameters no tile set can meet (C < 1, N too small for the regions

@@ -124,7 +124,7 @@ class Sampler {
   // distance from every other point. Dart throwing alone leaves a depleted band next to fixed
   // points (they block darts from the start, while new points arrive over time) and a crowded one
   // behind it, in the same place in every tile; the sweeps bring the new points to the hard-disk
-  // distribution given the fixed ones, which has no such band (README, "Why the tiles showed").
+  // distribution given the fixed ones, which has no such band (points/README.md, "Why the tiles showed").
   // The step adapts towards a 40% acceptance rate.
   void relax_hard_disks(SplitMix64& rng) {
     if (o_.hard_disk_sweeps <= 0) return;

@@ -9,7 +9,7 @@
 // curve are 2r apart: the segment between them crosses the curve), and curves that differ from
 // edge to edge move the border between independently sampled regions from tile to tile. With the
 // straight edges of the thesis that border is the same line in every tile; points pile up along
-// it and the tiling's spectrum grows spikes on the axes (BENCHMARKS.md, "Point sets").
+// it and the tiling's spectrum grows spikes on the axes (points/README.md, "Why the tiles showed").
 #include <cmath>
 #include <cstdint>
 #include <vector>
