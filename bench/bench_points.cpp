@@ -1,10 +1,10 @@
-// Point sets: the comparison of the README (points/README.md, "The comparison") in one run. For
-// every method: generation speed on one thread (and the ratio to Bridson's dart throwing and to
-// the corner set before edge colours and hard-disk sweeps, timed in the same run), the power
-// spectrum of K = 10 toroidal sets of 16,384 points (thesis sec. 6.2.2: max and mean anisotropy
-// in 0.5-2 f_p, effective Nyquist frequency, oscillations) and the smallest relative radius of
-// those sets; then the build time of the default corner set and rho across the borders of a
-// large window. One JSON line per case; medians of --reps runs; the load average with each line.
+// Point sets: the comparison of README.md ("The comparison") in one run. For every method:
+// generation speed on one thread (and its ratio to Bridson's dart throwing and to an earlier
+// corner set, timed in the same run), the power spectrum of K = 10 toroidal sets of 16,384 points
+// (thesis sec. 6.2.2: max and mean anisotropy in 0.5-2 f_p, effective Nyquist frequency,
+// oscillations) and the smallest relative radius of those sets; then the build time of the
+// default corner set and rho across the borders of a large window. One JSON line per case;
+// medians of --reps runs; the load average with each line.
 //
 //   build/bench_bench_points [--reps 5] [--points 1e7] [--bridson-points 2e5] [--before F.ptiles]
 //                            [--plots DIR] [--quick]

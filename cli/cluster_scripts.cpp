@@ -37,6 +37,16 @@ std::string bash_array(const std::string& name, const std::vector<std::string>& 
   return out + ")\n";
 }
 
+}  // namespace
+
+std::string_view slurm_script_body(std::string_view name) {
+  for (const EmbeddedFile& f : slurm_script_bodies())
+    if (f.name == name) return f.text;
+  return {};
+}
+
+namespace {
+
 std::string body(std::string_view name) {
   std::string_view b = slurm_script_body(name);
   if (b.empty()) throw std::logic_error(fmt::format("job-script body '{}' was not embedded", name));

@@ -1,11 +1,13 @@
 #pragma once
-// The Slurm job scripts of `tilekit cluster submit` (issue 6): a job array with one task per
+// The Slurm job scripts of `tilekit cluster submit`: a job array with one task per
 // shard of `tilekit pack`, a merge job that runs after it (afterok), and submit.sh that queues
 // both. Each script is a header of commented #SBATCH directives and variables written here,
 // followed by a body kept in scripts/slurm/*.body.sh and embedded in the binary at build time.
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "tilesets/reference_data.hpp"
 
 namespace tilekit::cli {
 
@@ -48,8 +50,11 @@ std::string pack_array_script(const ClusterPlan& plan);
 std::string merge_script(const ClusterPlan& plan);
 std::string submit_script(const ClusterPlan& plan);
 
-// The embedded body scripts/slurm/NAME.body.sh ("pack-array", "merge"); empty if unknown.
-// Defined in the build's generated slurm_script_bodies.cpp (scripts/slurm/embed.cmake).
+// The embedded bodies scripts/slurm/NAME.body.sh, named NAME ("pack-array", "merge"). Defined in
+// the build's generated slurm_script_bodies.cpp (cmake/embed_files.cmake).
+const std::vector<EmbeddedFile>& slurm_script_bodies();
+
+// The body named `name`; empty if unknown.
 std::string_view slurm_script_body(std::string_view name);
 
 }  // namespace tilekit::cli

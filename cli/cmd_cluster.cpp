@@ -1,4 +1,4 @@
-// tilekit cluster submit|status: a sharded `tilekit pack` as a Slurm job array (issue 6).
+// tilekit cluster submit|status: a sharded `tilekit pack` as a Slurm job array.
 // submit writes pack-array.sbatch, merge.sbatch and submit.sh into the run directory and
 // queues them (sbatch); status reads the run directory (no Slurm needed) and shows each
 // shard's attempts, checkpoint and result, and the merged count.

@@ -1,5 +1,6 @@
 // tilekit: Wang tiles and corner tiles, tile packings, aperiodic sets.
-// Exit codes (DESIGN.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.
+// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a
+// checkpoint.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>

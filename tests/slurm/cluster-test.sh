@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end test of `tilekit cluster` on a real Slurm (issue 6). Needs root and a built
+# End-to-end test of `tilekit cluster` on a real Slurm. Needs root and a built
 # build/tilekit; installs slurm-wlm and munge if missing and starts a single-node Slurm
 # (scripts/slurm/local-slurm.sh) in a temporary directory, stopped by PID when the test ends.
 #
@@ -21,7 +21,7 @@
 #     first); at the requeue bound (1) the task ends with exit 3.
 #  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
 #     scancel then ends it for good (checkpoint, exit 3, no requeue).
-#  5. An imposed-group count as an array (issue 11): the C=3 Wang packings invariant under a
+#  5. An imposed-group count as an array: the C=3 Wang packings invariant under a
 #     group of order 9, 3 shards, one task requeued mid-search (SIGTERM -> checkpoint -> exit 3
 #     -> Slurm requeues -> resume); the shards' counts add up to an unsharded count.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
