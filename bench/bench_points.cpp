@@ -1,32 +1,42 @@
-// Point sets: speed of window generation through the direct stochastic tiling against
-// Bridson's dart throwing and a plain memory write timed in the same run, tile-set build time,
-// the relative radius across tile borders of a large window, and the anisotropy of the power
-// spectrum (K = 10 sets). One JSON line per case; medians of --reps runs; the core count and the
-// load average with every line.
+// Point sets: the comparison of README.md ("The comparison") in one run. For every method:
+// generation speed on one thread (and its ratio to Bridson's dart throwing and to an earlier
+// corner set, timed in the same run), the power spectrum of K = 10 toroidal sets of 16,384 points
+// (thesis sec. 6.2.2: max and mean anisotropy in 0.5-2 f_p, effective Nyquist frequency,
+// oscillations) and the smallest relative radius of those sets; then the build time of the
+// default corner set and rho across the borders of a large window. One JSON line per case;
+// medians of --reps runs; the load average with each line.
 //
-//   build/bench_points [--reps 5] [--points 10000000] [--bridson-points 200000] [--quick]
+//   build/bench_bench_points [--reps 5] [--points 1e7] [--bridson-points 2e5] [--before F.ptiles]
+//                            [--plots DIR] [--quick]
+//
+// --before: the corner set an earlier tilekit built (`tilekit points tiles --out F`), measured
+// beside today's; --plots: radial power and anisotropy plots and spectrum images (.png, .svg).
 #include <fmt/format.h>
-#include <sys/resource.h>
 
-#include <algorithm>
-#include <chrono>
-#include <cstring>
-#include <fstream>
+#include <cmath>
+#include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "base/atomic_file.hpp"
+#include "bench/bench_common.hpp"
+#include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/analysis_spectrum.hpp"
 #include "points/generator.hpp"
 #include "points/poisson_tiles.hpp"
 #include "points/recursive_tiles.hpp"
 #include "points/reference_sets.hpp"
+#include "points/tile_set_file.hpp"
 
 using namespace tilekit;
 using namespace tilekit::points;
+using bench::median;
+using bench::seconds_of;
 
 namespace {
 
@@ -34,215 +44,222 @@ inline void escape(const void* p) {
   asm volatile("" : : "g"(p) : "memory");
 }
 
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
-}
-std::string load() {
-  std::ifstream f("/proc/loadavg");
-  std::string a;
-  f >> a;
-  return a;
-}
 void emit(nlohmann::json j) {
   j["cores"] = std::thread::hardware_concurrency();
-  j["load"] = load();
+  j["load"] = bench::loadavg();
   fmt::print("{}\n", j.dump());
   std::fflush(stdout);
 }
 
 struct Options {
-  int reps = 5;
+  int reps = 5, sets = 10;
   double points = 1e7, bridson_points = 2e5;
+  std::string before, plots;
   bool quick = false;
 };
 
-PoissonTileSet build(PoissonTileMethod m, std::uint32_t c, std::uint32_t n, int threads) {
+PoissonTileSet build(PoissonTileMethod m, std::uint32_t c, std::uint32_t n = 0, int threads = 2) {
   PoissonTileParams p;
   p.method = m;
   p.colours = c;
-  p.points = n;
-  p.rho = 0.75;
+  p.points = n;  // 0: the method's default
   p.threads = threads;
   return build_poisson_tiles(p);
 }
 
-// Median wall seconds of `reps` runs of f.
-double timed(int reps, const std::function<void()>& f) {
-  std::vector<double> t;
-  for (int i = 0; i < reps; ++i) {
-    const double t0 = now();
-    f();
-    t.push_back(now() - t0);
+// A method under comparison: the points of a window at a density (`period` > 0: a torus of that
+// many tiles; the samplers make toroidal sets of their own), and its layout for spectra.
+struct Method {
+  std::string name, key;  // key: file names of its pictures
+  // xy of the window at the density with the seed; period > 0: a toroidal tiling of that many
+  // (base) tiles of side 1 per side; torus: a toroidal sampler set.
+  std::function<std::vector<float>(const Window&, double, std::uint64_t, std::int64_t, bool)> make;
+  double per_tile = 0;       // points per (base) tile; 0: not tiled (the unit square at 16,384 points)
+  bool timed_small = false;  // timed on the Bridson-sized window
+};
+
+// K toroidal sets of about 16,384 points (thesis sec. 6.2.2), as `tilekit points spectrum` lays
+// them out: whole tiles of a periodic tiling, or the unit torus for the samplers.
+struct Quality {
+  RadialStats radial;
+  SpectralSummary summary;
+  double rho_min = 1e300;
+  PowerSpectrum spectrum{16, 1};
+};
+Quality quality(const Method& m, int sets) {
+  const double target = 16384;
+  std::int64_t period = 0;
+  double side = 1, density = target;
+  if (m.per_tile > 0) {
+    period = std::max<std::int64_t>(1, std::llround(std::sqrt(target / m.per_tile)));
+    side = double(period);
+    density = m.per_tile;
   }
-  return median(t);
+  Quality q;
+  q.spectrum = PowerSpectrum(periodogram_size(density, side), side);
+  for (int k = 0; k < sets; ++k) {
+    const auto xy = m.make({0, 0, side, side}, density, std::uint64_t(k) + 1, period, period == 0);
+    q.spectrum.add(xy, 0, 0, 2);
+    q.rho_min = std::min(q.rho_min, radius_stats(xy, side * side).rho);
+  }
+  q.radial = radial_stats(q.spectrum);
+  q.summary = summarize(q.radial, q.spectrum.density());
+  return q;
 }
 
-void speed(const Options& o, const PoissonTileSet& set, const std::string& name) {
-  // A square window of about o.points points at density 1 (tile side sqrt(N)).
-  const double side = std::sqrt(o.points);
+// Median points per second of one-thread generation of a square window of `count` points at
+// density 1.
+double speed(const Method& m, double count, int reps) {
+  const double side = std::sqrt(count);
   const Window w{0.5, 0.25, 0.5 + side, 0.25 + side};
-  const PoissonTileGenerator gen(set, HashKind::LongPeriod, 7);
-  std::size_t count = 0;
-  const double t1 = timed(o.reps, [&] {
-    const auto xy = gen.generate(w, 1.0, 1);
-    count = xy.size() / 2;
-    escape(xy.data());
-  });
-  const double t2 = timed(o.reps, [&] { escape(gen.generate(w, 1.0, 2).data()); });
-  // The same number of 8-byte points written by a plain loop into a fresh vector (memory bound).
-  const double tm = timed(o.reps, [&] {
-    std::vector<float> out(2 * count);
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = float(i & 1023);
-    escape(out.data());
-  });
-  // Bridson's dart throwing in the same run, on a window of o.bridson_points points.
-  const double bside = std::sqrt(o.bridson_points);
-  std::size_t bcount = 0;
-  const double tb = timed(std::max(1, o.reps / 2), [&] {
-    const auto xy = bridson_points({0, 0, bside, bside}, 2 * 0.75 * max_poisson_radius(1.0), 3);
-    bcount = xy.size() / 2;
-    escape(xy.data());
-  });
-  const double rate1 = count / t1, rate2 = count / t2, rate_mem = count / tm, rate_b = bcount / tb;
-  emit({{"case", "generate_window"},
-        {"tiles", name},
-        {"points", count},
-        {"points_per_second_1_thread", rate1},
-        {"points_per_second_2_threads", rate2},
-        {"memory_write_points_per_second", rate_mem},
-        {"bridson_points", bcount},
-        {"bridson_points_per_second", rate_b},
-        {"ratio_to_bridson", rate1 / rate_b},
-        {"fraction_of_memory_write", rate1 / rate_mem},
-        {"reps", o.reps}});
+  std::vector<double> rate;
+  for (int i = 0; i < reps; ++i) {
+    std::size_t n = 0;
+    const double t = seconds_of([&] {
+      const auto xy = m.make(w, 1.0, 7, 0, false);
+      n = xy.size() / 2;
+      escape(xy.data());
+    });
+    rate.push_back(double(n) / t);
+  }
+  return median(rate);
 }
 
-void build_time(const Options& o, PoissonTileMethod m, std::uint32_t c, std::uint32_t n) {
+Method tile_method(std::string name, std::string key, std::shared_ptr<const PoissonTileSet> set) {
+  Method m;
+  m.name = std::move(name);
+  m.key = std::move(key);
+  m.per_tile = set->points;
+  m.make = [set](const Window& w, double density, std::uint64_t seed, std::int64_t period, bool) {
+    return PoissonTileGenerator(*set, HashKind::LongPeriod, seed, period).generate(w, density, 1);
+  };
+  return m;
+}
+
+std::vector<Method> methods(const Options& o) {
+  std::vector<Method> out;
+  if (!o.before.empty())
+    out.push_back(tile_method("corner, before (" + std::filesystem::path(o.before).filename().string() + ")",
+                              "corner-before", std::make_shared<PoissonTileSet>(read_poisson_tiles(o.before))));
+  out.push_back(tile_method("corner C=4 N=1024 (default)", "corner",
+                            std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Corner, 4))));
+  out.push_back(tile_method("corner C=4 N=64", "corner-n64",
+                            std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Corner, 4, 64))));
+  if (!o.quick) {
+    out.push_back(
+        tile_method("dual (Li) C=2 N=64", "dual", std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Dual, 2))));
+    out.push_back(tile_method("wang (edge-based) C=2 N=64", "wang",
+                              std::make_shared<PoissonTileSet>(build(PoissonTileMethod::Wang, 2))));
+    RecursiveTileParams rp;
+    rp.points = 512;
+    rp.threads = 2;
+    auto rec = std::make_shared<RecursiveWangTiles>(build_recursive_tiles(rp));
+    Method r;
+    r.name = "recursive Wang (Kopf) N=512";
+    r.key = "recursive";
+    r.per_tile = 1024;  // 16,384 points on 4 x 4 base tiles of side 1
+    r.make = [rec](const Window& w, double density, std::uint64_t seed, std::int64_t period, bool) {
+      // Constant density; base tiles of side sqrt(2.5 N / density) as `points generate` uses, or
+      // of side 1 in a periodic tiling.
+      const double base = period > 0 ? 1.0 : std::sqrt(2.5 * rec->points / density);
+      return RecursiveGenerator(*rec, HashKind::LongPeriod, seed, period)
+          .generate(w, *constant_density(density), base, 20, 1);
+    };
+    out.push_back(r);
+  }
+  Method b;
+  b.name = "Bridson (toroidal, rho 0.75 asked)";
+  b.key = "bridson";
+  b.timed_small = true;
+  b.make = [](const Window& w, double density, std::uint64_t seed, std::int64_t, bool torus) {
+    return bridson_points(w, 2 * 0.75 * max_poisson_radius(density), seed, torus);
+  };
+  out.push_back(b);
+  Method wn;
+  wn.name = "white noise";
+  wn.key = "white";
+  wn.make = [](const Window& w, double density, std::uint64_t seed, std::int64_t, bool) {
+    return white_noise_points(w, std::uint64_t(std::llround(density * w.area())), seed);
+  };
+  out.push_back(wn);
+  return out;
+}
+
+void write_plot(const std::string& dir, const std::string& stem, const std::vector<PlotSeries>& series) {
+  write_png(dir + "/" + stem + ".png", radial_plot_png(series));
+  write_file_atomic(dir + "/" + stem + ".svg", radial_plot_svg(series));
+}
+
+void compare(const Options& o) {
+  const auto list = methods(o);
+  double bridson_rate = 0, before_rate = 0;
+  for (const Method& m : list)
+    if (m.key == "bridson") bridson_rate = speed(m, o.bridson_points, std::max(1, o.reps / 2));
+  std::vector<PlotSeries> tiled, references;
+  for (const Method& m : list) {
+    const double rate =
+        m.key == "bridson" ? bridson_rate : speed(m, m.timed_small ? o.bridson_points : o.points, o.reps);
+    if (m.key == "corner-before") before_rate = rate;
+    const Quality q = quality(m, o.sets);
+    nlohmann::json j = {{"case", "compare"},
+                        {"method", m.name},
+                        {"sets", o.sets},
+                        {"points_per_set", double(q.spectrum.points) / double(q.spectrum.sets)},
+                        {"max_anisotropy_db", q.summary.max_anisotropy_db},
+                        {"mean_anisotropy_db", q.summary.mean_anisotropy_db},
+                        {"rho_min", q.rho_min},
+                        {"effective_nyquist", q.summary.effective_nyquist},
+                        {"oscillations", q.summary.oscillations},
+                        {"peak_frequency", q.summary.peak_frequency},
+                        {"points_per_second_1_thread", rate},
+                        {"ratio_to_bridson", rate / bridson_rate},
+                        {"reps", o.reps}};
+    if (before_rate > 0) j["ratio_to_corner_before"] = rate / before_rate;
+    emit(j);
+    const PlotSeries s{m.key, q.radial, q.summary.principal_frequency};
+    if (m.per_tile > 0) tiled.push_back(s);
+    if (m.key == "corner" || m.per_tile == 0) references.push_back(s);
+    if (!o.plots.empty()) write_png(o.plots + "/points-spectrum-" + m.key + ".png", spectrum_image(q.spectrum));
+  }
+  if (!o.plots.empty()) {
+    write_plot(o.plots, "points-compare-tiles", tiled);
+    write_plot(o.plots, "points-compare-references", references);
+  }
+}
+
+void build_time(const Options& o) {
   std::vector<double> wall1, cpu1, wall2;
   double rho = 0;
   for (int i = 0; i < std::max(1, o.reps / 2); ++i) {
-    double c0 = cpu_seconds(), t0 = now();
-    const auto set = build(m, c, n, 1);
-    wall1.push_back(now() - t0), cpu1.push_back(cpu_seconds() - c0);
-    t0 = now();
-    escape(build(m, c, n, 2).tiles.data());
-    wall2.push_back(now() - t0);
-    rho = check_poisson_tiles(set, 2).rho_across;
+    const double c0 = bench::cpu_seconds();
+    std::optional<PoissonTileSet> set;
+    wall1.push_back(seconds_of([&] { set = build(PoissonTileMethod::Corner, 4, 0, 1); }));
+    cpu1.push_back(bench::cpu_seconds() - c0);
+    wall2.push_back(seconds_of([&] { escape(build(PoissonTileMethod::Corner, 4, 0, 2).tiles.data()); }));
+    rho = check_poisson_tiles(*set, 2).rho_across;
   }
   emit({{"case", "build_tile_set"},
-        {"method", method_name(m)},
-        {"colors", c},
-        {"points", n},
-        {"rho", 0.75},
+        {"tiles", "corner C=4 N=1024 rho=0.75"},
         {"seconds_1_thread", median(wall1)},
         {"cpu_seconds_1_thread", median(cpu1)},
         {"seconds_2_threads", median(wall2)},
         {"rho_across_checked", rho}});
 }
 
-void quality(const PoissonTileSet& set, const std::string& name, double points) {
-  // A tile-aligned window (exact density) of at least `points` points.
-  const int tiles = int(std::ceil(std::sqrt(points / set.points)));
+void radius_across(const Options& o) {
+  // A tile-aligned window (exact density) of at least 2e6 points (1e6 with --quick).
+  const PoissonTileSet set = build(PoissonTileMethod::Corner, 4);
+  const int tiles = int(std::ceil(std::sqrt((o.quick ? 1e6 : 2e6) / set.points)));
   const Window w{-3, 5, -3.0 + tiles, 5.0 + tiles};
   const auto xy = PoissonTileGenerator(set, HashKind::LongPeriod, 11).generate(w, set.points, 2);
   const auto r = radius_stats(xy, w.area(), 1.0);
   emit({{"case", "radius"},
-        {"tiles", name},
+        {"tiles", "corner C=4 N=1024 rho=0.75"},
         {"points", r.count},
         {"rho", r.rho},
         {"rho_within", r.rho_within},
         {"rho_across", r.rho_across},
         {"mean_nn_relative", r.mean_nn_relative}});
-}
-
-// K = 10 periodograms of toroidal sets of about 16,384 points (thesis sec. 6.2.2).
-SpectralSummary spectrum_of(const std::function<std::vector<float>(std::uint64_t)>& make, double side, double density,
-                            int sets = 10) {
-  PowerSpectrum ps(periodogram_size(density, side), side);
-  for (int k = 0; k < sets; ++k) ps.add(make(std::uint64_t(k) + 1), 0, 0, 2);
-  return summarize(radial_stats(ps), ps.density());
-}
-
-void spectrum(const PoissonTileSet& set, const std::string& name) {
-  const std::int64_t m = std::llround(std::sqrt(16384.0 / set.points));
-  const auto s = spectrum_of(
-      [&](std::uint64_t seed) {
-        return PoissonTileGenerator(set, HashKind::LongPeriod, seed, m)
-            .generate({0, 0, double(m), double(m)}, set.points);
-      },
-      double(m), set.points);
-  emit({{"case", "spectrum"},
-        {"tiles", name},
-        {"sets", 10},
-        {"points_per_set", m * m * set.points},
-        {"max_anisotropy_db", s.max_anisotropy_db},
-        {"mean_anisotropy_db", s.mean_anisotropy_db},
-        {"effective_nyquist", s.effective_nyquist},
-        {"oscillations", s.oscillations},
-        {"peak_frequency", s.peak_frequency}});
-}
-
-void baselines_spectrum() {
-  const auto b = spectrum_of(
-      [](std::uint64_t seed) {
-        return bridson_points({0, 0, 1, 1}, 2 * 0.75 * max_poisson_radius(16384), seed, true);
-      },
-      1, 16384);
-  emit({{"case", "spectrum"},
-        {"tiles", "bridson (toroidal, rho 0.75 asked)"},
-        {"sets", 10},
-        {"max_anisotropy_db", b.max_anisotropy_db},
-        {"mean_anisotropy_db", b.mean_anisotropy_db},
-        {"effective_nyquist", b.effective_nyquist},
-        {"oscillations", b.oscillations},
-        {"peak_frequency", b.peak_frequency}});
-}
-
-void recursive_case(const Options& o) {
-  RecursiveTileParams p;
-  p.points = 512;
-  p.threads = 2;
-  const double t0 = now();
-  const auto t = build_recursive_tiles(p);
-  const double build_s = now() - t0;
-  const RecursiveGenerator gen(t, HashKind::LongPeriod, 5);
-  const double side = std::sqrt(o.points / 10);
-  const auto d = constant_density(1.0);
-  std::size_t count = 0;
-  const double tg = timed(o.reps, [&] {
-    const auto xy = gen.generate({0, 0, side, side}, *d, std::sqrt(2.5 * 512), 20, 1);
-    count = xy.size() / 2;
-    escape(xy.data());
-  });
-  const auto xy = gen.generate({0, 0, side, side}, *d, std::sqrt(2.5 * 512), 20, 2);
-  const auto r = radius_stats(xy, side * side, std::sqrt(2.5 * 512));
-  const std::int64_t m = 4;
-  const auto s = spectrum_of(
-      [&](std::uint64_t seed) {
-        const RecursiveGenerator g(t, HashKind::LongPeriod, seed, m);
-        return g.generate({0, 0, double(m), double(m)}, *constant_density(16384.0 / (m * m)), 1.0, 20, 1);
-      },
-      double(m), 16384.0 / (m * m));
-  emit({{"case", "recursive_wang_tiles"},
-        {"points_per_tile", 512},
-        {"build_seconds", build_s},
-        {"relax_iterations", t.relax_iterations},
-        {"points", count},
-        {"points_per_second_1_thread", count / tg},
-        {"rho", r.rho},
-        {"rho_across", r.rho_across},
-        {"mean_nn_relative", r.mean_nn_relative},
-        {"max_anisotropy_db", s.max_anisotropy_db},
-        {"mean_anisotropy_db", s.mean_anisotropy_db}});
 }
 
 }  // namespace
@@ -257,31 +274,21 @@ int main(int argc, char** argv) {
       o.points = std::atof(argv[++i]);
     else if (a == "--bridson-points" && i + 1 < argc)
       o.bridson_points = std::atof(argv[++i]);
+    else if (a == "--before" && i + 1 < argc)
+      o.before = argv[++i];
+    else if (a == "--plots" && i + 1 < argc)
+      o.plots = argv[++i];
     else if (a == "--quick")
       o.quick = true, o.reps = 3, o.points = 1e6, o.bridson_points = 5e4;
     else {
-      fmt::print(stderr, "usage: bench_points [--reps R] [--points N] [--bridson-points N] [--quick]\n");
+      fmt::print(stderr,
+                 "usage: bench_points [--reps R] [--points N] [--bridson-points N] [--before F.ptiles] [--plots DIR] "
+                 "[--quick]\n");
       return 2;
     }
   }
-  const auto c4 = build(PoissonTileMethod::Corner, 4, 64, 2);
-  speed(o, c4, "corner C=4 N=64 rho=0.75");
-  build_time(o, PoissonTileMethod::Corner, 4, 64);
-  quality(c4, "corner C=4 N=64 rho=0.75", std::max(1e6, o.quick ? 1e6 : 2e6));
-  spectrum(c4, "corner C=4 N=64 rho=0.75");
-  if (!o.quick) {
-    const auto c4n256 = build(PoissonTileMethod::Corner, 4, 256, 2);
-    spectrum(c4n256, "corner C=4 N=256 rho=0.75");
-    const auto c8 = build(PoissonTileMethod::Corner, 8, 64, 2);
-    spectrum(c8, "corner C=8 N=64 rho=0.75");
-    const auto dual = build(PoissonTileMethod::Dual, 2, 64, 2);
-    spectrum(dual, "dual C=2 N=64 rho=0.75");
-    speed(o, dual, "dual C=2 N=64 rho=0.75");
-    const auto wang = build(PoissonTileMethod::Wang, 2, 64, 2);
-    spectrum(wang, "wang C=2 N=64 rho=0.75");
-    quality(wang, "wang C=2 N=64 rho=0.75", 1e6);
-  }
-  baselines_spectrum();
-  recursive_case(o);
+  compare(o);
+  build_time(o);
+  radius_across(o);
   return 0;
 }

@@ -1,7 +1,7 @@
 // tilekit points tiles | generate (and the group; analyze/spectrum/zoneplate in
 // cmd_points_analyze.cpp, recursive/objects in cmd_points_recursive.cpp).
 //
-//   tilekit points tiles --method corner|wang|dual --colors C --points N --rho R [--lloyd L]
+//   tilekit points tiles --method corner|wang|dual --colors C [--edge-colors E] --points N --rho R [--lloyd L]
 //                        [--out F.ptiles] [--picture F.png|F.svg] [--db F | --no-db] [--no-check]
 //   tilekit points generate [source options] --window x0,y0,x1,y1 --density D [--seed S]
 //                        [--period M] [--out F.f32|.bin|.csv|.png|.svg] [--analyze]
@@ -15,11 +15,11 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
-#include "results/results_db.hpp"
 #include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/point_io.hpp"
 #include "points/tile_set_file.hpp"
+#include "results/results_db.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -44,7 +44,7 @@ nlohmann::json radius_json(const RadiusStats& r) {
 
 struct TilesArgs {
   std::string method = "corner", out, picture, db;
-  std::uint32_t colors = 4, points = 64;
+  std::uint32_t colors = 4, edge_colors = 1, points = 0;  // points 0: the method's default
   double rho = 0.75;
   int lloyd = 0, threads = 0;
   std::uint64_t seed = 1;
@@ -67,6 +67,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   PoissonTileParams p;
   p.method = parse_poisson_tile_method(a.method);
   p.colours = a.colors;
+  p.edge_colours = a.edge_colors;
   p.points = a.points;
   p.rho = a.rho;
   p.lloyd = a.lloyd;
@@ -77,6 +78,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   const PoissonTileSet set = build_poisson_tiles(p);
   nlohmann::json j = {{"method", method_name(set.method)},
                       {"colors", set.colours},
+                      {"edge_colors", set.edge_colours},
                       {"points", set.points},
                       {"rho", set.rho},
                       {"radius", set.radius},
@@ -117,9 +119,10 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   }
   emit(ctx, j, [&] {
     fmt::print(
-        "{} Poisson disk tiles: C={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} s\n",
-        method_name(set.method), set.colours, set.points, set.rho, set.tiles.size(), set.corner_regions,
-        set.edge_regions, set.interiors, set.seconds);
+        "{} Poisson disk tiles: C={} E={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} "
+        "s\n",
+        method_name(set.method), set.colours, set.edge_colours, set.points, set.rho, set.tiles.size(),
+        set.corner_regions, set.edge_regions, set.interiors, set.seconds);
     if (j.contains("check"))
       fmt::print("  check: rho {:.4f} inside tiles, {:.4f} across borders ({} {})\n",
                  j["check"]["rho_within"].get<double>(), j["check"]["rho_across"].get<double>(),
@@ -183,7 +186,11 @@ void add_tiles_command(CLI::App* points, Context& ctx) {
   auto a = std::make_shared<TilesArgs>();
   cmd->add_option("--method", a->method, "corner (thesis 4.5, default) | wang (edge-based, 4.3) | dual (Li et al.)");
   cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1, 64));
-  cmd->add_option("--points", a->points, "Points per tile N (default 64)")->check(CLI::Range(1, 65536));
+  cmd->add_option("--edge-colors", a->edge_colors,
+                  "corner: edge colours E hashed per lattice edge, C^4 E^4 tiles (thesis sec. 6.11; default 1)")
+      ->check(CLI::Range(1, 16));
+  cmd->add_option("--points", a->points, "Points per tile N (default 1024 for corner, 64 for wang and dual)")
+      ->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a->rho, "Relative radius: no two points closer than 2 rho r_max(N) (default 0.75)");
   cmd->add_option("--lloyd", a->lloyd, "Lloyd iterations at least per region (default 0: only until rho is met)")
       ->check(CLI::Range(0, 10000));

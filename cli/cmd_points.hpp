@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "cli/command.hpp"
+#include "image/image.hpp"
 #include "points/density.hpp"
 #include "points/generator.hpp"
 #include "points/poisson_tiles.hpp"
-#include "image/image.hpp"
 #include "points/recursive_tiles.hpp"
 
 namespace tilekit {
@@ -26,15 +26,15 @@ inline constexpr const char* kMethods = "corner | wang | dual | recursive | brid
 
 struct SourceArgs {
   std::string method = "corner";
-  std::string tiles;  // a tile-set file (or db:ID); empty: build one in memory
-  std::uint32_t colors = 4, points = 64;
+  std::string tiles;                                      // a tile-set file (or db:ID); empty: build one in memory
+  std::uint32_t colors = 4, edge_colors = 1, points = 0;  // points 0: the method's default
   double rho = 0.75;
   int lloyd = 0, subdivision = 2, levels = 20;
   std::uint64_t tile_seed = 1;
   std::string hash = "long-period", db;
   double base_tile = 0;  // recursive: base tile side (0: chosen from the density)
 };
-// --method, --tiles, --colors, --points, --rho, --lloyd, --tile-seed, --subdivision, --levels,
+// --method, --tiles, --colors, --edge-colors, --points, --rho, --lloyd, --tile-seed, --subdivision, --levels,
 // --hash, --base-tile, --db.
 void add_source_options(CLI::App* cmd, SourceArgs& a);
 

@@ -19,7 +19,10 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
                   "Tile set: a file from `points tiles --out` (or db:ID) or `points recursive --out`; "
                   "default: built in memory from --colors/--points/--rho");
   cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1, 64));
-  cmd->add_option("--points", a.points, "Points per tile of a set built in memory (default 64)")
+  cmd->add_option("--edge-colors", a.edge_colors, "corner: edge colours of a tile set built in memory (default 1)")
+      ->check(CLI::Range(1, 16));
+  cmd->add_option("--points", a.points,
+                  "Points per tile of a set built in memory (default 1024 for corner, 64 for the others)")
       ->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a.rho,
                   "Relative radius of a tile set built in memory, or of Bridson's sampler (default 0.75)");
@@ -45,6 +48,7 @@ Source::Source(const SourceArgs& a, int threads, bool progress) : a_(a) {
       PoissonTileParams p;
       p.method = parse_poisson_tile_method(a.method);
       p.colours = a.colors;
+      p.edge_colours = a.edge_colors;
       p.points = a.points;
       p.rho = a.rho;
       p.lloyd = a.lloyd;
@@ -58,7 +62,7 @@ Source::Source(const SourceArgs& a, int threads, bool progress) : a_(a) {
       recursive_ = read_recursive_tiles(a.tiles);
     } else {
       RecursiveTileParams p;
-      p.points = a.points;
+      p.points = a.points ? a.points : 64;
       p.subdivision = a.subdivision;
       p.seed = a.tile_seed;
       p.threads = threads;
@@ -75,7 +79,8 @@ Source::Source(const SourceArgs& a, int threads, bool progress) : a_(a) {
 
 std::string Source::describe() const {
   if (tiles_)
-    return fmt::format("{} Poisson disk tiles C={} N={} rho={}", a_.method, tiles_->colours, tiles_->points,
+    return fmt::format("{} Poisson disk tiles C={}{} N={} rho={}", a_.method, tiles_->colours,
+                       tiles_->edge_colours > 1 ? fmt::format(" E={}", tiles_->edge_colours) : "", tiles_->points,
                        tiles_->rho);
   if (recursive_) return fmt::format("recursive Wang tiles N={} n={}", recursive_->points, recursive_->n);
   if (a_.method == "bridson") return fmt::format("Bridson dart throwing rho={}", a_.rho);

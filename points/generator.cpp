@@ -10,6 +10,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "base/random.hpp"
 #include "points/tile_parts.hpp"
 #include "tiling/lattice_tiling.hpp"
 
@@ -36,12 +37,17 @@ Window parse_window(const std::string& text, const char* flag) {
 struct PoissonTileGenerator::Scratch {
   std::vector<TileIndex> idx;
   std::vector<std::uint64_t> wide;  // edge-based tile indices
+  ColourHash::RowCache h, v;        // edge colours along a row: horizontal, vertical edges
+  std::vector<std::uint16_t> north, south, west;
 };
 
 PoissonTileGenerator::PoissonTileGenerator(const PoissonTileSet& set, HashKind hash, std::uint64_t seed,
                                            std::int64_t period)
     : set_(set), hash_(hash, set.lattice_colours(), seed), period_(period) {
   if (period < 0) throw InputError("--period must be positive");
+  // Edge colours from a second hash with its own seed, so that they do not repeat the lattice
+  // colours (thesis sec. 3.3.2.3 hashes Wang edge colours the same way).
+  if (set.edge_colours > 1) edge_hash_.emplace(hash, set.edge_colours, derive_seed(seed, 0x65646765));
   offset_.reserve(set.tiles.size() + 1);
   offset_.push_back(0);
   for (const auto& t : set.tiles) {
@@ -64,18 +70,18 @@ std::uint32_t PoissonTileGenerator::lattice(std::int64_t x, std::int64_t y) cons
 
 // thesis sec. 3.3.2.3: a Wang edge colour is the hash at the edge's midpoint on the lattice of
 // half-integers (doubled coordinates): (2x+1, 2y) for edge (x,y)-(x+1,y), (2x, 2y+1) for (x,y)-(x,y+1).
-std::uint32_t PoissonTileGenerator::edge(std::int64_t mx, std::int64_t my) const {
+std::uint32_t PoissonTileGenerator::edge(const ColourHash& h, std::int64_t mx, std::int64_t my) const {
   if (period_ > 0) {
     const std::int64_t p = 2 * period_;
     mx = ((mx % p) + p) % p, my = ((my % p) + p) % p;
   }
-  return hash_.colour(mx, my);
+  return h.colour(mx, my);
 }
 
 std::uint64_t PoissonTileGenerator::tile_index(std::int64_t tx, std::int64_t ty) const {
   if (set_.method == PoissonTileMethod::Wang) {
-    const auto H = [&](std::int64_t x, std::int64_t y) { return edge(2 * x + 1, 2 * y); };
-    const auto V = [&](std::int64_t x, std::int64_t y) { return edge(2 * x, 2 * y + 1); };
+    const auto H = [&](std::int64_t x, std::int64_t y) { return edge(hash_, 2 * x + 1, 2 * y); };
+    const auto V = [&](std::int64_t x, std::int64_t y) { return edge(hash_, 2 * x, 2 * y + 1); };
     const std::int64_t x = tx, y = ty;
     const std::uint32_t k[12] = {H(x, y),         V(x + 1, y),     H(x, y + 1),     V(x, y),
                                  V(x, y - 1),     H(x - 1, y),     V(x + 1, y - 1), H(x + 1, y),
@@ -83,8 +89,13 @@ std::uint64_t PoissonTileGenerator::tile_index(std::int64_t tx, std::int64_t ty)
     return wang_pd_tile_index(k, set_.colours);
   }
   const std::uint32_t l = set_.lattice_colours();
-  return parts::corner_tile_index(lattice(tx, ty), lattice(tx + 1, ty), lattice(tx, ty + 1), lattice(tx + 1, ty + 1),
-                                  l);
+  const std::uint64_t t =
+      parts::corner_tile_index(lattice(tx, ty), lattice(tx + 1, ty), lattice(tx, ty + 1), lattice(tx + 1, ty + 1), l);
+  if (!edge_hash_) return t;
+  const std::uint32_t ec = set_.edge_colours;
+  const std::uint32_t n = edge(*edge_hash_, 2 * tx + 1, 2 * ty), e = edge(*edge_hash_, 2 * tx + 2, 2 * ty + 1),
+                      s = edge(*edge_hash_, 2 * tx + 1, 2 * ty + 2), w = edge(*edge_hash_, 2 * tx, 2 * ty + 1);
+  return t + std::uint64_t(l) * l * l * l * (((std::uint64_t(n) * ec + e) * ec + s) * ec + w);
 }
 
 void PoissonTileGenerator::row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& sc) const {
@@ -93,10 +104,23 @@ void PoissonTileGenerator::row_indices(std::int64_t ty, std::int64_t tx0, std::i
     for (std::int64_t i = 0; i < cols; ++i) sc.wide[std::size_t(i)] = tile_index(tx0 + i, ty);
     return;
   }
-  // The fast path of the direct corner tiling: each lattice point hashed once per row pair.
-  sc.idx.resize(std::size_t(cols));
+  // The fast path of the direct corner tiling: each lattice point hashed once per row pair, and
+  // the edge colours along the row by the hash's row evaluation on the doubled lattice.
+  const std::size_t n = std::size_t(cols);
+  sc.idx.resize(n);
   fill_lattice_corner_tiles(hash_, tx0, ty, 1, int(cols), sc.idx.data());
   sc.wide.assign(sc.idx.begin(), sc.idx.end());
+  if (!edge_hash_) return;
+  const ColourHash& h = *edge_hash_;
+  if (sc.h.n != n || sc.h.x0 != 2 * tx0 + 1) h.prepare(sc.h, 2 * tx0 + 1, n, 2);
+  if (sc.v.n != n + 1 || sc.v.x0 != 2 * tx0) h.prepare(sc.v, 2 * tx0, n + 1, 2);
+  sc.north.resize(n), sc.south.resize(n), sc.west.resize(n + 1);
+  h.row(sc.h, 2 * ty, sc.north.data());
+  h.row(sc.h, 2 * ty + 2, sc.south.data());
+  h.row(sc.v, 2 * ty + 1, sc.west.data());
+  const std::uint64_t ec = set_.edge_colours, l = set_.lattice_colours(), l4 = l * l * l * l;
+  for (std::size_t i = 0; i < n; ++i)
+    sc.wide[i] += l4 * (((sc.north[i] * ec + sc.west[i + 1]) * ec + sc.south[i]) * ec + sc.west[i]);
 }
 
 void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s,

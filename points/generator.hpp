@@ -9,6 +9,7 @@
 // sqrt(N / density); y grows to the south like the tilings of tiling/. A point is
 // float(tx * s + u * s) (u its tile coordinate, all in double), whatever the window.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,10 +57,13 @@ class PoissonTileGenerator {
            std::vector<float>& out) const;
   void row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& scratch) const;
   std::uint32_t lattice(std::int64_t x, std::int64_t y) const;  // corner and dual sets
-  std::uint32_t edge(std::int64_t mx, std::int64_t my) const;   // edge-based sets (doubled lattice)
+  // A colour at (mx, my) of the doubled lattice: edge-based sets' Wang edge colours from hash_,
+  // corner sets' edge colours from edge_hash_.
+  std::uint32_t edge(const ColourHash& h, std::int64_t mx, std::int64_t my) const;
 
   const PoissonTileSet& set_;
   ColourHash hash_;
+  std::optional<ColourHash> edge_hash_;  // corner sets with edge colours
   std::int64_t period_;
   std::vector<std::uint32_t> offset_;  // tile t holds points offset_[t] .. offset_[t+1]
   std::vector<double> uv_;             // interleaved tile coordinates (u, v)

@@ -25,16 +25,6 @@ void PointGrid::clear() {
   count_ = 0;
 }
 
-int PointGrid::cell_x(double x) const {
-  if (torus_) return std::min(nx_ - 1, int(wrap(x - x0_, w_) / (w_ / nx_)));
-  return std::clamp(int(std::floor((x - x0_) / cell_)), 0, nx_ - 1);
-}
-
-int PointGrid::cell_y(double y) const {
-  if (torus_) return std::min(ny_ - 1, int(wrap(y - y0_, h_) / (h_ / ny_)));
-  return std::clamp(int(std::floor((y - y0_) / cell_)), 0, ny_ - 1);
-}
-
 void PointGrid::insert(int id, Point2 p) {
   assert(id >= 0);
   if (std::size_t(id) >= next_.size()) next_.resize(std::size_t(id) + 1, -1);
@@ -42,6 +32,12 @@ void PointGrid::insert(int id, Point2 p) {
   next_[std::size_t(id)] = head_[c];
   head_[c] = id;
   ++count_;
+}
+
+void PointGrid::erase(int id, Point2 p) {
+  int* link = &head_[std::size_t(cell_index(p))];
+  while (*link >= 0 && *link != id) link = &next_[std::size_t(*link)];
+  if (*link == id) *link = next_[std::size_t(id)], --count_;
 }
 
 int PointGrid::nearest(Point2 p, const std::vector<Point2>& pos) const {

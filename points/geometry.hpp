@@ -1,6 +1,7 @@
 #pragma once
 // Points in the plane, the relative radius of thesis sec. 4.2.3 and a uniform grid for
 // neighbour queries (plain or toroidal). Everything else in points/ builds on these.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -67,6 +68,8 @@ class PointGrid {
   void clear();
   // Adds point `id` at p (ids index the caller's arrays; any order, each at most once).
   void insert(int id, Point2 p);
+  // Removes point `id`, inserted at p.
+  void erase(int id, Point2 p);
 
   double cell() const { return cell_; }
   bool torus() const { return torus_; }
@@ -81,6 +84,14 @@ class PointGrid {
   // every point closer than one cell size). On a torus each cell is visited at most once.
   template <class F>
   void for_near(Point2 p, int rings, F&& f) const {
+    any_near(p, rings, [&f](int id) {
+      f(id);
+      return false;
+    });
+  }
+  // The same, stopping at the first id for which pred(id) is true; whether there was one.
+  template <class F>
+  bool any_near(Point2 p, int rings, F&& pred) const {
     const int cx = cell_x(p.x), cy = cell_y(p.y);
     for (int dy = -rings; dy <= rings; ++dy) {
       int y = cy + dy;
@@ -99,9 +110,10 @@ class PointGrid {
           continue;
         }
         for (int id = head_[std::size_t(y) * std::size_t(nx_) + std::size_t(x)]; id >= 0; id = next_[std::size_t(id)])
-          f(id);
+          if (pred(id)) return true;
       }
     }
+    return false;
   }
 
   // The id of the point nearest to p among `pos` (the positions inserted), or -1 if empty.
@@ -115,8 +127,14 @@ class PointGrid {
   }
 
  private:
-  int cell_x(double x) const;
-  int cell_y(double y) const;
+  int cell_x(double x) const {
+    if (torus_) return std::min(nx_ - 1, int(wrap(x - x0_, w_) / (w_ / nx_)));
+    return std::clamp(int(std::floor((x - x0_) / cell_)), 0, nx_ - 1);
+  }
+  int cell_y(double y) const {
+    if (torus_) return std::min(ny_ - 1, int(wrap(y - y0_, h_) / (h_ / ny_)));
+    return std::clamp(int(std::floor((y - y0_) / cell_)), 0, ny_ - 1);
+  }
 
   double x0_, y0_, w_, h_, cell_;
   bool torus_;

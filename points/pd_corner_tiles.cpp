@@ -20,28 +20,34 @@ using parts::Regions;
 
 namespace {
 
-// The regions of a corner-coloured lattice over L states: a corner region per state, a
-// horizontal and a vertical edge region per ordered pair of states, an interior per tile.
+// The regions of a corner-coloured lattice over L states whose edges carry E edge colours: a
+// corner region per state, a horizontal and a vertical edge region per ordered pair of states
+// and edge colour (index (a L + b) E + e), an interior per tile.
 struct CornerScheme {
-  std::uint32_t l = 0;
+  std::uint32_t l = 0, ec = 1;
   std::vector<std::vector<Point2>> corner, interior;
   std::vector<parts::EdgeRegion> hedge, vedge;
 
-  // The corner and edge regions around tile (NW, NE, SW, SE), in tile coordinates.
-  parts::Frame frame(const parts::Corners& k) const {
+  // The corner and edge regions around tile t (corners NW, NE, SW, SE; edges N, E, S, W), in
+  // tile coordinates.
+  parts::Frame frame(std::uint64_t t) const {
+    const std::uint64_t l4 = std::uint64_t(l) * l * l * l, edges = t / l4;
+    const auto k = parts::corners_of(t % l4, l);
+    const std::uint32_t w = std::uint32_t(edges % ec), s = std::uint32_t(edges / ec % ec),
+                        e = std::uint32_t(edges / ec / ec % ec), n = std::uint32_t(edges / ec / ec / ec);
     parts::Frame f;
     f.add_corner(corner[k.nw], {0, 0});
     f.add_corner(corner[k.ne], {1, 0});
     f.add_corner(corner[k.sw], {0, 1});
     f.add_corner(corner[k.se], {1, 1});
-    f.add_edge(hedge[k.nw * l + k.ne], {0, 0});
-    f.add_edge(hedge[k.sw * l + k.se], {0, 1});
-    f.add_edge(vedge[k.nw * l + k.sw], {0, 0});
-    f.add_edge(vedge[k.ne * l + k.se], {1, 0});
+    f.add_edge(hedge[(k.nw * l + k.ne) * ec + n], {0, 0});
+    f.add_edge(hedge[(k.sw * l + k.se) * ec + s], {0, 1});
+    f.add_edge(vedge[(k.nw * l + k.sw) * ec + w], {0, 0});
+    f.add_edge(vedge[(k.ne * l + k.se) * ec + e], {1, 0});
     return f;
   }
   std::vector<Point2> tile(std::uint64_t t) const {
-    std::vector<Point2> pts = parts::inside_unit_tile(frame(parts::corners_of(t, l)).points);
+    std::vector<Point2> pts = parts::inside_unit_tile(frame(t).points);
     pts.insert(pts.end(), interior[t].begin(), interior[t].end());
     return pts;
   }
@@ -82,8 +88,10 @@ std::vector<Point2> turned(const std::vector<Point2>& pts, int q, Point2 centre 
 // Declared in pd_wang_tiles.cpp.
 PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Regions& g, ProgressReporter& progress);
 
-PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
-  check_poisson_tile_params(p);
+PoissonTileSet build_poisson_tiles(const PoissonTileParams& asked) {
+  check_poisson_tile_params(asked);
+  PoissonTileParams p = asked;
+  if (p.points == 0) p.points = default_tile_points(p.method);
   const auto start = std::chrono::steady_clock::now();
   const double r = p.rho * max_poisson_radius(p.points);
   const Regions g(r * (1 + kMargin), p.method == PoissonTileMethod::Dual);
@@ -92,6 +100,7 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
   PoissonTileSet set;
   set.method = p.method;
   set.colours = c;
+  set.edge_colours = p.edge_colours;
   set.points = n;
   set.rho = p.rho;
   set.radius = r;
@@ -108,20 +117,22 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
 
   CornerScheme s;
   s.l = l;
-  const std::size_t tiles = std::size_t(l) * l * l * l;
+  s.ec = set.edge_colours;
+  const std::size_t ec4 = std::size_t(s.ec) * s.ec * s.ec * s.ec;
+  const std::size_t tiles = std::size_t(l) * l * l * l * ec4, edge_count = std::size_t(l) * l * s.ec;
   s.corner.resize(l);
-  s.hedge.resize(std::size_t(l) * l);
-  s.vedge.resize(std::size_t(l) * l);
+  s.hedge.resize(edge_count);
+  s.vedge.resize(edge_count);
   s.interior.resize(tiles);
   const auto seed_of = [&](std::uint64_t step, std::uint64_t i) { return derive_seed(derive_seed(p.seed, step), i); };
 
   if (p.method == PoissonTileMethod::Corner) {
-    progress.set_total(double(c + 2 * std::size_t(c) * c + tiles));
+    progress.set_total(double(c + 2 * edge_count + tiles));
     // thesis sec. 4.5: corner regions, then edge regions around them, then interiors.
     for_each_task(c, p.threads, progress,
                   [&](std::size_t k) { s.corner[k] = parts::corner_region(g, n, opts, seed_of(1, k)); });
-    for_each_task(2 * std::size_t(l) * l, p.threads, progress, [&](std::size_t i) {
-      const std::size_t e = i / 2, a = e / l, b = e % l;
+    for_each_task(2 * edge_count, p.threads, progress, [&](std::size_t i) {
+      const std::size_t e = i / 2, a = e / s.ec / l, b = e / s.ec % l;
       if (i % 2 == 0)
         s.hedge[e] = parts::horizontal_edge_region(g, n, s.corner[a], s.corner[b],
                                                    parts::random_curve(g, seed_of(5, e)), false, opts, seed_of(2, e));
@@ -131,10 +142,10 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
             parts::EdgeRegion{{}, parts::random_curve(g, seed_of(6, e))}.turned(1).curve, opts, seed_of(3, e));
     });
     for_each_task(tiles, p.threads, progress, [&](std::size_t t) {
-      s.interior[t] = parts::interior_region(g, n, s.frame(parts::corners_of(t, l)), 1, opts, seed_of(4, t));
+      s.interior[t] = parts::interior_region(g, n, s.frame(t), 1, opts, seed_of(4, t));
     });
     set.corner_regions = c;
-    set.edge_regions = 2 * std::uint64_t(c) * c;
+    set.edge_regions = 2 * edge_count;
     set.interiors = tiles;
   } else {
     // Li et al.: C corner regions, turned by each state's orientation.
@@ -168,7 +179,7 @@ PoissonTileSet build_poisson_tiles(const PoissonTileParams& p) {
       const std::uint64_t t = interiors[i];
       int order = 1;
       for (std::uint64_t u = d.turn_tile(t, l); u != t; u = d.turn_tile(u, l)) ++order;
-      s.interior[t] = parts::interior_region(g, n, s.frame(parts::corners_of(t, l)), 4 / order, opts, seed_of(4, t));
+      s.interior[t] = parts::interior_region(g, n, s.frame(t), 4 / order, opts, seed_of(4, t));
     });
     for (std::uint64_t t : interiors) {
       std::uint64_t u = t;

@@ -107,7 +107,6 @@ PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Region
         if (g.in_tube(b, curve)) return false;
       return true;
     };
-    q.ghost = [](Point2) { return true; };  // context in the edge regions' gaps
     q.count = 4 * std::size_t(n) - q.fixed.size();
     for (const Point2& a : sample_poisson_disk(q, opts, seed_of(2, i)).points) {
       const Point2 b{wrap_centred(a.x, 2.0), wrap_centred(a.y, 2.0)};

@@ -38,8 +38,18 @@ double PoissonTileSet::guaranteed_distance() const {
   return 2 * radius * (1 + kMargin);
 }
 
-void check_poisson_tile_params(const PoissonTileParams& p) {
+std::uint32_t default_tile_points(PoissonTileMethod m) {
+  return m == PoissonTileMethod::Corner ? 1024 : 64;
+}
+
+void check_poisson_tile_params(const PoissonTileParams& asked) {
+  PoissonTileParams p = asked;
+  if (p.points == 0) p.points = default_tile_points(p.method);
   if (p.colours < 1 || p.colours > 64) throw InputError(fmt::format("--colors must be 1..64, got {}", p.colours));
+  if (p.edge_colours < 1 || p.edge_colours > 16)
+    throw InputError(fmt::format("--edge-colors must be 1..16, got {}", p.edge_colours));
+  if (p.edge_colours > 1 && p.method != PoissonTileMethod::Corner)
+    throw InputError(fmt::format("--edge-colors applies to --method corner, not {}", method_name(p.method)));
   if (p.points < 1 || p.points > 65536) throw InputError(fmt::format("--points must be 1..65536, got {}", p.points));
   if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
   if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));
@@ -50,7 +60,7 @@ void check_poisson_tile_params(const PoissonTileParams& p) {
                                  p.points, p.rho,
                                  int(std::ceil(std::pow(p.rho * (2 * (2 + std::sqrt(2.0))), 2) / (2 * std::sqrt(3.0)) *
                                                (1 + kMargin) * (1 + kMargin)))));
-  double tiles = std::pow(double(p.colours), 4);
+  double tiles = std::pow(double(p.colours) * p.edge_colours, 4);
   if (p.method == PoissonTileMethod::Dual) {
     tiles = std::pow(4.0 * p.colours, 4);
     if (p.points % 4 != 0)
@@ -60,6 +70,12 @@ void check_poisson_tile_params(const PoissonTileParams& p) {
   if (tiles > double(1 << 20) || tiles * p.points > double(1 << 26))
     throw InputError(fmt::format("{} tiles of {} points is too large a tile set (at most 2^20 tiles, 2^26 points)",
                                  tiles, p.points));
+}
+
+std::uint64_t edged_tile_index(std::uint32_t nw, std::uint32_t ne, std::uint32_t sw, std::uint32_t se, std::uint32_t l,
+                               std::uint32_t n, std::uint32_t e, std::uint32_t s, std::uint32_t w, std::uint32_t ec) {
+  const std::uint64_t l4 = std::uint64_t(l) * l * l * l;
+  return parts::corner_tile_index(nw, ne, sw, se, l) + l4 * (((std::uint64_t(n) * ec + e) * ec + s) * ec + w);
 }
 
 std::uint64_t wang_pd_tile_index(const std::uint32_t colours12[12], std::uint32_t c) {
@@ -122,14 +138,18 @@ double sampled_across(const PoissonTileSet& set, int samples, std::uint64_t seed
           tile[std::size_t(y * n + x)] = set.tiles[wang_pd_tile_index(k, c)];
         }
     } else {
-      const std::uint32_t l = set.lattice_colours();
-      std::vector<std::uint32_t> col((n + 1) * (n + 1));
+      const std::uint32_t l = set.lattice_colours(), ec = set.edge_colours;
+      // Lattice colours at the (n + 1)^2 points, edge colours of the edges starting at each point.
+      std::vector<std::uint32_t> col((n + 1) * (n + 1)), h(col.size()), v(col.size());
       for (auto& k : col) k = std::uint32_t(rng.below(l));
-      auto at = [&](int x, int y) { return col[std::size_t(y) * (n + 1) + std::size_t(x)]; };
+      for (auto& k : h) k = std::uint32_t(rng.below(ec));
+      for (auto& k : v) k = std::uint32_t(rng.below(ec));
+      const auto i = [&](int x, int y) { return std::size_t(y) * (n + 1) + std::size_t(x); };
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
           tile[std::size_t(y * n + x)] =
-              set.tiles[parts::corner_tile_index(at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1), l)];
+              set.tiles[edged_tile_index(col[i(x, y)], col[i(x + 1, y)], col[i(x, y + 1)], col[i(x + 1, y + 1)], l,
+                                         h[i(x, y)], v[i(x + 1, y)], h[i(x, y + 1)], v[i(x, y)], ec)];
     }
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)
@@ -156,38 +176,47 @@ TileSetCheck check_poisson_tiles(const PoissonTileSet& set, int threads) {
   const double rmax = max_poisson_radius(set.points);
   out.rho_within = relative_radius(within, set.points);
   double across = std::numeric_limits<double>::infinity();
-  const std::uint64_t l = set.lattice_colours();
-  const bool exhaustive = set.method != PoissonTileMethod::Wang && l * l * l * l * l * l * l <= (1ull << 22);
+  const std::uint32_t l = set.lattice_colours(), ec = set.edge_colours;
+  // Horizontal and vertical neighbours share two corners and an edge (L^2 E^3 each per tile);
+  // diagonal ones one corner (L^3 E^4 each way).
+  const std::uint64_t per_tile =
+      2 * std::uint64_t(l) * l * ec * ec * ec + 2 * std::uint64_t(l) * l * l * ec * ec * ec * ec;
+  const bool exhaustive = set.method != PoissonTileMethod::Wang && set.tiles.size() * per_tile <= (1ull << 25);
   if (exhaustive) {
     std::vector<Borders> b;
     b.reserve(set.tiles.size());
     for (const auto& t : set.tiles) b.push_back(borders(t, d));
+    const std::uint64_t l4 = std::uint64_t(l) * l * l * l;
+    const auto at = [&](std::uint32_t nw, std::uint32_t ne, std::uint32_t sw, std::uint32_t se, std::uint32_t en,
+                        std::uint32_t ee, std::uint32_t es, std::uint32_t ew) -> const Borders& {
+      return b[edged_tile_index(nw, ne, sw, se, l, en, ee, es, ew, ec)];
+    };
     std::mutex mu;
-    // Horizontal and vertical neighbours share two corners (L^6 pairs each); diagonal ones one
-    // (L^7 pairs each way). Tile A = (nw, ne, sw, se); the neighbour's remaining corners vary.
     parallel_for(std::int64_t(set.tiles.size()), threads, [&](std::int64_t ti) {
-      const auto k = parts::corners_of(std::uint64_t(ti), std::uint32_t(l));
+      const auto k = parts::corners_of(std::uint64_t(ti) % l4, l);
+      const std::uint64_t edges = std::uint64_t(ti) / l4;  // ((N E + E) E + S) E + W
+      const std::uint32_t es = std::uint32_t(edges / ec % ec), ee = std::uint32_t(edges / ec / ec % ec);
       const Borders& a = b[std::size_t(ti)];
       double local = std::numeric_limits<double>::infinity();
       for (std::uint32_t u = 0; u < l; ++u)
-        for (std::uint32_t v = 0; v < l; ++v) {
-          // east neighbour (ne, u, se, v); south neighbour (sw, se, u, v)
-          local = std::min(
-              local, closest(a.east, b[parts::corner_tile_index(k.ne, u, k.se, v, std::uint32_t(l))].west, {1, 0}));
-          local = std::min(
-              local, closest(a.south, b[parts::corner_tile_index(k.sw, k.se, u, v, std::uint32_t(l))].north, {0, 1}));
-          for (std::uint32_t w = 0; w < l; ++w) {
-            // south-east neighbour (se, u, v, w); south-west neighbour (u, sw, v, w)
-            local =
-                std::min(local, closest(a.se, b[parts::corner_tile_index(k.se, u, v, w, std::uint32_t(l))].nw, {1, 1}));
-            local = std::min(local,
-                             closest(a.sw, b[parts::corner_tile_index(u, k.sw, v, w, std::uint32_t(l))].ne, {-1, 1}));
-          }
-        }
+        for (std::uint32_t v = 0; v < l; ++v)
+          for (std::uint32_t x = 0; x < ec; ++x)
+            for (std::uint32_t y = 0; y < ec; ++y)
+              for (std::uint32_t z = 0; z < ec; ++z) {
+                // east neighbour (ne, u, se, v) with west edge ee; south neighbour (sw, se, u, v), north edge es
+                local = std::min(local, closest(a.east, at(k.ne, u, k.se, v, x, y, z, ee).west, {1, 0}));
+                local = std::min(local, closest(a.south, at(k.sw, k.se, u, v, es, x, y, z).north, {0, 1}));
+                for (std::uint32_t w = 0; w < l; ++w)
+                  for (std::uint32_t q = 0; q < ec; ++q) {
+                    // south-east neighbour (se, u, v, w); south-west neighbour (u, sw, v, w)
+                    local = std::min(local, closest(a.se, at(k.se, u, v, w, x, y, z, q).nw, {1, 1}));
+                    local = std::min(local, closest(a.sw, at(u, k.sw, v, w, x, y, z, q).ne, {-1, 1}));
+                  }
+              }
       std::lock_guard lock(mu);
       across = std::min(across, local);
     });
-    out.pairs_checked = 2 * l * l * l * l * l * l + 2 * l * l * l * l * l * l * l;
+    out.pairs_checked = set.tiles.size() * per_tile;
     out.exhaustive = true;
   } else {
     const int samples = 64;

@@ -9,9 +9,12 @@
 // and the interior of each tile. Points are made region by region with the constrained
 // sampler (points/sampler.hpp), each region with the regions it touches fixed:
 //
-//  - corner-based (thesis sec. 4.5): C corner regions, one per lattice colour; C^2 horizontal
-//    and C^2 vertical edge regions, one per pair of end colours; C^4 interiors. The tiles are
-//    the complete corner set over C colours (thesis eq. 2.5 indices).
+//  - corner-based (thesis sec. 4.5): C corner regions, one per lattice colour; C^2 E horizontal
+//    and C^2 E vertical edge regions, one per pair of end colours and edge colour; C^4 E^4
+//    interiors. Every lattice point has one of C colours and every lattice edge one of E edge
+//    colours (E = 1 is the thesis' set; E > 1 follows its sec. 6.11: "more variation in edge
+//    tiles will produce a better power spectrum"). The tiles are the complete corner set over C
+//    colours (thesis eq. 2.5) times the complete Wang set over E colours (eq. 2.2).
 //  - edge-based (thesis sec. 4.3, Lagae and Dutre 2005): C edge regions per direction, one per
 //    Wang edge colour; C^4 corner regions, one per colour combination of the four edges at a
 //    lattice point; C^12 interiors, one per combination of a tile's 4 edges and the 8 further
@@ -46,10 +49,11 @@ PoissonTileMethod parse_poisson_tile_method(const std::string& name);
 
 struct PoissonTileParams {
   PoissonTileMethod method = PoissonTileMethod::Corner;
-  std::uint32_t colours = 4;  // C
-  std::uint32_t points = 64;  // N, points per tile
-  double rho = 0.75;          // relative radius (thesis eq. 4.3): no two points closer than 2 rho r_max(N)
-  int lloyd = 0;              // Lloyd iterations at least per region (0: only until rho is met)
+  std::uint32_t colours = 4;       // C
+  std::uint32_t edge_colours = 1;  // E, corner method only
+  std::uint32_t points = 0;        // N, points per tile; 0: default_tile_points(method)
+  double rho = 0.75;               // relative radius (thesis eq. 4.3): no two points closer than 2 rho r_max(N)
+  int lloyd = 0;                   // Lloyd iterations at least per region (0: only until rho is met)
   std::uint64_t seed = 1;
   int threads = 1;
   bool progress = false;  // ProgressReporter on stderr
@@ -57,13 +61,15 @@ struct PoissonTileParams {
 
 // The points of every tile, in tile coordinates [0, 1)^2 (x east, y south, the tile's NW corner
 // at the origin). Tile indices: corner and dual sets as complete corner sets over
-// lattice_colours() (thesis eq. 2.5: ((NE L + SE) L + SW) L + NW); edge-based sets by
-// wang_pd_tile_index().
+// lattice_colours() (thesis eq. 2.5: ((NE L + SE) L + SW) L + NW), plus L^4 times the Wang index
+// of the edge colours (eq. 2.2: ((N E + E) E + S) E + W) when E > 1 (edged_tile_index());
+// edge-based sets by wang_pd_tile_index().
 struct PoissonTileSet {
   PoissonTileMethod method = PoissonTileMethod::Corner;
   std::uint32_t colours = 0, points = 0;
-  double rho = 0;     // asked for
-  double radius = 0;  // r = rho r_max(N) on the unit tile; points are at least 2r (1 + kMargin) apart
+  std::uint32_t edge_colours = 1;  // E
+  double rho = 0;                  // asked for
+  double radius = 0;               // r = rho r_max(N) on the unit tile; points are at least 2r (1 + kMargin) apart
   int lloyd = 0;
   std::uint64_t seed = 0;
   std::vector<std::vector<Point2>> tiles;
@@ -77,12 +83,25 @@ struct PoissonTileSet {
   double guaranteed_distance() const;
 };
 
+// The index of the corner tile with lattice colours (NW, NE, SW, SE) over L colours and edge
+// colours (N, E, S, W) over E colours (the tile order above).
+std::uint64_t edged_tile_index(std::uint32_t nw, std::uint32_t ne, std::uint32_t sw, std::uint32_t se, std::uint32_t l,
+                               std::uint32_t n, std::uint32_t e, std::uint32_t s, std::uint32_t w, std::uint32_t ec);
+
 // Relative safety margin on the distance: the construction keeps points 2r (1 + kMargin) apart
 // so that float32 output (24-bit mantissa) of windows up to ~10^4 points across keeps 2r.
 inline constexpr double kMargin = 1e-3;
 
+// N when none is asked for: 1024 for corner sets, 64 for the others. A corner set's C corner
+// regions, C^2 E edge regions and C^4 E^4 interiors recur across a tiling, so their share of a
+// set's power at the tile lattice's harmonics grows with the tiles per set: about 16,384 / (N V)
+// for a region type of V variants. With N = 64 and C = 4 the corner regions alone put +4 dB peaks
+// into a 16,384-point spectrum; with N = 1024 all three stay near the -10 dB background
+// (points/README.md, "Why the tiles showed").
+std::uint32_t default_tile_points(PoissonTileMethod m);
+
 // Throws InputError for parameters no tile set can meet (C < 1, N too small for the regions
-// to fit, rho outside (0, 1), tile sets over 2^24 tiles).
+// to fit, rho outside (0, 1), tile sets over 2^20 tiles, edge colours with another method).
 void check_poisson_tile_params(const PoissonTileParams& p);
 
 PoissonTileSet build_poisson_tiles(const PoissonTileParams& p);
@@ -96,8 +115,8 @@ std::uint64_t wang_pd_tile_index(const std::uint32_t colours12[12], std::uint32_
 // The independent check: every pair of tiles that can be neighbours (sharing an edge or a corner)
 // placed side by side, all distances across the shared border measured directly. Returns the
 // smallest distance found across tile borders (and within tiles), relative to r_max(N) as a
-// relative radius. Exhaustive for corner and dual sets up to 2^22 neighbour pairs, else
-// `samples` random tilings of 8x8 tiles.
+// relative radius. Exhaustive for corner and dual sets up to 2^25 neighbour pairs, else
+// 64 random tilings of 8x8 tiles.
 struct TileSetCheck {
   double rho_within = 0, rho_across = 0;  // relative radius inside single tiles and across borders
   std::uint64_t pairs_checked = 0;        // neighbour configurations (or random tilings) checked

@@ -38,16 +38,15 @@ class Sampler {
 
   bool run(SplitMix64& rng, SamplingResult& out) {
     pos_ = fixed_;
-    ghost_.clear();
     if (!throw_darts(rng)) return false;
+    relax_hard_disks(rng);
     // `lloyd` iterations of Lloyd's relaxation, then pairs still too close push each other apart
     // until the distance is met.
     for (int it = 0;; ++it) {
       rebuild();
-      const double md = kept_min_distance();
+      const double md = new_min_distance();
       if (md >= d_ && it >= o_.lloyd) {
-        for (std::size_t i = fixed_.size(); i < pos_.size(); ++i)
-          if (!ghost_[i - fixed_.size()]) out.points.push_back(pos_[i]);
+        out.points.assign(pos_.begin() + std::ptrdiff_t(fixed_.size()), pos_.end());
         out.min_distance = md;
         out.lloyd_iterations = o_.lloyd;
         return true;
@@ -68,9 +67,7 @@ class Sampler {
   bool in_domain(Point2 q) const {
     return p_.torus || (q.x >= p_.x0 && q.y >= p_.y0 && q.x < p_.x0 + p_.w && q.y < p_.y0 + p_.h);
   }
-  bool in_kept_region(Point2 q) const { return in_domain(q) && (!p_.free || p_.free(q)); }
-  bool in_ghost_region(Point2 q) const { return p_.ghost && in_domain(q) && !in_kept_region(q) && p_.ghost(q); }
-  bool in_region(Point2 q, bool ghost) const { return ghost ? in_ghost_region(q) : in_kept_region(q); }
+  bool in_region(Point2 q) const { return in_domain(q) && (!p_.free || p_.free(q)); }
   // The orbit of q: image k is q turned k * step_ quarter turns about the centre.
   Point2 image(Point2 q, int k) const { return wrapped(rotate_quarter(q, k * step_, p_.centre)); }
 
@@ -97,26 +94,22 @@ class Sampler {
   }
 
   // Relaxation dart throwing: the dart radius starts above the minimum distance and shrinks by
-  // 2% after 200 consecutive failures (thesis sec. 6.4 used 0.99 after 1,000 on whole sets). Darts
-  // in the ghost region become context points (discarded at the end), so that points next to a
-  // fixed region see the same surroundings as anywhere else instead of a hard wall.
+  // 2% after 200 consecutive failures (thesis sec. 6.4 used 0.99 after 1,000 on whole sets).
   bool throw_darts(SplitMix64& rng) {
     rebuild();
     double radius = 1.2 * d_;
-    std::size_t kept = 0;
+    std::size_t placed = 0;
     int failures = 0;
     std::uint64_t darts = 0;
-    while (kept < p_.count) {
+    while (placed < p_.count) {
       if (++darts > 50'000'000ull || radius < 0.2 * d_) return false;
       const Point2 q = wrapped({p_.x0 + rng.uniform() * p_.w, p_.y0 + rng.uniform() * p_.h});
-      const bool ghost = !in_kept_region(q);
-      if ((!ghost || in_ghost_region(q)) && dart_fits(q, radius, ghost)) {
+      if (dart_fits(q, radius)) {
         for (int k = 0; k < g_; ++k) {
           pos_.push_back(image(q, k));
-          ghost_.push_back(ghost);
           grid_.insert(int(pos_.size() - 1), pos_.back());
         }
-        if (!ghost) kept += std::size_t(g_);
+        placed += std::size_t(g_);
         failures = 0;
       } else if (++failures >= 200) {
         radius *= 0.98;
@@ -126,36 +119,68 @@ class Sampler {
     return true;
   }
 
-  bool dart_fits(Point2 q, double radius, bool ghost) const {
+  // Hard-disk Monte Carlo (Metropolis et al. 1953): each sweep, every new point (orbit) tries a
+  // random step and takes it when the step keeps it in the free region and at least the minimum
+  // distance from every other point. Dart throwing alone leaves a depleted band next to fixed
+  // points (they block darts from the start, while new points arrive over time) and a crowded one
+  // behind it, in the same place in every tile; the sweeps bring the new points to the hard-disk
+  // distribution given the fixed ones, which has no such band (points/README.md, "Why the tiles showed").
+  // The step adapts towards a 40% acceptance rate.
+  void relax_hard_disks(SplitMix64& rng) {
+    if (o_.hard_disk_sweeps <= 0) return;
+    rebuild();
+    const std::size_t f0 = fixed_.size();
+    double step = 0.5 * d_;
+    for (int sweep = 0; sweep < o_.hard_disk_sweeps; ++sweep) {
+      std::size_t tried = 0, taken = 0;
+      for (std::size_t base = f0; base < pos_.size(); base += std::size_t(g_), ++tried) {
+        const Point2 moved =
+            wrapped({pos_[base].x + (2 * rng.uniform() - 1) * step, pos_[base].y + (2 * rng.uniform() - 1) * step});
+        if (!dart_fits(moved, d_, base)) continue;
+        ++taken;
+        for (int k = 0; k < g_; ++k) {
+          const std::size_t i = base + std::size_t(k);
+          const Point2 to = image(moved, k);
+          if (grid_.cell_index(to) != grid_.cell_index(pos_[i])) grid_.erase(int(i), pos_[i]), grid_.insert(int(i), to);
+          pos_[i] = to;
+        }
+      }
+      if (tried > 0) step = std::clamp(step * (0.5 + double(taken) / double(tried) / 0.8), 0.01 * d_, d_);
+    }
+  }
+
+  // Whether q's orbit may be added: every image at least `radius` from every point (but the orbit
+  // starting at `moving`, the one being moved) and from the other images, and in the free region
+  // (tested last: it is the costly part near curved borders).
+  bool dart_fits(Point2 q, double radius, std::size_t moving = std::numeric_limits<std::size_t>::max() - 4) const {
     const int rings = int(std::ceil(radius / grid_.cell()));
     const double r2 = radius * radius;
     Point2 orbit[4];
     for (int k = 0; k < g_; ++k) {
       orbit[k] = image(q, k);
-      if (!in_region(orbit[k], ghost)) return false;
       for (int m = 0; m < k; ++m) {
         const Point2 dd = grid_.delta(orbit[k], orbit[m]);
         if (dd.x * dd.x + dd.y * dd.y < r2) return false;
       }
-      bool ok = true;
-      grid_.for_near(orbit[k], rings, [&](int id) {
+      const bool blocked = grid_.any_near(orbit[k], rings, [&](int id) {
+        if (std::size_t(id) >= moving && std::size_t(id) < moving + std::size_t(g_)) return false;
         const Point2 dd = grid_.delta(orbit[k], pos_[std::size_t(id)]);
-        if (dd.x * dd.x + dd.y * dd.y < r2) ok = false;
+        return dd.x * dd.x + dd.y * dd.y < r2;
       });
-      if (!ok) return false;
+      if (blocked) return false;
     }
+    for (int k = 0; k < g_; ++k)
+      if (!in_region(orbit[k])) return false;
     return true;
   }
 
-  // The smallest distance between a kept new point and any other kept or fixed point, capped at
-  // 2 cells (ghost points are context only).
-  double kept_min_distance() const {
+  // The smallest distance between a new point and any other point, capped at 2 cells.
+  double new_min_distance() const {
     double best = 4 * grid_.cell() * grid_.cell();
     const std::size_t f0 = fixed_.size();
     for (std::size_t i = f0; i < pos_.size(); ++i) {
-      if (ghost_[i - f0]) continue;
       grid_.for_near(pos_[i], 2, [&](int id) {
-        if (std::size_t(id) == i || (std::size_t(id) >= f0 && ghost_[std::size_t(id) - f0])) return;
+        if (std::size_t(id) == i) return;
         const Point2 dd = grid_.delta(pos_[i], pos_[std::size_t(id)]);
         best = std::min(best, dd.x * dd.x + dd.y * dd.y);
       });
@@ -239,11 +264,10 @@ class Sampler {
   // Moves the orbit starting at `base` by `delta` (its representative's displacement), shortened
   // so that no image leaves its region (thesis sec. 4.3: clipping the displacement vectors).
   void move_orbit(std::size_t base, Point2 delta) {
-    const bool ghost = ghost_[base - fixed_.size()];
     for (int halvings = 0; halvings < 8; ++halvings, delta.x *= 0.5, delta.y *= 0.5) {
       const Point2 moved = wrapped({pos_[base].x + delta.x, pos_[base].y + delta.y});
       bool ok = true;
-      for (int k = 0; k < g_ && ok; ++k) ok = in_region(image(moved, k), ghost);
+      for (int k = 0; k < g_ && ok; ++k) ok = in_region(image(moved, k));
       if (!ok) continue;
       for (int k = 0; k < g_; ++k) pos_[base + std::size_t(k)] = image(moved, k);
       return;
@@ -256,7 +280,6 @@ class Sampler {
   PointGrid grid_;
   int g_ = 1, step_ = 4;
   std::vector<Point2> fixed_, pos_, samples_, sum_;
-  std::vector<char> ghost_;  // per new point (index - fixed count)
   std::vector<int> cnt_, sample_cell_;
 };
 

@@ -14,10 +14,10 @@
 // new darts ("if the desired Poisson disk radius is not reached, this process is repeated",
 // thesis sec. 4.5).
 //
-// Ghost points: darts may also land in a `ghost` region next to the free one; they take part in
-// everything but are dropped at the end. Without them the free region's border would be a hard
-// wall that points pile up against, in the same place in every tile, which shows as spikes in
-// the spectrum of tilings; with them a point near the border sees surroundings like anywhere else.
+// Between the darts and Lloyd, `hard_disk_sweeps` sweeps of hard-disk Monte Carlo move the new
+// points at random without ever breaking the distance: dart throwing next to fixed points leaves
+// a depleted band along them, in the same place in every tile, which shows as spikes in the
+// spectrum of tilings; the sweeps remove it.
 //
 // A problem may ask for rotational symmetry about a centre (order 2 or 4): points then come in
 // orbits of that size, as the self-symmetric rotatable tiles of Li et al. require.
@@ -33,7 +33,6 @@ struct SamplingProblem {
   double x0 = 0, y0 = 0, w = 1, h = 1;  // the domain [x0, x0 + w) x [y0, y0 + h)
   bool torus = false;                   // wrap both axes
   std::function<bool(Point2)> free;     // where the new points may lie (empty: the whole domain)
-  std::function<bool(Point2)> ghost;    // where context points may lie outside `free` (empty: nowhere)
   std::vector<Point2> fixed;            // constraints that never move (may lie outside a plain domain)
   std::size_t count = 0;                // new points to place; a multiple of symmetry_order
   int symmetry_order = 1;               // 1, 2 or 4: invariance under rotations by 360/order degrees
@@ -42,6 +41,7 @@ struct SamplingProblem {
 
 struct SamplingOptions {
   double min_distance = 0;           // between any two points, new-new and new-fixed
+  int hard_disk_sweeps = 30;         // hard-disk Monte Carlo sweeps after the darts (100 gave the same spectra)
   int lloyd = 0;                     // Lloyd iterations before the push-apart repair
   int repair = 80;                   // push-apart steps before a try starts over
   int tries = 24;                    // tries before giving up (InputError)

@@ -10,15 +10,28 @@
 
 namespace tilekit::points::parts {
 
-double distance_to_polyline(Point2 p, const std::vector<Point2>& curve) {
-  double best = std::numeric_limits<double>::infinity();
+namespace {
+
+// Squared distance from p to the segment ab.
+double segment_distance2(Point2 p, Point2 a, Point2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+  const double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+  return squared_distance(p, {a.x + t * dx, a.y + t * dy});
+}
+
+}  // namespace
+
+bool within_polyline(Point2 p, const std::vector<Point2>& curve, double d) {
+  const double d2 = d * d;
   for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
     const Point2 a = curve[i], b = curve[i + 1];
-    const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-    const double t = len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, squared_distance(p, {a.x + t * dx, a.y + t * dy}));
+    // Segments whose bounding box is d or more away cannot be closer.
+    if (p.x + d <= std::min(a.x, b.x) || p.x - d >= std::max(a.x, b.x) || p.y + d <= std::min(a.y, b.y) ||
+        p.y - d >= std::max(a.y, b.y))
+      continue;
+    if (segment_distance2(p, a, b) < d2) return true;
   }
-  return std::sqrt(best);
+  return false;
 }
 
 EdgeRegion EdgeRegion::turned(int q, Point2 centre) const {
@@ -98,7 +111,6 @@ EdgeRegion horizontal_edge_region(const Regions& g, std::uint32_t n, const std::
     return g.in_corner({wrap_centred(q.x, 2.0), y}) || g.in_corner({wrap_centred(q.x - 1, 2.0), y});
   };
   p.free = [near_corner](Point2 q) { return !near_corner(q); };
-  p.ghost = [](Point2) { return true; };  // context points in the gaps of the corner regions
   if (2 * std::size_t(n) < p.fixed.size()) throw InputError("corner regions hold more than 2N points");
   p.count = 2 * std::size_t(n) - p.fixed.size();
   if (half_turn) {
@@ -128,7 +140,6 @@ EdgeRegion vertical_edge_region(const Regions& g, std::uint32_t n, const std::ve
     return g.in_corner({x, wrap_centred(q.y, 2.0)}) || g.in_corner({x, wrap_centred(q.y - 1, 2.0)});
   };
   p.free = [near_corner](Point2 q) { return !near_corner(q); };
-  p.ghost = [](Point2) { return true; };
   if (2 * std::size_t(n) < p.fixed.size()) throw InputError("corner regions hold more than 2N points");
   p.count = 2 * std::size_t(n) - p.fixed.size();
   EdgeRegion e;
@@ -162,14 +173,12 @@ bool Frame::interior(const Regions& g, Point2 p) const {
 std::vector<Point2> interior_region(const Regions& g, std::uint32_t n, const Frame& frame, int symmetry,
                                     const SamplingOptions& o, std::uint64_t seed) {
   SamplingProblem p;
-  // The tile and a margin of one distance around it: context (ghost) points fill the gaps of the
-  // corner and edge regions there.
+  // The tile and a margin of one distance around it, so that the fixed points there constrain.
   const double m = g.distance();
   p.x0 = p.y0 = -m;
   p.w = p.h = 1 + 2 * m;
   p.fixed = frame.points;
   p.free = [&g, &frame](Point2 q) { return frame.interior(g, q); };
-  p.ghost = [](Point2) { return true; };
   const std::size_t inside = inside_unit_tile(frame.points).size();
   if (inside > n)
     throw InputError(

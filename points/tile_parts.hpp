@@ -9,7 +9,7 @@
 // curve are 2r apart: the segment between them crosses the curve), and curves that differ from
 // edge to edge move the border between independently sampled regions from tile to tile. With the
 // straight edges of the thesis that border is the same line in every tile; points pile up along
-// it and the tiling's spectrum grows spikes on the axes (BENCHMARKS.md, "Point sets").
+// it and the tiling's spectrum grows spikes on the axes (points/README.md, "Why the tiles showed").
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -19,8 +19,8 @@
 
 namespace tilekit::points::parts {
 
-// Distance from p to the polyline `curve`.
-double distance_to_polyline(Point2 p, const std::vector<Point2>& curve);
+// Whether p is closer than d to the polyline `curve`.
+bool within_polyline(Point2 p, const std::vector<Point2>& curve, double d);
 
 // Regions around the lattice of unit tiles, for Poisson radius r (points 2r apart).
 struct Regions {
@@ -43,7 +43,7 @@ struct Regions {
         if (in_corner({p.x - cx, p.y - cy})) return false;
     return true;
   }
-  bool in_tube(Point2 p, const std::vector<Point2>& curve) const { return distance_to_polyline(p, curve) < r; }
+  bool in_tube(Point2 p, const std::vector<Point2>& curve) const { return within_polyline(p, curve, r); }
 };
 
 // An edge region: its points and its curve, in one frame. The canonical frame is a horizontal

@@ -10,23 +10,30 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
-#include "results/results_db.hpp"
 #include "points/text_format.hpp"
+#include "results/results_db.hpp"
 
 namespace tilekit::points {
 
 namespace {
 
-constexpr const char* kMagic = "TILEKIT-POINT-TILES 1";
+constexpr std::string_view kMagic = "TILEKIT-POINT-TILES ";
+// Version 1: corner, dual and edge-based sets; 2 adds the line "edge_colors E" after "colors".
+constexpr std::uint64_t kVersion = 2;
 
 }  // namespace
 
 std::string poisson_tiles_to_text(const PoissonTileSet& set) {
   std::string out;
   out.reserve(set.tiles.size() * set.points * 40 + 256);
-  out += fmt::format("{}\nmethod {}\ncolors {}\npoints {}\nrho {}\nradius {:.17g}\nlloyd {}\nseed {}\ntiles {}\n",
-                     kMagic, method_name(set.method), set.colours, set.points, set.rho, set.radius, set.lloyd, set.seed,
-                     set.tiles.size());
+  // The oldest version that holds the set, so that older tilekits read what they can.
+  if (set.edge_colours > 1)
+    out += fmt::format("{}2\nmethod {}\ncolors {}\nedge_colors {}\n", kMagic, method_name(set.method), set.colours,
+                       set.edge_colours);
+  else
+    out += fmt::format("{}1\nmethod {}\ncolors {}\n", kMagic, method_name(set.method), set.colours);
+  out += fmt::format("points {}\nrho {}\nradius {:.17g}\nlloyd {}\nseed {}\ntiles {}\n", set.points, set.rho,
+                     set.radius, set.lloyd, set.seed, set.tiles.size());
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     out += fmt::format("tile {}\n", t);
     for (const Point2& p : set.tiles[t]) out += fmt::format("{:.17g} {:.17g}\n", p.x, p.y);
@@ -37,10 +44,17 @@ std::string poisson_tiles_to_text(const PoissonTileSet& set) {
 
 PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::string& source) {
   text::LineReader in(text, source);
-  if (in.expect("the header") != kMagic) in.fail(fmt::format("not a point tile-set file (expected '{}')", kMagic));
+  const std::string_view head = in.expect("the header");
+  if (!head.starts_with(kMagic)) in.fail(fmt::format("not a point tile-set file (expected '{}{}')", kMagic, kVersion));
+  const std::uint64_t version = in.count(head.substr(kMagic.size()));
+  if (version > kVersion)
+    in.fail(fmt::format("point tile-set format version {} is newer than this tilekit reads (versions 1 to {})", version,
+                        kVersion));
+  if (version == 0) in.fail("point tile-set format version 0 does not exist");
   PoissonTileSet set;
   set.method = parse_poisson_tile_method(std::string(in.keyed("method")));
   set.colours = std::uint32_t(in.count(in.keyed("colors")));
+  if (version >= 2) set.edge_colours = std::uint32_t(in.count(in.keyed("edge_colors")));
   set.points = std::uint32_t(in.count(in.keyed("points")));
   set.rho = in.number(in.keyed("rho"));
   set.radius = in.number(in.keyed("radius"));
@@ -49,17 +63,19 @@ PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::strin
   const std::uint64_t tiles = in.count(in.keyed("tiles"));
   PoissonTileParams p;
   p.method = set.method, p.colours = set.colours, p.points = set.points, p.rho = set.rho, p.lloyd = set.lloyd;
+  p.edge_colours = set.edge_colours;
   try {
     check_poisson_tile_params(p);
   } catch (const InputError& e) {
     in.fail(e.what());
   }
-  const std::uint64_t l = set.lattice_colours();
-  const std::uint64_t expected =
-      set.method == PoissonTileMethod::Wang ? std::uint64_t(std::pow(double(set.colours), 12)) : l * l * l * l;
+  const std::uint64_t l = set.lattice_colours(), ec = set.edge_colours;
+  const std::uint64_t expected = set.method == PoissonTileMethod::Wang
+                                     ? std::uint64_t(std::pow(double(set.colours), 12))
+                                     : l * l * l * l * ec * ec * ec * ec;
   if (tiles != expected)
-    in.fail(fmt::format("{} tiles, but a {} set over {} colours has {}", tiles, method_name(set.method), set.colours,
-                        expected));
+    in.fail(fmt::format("{} tiles, but a {} set over {} colours and {} edge colours has {}", tiles,
+                        method_name(set.method), set.colours, set.edge_colours, expected));
   set.tiles.resize(tiles);
   for (std::uint64_t t = 0; t < tiles; ++t) {
     if (in.count(in.keyed("tile")) != t) in.fail(fmt::format("expected tile {}", t));
@@ -104,8 +120,9 @@ PoissonTileSet read_poisson_tiles(const std::string& path, const std::string& db
 }
 
 std::string poisson_tiles_name(const PoissonTileSet& set) {
-  return fmt::format("poisson-{}-C{}-N{}-rho{}-seed{}", method_name(set.method), set.colours, set.points, set.rho,
-                     set.seed);
+  const std::string edges = set.edge_colours > 1 ? fmt::format("-E{}", set.edge_colours) : "";
+  return fmt::format("poisson-{}-C{}{}-N{}-rho{}-seed{}", method_name(set.method), set.colours, edges, set.points,
+                     set.rho, set.seed);
 }
 
 std::int64_t store_poisson_tiles(ResultsDb& db, const PoissonTileSet& set, const std::string& text, int threads) {
@@ -113,6 +130,7 @@ std::int64_t store_poisson_tiles(ResultsDb& db, const PoissonTileSet& set, const
   run.command = "points tiles";
   run.params = {{"method", method_name(set.method)},
                 {"colors", set.colours},
+                {"edge_colors", set.edge_colours},
                 {"points", set.points},
                 {"rho", set.rho},
                 {"lloyd", set.lloyd},

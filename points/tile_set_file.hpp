@@ -3,15 +3,16 @@
 // database (results/results_db.hpp: a `runs` row for the build and a `tilesets` row whose
 // text is the file, so `tilekit db list --table tilesets`, export and merge carry them).
 //
-//   TILEKIT-POINT-TILES 1
+//   TILEKIT-POINT-TILES 2    (format version: 1, or 2 for sets with edge colours)
 //   method corner            (corner | wang | dual)
 //   colors 4
+//   edge_colors 2            (version 2 only; E, 1 in version 1)
 //   points 64                (per tile)
 //   rho 0.75
 //   radius 0.050403...       (r on the unit tile; points at least 2r (1 + 1e-3) apart)
 //   lloyd 0
 //   seed 1
-//   tiles 256
+//   tiles 4096               (C^4 E^4 corner tiles, (4C)^4 dual, C^12 edge-based)
 //   tile 0                   (then `points` lines "u v", tile coordinates in [0, 1)^2, y south)
 //   0.123... 0.456...
 //   ...
@@ -29,8 +30,9 @@ class ResultsDb;
 namespace tilekit::points {
 
 std::string poisson_tiles_to_text(const PoissonTileSet& set);
-// InputError naming `source` and the line for anything malformed, a checksum mismatch, or a set
-// whose points are not N per tile.
+// InputError naming `source` and the line for anything malformed, a format version newer than 2,
+// a checksum mismatch, or a set whose points are not N per tile. Writes the oldest version that
+// holds the set.
 PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::string& source);
 
 void write_poisson_tiles(const std::string& path, const PoissonTileSet& set);  // atomically

@@ -7,7 +7,9 @@ using namespace tilekit::test;
 
 namespace {
 
-std::string q(const std::string& s) { return "'" + s + "'"; }
+std::string q(const std::string& s) {
+  return "'" + s + "'";
+}
 
 }  // namespace
 
@@ -25,7 +27,8 @@ TEST(PointsCli, TilesBuildsChecksStoresAndWritesASetThatGenerateReads) {
   EXPECT_NE(slurp(pic).find("<circle"), std::string::npos);
   // From the file and from the database: the same points.
   const std::string a = d / "a.f32", b = d / "b.csv";
-  r = run_cli("points generate --tiles " + q(set) + " --window 0,0,4,3 --density 32 --out " + q(a) + " --json --analyze");
+  r = run_cli("points generate --tiles " + q(set) + " --window 0,0,4,3 --density 32 --out " + q(a) +
+              " --json --analyze");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["points"], 4 * 3 * 32);
   EXPECT_GE(r.json()["radius"]["rho_across"].get<double>(), 0.75);
@@ -52,6 +55,13 @@ TEST(PointsCli, BadInputIsExitCodeTwoWithOneLine) {
   const auto r = run_cli("points generate --tiles " + q(d / "bad.ptiles") + " --window 0,0,1,1 --density 4");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("bad.ptiles"), std::string::npos);
+  // A point tile-set file from a newer format version: exit 2 naming the version.
+  std::string v1 = slurp(std::string(TILEKIT_SOURCE_DIR) + "/points/data/corner-c2-n32-v1.ptiles");
+  write_text(d / "v9.ptiles", "TILEKIT-POINT-TILES 9" + v1.substr(v1.find('\n')));
+  const auto newer = run_cli("points generate --tiles " + q(d / "v9.ptiles") + " --window 0,0,1,1 --density 32");
+  EXPECT_EQ(newer.code, 2);
+  EXPECT_NE(newer.err.find("format version 9 is newer"), std::string::npos) << newer.err;
+  EXPECT_EQ(run_cli("points tiles --method dual --edge-colors 2 --no-db --quiet").code, 2);
   EXPECT_EQ(run_cli("points analyze " + q(d / "missing.f32")).code, 2);
   write_text(d / "odd.f32", "123");
   EXPECT_EQ(run_cli("points analyze " + q(d / "odd.f32")).code, 2);
@@ -60,8 +70,9 @@ TEST(PointsCli, BadInputIsExitCodeTwoWithOneLine) {
 
 TEST(PointsCli, SpectrumComparesMethodsAndDrawsPlots) {
   TempDir d;
-  const auto r = run_cli("points spectrum --method white --compare grid --sets 2 --set-points 1024 --json --quiet --plot " +
-                         q(d / "p.svg") + " --image " + q(d / "s.png"));
+  const auto r =
+      run_cli("points spectrum --method white --compare grid --sets 2 --set-points 1024 --json --quiet --plot " +
+              q(d / "p.svg") + " --image " + q(d / "s.png"));
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = r.json();
   EXPECT_EQ(j["method"], "white");
@@ -83,8 +94,10 @@ TEST(PointsCli, ZonePlateRecursiveAndObjects) {
               " --window 0,0,2,2 --density 500 --density-expr '500 * x' --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(r.json()["points"].get<double>(), 2000, 200);  // integral of 500 x over [0,2]^2
-  r = run_cli("points objects --colors 2 --points 32 --window 0,0,10,10 --density 40 --objects a:1,b:3 --json --quiet "
-              "--out " + q(d / "o.csv") + " --texture " + q(d / "t.png") + " --px 64");
+  r = run_cli(
+      "points objects --colors 2 --points 32 --window 0,0,10,10 --density 40 --objects a:1,b:3 --json --quiet "
+      "--out " +
+      q(d / "o.csv") + " --texture " + q(d / "t.png") + " --px 64");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(r.json()["points"].get<double>(), 4000, 40);
   EXPECT_NE(slurp(d / "o.csv").find("x,y,object"), std::string::npos);

@@ -123,3 +123,34 @@ TEST(PoissonTileGenerator, EdgeBasedAndDualSetsGenerateValidWindowsToo) {
     EXPECT_GE(sweep_min_distance(pts), 2 * set.radius - 1e-5) << method_name(method);
   }
 }
+
+TEST(PoissonTileGenerator, EdgeColouredSetsPlaceTheTilesTheLatticeAndEdgeHashesName) {
+  PoissonTileParams p;
+  p.colours = 1;
+  p.edge_colours = 2;
+  p.points = 32;
+  p.threads = 2;
+  const auto set = build_poisson_tiles(p);
+  // The row-wise fast path against the tile-by-tile index (tile side 1 at density 32).
+  const PoissonTileGenerator gen(set, HashKind::LongPeriod, 5);
+  const auto pts = gen.generate({-3, 2, 9, 10}, 32.0);
+  std::vector<float> expected;
+  std::set<std::uint64_t> used;
+  for (std::int64_t ty = 2; ty < 10; ++ty)
+    for (std::int64_t tx = -3; tx < 9; ++tx) {
+      used.insert(gen.tile_index(tx, ty));
+      for (const Point2& q : set.tiles[gen.tile_index(tx, ty)])
+        expected.insert(expected.end(), {float(double(tx) + q.x), float(double(ty) + q.y)});
+    }
+  EXPECT_EQ(pts, expected);
+  EXPECT_GE(used.size(), 14u);  // of the 16 combinations of four edge colours
+  EXPECT_GE(sweep_min_distance(pts), 2 * set.radius - 1e-5);
+  // A periodic tiling repeats its edge colours too.
+  const PoissonTileGenerator periodic(set, HashKind::LongPeriod, 5, 4);
+  const auto a = periodic.generate({0, 0, 4, 4}, 32.0), b = periodic.generate({4, 8, 8, 12}, 32.0);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); i += 2) {
+    EXPECT_NEAR(a[i], b[i] - 4, 1e-5);
+    EXPECT_NEAR(a[i + 1], b[i + 1] - 8, 1e-5);
+  }
+}
