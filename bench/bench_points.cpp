@@ -100,7 +100,7 @@ void speed(const Options& o, const PoissonTileSet& set, const std::string& name)
   const double t2 = timed(o.reps, [&] { escape(gen.generate(w, 1.0, 2).data()); });
   // The same number of 8-byte points written by a plain loop into a fresh vector (memory bound).
   const double tm = timed(o.reps, [&] {
-    std::vector<float> out(2 * count);
+    std::vector<double> out(2 * count);
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = float(i & 1023);
     escape(out.data());
   });
@@ -165,7 +165,7 @@ void quality(const PoissonTileSet& set, const std::string& name, double points) 
 }
 
 // K = 10 periodograms of toroidal sets of about 16,384 points (thesis sec. 6.2.2).
-SpectralSummary spectrum_of(const std::function<std::vector<float>(std::uint64_t)>& make, double side, double density,
+SpectralSummary spectrum_of(const std::function<std::vector<double>(std::uint64_t)>& make, double side, double density,
                             int sets = 10) {
   PowerSpectrum ps(periodogram_size(density, side), side);
   for (int k = 0; k < sets; ++k) ps.add(make(std::uint64_t(k) + 1), 0, 0, 2);

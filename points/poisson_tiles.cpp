@@ -44,6 +44,16 @@ void check_poisson_tile_params(const PoissonTileParams& p) {
   if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
   if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));
   const double r = p.rho * max_poisson_radius(p.points) * (1 + kMargin);
+  // The sampler keeps a grid of cells 2r wide over each region (up to a whole tile) and, with
+  // Lloyd iterations, 10 x 10 samples per cell: bound both before anything is allocated.
+  const double cells = 1 / (4 * r * r), samples = p.lloyd > 0 ? 100 * cells : 0;
+  if (cells > double(1 << 24) || samples > double(1 << 26))
+    throw InputError(fmt::format(
+        "--rho {} with --points {}: the sampler would need {:.3g} grid cells{} per tile (at most 2^24 cells and 2^26 "
+        "Lloyd samples); use --rho {:.3g} or more{}",
+        p.rho, p.points, cells, p.lloyd > 0 ? fmt::format(" and {:.3g} Lloyd samples", samples) : "",
+        p.rho * std::sqrt(std::max(cells / double(1 << 24), samples / double(1 << 26))) * 1.001,
+        p.lloyd > 0 ? " (or --lloyd 0)" : ""));
   // Two corner regions and the 2r between edge regions must fit along an edge: 2c + 2r <= 1.
   if (2 * (1 + std::sqrt(2.0)) * r + 2 * r > 1)
     throw InputError(fmt::format("--points {} is too few for rho {}: corner regions would overlap (N >= {} needed)",

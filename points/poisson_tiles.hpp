@@ -78,7 +78,7 @@ struct PoissonTileSet {
 };
 
 // Relative safety margin on the distance: the construction keeps points 2r (1 + kMargin) apart
-// so that float32 output (24-bit mantissa) of windows up to ~10^4 points across keeps 2r.
+// so that float32 point files (24-bit mantissa) of windows up to ~10^4 points across keep 2r.
 inline constexpr double kMargin = 1e-3;
 
 // Throws InputError for parameters no tile set can meet (C < 1, N too small for the regions
