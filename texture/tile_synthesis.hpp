@@ -24,7 +24,7 @@ struct SynthesisOptions {
   int threads = 1;
   // Candidate exemplar positions tried per corner patch (or diamond) and round of the search;
   // 0 keeps the first random draw (no search: the "plain minimum-error cut" baseline).
-  int search = 96;
+  int search = 96;  // at most kMaxSynthesisSearch
   int rounds = 3;
   int centre_candidates = 32;  // corner tiles: centre patches scored per tile on the ring where the cut runs
   int centre_cuts = 2;         // of those, the best this many get the full graph cut
@@ -43,6 +43,8 @@ struct TileGeometry {
   int arm = 0;      // rows of a corner pair cut on each side of the tile border
   explicit TileGeometry(int tile_px);
 };
+
+inline constexpr int kMaxSynthesisSearch = 1 << 16;
 
 struct TextureTileSet {
   TileKind kind = TileKind::Corner;
