@@ -3,16 +3,17 @@
 // the CPU or through GLSL (headless EGL, Mesa llvmpipe).
 #include <fmt/format.h>
 
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <regex>
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "base/parse.hpp"
 #include "results/results_db.hpp"
 #include "cli/command.hpp"
 #include "texture/gl_renderer.hpp"
@@ -93,19 +94,11 @@ struct AtlasArgs {
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
-  const std::string manifest = (fs::path(a.dir) / "tiles.json").string();
-  std::ifstream in(manifest);
-  if (!in) throw InputError(fmt::format("{}: no tiles.json (make the tiles with `tilekit texture tiles`)", manifest));
-  nlohmann::json m;
-  try {
-    m = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", manifest, e.what()));
-  }
-  const TileKind kind = m.value("kind", "corner") == "wang" ? TileKind::Wang : TileKind::Corner;
+  const TileSetManifest m = read_tile_set_manifest(a.dir);
+  const TileKind kind = m.kind;
   LookupOptions lo;
   if (!a.no_db) lo.db_path = a.db.empty() ? ResultsDb::default_path() : a.db;
-  const AtlasLookup lookup = atlas_lookup(kind, m.value("colors", 0u), lo);
+  const AtlasLookup lookup = atlas_lookup(kind, m.colours, lo);
   const TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
@@ -149,21 +142,21 @@ void add_atlas(CLI::App& texture, Context& ctx) {
 
 View parse_view(const std::string& size, double scale, const std::string& origin, double tilt) {
   View v;
-  std::smatch m;
-  static const std::regex wh(R"((\d{1,5})x(\d{1,5}))"), uv(R"((-?[0-9.eE+-]+),(-?[0-9.eE+-]+))");
-  if (!std::regex_match(size, m, wh))
-    throw InputError(fmt::format("--size must be WxH (e.g. 1024x768), got '{}'", size));
-  v.width = std::stoi(m[1]);
-  v.height = std::stoi(m[2]);
+  const Dimensions d = parse_dimensions(size, kMaxViewSide, std::int64_t(kMaxViewSide) * kMaxViewSide, "--size WxH");
+  v.width = int(d.first);
+  v.height = int(d.second);
   if (!origin.empty()) {
-    if (!std::regex_match(origin, m, uv))
-      throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
-    try {
-      v.origin_u = std::stod(m[1]);
-      v.origin_v = std::stod(m[2]);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
-    }
+    const std::size_t comma = origin.find(',');
+    const auto number = [&](std::string_view t) {
+      double x = 0;
+      const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
+      if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size() || !std::isfinite(x))
+        throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
+      return x;
+    };
+    if (comma == std::string::npos) throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
+    v.origin_u = number(std::string_view(origin).substr(0, comma));
+    v.origin_v = number(std::string_view(origin).substr(comma + 1));
   }
   v.scale = scale;
   v.tilt = tilt;
