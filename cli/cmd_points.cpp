@@ -21,6 +21,7 @@
 #include "points/analysis_radius.hpp"
 #include "points/point_io.hpp"
 #include "points/tile_set_file.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -186,7 +187,7 @@ void add_tiles_command(CLI::App* points, Context& ctx) {
   auto* cmd = points->add_subcommand("tiles", "Build a Poisson disk tile set (thesis ch. 4) and check it");
   auto a = std::make_shared<TilesArgs>();
   cmd->add_option("--method", a->method, "corner (thesis 4.5, default) | wang (edge-based, 4.3) | dual (Li et al.)");
-  cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1, 64));
+  cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1u, kMaxCompleteSetColours));
   cmd->add_option("--points", a->points, "Points per tile N (default 64)")->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a->rho, "Relative radius: no two points closer than 2 rho r_max(N) (default 0.75)");
   cmd->add_option("--lloyd", a->lloyd, "Lloyd iterations at least per region (default 0: only until rho is met)")

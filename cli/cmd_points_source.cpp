@@ -10,6 +10,7 @@
 #include "cli/cmd_points.hpp"
 #include "points/reference_sets.hpp"
 #include "points/tile_set_file.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -20,7 +21,7 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
   cmd->add_option("--tiles", a.tiles,
                   "Tile set: a file from `points tiles --out` (or db:ID) or `points recursive --out`; "
                   "default: built in memory from --colors/--points/--rho");
-  cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1, 64));
+  cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1u, kMaxCompleteSetColours));
   cmd->add_option("--points", a.points, "Points per tile of a set built in memory (default 64)")
       ->check(CLI::Range(1, 65536));
   cmd->add_option("--rho", a.rho,

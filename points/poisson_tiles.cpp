@@ -12,6 +12,7 @@
 #include "base/parallel.hpp"
 #include "base/random.hpp"
 #include "points/tile_parts.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::points {
 
@@ -39,7 +40,7 @@ double PoissonTileSet::guaranteed_distance() const {
 }
 
 void check_poisson_tile_params(const PoissonTileParams& p) {
-  if (p.colours < 1 || p.colours > 64) throw InputError(fmt::format("--colors must be 1..64, got {}", p.colours));
+  check_complete_set_colours(p.colours, "--colors");
   if (p.points < 1 || p.points > 65536) throw InputError(fmt::format("--points must be 1..65536, got {}", p.points));
   if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
   if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));

@@ -252,10 +252,15 @@ void ResultsDb::open_connection(bool read_only, int busy_timeout_ms) {
   read_only_ = read_only;
   sqlite3_busy_timeout(db_, busy_timeout_ms);
   sqlite3_extended_result_codes(db_, 1);
-  if (read_only && sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK &&
-      (sqlite3_extended_errcode(db_) & 0xff) == SQLITE_CANTOPEN) {
-    // A WAL database on read-only media (or in a read-only directory) cannot get its -shm file.
-    // Then no process can be writing to it either, so reading it as immutable is exact.
+  const auto probe_fails = [&] {
+    if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) == SQLITE_OK) return false;
+    const int code = sqlite3_extended_errcode(db_) & 0xff;
+    return code == SQLITE_CANTOPEN || code == SQLITE_READONLY;
+  };
+  if (read_only && probe_fails()) {
+    // A WAL database on read-only media (or in a read-only directory) cannot get its -shm file
+    // (SQLite says it cannot open it, or that it cannot write it). Then no process can be
+    // writing to it either, so reading it as immutable is exact.
     sqlite3_close(db_);
     db_ = nullptr;
     if (sqlite3_open_v2(immutable_uri(path_).c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) !=
