@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Sets up, builds and tests (docs/TESTING.md). The default is the README's test command, about
 # ten minutes on 2 cores once set up:
+#   0. the layer check (scripts/check-layers.sh: includes against each folder README's
+#      "May include" line, no cycles), before anything is built;
 #   1. the Release build (build/) and its whole ctest suite;
 #   2. every libFuzzer harness for a few seconds (build-fuzz/, ASan+UBSan; FUZZ_SECONDS, default 5);
 #   3. the end-to-end test against a real single-node Slurm (tests/slurm/cluster-test.sh; needs
@@ -31,13 +33,16 @@ step() {  # step NAME COMMAND...: runs it, then one line with its time and the t
   return $rc
 }
 step "set-up" "$root/scripts/setup.sh"
+step "layer check" bash "$root/scripts/check-layers.sh"
 if [ "$mode" = sanitize ]; then
   step "ASan+UBSan build and ctest" "$root/scripts/sanitize.sh" asan "${args[@]}"
   exit
 fi
 step "Release build" "$root/scripts/build.sh"
-# setup.sh installed Mesa's EGL: the GLSL-vs-CPU tests must run (fail, not skip, without a context).
+# setup.sh installed Mesa's EGL and chromium: the GLSL-vs-CPU tests and the browser test of the
+# preview page must run (fail, not skip, without a context or a browser).
 export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
+export TILEKIT_REQUIRE_BROWSER=${TILEKIT_REQUIRE_BROWSER:-1}
 step "Release ctest" bash -c 'cd "$0/build" && ctest --output-on-failure -j "$(nproc)" "${@:1}"' "$root" "${args[@]}"
 if [ "$mode" = full ]; then
   step "ASan+UBSan build and ctest" "$root/scripts/sanitize.sh" asan "${args[@]}"
