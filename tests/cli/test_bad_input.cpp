@@ -282,7 +282,7 @@ TEST(BadInput, FileMessagesNameTheLine) {
   expect_refused(
       run_cli("tileset show " + d / "dup.json"),
       d / "dup.json" + ": tiles[1]: duplicate tile: repeats the tile of " + d / "dup.json" + ": tiles[0] (0 1 1 0)");
-  write_text(d / "ck", "TILEKIT-CHECKPOINT 1\nbytes 99999999999999999999999 fnv1a64 0000000000000000\n{}");
+  write_text(d / "ck", "TILEKIT-CHECKPOINT 3\nbytes 99999999999999999999999 fnv1a64 0000000000000000\n{}");
   expect_refused(run_cli("pack --kind wang --colors 2 --mode count --resume " + d / "ck" + " --db " + d / "db.sqlite"),
                  "checkpoint " + d / "ck" + ": corrupt header");
 }
