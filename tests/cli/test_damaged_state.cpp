@@ -54,8 +54,7 @@ const Tampering kTamperings[] = {
     {"dropped-column", "ALTER TABLE runs DROP COLUMN params", "table 'runs' has no column 'params'"},
     {"renamed-column", "ALTER TABLE solutions RENAME COLUMN cells TO grid", "table 'solutions' has no column 'cells'"},
     {"renamed-table", "ALTER TABLE tilesets RENAME TO sets", "it has a table 'sets' that Tilekit does not make"},
-    {"trigger",
-     "CREATE TRIGGER no_runs BEFORE INSERT ON runs BEGIN SELECT RAISE(ABORT, 'trigger says no'); END",
+    {"trigger", "CREATE TRIGGER no_runs BEFORE INSERT ON runs BEGIN SELECT RAISE(ABORT, 'trigger says no'); END",
      "it has a trigger 'no_runs' of its own (on 'runs')"},
     {"view", "CREATE VIEW every_run AS SELECT * FROM runs", "it has a view 'every_run' of its own"},
     {"extra-index", "CREATE UNIQUE INDEX one_kind ON solutions(kind)",
@@ -145,8 +144,8 @@ struct CheckpointCase {
   }
   std::string edited(const std::string& name, const std::function<void(nlohmann::json&)>& edit) const {
     const std::string text = slurp(original);
-    const std::string_view body = open_checkpoint(text, "TILEKIT-CHECKPOINT", kCheckpointVersion, kCheckpointVersion,
-                                                  original);
+    const std::string_view body =
+        open_checkpoint(text, "TILEKIT-CHECKPOINT", kCheckpointVersion, kCheckpointVersion, original);
     nlohmann::json j = nlohmann::json::parse(body);
     edit(j);
     const std::string path = d / name;
@@ -163,9 +162,9 @@ TEST(DamagedCheckpoint, JsonInStringFieldsIsDepthLimitedAndTypeChecked) {
   ASSERT_TRUE(fs::exists(c.original));
   const std::string runs = c.runs();
   for (const std::string& fingerprint :
-       {std::string(100000, '[') + std::string(100000, ']'), "{\"a\":" + std::string(5000, '[') + "1" +
-        std::string(5000, ']') + "}", std::string("[1]"), std::string("\"text\""), std::string("{\"mode\":[[{}]]}"),
-        std::string("not json")}) {
+       {std::string(100000, '[') + std::string(100000, ']'),
+        "{\"a\":" + std::string(5000, '[') + "1" + std::string(5000, ']') + "}", std::string("[1]"),
+        std::string("\"text\""), std::string("{\"mode\":[[{}]]}"), std::string("not json")}) {
     const std::string path = c.edited("f.ckpt", [&](nlohmann::json& j) { j["search"]["fingerprint"] = fingerprint; });
     const std::string before = slurp(path);
     const CliResult r = run_cli("pack --resume " + path + " --quiet");
@@ -181,9 +180,14 @@ TEST(DamagedCheckpoint, WrongTypesInNestedObjectsAreExit2) {
       {[](nlohmann::json& j) { j["request"]["shard"] = nlohmann::json::array(); }, "the request's shard is malformed"},
       {[](nlohmann::json& j) { j["request"]["candidates"] = "plain"; }, "the request's candidates is malformed"},
       {[](nlohmann::json& j) { j["request"]["time_limit"] = "soon"; }, "the request's time_limit is malformed"},
-      {[](nlohmann::json& j) { j["search"]["in_flight"] = {{{"index", 0}, {"path", {{1}}}}}; },
+      {[](nlohmann::json& j) {
+         j["search"]["in_flight"] = {{{"index", 0}, {"path", {{1}}}}};
+       },
        "expected an array of 2 elements"},
-      {[](nlohmann::json& j) { j["search"]["finished_counts"] = {1, 2, 3}; }, "expected a JSON object"},
+      {[](nlohmann::json& j) {
+         j["search"]["finished_counts"] = {1, 2, 3};
+       },
+       "expected a JSON object"},
   };
   for (const auto& [edit, message] : cases) {
     const std::string path = c.edited("t.ckpt", edit);
@@ -221,7 +225,8 @@ TEST(DamagedCheckpoint, FinishedMarksOutsideTheShardOrWithoutTheirCountsAreRefus
     s["finished"].get_ref<std::string&>()[0] = 'e';
     const nlohmann::json e = s["finished_each"][0];
     s["finished_each"].erase(0);
-    s["finished_counts"]["solutions"] = s["finished_counts"]["solutions"].get<std::uint64_t>() - e[0].get<std::uint64_t>();
+    s["finished_counts"]["solutions"] =
+        s["finished_counts"]["solutions"].get<std::uint64_t>() - e[0].get<std::uint64_t>();
     s["finished_counts"]["orbits"] = s["finished_counts"]["orbits"].get<std::uint64_t>() - e[1].get<std::uint64_t>();
     s["finished_counts"]["nodes"] = s["finished_counts"]["nodes"].get<std::uint64_t>() - e[2].get<std::uint64_t>();
   });

@@ -4,9 +4,8 @@
 // must leave existing files alone, and damaged verify checkpoints. Each is exit 0 with a right
 // answer or exit 2 with one line naming the problem: never a crash, an internal error or a
 // bad_alloc after seconds of work.
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
@@ -55,12 +54,12 @@ std::string resealed(const std::string& text, const std::string& from, const std
 }  // namespace
 
 TEST(HostileInputs, DeeplyNestedDensityExpressionsAreRefusedNotACrash) {
-  for (const auto& [open, close] : std::vector<std::pair<std::string, std::string>>{
-           {"(", ")"}, {"-", ""}, {"x^", ""}, {"sin(", ")"}}) {
+  for (const auto& [open, close] :
+       std::vector<std::pair<std::string, std::string>>{{"(", ")"}, {"-", ""}, {"x^", ""}, {"sin(", ")"}}) {
     const std::string e = repeated(open, 800) + "x" + repeated(close, 800);
-    expect_refused(run_cli("points generate --method recursive --density-expr '" + e +
-                           "' --window 0,0,1,1 --density 100 --quiet"),
-                   "nested deeper than 100 levels");
+    expect_refused(
+        run_cli("points generate --method recursive --density-expr '" + e + "' --window 0,0,1,1 --density 100 --quiet"),
+        "nested deeper than 100 levels");
   }
   expect_refused(run_cli("points generate --method recursive --density-expr '" + repeated("(", 5000) + "x" +
                          repeated(")", 5000) + "' --window 0,0,1,1 --density 100 --quiet"),
@@ -73,16 +72,19 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
     expect_refused(run_cli("points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.f32 --quiet"),
                    "set TILEKIT_MEMORY");
     expect_refused(run_cli("points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 "
-                           "--out " + d / "p.f32 --quiet"),
+                           "--out " +
+                           d / "p.f32 --quiet"),
                    "a window of about 1e+12 points");
     // The limit is the environment's when set: a window that fits the machine is refused under 1 MB.
-    expect_refused(run_cli_prefixed("env TILEKIT_MEMORY=1M ", "points generate --window 0,0,100,100 --density 10 "
-                                                               "--out " + d / "p.f32 --quiet"),
+    expect_refused(run_cli_prefixed("env TILEKIT_MEMORY=1M ",
+                                    "points generate --window 0,0,100,100 --density 10 "
+                                    "--out " +
+                                        d / "p.f32 --quiet"),
                    "more than the limit of 0.000977 GiB (TILEKIT_MEMORY");
     expect_refused(run_cli("points tiles --rho 1e-6 --no-db --quiet --out " + d / "t.ptiles"), "use --rho");
-    expect_refused(run_cli("texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " +
-                           d / "tt"),
-                   "candidates a round may try");
+    expect_refused(
+        run_cli("texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " + d / "tt"),
+        "candidates a round may try");
   });
   EXPECT_FALSE(fs::exists(d / "p.f32"));
   EXPECT_LT(s, 20) << "refused before any work";
@@ -90,8 +92,9 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
   std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x59\xd8\0\0\x59\xd8\x08\0\0\0\0\0\0\0\0", 33);
   png += std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
   write_text(d / "bomb.png", png);
-  expect_refused(run_cli("texture tiles --exemplar " + d / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb"),
-                 "23000x23000 pixels is more than the 268435456 pixels an image may have");
+  expect_refused(
+      run_cli("texture tiles --exemplar " + d / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb"),
+      "23000x23000 pixels is more than the 268435456 pixels an image may have");
   expect_refused(run_cli("points generate --method recursive --density-image " + d / "bomb.png" +
                          " --window 0,0,1,1 --density 100 --quiet"),
                  "23000x23000 pixels");
@@ -123,8 +126,8 @@ TEST(HostileInputs, PointsFarFromTheOriginKeepTheirDistances) {
   for (const char* x : {"1000000", "10000000"}) {
     SCOPED_TRACE(x);
     const std::string window = fmt::format("{},{},{},{}", x, x, std::stod(x) + 20, std::stod(x) + 20);
-    const CliResult r = run_cli("points generate --window " + window + " --density 100 --analyze --quiet --json --out " +
-                                d / "p.f64");
+    const CliResult r =
+        run_cli("points generate --window " + window + " --density 100 --analyze --quiet --json --out " + d / "p.f64");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_GE(r.json()["radius"]["rho"].get<double>(), 0.75);
     const CliResult a = run_cli("points analyze " + d / "p.f64 --quiet --json");
@@ -160,7 +163,8 @@ TEST(HostileInputs, PointTileFilesAreCheckedOnLoad) {
 
 TEST(HostileInputs, PlaceholdersAndOverflowsDoNotReachTheOutput) {
   expect_refused(run_cli("points spectrum --sets 1 --set-points 1e7 --quiet --json"), "--set-points 10000000");
-  const CliResult o = run_cli("points objects --density 10 --window 0,0,3,3 --objects tree:1e308,rock:1e308 --json --quiet");
+  const CliResult o =
+      run_cli("points objects --density 10 --window 0,0,3,3 --objects tree:1e308,rock:1e308 --json --quiet");
   ASSERT_EQ(o.code, 0) << o.err;
   const auto& objects = o.json()["objects"];
   EXPECT_GT(objects["tree"]["count"].get<int>(), 0);
@@ -186,16 +190,19 @@ TEST(HostileInputs, TextureManifestsGoThroughTheCheckedReader) {
   TextureCase c;
   const std::string manifest = slurp(c.tiles + "/tiles.json");
   fs::create_directories(c.d / "t");
-  for (const auto& entry : fs::directory_iterator(c.tiles)) fs::copy_file(entry.path(), c.d / "t" / entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(c.tiles))
+    fs::copy_file(entry.path(), fs::path(c.d / "t") / entry.path().filename());
   const std::string out = c.d / "a.png";
-  for (const auto& [json, message] : std::vector<std::pair<std::string, std::string>>{
+  nlohmann::json wang = nlohmann::json::parse(manifest);
+  wang["kind"] = "wang";
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
            {"[1]", "expected a JSON object, got [1]"},
            {R"({"kind":"corner","colors":"2"})", "colors: expected an integer"},
            {R"({"kind":"corner","colors":null})", "colors: expected an integer"},
            {R"({"kind":5})", "kind: expected a string, got 5"},
-           {nlohmann::json::parse(manifest).merge_patch({{"kind", "wang"}}).dump(), "makes corner tiles, but kind is"}}) {
-    SCOPED_TRACE(json);
-    write_text(c.d / "t/tiles.json", json);
+           {wang.dump(), "makes corner tiles, but kind is"}}) {
+    SCOPED_TRACE(text);
+    write_text(c.d / "t/tiles.json", text);
     expect_refused(run_cli("texture atlas " + c.d / "t --out " + out + " --no-db --quiet"), message);
     EXPECT_FALSE(fs::exists(out));
   }
@@ -203,23 +210,24 @@ TEST(HostileInputs, TextureManifestsGoThroughTheCheckedReader) {
   write_text(c.d / "t/tiles.json", manifest);
   fs::remove(c.d / "t/tile-0003.png");
   fs::create_symlink("tile-0003.png", c.d / "t/tile-0003.png");
-  expect_refused(run_cli("texture atlas " + c.d / "t --out " + out + " --no-db --quiet"), "Too many levels of symbolic links");
+  expect_refused(run_cli("texture atlas " + c.d / "t --out " + out + " --no-db --quiet"),
+                 "Too many levels of symbolic links");
 }
 
 TEST(HostileInputs, AtlasManifestsAreCheckedInSixtyFourBitsAndAgainstTheirKind) {
   TextureCase c;
   ASSERT_EQ(run_cli("texture atlas " + c.tiles + " --out " + c.d / "atlas.png --no-db --quiet").code, 0);
   const nlohmann::json m = nlohmann::json::parse(slurp(c.d / "atlas.json"));
-  const std::vector<std::pair<nlohmann::json, std::string>> edits = {
-      {{{"lookup", {{"rows", 1000000}}}}, "lookup.cells: expected an array of 1000000 elements"},
-      {{{"lookup", {{"rows", 2147483647}}}}, "lookup.rows: expected an integer between 1 and"},
-      {{{"lookup", {{"cols", -4}}}}, "lookup.cols: expected an integer between 1 and"},
-      {{{"tile_px", (1ll << 30) + 32}}, "tile_px: expected an integer between 1 and 268435456, got 1073741856"},
-      {{{"kind", "wang"}}, "kind: \"wang\", but the lookup is a corner packing"}};
+  const std::vector<std::pair<std::string, std::string>> edits = {
+      {R"({"lookup": {"rows": 1000000}})", "lookup.cells: expected an array of 1000000 elements"},
+      {R"({"lookup": {"rows": 2147483647}})", "lookup.rows: expected an integer between 1 and"},
+      {R"({"lookup": {"cols": -4}})", "lookup.cols: expected an integer between 1 and"},
+      {R"({"tile_px": 1073741856})", "tile_px: expected an integer between 1 and 268435456, got 1073741856"},
+      {R"({"kind": "wang"})", "kind: \"wang\", but the lookup is a corner packing"}};
   for (const auto& [patch, message] : edits) {
-    SCOPED_TRACE(patch.dump());
+    SCOPED_TRACE(patch);
     nlohmann::json e = m;
-    e.merge_patch(patch);
+    e.merge_patch(nlohmann::json::parse(patch));
     write_text(c.d / "atlas.json", e.dump());
     expect_refused(run_cli("texture render --atlas " + c.d / "atlas.png --size 32x32 --out " + c.d / "r.png --quiet"),
                    message);
@@ -231,7 +239,8 @@ TEST(HostileInputs, ARefusedAtlasLeavesTheExistingOneWhole) {
   TextureCase c;
   ASSERT_EQ(run_cli("texture atlas " + c.tiles + " --out " + c.d / "atlas.png --no-db --quiet").code, 0);
   std::map<std::string, std::string> before;
-  for (const auto& e : fs::directory_iterator(c.d.path)) if (e.is_regular_file()) before[e.path().string()] = slurp(e.path());
+  for (const auto& e : fs::directory_iterator(c.d.path))
+    if (e.is_regular_file()) before[e.path().string()] = slurp(e.path().string());
   // The last file of the set cannot be written (its name is a folder): nothing may change.
   fs::remove(c.d / "atlas.glsl");
   fs::create_directory(c.d / "atlas.glsl");
@@ -258,7 +267,8 @@ TEST(HostileInputs, DamagedVerifyCheckpointsAreRefusedOrResumeToTheSameAnswer) {
   TempDir d;
   const std::string ck = d / "d.ckpt";
   ASSERT_EQ(run_cli("aperiodic verify kari-14 --route transducer --max-k 2 --checkpoint " + ck + " --quiet").code, 0);
-  const CliResult clean = run_cli("aperiodic verify kari-14 --route transducer --max-k 3 --resume " + ck + " --quiet --json");
+  const CliResult clean =
+      run_cli("aperiodic verify kari-14 --route transducer --max-k 3 --resume " + ck + " --quiet --json");
   ASSERT_EQ(clean.code, 0) << clean.err;
   const std::string text = slurp(ck);
   const std::string body(open_checkpoint(text, "TILEKIT-DECIDE", 1, 1, ck));
@@ -267,8 +277,8 @@ TEST(HostileInputs, DamagedVerifyCheckpointsAreRefusedOrResumeToTheSameAnswer) {
     std::string edited = body;
     edited[i] = char(edited[i] ^ (i % 3 == 0 ? 0x01 : 0x80));
     write_text(d / "e.ckpt", seal_checkpoint("TILEKIT-DECIDE", 1, edited));
-    const CliResult r =
-        run_cli("aperiodic verify kari-14 --route transducer --max-k 3 --resume " + d / "e.ckpt --quiet --json");
+    const CliResult r = run_cli("aperiodic verify kari-14 --route transducer --max-k 3 --time-limit 5 --resume " +
+                                d / "e.ckpt --quiet --json");
     SCOPED_TRACE(i);
     ASSERT_TRUE(r.code == 0 || r.code == 2) << r.code << " " << r.err;
     if (r.code == 2) {
@@ -276,6 +286,7 @@ TEST(HostileInputs, DamagedVerifyCheckpointsAreRefusedOrResumeToTheSameAnswer) {
       EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
       continue;
     }
+    if (!r.json()["stopped_by"].is_null()) continue;  // an edit that made the run longer: nothing to compare
     // A resumed chain is the one the tiles give: the same verdict and the same levels.
     EXPECT_EQ(r.json()["verdict"], clean.json()["verdict"]);
     EXPECT_EQ(levels(r.json()), levels(clean.json()));

@@ -72,7 +72,8 @@ TEST(SearchStateCheck, CountersMustBeConsistent) {
   EXPECT_EQ(problem_of(st), "it holds the counts of 2 finished subproblems but 0 are marked finished");
   st = good_state();
   st.finished_each[1].nodes = 401;
-  EXPECT_EQ(problem_of(st), "the finished subproblems count 96 solutions and 1001 nodes, but their total says 96 and 1000");
+  EXPECT_EQ(problem_of(st),
+            "the finished subproblems count 96 solutions and 1001 nodes, but their total says 96 and 1000");
   st = good_state();
   st.in_flight[0].counted.orbits = 17;
   EXPECT_EQ(problem_of(st), "in-flight subproblem 2 counts 17 orbits but only 16 solutions");
