@@ -16,6 +16,7 @@
 #include "base/error.hpp"
 #include "image/image.hpp"
 #include "texture/texture_atlas.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace {
 
