@@ -58,8 +58,9 @@ TEST(CliContract, EveryCommandsHelpWorksAndEveryLeafTakesJsonAndQuiet) {
 TEST(CliContract, QuietAndJsonTogetherPrintOnlyTheJsonObject) {
   TempDir d;
   for (const std::string& cmd :
-       {"tileset list", "aperiodic convert culik-13 --method diagonal", "texture atlas " + d / "none --out " + d / "a.png",
-        "db stats --db " + d / "r.sqlite", "analyze neighbors --colors 2 --tilings 2 --max-size 64"}) {
+       std::vector<std::string>{"tileset list", "aperiodic convert culik-13 --method diagonal",
+                                "texture atlas " + d / "none --out " + d / "a.png", "db stats --db " + d / "r.sqlite",
+                                "analyze neighbors --colors 2 --tilings 2 --max-size 64"}) {
     const CliResult r = run_cli(cmd + " --quiet --json");
     SCOPED_TRACE(cmd);
     if (r.code == 0) {
