@@ -166,7 +166,8 @@ TEST(HostileInputs, PlaceholdersAndOverflowsDoNotReachTheOutput) {
   const CliResult o =
       run_cli("points objects --density 10 --window 0,0,3,3 --objects tree:1e308,rock:1e308 --json --quiet");
   ASSERT_EQ(o.code, 0) << o.err;
-  const auto& objects = o.json()["objects"];
+  const nlohmann::json j = o.json();
+  const nlohmann::json& objects = j["objects"];
   EXPECT_GT(objects["tree"]["count"].get<int>(), 0);
   EXPECT_GT(objects["rock"]["count"].get<int>(), 0);
   EXPECT_DOUBLE_EQ(objects["tree"]["expected"].get<double>(), objects["rock"]["expected"].get<double>());
