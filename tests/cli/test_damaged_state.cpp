@@ -73,10 +73,12 @@ TEST(DamagedDatabase, AlteredSchemasAndWrongTypesAreExit2WithTheFileUnchanged) {
     const std::string before = slurp(db);
     const std::string good = d / (std::string(t.name) + "-good.json");
     write_text(good, slurp(TILEKIT_SOURCE_DIR "/tilesets/data/packing-corner-2.json"));
+    const std::string other = d / (std::string(t.name) + "-other.sqlite");
+    ASSERT_EQ(run_cli("pack --kind corner --colors 2 --method construct --quiet --db " + other).code, 0);
     for (const std::string& cmd :
          {"db stats --db " + db, "db list --table runs --db " + db, "db export --db " + db,
           "db add " + good + " --db " + db, "db merge " + d / (std::string(t.name) + "-out.sqlite") + " " + db,
-          "db merge " + db + " " + good, "pack --kind corner --colors 2 --mode count --quiet --db " + db,
+          "db merge " + db + " " + other, "pack --kind corner --colors 2 --mode count --quiet --db " + db,
           "atlas lookup --kind corner --colors 2 --db " + db}) {
       SCOPED_TRACE(cmd);
       expect_exit2_naming(run_cli(cmd), t.message);
