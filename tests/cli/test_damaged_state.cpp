@@ -205,8 +205,7 @@ TEST(DamagedCheckpoint, FinishedMarksOutsideTheShardOrWithoutTheirCountsAreRefus
     std::string& bits = j["search"]["finished"].get_ref<std::string&>();
     bits[0] = 'e';
   });
-  expect_exit2_naming(run_cli("pack --resume " + unmarked + " --quiet"),
-                      "are marked finished");
+  expect_exit2_naming(run_cli("pack --resume " + unmarked + " --quiet"), "are marked finished");
   // The counts of one finished subproblem changed: the total no longer adds up.
   const std::string recounted = c.edited("r.ckpt", [](nlohmann::json& j) { j["search"]["finished_each"][0][0] = 7; });
   expect_exit2_naming(run_cli("pack --resume " + recounted + " --quiet"), "but their total says");
@@ -240,9 +239,15 @@ TEST(DamagedCheckpoint, FinishedMarksOutsideTheShardOrWithoutTheirCountsAreRefus
 
 TEST(DamagedCheckpoint, ResumeAloneKeepsTheOriginalTimeLimit) {
   CheckpointCase c;
-  const CliResult r = run_cli("pack --resume " + c.original + " --quiet --json");
+  EXPECT_EQ(nlohmann::json::parse(open_checkpoint(slurp(c.original), "TILEKIT-CHECKPOINT", kCheckpointVersion,
+                                                  kCheckpointVersion, c.original))["request"]["time_limit"],
+            0.05);
+  // The stored limit made a millisecond (whatever the machine's speed, the rest of the count
+  // takes longer): resuming alone stops there, --time-limit 0 given again runs to the end.
+  const std::string short_limit = c.edited("short.ckpt", [](nlohmann::json& j) { j["request"]["time_limit"] = 0.001; });
+  const CliResult r = run_cli("pack --resume " + short_limit + " --quiet --json");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_FALSE(r.json()["complete"]) << "the 0.05 s limit of the first run applies again";
+  EXPECT_FALSE(r.json()["complete"]) << "the stored limit applies again";
   const CliResult all = run_cli("pack --resume " + c.original + " --time-limit 0 --quiet --json");
   ASSERT_EQ(all.code, 0) << all.err;
   EXPECT_EQ(all.json()["solutions"], 203520);
