@@ -86,12 +86,13 @@ struct GlRenderer::State {
   Context ctx;
   int width = 0, height = 0;
   GLuint program = 0, fbo = 0, colour = 0, vao = 0;
-  GLuint textures[3] = {0, 0, 0};  // the atlas or the exemplar, the row table, hpn's look-up table
+  // the atlas or the exemplar, the row table, hpn's look-up table, the tiling's tables (units 3, 4)
+  GLuint textures[5] = {0, 0, 0, 0, 0};
   ~State() {
     glDeleteProgram(program);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &colour);
-    glDeleteTextures(3, textures);
+    glDeleteTextures(5, textures);
     glDeleteVertexArrays(1, &vao);
   }
 };
@@ -198,6 +199,18 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   glUniform1i(glGetUniformLocation(s.program, main_sampler), 0);
   for (const auto& [name, values] : tables)
     glUniform4iv(glGetUniformLocation(s.program, name.c_str()), GLsizei(values.size() / 4), values.data());
+  for (const GlslTableTexture& t : glsl_table_textures(src, o)) {
+    GLuint& texture = s.textures[t.unit];
+    glGenTextures(1, &texture);
+    glActiveTexture(GLenum(GL_TEXTURE0 + t.unit));
+    glBindTexture(GL_TEXTURE_2D, texture);
+    const bool rg = t.channels == 2;
+    glTexImage2D(GL_TEXTURE_2D, 0, rg ? GL_RG8UI : GL_RGBA8UI, t.width, t.height, 0, rg ? GL_RG_INTEGER : GL_RGBA_INTEGER,
+                 GL_UNSIGNED_BYTE, t.texels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glUniform1i(glGetUniformLocation(s.program, t.sampler.c_str()), t.unit);
+  }
   // The view's row table (texture/view.hpp), two RGBA32I texels per row.
   std::vector<GLint> table;
   for (const ViewRow& r : vr.rows) {

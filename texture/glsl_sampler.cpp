@@ -7,6 +7,21 @@
 
 namespace tilekit {
 
+namespace {
+
+// The renderer's tiling of the permutation hash is one look-up texture: the tiling repeats with
+// the hash's period N in x and in y (thesis 3.4.1), so the atlas cell of every tile is known from
+// N x N of them. A texel holds the cell's row and column in one byte each.
+bool cell_texture(const AtlasLookup& l, const DirectTiling& t, GlslTables tables) {
+  return tables == GlslTables::Texture && glsl_tile_cell_texture(l, t.hash_kind());
+}
+
+}  // namespace
+
+bool glsl_tile_cell_texture(const AtlasLookup& l, HashKind hash) {
+  return hash == HashKind::Permutation && l.rows <= 256 && l.cols <= 256;
+}
+
 std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const DirectTiling& tiling, GlslTables tables) {
   check_same_set(l, tiling);
   std::string g;
@@ -16,17 +31,32 @@ std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const Direct
   g += fmt::format("const float TK_INV_ROWS = {:.9g}, TK_INV_COLS = {:.9g};\n", 1.0f / float(l.rows),
                    1.0f / float(l.cols));
   g += "uniform highp sampler2D tk_atlas;\n";
-  g += direct_tiling_glsl(tiling, tables);
-  g += lookup_glsl_position(l);
+  if (cell_texture(l, tiling, tables)) {
+    const std::uint32_t n = std::uint32_t(tiling.hashes()[0]->x_period());
+    g += glsl_floor_mod();
+    g += fmt::format(
+        "uniform highp usampler2D tk_tiles;  // (row, col) of tile (x, y) of the tiling, x, y < {0}\n"
+        "ivec2 tk_tile_cell(ivec2 tile) {{  // the tiling's period is {0} tiles both ways\n"
+        "  return ivec2(texelFetch(tk_tiles, ivec2({1}, {2}), 0).xy);\n"
+        "}}\n",
+        n, glsl_mod("tile.x", n), glsl_mod("tile.y", n));
+  } else {
+    g += direct_tiling_glsl(tiling, tables);
+    g += lookup_glsl_position(l);
+    g += "ivec2 tk_tile_cell(ivec2 tile) {  // the tile's (row, col) in the packing\n"
+         "  return tk_tile_position(tk_virtual_tile(tile));\n"
+         "}\n";
+  }
   g += anisotropic_glsl();
   g += "// thesis 5.4: the tile's place in the packing plus the position f in [0,1)^2 inside the tile\n"
        "vec4 tk_sample_tile(ivec2 tile, vec2 f, float lod) {\n"
-       "  ivec2 rc = tk_tile_position(tk_virtual_tile(tile));\n"
+       "  ivec2 rc = tk_tile_cell(tile);\n"
        "  vec2 st = (vec2(float(rc.y), float(rc.x)) + f) * vec2(TK_INV_COLS, TK_INV_ROWS);\n"
        "  return textureLod(tk_atlas, st, lod);\n"
        "}\n"
        "// the taps of a footprint (tk_footprint), each through the tiling to its own tile\n"
        "vec4 tk_sample(ivec2 tile, ivec2 frac, int taps, float lod, ivec2 axis) {\n"
+       "  if (taps == 1) return tk_sample_tile(tile, vec2(frac) / 65536.0, lod);  // the loop's one tap\n"
        "  vec4 sum = vec4(0.0);\n"
        "  for (int i = 0; i < taps; ++i) {\n"
        "    ivec2 q = frac + ivec2(tk_tap_offset(axis.x, i, taps), tk_tap_offset(axis.y, i, taps));\n"
@@ -67,7 +97,7 @@ std::string glsl_method_library(const RenderSource& s, const RenderOptions& o) {
     case RenderMethod::Tiles: {
       const TextureAtlas& a = *s.atlas;
       return glsl_sampler_library(a.lookup, a.tile_px, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
-                                  GlslTables::Uniform);
+                                  GlslTables::Texture);
     }
     case RenderMethod::Hex:
       return hex_glsl(*s.exemplar, PatchHashes(o.hash, o.seed), s.unit_px(), true);
@@ -79,18 +109,34 @@ std::string glsl_method_library(const RenderSource& s, const RenderOptions& o) {
 
 std::vector<std::pair<std::string, std::vector<std::int32_t>>> glsl_table_uniforms(const RenderSource& s,
                                                                                    const RenderOptions& o) {
-  std::vector<std::pair<std::string, std::vector<std::int32_t>>> u;
-  if (s.method == RenderMethod::Tiles) {
-    const DirectTiling tiling(s.atlas->lookup.kind, s.atlas->lookup.colours, o.hash, o.seed);
-    const auto hashes = tiling.hashes();
-    for (std::size_t k = 0; k < hashes.size(); ++k)
-      u.push_back({fmt::format("tk_lattice{}_P", k), glsl_hash_uniforms(*hashes[k])});
+  if (s.method == RenderMethod::Tiles) return {};  // tables as textures: glsl_table_textures
+  const PatchHashes h(o.hash, o.seed);
+  return {{"tk_patch_x_P", glsl_hash_uniforms(h.x)}, {"tk_patch_y_P", glsl_hash_uniforms(h.y)}};
+}
+
+std::vector<GlslTableTexture> glsl_table_textures(const RenderSource& s, const RenderOptions& o) {
+  if (s.method != RenderMethod::Tiles) return {};
+  const AtlasLookup& l = s.atlas->lookup;
+  const DirectTiling tiling(l.kind, l.colours, o.hash, o.seed);
+  std::vector<GlslTableTexture> textures;
+  if (cell_texture(l, tiling, GlslTables::Texture)) {
+    const int n = int(tiling.hashes()[0]->x_period());
+    std::vector<TileIndex> tiles(std::size_t(n) * std::size_t(n));
+    tiling.fill(0, 0, n, n, tiles.data());
+    GlslTableTexture t{"tk_tiles", 3, n, n, 2, std::vector<std::uint8_t>(tiles.size() * 2)};
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+      t.texels[2 * i] = std::uint8_t(l.positions[tiles[i]].first);
+      t.texels[2 * i + 1] = std::uint8_t(l.positions[tiles[i]].second);
+    }
+    textures.push_back(std::move(t));
   } else {
-    const PatchHashes h(o.hash, o.seed);
-    u.push_back({"tk_patch_x_P", glsl_hash_uniforms(h.x)});
-    u.push_back({"tk_patch_y_P", glsl_hash_uniforms(h.y)});
+    const auto hashes = tiling.hashes();
+    for (std::size_t k = 0; k < hashes.size(); ++k) {
+      GlslHashTexture h = glsl_hash_texture(*hashes[k]);
+      textures.push_back({fmt::format("tk_lattice{}_T", k), 3 + int(k), h.width, h.height, 4, std::move(h.rgba)});
+    }
   }
-  return u;
+  return textures;
 }
 
 std::string glsl_vertex_shader() {
@@ -128,17 +174,12 @@ std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, 
            "  tk_footprint(vec2(dudx, 0.0), vec2(dudy, dvdy), tk_max_aniso, taps, lod, axis);\n"
            "  tk_colour = tk_sample(tile, frac, taps, lod, axis);\n";
       break;
-    case GlslMode::LatticeColour:
-      g += "  tk_colour = vec4(float(tk_lattice0(ivec2(px.x, j) + tk_origin)) / 255.0, 0.0, 0.0, 1.0);\n";
-      break;
     case GlslMode::PlainTexture:
       g += "  tk_colour = textureLod(tk_atlas, gl_FragCoord.xy * (1.0 / 1024.0), 0.0);\n";
       break;
-    case GlslMode::TileIndex:
-      g +=
-          "  int t = tk_virtual_tile(ivec2(px.x, j) + tk_origin);\n"
-          "  tk_colour = vec4(float(t & 255), float((t >> 8) & 255), float((t >> 16) & 255), float((t >> 24) & 255)) / "
-          "255.0;\n";
+    case GlslMode::AtlasCell:
+      g += "  ivec2 rc = tk_tile_cell(ivec2(px.x, j) + tk_origin);\n"
+           "  tk_colour = vec4(rc.y & 255, rc.y >> 8, rc.x & 255, rc.x >> 8) / 255.0;\n";
       break;
   }
   return g + "}\n";

@@ -3,7 +3,12 @@
 // reference's operations:
 //  - tiles (thesis sec. 5.4): the direct stochastic tiling as tiling/direct_tiling_glsl.hpp
 //    generates it (bit-identical to the C++), the packing position (atlas/lookup.hpp), and per
-//    anisotropic tap (texture/anisotropic.hpp) a textureLod of the mip-mapped atlas;
+//    anisotropic tap (texture/anisotropic.hpp) a textureLod of the mip-mapped atlas. The renderer
+//    and the preview page read the tiling from small integer textures (glsl_table_textures), made
+//    by the C++ tiling itself: with the permutation hash the atlas cell of each tile of one
+//    period (the tiling repeats every N tiles), so a tile costs one texelFetch; with the
+//    long-period hash, whose period is too long for that, each permutation table over one period
+//    (one texelFetch per table gives the table's part of the colours at a tile's four corners);
 //  - hex and hpn: texture/baseline_samplers.hpp.
 // The level of detail comes from derivatives of the virtual texture coordinate, not of the atlas
 // coordinate, which jumps at every tile border.
@@ -15,6 +20,7 @@
 //                                                      // TK_MAX_ANISO (default 16) taps
 //   int tk_virtual_tile(ivec2 tile);                   // the tiling
 //   ivec2 tk_tile_position(int tile);                  // (row, col) in the atlas
+//   ivec2 tk_tile_cell(ivec2 tile);                    // both: the (row, col) of the tile at `tile`
 //   vec4 tk_sample(ivec2 tile, ivec2 frac, int taps, float lod, ivec2 axis);  // frac: 16 bits
 #include <cstdint>
 #include <string>
@@ -29,22 +35,37 @@ namespace tilekit {
 // What the fragment shader of the headless renderer (gl_renderer.hpp) outputs.
 enum class GlslMode {
   Texture,        // the rendered texture (the view's row table, texture/view.hpp)
-  LatticeColour,  // tiles: colour of lattice hash 0 at (x, y) + tk_origin, in red (tests: the hash is bit-identical)
-  TileIndex,      // tiles: virtual tile index at (x, y) + tk_origin, as 4 bytes (tests)
+  AtlasCell,      // tiles: the atlas cell of the tile at (x, y) + tk_origin: col, row as 16-bit pairs (tests)
   PlainTexture,   // tiles: one textureLod of the atlas per fragment, no tiling (the benchmark baseline)
 };
 
 std::string glsl_sampler_library(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling, GlslTables tables);
 // The tiles library as a file (atlas.glsl): a header comment with the API and how it was made.
 std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o);
-// The library of any method, tables as uniforms (one text for every seed; the browser preview
-// uses this same text).
+// The library of any method, its tables as uniforms or integer textures (one text for every seed;
+// the browser preview uses this same text).
 std::string glsl_method_library(const RenderSource& source, const RenderOptions& o);
 // The complete fragment shader of the renderer and of the preview (#version 300 es, main()).
 std::string glsl_fragment_shader(const RenderSource& source, const RenderOptions& o, GlslMode mode);
 std::string glsl_vertex_shader();  // a full-screen triangle
-// The uniform tables (uniform ivec4 NAME[...]) of glsl_fragment_shader for the seed and hash of o.
+// The uniform tables (uniform ivec4 NAME[...]) of glsl_fragment_shader for the seed and hash of o
+// (hex and hpn).
 std::vector<std::pair<std::string, std::vector<std::int32_t>>> glsl_table_uniforms(const RenderSource& source,
                                                                                    const RenderOptions& o);
+// An integer texture of glsl_fragment_shader, read by texelFetch (GL_NEAREST, one level):
+// RG8UI (2 channels) or RGBA8UI (4), rows from the top (y = 0).
+struct GlslTableTexture {
+  std::string sampler;  // the usampler2D uniform
+  int unit = 0, width = 0, height = 0, channels = 4;
+  std::vector<std::uint8_t> texels;
+};
+// Whether the tiles method reads its tiling as one `tk_tiles` texture of atlas cells: with the
+// permutation hash (period N = 256 both ways) and an atlas of at most 256 x 256 tiles.
+bool glsl_tile_cell_texture(const AtlasLookup& lookup, HashKind hash);
+// The tiles method's tiling for the seed and hash of o: `tk_tiles` (glsl_tile_cell_texture: (row,
+// col) of tile (x, y), x, y < N) or else `tk_latticeK_T` (tiling/direct_tiling_glsl.hpp's
+// glsl_hash_texture of each hash). Units from 3 (0: the atlas, 1: the view's rows, 2: hpn's
+// look-up table). None for hex and hpn.
+std::vector<GlslTableTexture> glsl_table_textures(const RenderSource& source, const RenderOptions& o);
 
 }  // namespace tilekit

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "base/hash.hpp"
 #include "texture/baseline_samplers.hpp"
 #include "texture/glsl_sampler.hpp"
 
@@ -70,13 +71,20 @@ struct Page {
     return {{"format", "rgba16f"}, {"levels", data}, {"clamp", lut}};
   }
 
-  void add(const RenderSource& src, const RenderOptions& o, nlohmann::json textures, nlohmann::json recipes) {
+  // `recipes`: the uniform tables (hex, hpn); `tiling`: how the page makes the tiles method's
+  // look-up textures. `check`: the tables and the textures' FNV-1a for the page's own seed.
+  void add(const RenderSource& src, const RenderOptions& o, nlohmann::json textures, nlohmann::json recipes,
+           nlohmann::json tiling = nullptr) {
     nlohmann::json check = nlohmann::json::object();
     for (const auto& [name, values] : glsl_table_uniforms(src, o)) check[name] = values;
+    for (const GlslTableTexture& t : glsl_table_textures(src, o))
+      check[t.sampler] = std::to_string(
+          StableHash().add(std::string_view(reinterpret_cast<const char*>(t.texels.data()), t.texels.size())).fnv());
     methods[render_method_name(src.method)] = {{"shader", glsl_fragment_shader(src, o, GlslMode::Texture)},
                                                {"unit", src.unit_px()},
                                                {"textures", std::move(textures)},
                                                {"tables", std::move(recipes)},
+                                               {"tiling", std::move(tiling)},
                                                {"check", std::move(check)},
                                                {"memory_bytes", src.memory_bytes()}};
   }
@@ -125,6 +133,51 @@ function hashTable(recipe, seed) {
   else recipe.sizes.forEach((n, i) => { all = all.concat(permutation(n, derive(s, i))); });
   while (all.length % 4) all.push(0);
   return new Int32Array(all);
+}
+
+// The tiles method's look-up textures for a seed (texture/glsl_sampler.hpp, glsl_table_textures),
+// from the seeded tables: with the permutation hash the atlas cell (row, col) of every tile of one
+// period (the tiling of tiling/direct_tiling.hpp); with the long-period hash each hash's tables over
+// one period, a texel holding a table's values mod C at a lattice point and its E, S, SE neighbours.
+function tilingTextures(t, seed) {
+  const C = t.colors, hashes = t.tables.map(r => ({sizes: r.sizes, p: hashTable(r, seed)}));
+  if (t.positions) {
+    const n = hashes[0].sizes[0], data = new Uint8Array(2 * n * n);
+    const corners = (h, x, y) => {  // NW, NE, SW, SE
+      const p = hashes[h].p, c = (a, b) => p[(p[a % n] + b % n) % n] % C;
+      return [c(x, y), c(x + 1, y), c(x, y + 1), c(x + 1, y + 1)];
+    };
+    for (let y = 0; y < n; ++y) {
+      for (let x = 0; x < n; ++x) {
+        let tile;
+        if (t.kind === 'corner') {  // thesis eq. (2.5)
+          const [nw, ne, sw, se] = corners(0, x, y);
+          tile = ((ne * C + se) * C + sw) * C + nw;
+        } else {  // two hashes, each edge the sum of its end points (thesis 3.3.2.1, eq. 2.2)
+          const h = corners(0, x, y), v = corners(1, x, y);
+          tile = ((((h[0] + h[1]) % C) * C + (v[1] + v[3]) % C) * C + (h[3] + h[2]) % C) * C + (v[2] + v[0]) % C;
+        }
+        data.set(t.positions[tile], 2 * (y * n + x));
+      }
+    }
+    return [{sampler: 'tk_tiles', unit: 3, width: n, height: n, channels: 2, data}];
+  }
+  return hashes.map((h, k) => {
+    const width = h.sizes.reduce((a, b) => a + b, 0), height = Math.max(...h.sizes), data = new Uint8Array(4 * width * height);
+    let o = 0;
+    for (const n of h.sizes) {
+      const c = (a, b) => h.p[o + (h.p[o + a % n] + b % n) % n] % C;
+      for (let b = 0; b < n; ++b)
+        for (let a = 0; a < n; ++a) data.set([c(a, b), c(a + 1, b), c(a, b + 1), c(a + 1, b + 1)], 4 * (b * width + o + a));
+      o += n;
+    }
+    return {sampler: 'tk_lattice' + k + '_T', unit: 3 + k, width, height, channels: 4, data};
+  });
+}
+function fnv(bytes) {  // FNV-1a 64 (base/hash.hpp)
+  let h = 0xcbf29ce484222325n;
+  for (const b of bytes) h = ((h ^ BigInt(b)) * 0x100000001b3n) & M64;
+  return h.toString();
 }
 
 // The view's rows in fixed point (texture/view.hpp, view_rows), the same double arithmetic.
@@ -210,6 +263,10 @@ function program(name) {
     const mine = hashTable(r, BigInt(D.seed)), theirs = m.check[r.name];
     if (mine.length !== theirs.length || mine.some((v, i) => v !== theirs[i])) fail('hash table ' + r.name + ' differs from tilekit\'s');
   }
+  if (m.tiling) {
+    for (const t of tilingTextures(m.tiling, BigInt(D.seed)))
+      if (fnv(t.data) !== m.check[t.sampler]) fail('look-up texture ' + t.sampler + ' differs from tilekit\'s');
+  }
   gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
   gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
   gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
@@ -242,6 +299,24 @@ function draw() {
     const key = state.method + ':' + r.name + ':' + state.seed;
     if (!tableCache[key]) tableCache[key] = hashTable(r, state.seed);
     gl.uniform4iv(gl.getUniformLocation(prog.p, r.name), tableCache[key]);
+  }
+  if (m.tiling) {
+    const key = state.method + ':' + state.seed;
+    if (!tableCache[key]) tableCache[key] = tilingTextures(m.tiling, state.seed).map(t => {
+      const texture = gl.createTexture(), rg = t.channels === 2;
+      gl.activeTexture(gl.TEXTURE0 + t.unit);
+      gl.bindTexture(gl.TEXTURE_2D, texture);
+      gl.texImage2D(gl.TEXTURE_2D, 0, rg ? gl.RG8UI : gl.RGBA8UI, t.width, t.height, 0, rg ? gl.RG_INTEGER : gl.RGBA_INTEGER,
+                    gl.UNSIGNED_BYTE, t.data);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+      return {unit: t.unit, sampler: t.sampler, texture};
+    });
+    for (const t of tableCache[key]) {
+      gl.activeTexture(gl.TEXTURE0 + t.unit);
+      gl.bindTexture(gl.TEXTURE_2D, t.texture);
+      gl.uniform1i(gl.getUniformLocation(prog.p, t.sampler), t.unit);
+    }
   }
   gl.viewport(0, 0, W, H);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
@@ -327,10 +402,13 @@ std::string preview_html(const TextureAtlas& atlas, const ExemplarSurface* exemp
       recipes.push_back(recipe("tk_lattice0_P", *hashes[0], {1}));
       recipes.push_back(recipe("tk_lattice1_P", *hashes[1], {2}));
     }
+    nlohmann::json spec = {{"kind", kind_name(atlas.lookup.kind)}, {"colors", atlas.lookup.colours},
+                           {"tables", recipes}};
+    if (glsl_tile_cell_texture(atlas.lookup, o.hash)) spec["positions"] = atlas.lookup.positions;
     nlohmann::json t = page.png_levels(atlas.levels);
     t["unit"] = 0;
     t["sampler"] = "tk_atlas";
-    page.add(tiles, o, nlohmann::json::array({t}), recipes);
+    page.add(tiles, o, nlohmann::json::array({t}), nlohmann::json::array(), spec);
   }
   if (exemplar) {
     const PatchHashes h(o.hash, o.seed);

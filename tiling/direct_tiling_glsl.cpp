@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "base/error.hpp"
+
 namespace tilekit {
 
 namespace {
@@ -34,9 +38,69 @@ std::vector<std::int32_t> glsl_hash_uniforms(const ColourHash& h) {
   return all;
 }
 
+// Where 2^32 is a multiple of n (n a power of two), the unsigned remainder of v's bit pattern is
+// already the floored one.
+std::string glsl_mod(const std::string& v, std::uint32_t n) {
+  const std::uint32_t wrap = std::uint32_t((std::uint64_t(1) << 32) % n);
+  return wrap ? fmt::format("tk_mod({}, {}, {})", v, n, wrap) : fmt::format("int(uint({}) % {}u)", v, n);
+}
+
+GlslHashTexture glsl_hash_texture(const ColourHash& h) {
+  if (h.colours() > 255) throw InputError(fmt::format("hash textures hold up to 255 colours, not {}", h.colours()));
+  GlslHashTexture t;
+  for (const ColourHash::Component& c : h.components()) {
+    t.width += int(c.n);
+    t.height = std::max(t.height, int(c.n));
+  }
+  t.rgba.assign(std::size_t(t.width) * std::size_t(t.height) * 4, 0);
+  int column = 0;
+  for (const ColourHash::Component& c : h.components()) {
+    const std::uint32_t n = c.n;
+    auto value = [&](std::uint32_t a, std::uint32_t b) {  // thesis eq. (3.3) of one table, mod C
+      return std::uint8_t(c.p[(c.p[a % n] + b % n) % n] % h.colours());
+    };
+    for (std::uint32_t b = 0; b < n; ++b)
+      for (std::uint32_t a = 0; a < n; ++a) {
+        std::uint8_t* texel = &t.rgba[(std::size_t(b) * std::size_t(t.width) + std::size_t(column) + a) * 4];
+        texel[0] = value(a, b);
+        texel[1] = value(a + 1, b);
+        texel[2] = value(a, b + 1);
+        texel[3] = value(a + 1, b + 1);
+      }
+    column += int(n);
+  }
+  return t;
+}
+
+namespace {
+
+// GlslTables::Texture: one texelFetch per component gives its values at the four corners.
+std::string colour_hash_texture_glsl(const ColourHash& h, const std::string& name) {
+  std::string sum;
+  std::uint32_t column = 0;
+  for (const ColourHash::Component& c : h.components()) {
+    sum += fmt::format("{}texelFetch({}_T, ivec2({}{}, {}), 0)", sum.empty() ? "" : "\n      + ", name,
+                       column ? fmt::format("{} + ", column) : "", glsl_mod("p.x", c.n), glsl_mod("p.y", c.n));
+    column += c.n;
+  }
+  return fmt::format(
+      "uniform highp usampler2D {0}_T;\n"
+      "ivec4 {0}4(ivec2 p) {{  // at p, p + (1,0), p + (0,1), p + (1,1): sum of the tables, mod C\n"
+      "  uvec4 s = {1};\n"
+      "  return ivec4(s % {2}u);\n"
+      "}}\n"
+      "int {0}(ivec2 p) {{  // thesis eq. ({3})\n"
+      "  return {0}4(p).x;\n"
+      "}}\n",
+      name, sum, h.colours(), h.components().size() == 1 ? "3.3" : "3.6");
+}
+
+}  // namespace
+
 // Component i of the hash is the permutation table P_i of size N_i at offset o_i of NAME_P; the
 // colour is (sum_i P_i[(P_i[x mod N_i] + y mod N_i) mod N_i] mod N_j) mod C, as ColourHash::colour.
 std::string colour_hash_glsl(const ColourHash& h, const std::string& name, GlslTables tables) {
+  if (tables == GlslTables::Texture) return colour_hash_texture_glsl(h, name);
   const std::vector<std::int32_t> all = concatenated(h);
   std::string g;
   std::string (*at)(const std::string&, const std::string&);
@@ -53,18 +117,19 @@ std::string colour_hash_glsl(const ColourHash& h, const std::string& name, GlslT
   std::string one, four;
   std::uint32_t off = 0;
   for (const ColourHash::Component& c : h.components()) {
-    const std::uint32_t n = c.n, wrap = std::uint32_t((std::uint64_t(1) << 32) % n);
+    const std::uint32_t n = c.n;
     auto p = [&](const std::string& i) { return at(P, fmt::format("{} + {}", off, i)); };
-    one += fmt::format("  a = {}; s += {};\n", p(fmt::format("tk_mod(p.x, {}, {})", n, wrap)),
-                       p(fmt::format("(a + tk_mod(p.y, {}, {})) % {}", n, wrap, n)));
+    one += fmt::format("  a = {}; s += {};\n", p(glsl_mod("p.x", n)),
+                       p(fmt::format("(a + {}) % {}", glsl_mod("p.y", n), n)));
     four += fmt::format(
-        "  a = tk_mod(p.x, {n}, {w}); b = a + 1 == {n} ? 0 : a + 1;\n"
-        "  ya = tk_mod(p.y, {n}, {w}); yb = ya + 1 == {n} ? 0 : ya + 1;\n"
+        "  a = {mx}; b = a + 1 == {n} ? 0 : a + 1;\n"
+        "  ya = {my}; yb = ya + 1 == {n} ? 0 : ya + 1;\n"
         "  a = {pa}; b = {pb};\n"
         "  s += ivec4({q0}, {q1},\n             {q2}, {q3});\n",
-        fmt::arg("n", n), fmt::arg("w", wrap), fmt::arg("pa", p("a")), fmt::arg("pb", p("b")),
-        fmt::arg("q0", p(fmt::format("(a + ya) % {}", n))), fmt::arg("q1", p(fmt::format("(b + ya) % {}", n))),
-        fmt::arg("q2", p(fmt::format("(a + yb) % {}", n))), fmt::arg("q3", p(fmt::format("(b + yb) % {}", n))));
+        fmt::arg("n", n), fmt::arg("mx", glsl_mod("p.x", n)), fmt::arg("my", glsl_mod("p.y", n)),
+        fmt::arg("pa", p("a")), fmt::arg("pb", p("b")), fmt::arg("q0", p(fmt::format("(a + ya) % {}", n))),
+        fmt::arg("q1", p(fmt::format("(b + ya) % {}", n))), fmt::arg("q2", p(fmt::format("(a + yb) % {}", n))),
+        fmt::arg("q3", p(fmt::format("(b + yb) % {}", n))));
     off += n;
   }
   g += fmt::format("int {}(ivec2 p) {{  // thesis eq. ({})\n  int s = 0, a;\n{}  return (s % {}) % {};\n}}\n", name,

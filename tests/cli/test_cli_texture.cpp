@@ -6,6 +6,7 @@
 #include <map>
 
 #include "../cli_runner.hpp"
+#include "base/hash.hpp"
 #include "../texture/texture_fixtures.hpp"
 #include "texture/exemplar_surface.hpp"
 #include "texture/glsl_sampler.hpp"
@@ -169,6 +170,13 @@ TEST(CliTexture, PreviewIsOneSelfContainedPageWithTheRenderersShaderText) {
     EXPECT_EQ(m["shader"].get<std::string>(), glsl_fragment_shader(s, o, GlslMode::Texture))
         << render_method_name(s.method);
     for (const auto& [name, values] : glsl_table_uniforms(s, o)) EXPECT_EQ(m["check"][name], values) << name;
+    for (const GlslTableTexture& t : glsl_table_textures(s, o))
+      EXPECT_EQ(m["check"][t.sampler],
+                std::to_string(
+                    StableHash()
+                        .add(std::string_view(reinterpret_cast<const char*>(t.texels.data()), t.texels.size()))
+                        .fnv()))
+          << t.sampler;
   }
   // Every level of the atlas is embedded (the tiles method's texture: one image per level).
   EXPECT_EQ(data["methods"]["tiles"]["textures"][0]["levels"].size(), atlas.levels.size());

@@ -114,7 +114,7 @@ TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindPositionAndMethod) 
   for (auto [kind, c] :
        {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
-      for (GlslMode mode : {GlslMode::Texture, GlslMode::LatticeColour, GlslMode::TileIndex}) {
+      for (GlslMode mode : {GlslMode::Texture, GlslMode::AtlasCell}) {
         const TextureAtlas a{atlas_lookup(kind, c, {}), 64, {}, ""};
         test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{RenderMethod::Tiles, &a, nullptr},
                                                             RenderOptions{h, 3, 1, false}, mode));
@@ -129,33 +129,40 @@ TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindPositionAndMethod) 
   }
 }
 
+// The generated hash (tables inline, as in atlas.glsl and the lookup snippet), run through EGL:
+// the C++ colour at every lattice point of windows far apart, negative coordinates included.
 TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
-  for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
+  const int w = 300, h = 80;
+  for (HashKind hash : {HashKind::Permutation, HashKind::LongPeriod})
     for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
-      const TextureAtlas& atlas = test::grass_atlas(kind);
-      const RenderOptions o{h, 77, 1, false};
-      std::unique_ptr<GlRenderer> r;
-      SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{300, 80, 1, 0, 0, 0}, o, GlslMode::LatticeColour));
-      const DirectTiling tiling(kind, 2, h, 77);
-      const ColourHash& hash = *tiling.hashes()[0];
+      const DirectTiling tiling(kind, 2, hash, 77);
+      const ColourHash& colour = *tiling.hashes()[0];
       for (auto [ox, oy] : {std::pair{-150, -40}, std::pair{-1000003, 999979}, std::pair{2147400000, -2147400000}}) {
-        r->set_origin(ox, oy);
-        r->draw();
-        const Image img = r->read();
+        const std::string shader =
+            "#version 300 es\nprecision highp float;\nprecision highp int;\nout vec4 tk_out;\n" +
+            direct_tiling_glsl(tiling, GlslTables::Inline) +
+            fmt::format(
+                "void main() {{\n"
+                "  ivec2 p = ivec2(int(gl_FragCoord.x), {} - int(gl_FragCoord.y)) + ivec2({}, {});\n"
+                "  tk_out = vec4(float(tk_lattice0(p)) / 255.0, 0.0, 0.0, 1.0);\n"
+                "}}\n",
+                h - 1, ox, oy);
+        Image img;
+        SKIP_WITHOUT_EGL(img = run_fragment_shader(shader, w, h));
         int wrong = 0;
-        for (int y = 0; y < img.height; ++y)
-          for (int x = 0; x < img.width; ++x)
-            wrong += img.at(x, y)[0] != hash.colour(std::int64_t(x) + ox, std::int64_t(y) + oy);
-        EXPECT_EQ(wrong, 0) << hash_kind_name(h) << " " << kind_name(kind) << " origin " << ox << "," << oy;
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x)
+            wrong += img.at(x, y)[0] != colour.colour(std::int64_t(x) + ox, std::int64_t(y) + oy);
+        EXPECT_EQ(wrong, 0) << hash_kind_name(hash) << " " << kind_name(kind) << " origin " << ox << "," << oy;
       }
     }
 }
 
 // The one direct stochastic tiling four ways on a window: the C++ class (random access and row
 // fill), the atlas lookup's CPU reference (virtual_to_atlas), the atlas lookup's GLSL snippet
-// (`atlas lookup --format glsl`, tables inline) and the renderer's GLSL (tables as uniforms), both
-// run through EGL: the same tile at every (x, y), for closed-form and stored packings, corner and
-// Wang, both hashes.
+// (`atlas lookup --format glsl`, tables inline) and the renderer's GLSL (the tiling's look-up
+// textures), both run through EGL: the same tile at every (x, y), for closed-form and stored
+// packings, corner and Wang, both hashes.
 TEST(DirectTiling, CppAtlasLookupAndGlslAgreeTileForTileOnAWindow) {
   const int w = 72, h = 40;
   struct Case {
@@ -188,26 +195,54 @@ TEST(DirectTiling, CppAtlasLookupAndGlslAgreeTileForTileOnAWindow) {
             h - 1, ox, oy);
     Image snippet;
     SKIP_WITHOUT_EGL(snippet = run_fragment_shader(shader, w, h));
-    // The renderer's sampler (tables as uniforms), tile indices.
+    // The renderer's sampler (the tiling's look-up textures), atlas cells.
     const TextureAtlas atlas{lookup, 4, mip_chain(Image(lookup.cols * 4, lookup.rows * 4), MipEdge::Wrap), ""};
-    GlRenderer r(atlas, View{w, h, 1, 0, 0, 0}, {hash, 11, 1, false}, GlslMode::TileIndex);
+    GlRenderer r(atlas, View{w, h, 1, 0, 0, 0}, {hash, 11, 1, false}, GlslMode::AtlasCell);
     r.set_origin(ox, oy);
     r.draw();
-    const Image indices = r.read();
+    const Image cells = r.read();
     int wrong = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const TileIndex t = truth[std::size_t(y) * w + std::size_t(x)];
-        const std::uint8_t *p = snippet.at(x, y), *q = indices.at(x, y);
+        const std::uint8_t *p = snippet.at(x, y), *q = cells.at(x, y);
         const auto [s, tt] = virtual_to_atlas(lookup, tiling, ox + x + 0.5, oy + y + 0.5);
         const int col = int(s * lookup.cols), row = int(tt * lookup.rows);
         wrong += tiling.tile(ox + x, oy + y) != t;
         wrong += lookup.cells[std::size_t(row) * std::size_t(lookup.cols) + std::size_t(col)] != t;
         wrong += lookup.cells[std::size_t(p[2] | p[3] << 8) * std::size_t(lookup.cols) + (p[0] | p[1] << 8)] != t;
-        wrong += TileIndex(q[0] | q[1] << 8 | q[2] << 16 | q[3] << 24) != t;
+        wrong += lookup.cells[std::size_t(q[2] | q[3] << 8) * std::size_t(lookup.cols) + (q[0] | q[1] << 8)] != t;
       }
     EXPECT_EQ(wrong, 0) << what;
   }
+}
+
+// The renderer's look-up textures at the ends of the int range, where the floored modulo of
+// negative coordinates matters: the C++ tiling's tile at every (x, y).
+TEST(GlslSampler, TilingTexturesGiveTheCppTilesAtTheEndsOfTheIntRange) {
+  const int w = 64, h = 16;
+  for (HashKind hash : {HashKind::Permutation, HashKind::LongPeriod})
+    for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
+      const AtlasLookup lookup = atlas_lookup(kind, 2, {});
+      const DirectTiling tiling(kind, 2, hash, 5);
+      const TextureAtlas atlas{lookup, 4, mip_chain(Image(lookup.cols * 4, lookup.rows * 4), MipEdge::Wrap), ""};
+      std::unique_ptr<GlRenderer> r;
+      SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{w, h, 1, 0, 0, 0}, RenderOptions{hash, 5, 1, false},
+                                                         GlslMode::AtlasCell));
+      for (auto [ox, oy] : {std::pair{-2147483647 - 1, 2147483647 - h}, std::pair{2147483647 - w, -2147483647 - 1}}) {
+        r->set_origin(ox, oy);
+        r->draw();
+        const Image cells = r->read();
+        int wrong = 0;
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const std::uint8_t* q = cells.at(x, y);
+            wrong += lookup.cells[std::size_t(q[2]) * std::size_t(lookup.cols) + q[0]] !=
+                     tiling.tile(std::int64_t(ox) + x, std::int64_t(oy) + y);
+          }
+        EXPECT_EQ(wrong, 0) << hash_kind_name(hash) << " " << kind_name(kind) << " origin " << ox << "," << oy;
+      }
+    }
 }
 
 struct Diff {
