@@ -246,6 +246,19 @@ void TransducerChain::check_level(ChainLevel& l, int k) const {
   }
 }
 
+bool TransducerChain::rederives(const Budget& budget) const {
+  TransducerChain fresh(tiles_, false, merge_, budget);  // tiles_ are oriented already
+  for (int k = 1; k < this->k(); ++k) fresh.extend(budget);
+  for (std::size_t i = 0; i < levels_.size(); ++i) {
+    const ChainLevel &a = levels_[i], &b = fresh.levels_[i];
+    if (a.t.states != b.t.states || a.t.transitions != b.t.transitions || a.keys != b.keys || a.cls != b.cls ||
+        a.components != b.components || a.product_states != b.product_states ||
+        a.product_transitions != b.product_transitions)
+      return false;
+  }
+  return true;
+}
+
 TransducerChain TransducerChain::restore(const std::vector<WangTile>& tiles, bool columns, bool merge,
                                          std::vector<ChainLevel> levels) {
   TransducerChain c(tiles, columns, merge, Budget{});

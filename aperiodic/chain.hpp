@@ -75,6 +75,9 @@ class TransducerChain {
   const std::vector<ChainLevel>& levels() const { return levels_; }
   static TransducerChain restore(const std::vector<WangTile>& tiles, bool columns, bool merge,
                                  std::vector<ChainLevel> levels);
+  // Builds T_1 .. T_k again from the tiles and compares them with the levels held: false when any
+  // differs (a restored chain that is not the one the tiles give). Throws Stopped like extend().
+  bool rederives(const Budget& budget) const;
 
  private:
   struct Step {

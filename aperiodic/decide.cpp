@@ -1,7 +1,6 @@
 #include "aperiodic/decide.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <cassert>
 #include <chrono>
@@ -15,6 +14,7 @@
 #include "aperiodic/decide_checkpoint.hpp"
 #include "base/error.hpp"
 #include "base/progress.hpp"
+#include "base/resources.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "tilesets/validator.hpp"
@@ -24,11 +24,6 @@ namespace tilekit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::size_t default_memory_limit() {
-  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? std::size_t(pages) * std::size_t(size) / 2 : std::size_t(4) << 30;
-}
 
 DecideLevel level_stats(const TransducerChain& c) {
   const ChainLevel& l = c.level(c.k());
@@ -155,8 +150,8 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   Budget budget;
   budget.stop = o.stop;
   budget.catch_signals = o.catch_signals;
-  if (o.time_limit > 0) budget.deadline = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.time_limit));
-  const std::size_t memory = o.memory_limit > 0 ? o.memory_limit : default_memory_limit();
+  budget.deadline = deadline_after(o.time_limit, t0);
+  const std::size_t memory = o.memory_limit > 0 ? o.memory_limit : memory_limit();
   ProgressReporter progress(fmt::format("decide {}", set.name()), o.time_limit, o.progress);
   auto last_checkpoint = Clock::now();
   auto save = [&] {
@@ -175,7 +170,16 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
       res.square_bound = b.side;
       res.square_bound_log10 = b.log10;
     } else {
-      TransducerChain::Strip strip = c.periodic_strip(budget);
+      TransducerChain::Strip strip;
+      try {
+        strip = c.periodic_strip(budget);
+      } catch (const std::logic_error& e) {
+        // Every cycle of a chain this build made lifts; one read from a checkpoint may not.
+        if (!res.resumed) throw;
+        throw InputError(fmt::format("checkpoint {}: its transducer chain is not the one the tile set gives ({}); "
+                                     "delete it to start afresh",
+                                     o.resume_path, e.what()));
+      }
       if (strip.rows.empty()) return false;
       res.shift = strip.shift;
       res.witness = least_period(strip_torus(strip, c.columns()));
@@ -226,10 +230,20 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
           std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= o.checkpoint_every)
         save();
     }
+    // A finite verdict rests on T_k being empty: from a checkpoint, the chain must re-derive
+    // from the tiles before the verdict is given (a damaged or edited level could empty it).
+    if (res.resumed && res.verdict == "finite")
+      for (const TransducerChain& c : state.chains)
+        if (c.finite() && !c.rederives(budget))
+          throw InputError(fmt::format("checkpoint {}: its transducer chain is not the one the tile set gives "
+                                       "(it does not re-derive); delete it to start afresh",
+                                       o.resume_path));
   } catch (const Stopped& s) {
     res.stopped_by = stop_name(s);
+    if (res.verdict == "finite") res.verdict = "unknown";  // stopped while re-deriving: not confirmed
   } catch (const std::bad_alloc&) {
     res.stopped_by = "memory";
+    if (res.verdict == "finite") res.verdict = "unknown";
   }
   progress.finish();
   for (const TransducerChain& c : state.chains) {

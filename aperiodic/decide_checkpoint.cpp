@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "base/atomic_file.hpp"
@@ -128,6 +129,36 @@ std::string encode_decide_checkpoint(const DecideCheckpoint& c) {
   return seal_checkpoint(kMagic, kDecideCheckpointVersion, w.take());
 }
 
+namespace {
+
+// The statistics a run reports are those of its chains' own levels, each listed once: a
+// checkpoint whose statistics say otherwise (a level of another k or direction, other sizes)
+// would resume to a report the tiles do not give.
+void check_level_statistics(const DecideCheckpoint& c) {
+  std::size_t total = 0;
+  for (const TransducerChain& ch : c.chains) total += ch.levels().size();
+  if (c.levels.size() != total)
+    throw std::runtime_error(fmt::format("{} level statistics for {} chain levels", c.levels.size(), total));
+  std::set<std::pair<bool, int>> seen;
+  for (const DecideLevel& l : c.levels) {
+    const bool columns = l.direction == "columns";
+    const TransducerChain* ch = nullptr;
+    for (const TransducerChain& x : c.chains)
+      if (x.columns() == columns) ch = &x;
+    if (!ch || l.k < 1 || std::size_t(l.k) > ch->levels().size() || !seen.insert({columns, l.k}).second)
+      throw std::runtime_error(fmt::format("the statistics of level {} ({}) belong to no chain level, or are listed "
+                                           "twice",
+                                           l.k, l.direction));
+    const ChainLevel& cl = ch->level(l.k);
+    if (cl.product_states != l.product_states || cl.product_transitions != l.product_transitions ||
+        cl.components != l.components || cl.t.states != l.states || cl.t.transitions.size() != l.transitions)
+      throw std::runtime_error(
+          fmt::format("the statistics of level {} ({}) differ from the level itself", l.k, l.direction));
+  }
+}
+
+}  // namespace
+
 DecideCheckpoint decode_decide_checkpoint(std::string_view text, const std::vector<WangTile>& tiles,
                                           const std::string& origin) {
   std::string_view body = open_checkpoint(text, kMagic, kDecideCheckpointVersion, kDecideCheckpointVersion, origin);
@@ -152,6 +183,7 @@ DecideCheckpoint decode_decide_checkpoint(std::string_view text, const std::vect
       c.chains.push_back(TransducerChain::restore(tiles, columns, merge, std::move(levels)));
     }
     if (!r.done()) throw std::runtime_error("bytes after the last chain");
+    check_level_statistics(c);
   } catch (const InputError& e) {
     throw InputError(fmt::format("checkpoint {}: {}", origin, e.what()));
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "base/error.hpp"
+#include "base/resources.hpp"
 
 namespace tilekit {
 
@@ -48,29 +49,26 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   if (!(opts.time_limit >= 0) || !std::isfinite(opts.time_limit))
     throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", opts.time_limit));
   const auto t0 = Clock::now();
-  const auto deadline =
-      opts.time_limit > 0 ? t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(opts.time_limit))
-                          : Clock::time_point::max();
+  const auto deadline = deadline_after(opts.time_limit, t0);
+  const bool limited = deadline != Clock::time_point::max();
   auto left = [&] {
-    return opts.time_limit > 0 ? std::max(1e-3, std::chrono::duration<double>(deadline - Clock::now()).count()) : 0.0;
+    return limited ? std::max(1e-3, std::chrono::duration<double>(deadline - Clock::now()).count()) : 0.0;
   };
   VerifyResult res;
   std::optional<DecideResult> decision;
   if (opts.route != "torus") {
     DecideOptions d = opts.decide;
     // "both" leaves the torus route half of the time at least.
-    d.time_limit = opts.route == "both" && opts.time_limit > 0 ? opts.time_limit / 2 : opts.time_limit;
+    d.time_limit = opts.route == "both" && limited ? opts.time_limit / 2 : limited ? opts.time_limit : 0;
     d.progress = opts.progress;
     decision = decide_tile_set(set, d);
     take_decision(res, *decision);
   }
-  const bool time_left = opts.time_limit == 0 || Clock::now() < deadline;
+  const bool time_left = !limited || Clock::now() < deadline;
   const bool run_torus = opts.route == "torus" || opts.route == "both" ||
                          (opts.route == "auto" && res.verdict == "unknown" && time_left && !res.interrupted);
   if (run_torus) {
-    VerifyResult t = torus_route(set, opts, opts.time_limit > 0 ? Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                                                       std::chrono::duration<double>(left()))
-                                                                  : Clock::time_point::max());
+    VerifyResult t = torus_route(set, opts, limited ? deadline_after(left()) : Clock::time_point::max());
     if (decision) cross_check(*decision, t, opts.max_period);
     if (!decision || res.route.empty()) {
       t.transducer = decision;

@@ -101,9 +101,10 @@ Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Im
 
 Image atlas_from_generated_tiles(const AtlasLookup& a, int tile_size) {
   if (tile_size < 2 || tile_size > 1024) throw InputError(fmt::format("--tile-size must be 2..1024, got {}", tile_size));
-  if (std::uint64_t(a.cols) * a.rows * tile_size * tile_size > (1ull << 28))
-    throw InputError(fmt::format("a {}x{} atlas of {}-pixel tiles is too large; use a smaller --tile-size", a.rows,
-                                 a.cols, tile_size));
+  if (std::uint64_t(a.cols) * a.rows * std::uint64_t(tile_size) * std::uint64_t(tile_size) >
+      std::uint64_t(kMaxImagePixels))
+    throw InputError(fmt::format("a {}x{} atlas of {}-pixel tiles is more than {} pixels; use a smaller --tile-size",
+                                 a.rows, a.cols, tile_size, kMaxImagePixels));
   std::vector<Image> tiles(a.cells.size());
   for (TileIndex i = 0; i < tiles.size(); ++i) tiles[i] = generated_tile(a.kind, a.colours, i, tile_size);
   return assemble(a, tile_size, [&](TileIndex i) -> const Image& { return tiles[i]; });
@@ -114,8 +115,16 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("{}: not a directory of tile images", dir));
   std::map<TileIndex, fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (!entry.is_regular_file()) continue;
+  // Through error codes: an unreadable folder or a link loop is the user's to fix (exit 2).
+  fs::directory_iterator it(dir, ec), end;
+  if (ec) throw InputError(fmt::format("{}: cannot list the tile images ({})", dir, ec.message()));
+  for (; it != end; it.increment(ec)) {
+    if (ec) throw InputError(fmt::format("{}: cannot list the tile images ({})", dir, ec.message()));
+    const fs::directory_entry& entry = *it;
+    const bool regular = entry.is_regular_file(ec);
+    if (ec && entry.is_symlink())
+      throw InputError(fmt::format("{}: a link that leads nowhere readable ({})", entry.path().string(), ec.message()));
+    if (!regular) continue;
     const std::string stem = entry.path().stem().string();
     std::size_t digits = stem.size();
     while (digits > 0 && std::isdigit(static_cast<unsigned char>(stem[digits - 1]))) --digits;
@@ -140,9 +149,9 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
     const int w = img.width, h = img.height;
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
-    if (std::uint64_t(a.cols) * a.rows * std::uint64_t(w) * std::uint64_t(w) > (1ull << 28))
-      throw InputError(fmt::format("{}: a {}x{} atlas of {}-pixel tiles is more than 2^28 pixels; use smaller tiles",
-                                   path.string(), a.rows, a.cols, w));
+    if (std::uint64_t(a.cols) * a.rows * std::uint64_t(w) * std::uint64_t(w) > std::uint64_t(kMaxImagePixels))
+      throw InputError(fmt::format("{}: a {}x{} atlas of {}-pixel tiles is more than {} pixels; use smaller tiles",
+                                   path.string(), a.rows, a.cols, w, kMaxImagePixels));
     if (w != size)
       throw InputError(fmt::format("{}: {}x{} pixels, but the other tiles are {}x{}", path.string(), w, h, size, size));
     tiles[index] = std::move(img);

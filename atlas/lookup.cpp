@@ -56,7 +56,7 @@ std::unique_ptr<ResultsDb> open_lookup_db(const std::string& path) {
   if (path.empty() || !std::filesystem::exists(path, ec)) return nullptr;  // a lookup never creates one
   // Read-only and without the O(size) integrity check: a lookup must answer in milliseconds;
   // the packing read is re-checked by the validator instead.
-  return std::make_unique<ResultsDb>(path, DbOpenOptions{.create = false, .read_only = true, .integrity_check = false});
+  return std::make_unique<ResultsDb>(path, DbOpenOptions{.create = false, .read_only = true});
 }
 
 std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb* db, const std::string& db_path) {
@@ -79,8 +79,7 @@ std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb*
 }  // namespace
 
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options) {
-  if (colours < 1 || colours > kMaxAtlasColours)
-    throw InputError(fmt::format("--colors must be between 1 and {} for an atlas, got {}", kMaxAtlasColours, colours));
+  check_complete_set_colours(colours);
   std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
   PackingSources src;
   src.db = db.get();

@@ -14,11 +14,6 @@
 
 namespace tilekit {
 
-// The largest atlas: C = 64, a 4096 x 4096-tile atlas (C^4 = 16.8 M tiles, 64 MB of cells and
-// as much again of positions). With tiles of at least 4 pixels that is a 16384-pixel texture,
-// the largest most GPUs take; larger C (up to 255) ended in std::bad_alloc.
-inline constexpr std::uint32_t kMaxAtlasColours = 64;
-
 struct AtlasLookup {
   TileKind kind = TileKind::Corner;
   std::uint32_t colours = 0;
@@ -37,7 +32,7 @@ struct LookupOptions {
 
 // Database hit first (a validated stored packing, re-checked by the validator), then a
 // construction. Throws NotFound (exit 1) naming the available colour counts and the search
-// command when neither has one, InputError for C outside 1..kMaxAtlasColours.
+// command when neither has one, InputError for C outside 1..kMaxCompleteSetColours (tilesets/tile_set.hpp).
 AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options);
 
 // From a packing. Throws InputError unless it is a C^2 x C^2 torus holding every tile once and,

@@ -73,7 +73,7 @@ struct Method {
   std::string name, key;  // key: file names of its pictures
   // xy of the window at the density with the seed; period > 0: a toroidal tiling of that many
   // (base) tiles of side 1 per side; torus: a toroidal sampler set.
-  std::function<std::vector<float>(const Window&, double, std::uint64_t, std::int64_t, bool)> make;
+  std::function<std::vector<double>(const Window&, double, std::uint64_t, std::int64_t, bool)> make;
   double per_tile = 0;       // points per (base) tile; 0: not tiled (the unit square at 16,384 points)
   bool timed_small = false;  // timed on the Bridson-sized window
 };

@@ -68,11 +68,14 @@ nlohmann::json search_json(const SearchState& st) {
     for (const Decision& d : f.path) path.push_back({d.var, d.value});
     in_flight.push_back({{"index", f.index}, {"path", path}, {"counted", counters_json(f.counted)}});
   }
+  nlohmann::json each = nlohmann::json::array();
+  for (const SearchCounters& c : st.finished_each) each.push_back({c.solutions, c.orbits, c.nodes});
   return {{"fingerprint", st.fingerprint},
           {"subproblems", st.subproblem_count},
           {"subproblem_hash", fmt::format("{:016x}", st.subproblem_hash)},
           {"finished", bitmap_hex(st.finished)},
           {"finished_counts", counters_json(st.finished_counts)},
+          {"finished_each", each},
           {"in_flight", in_flight},
           {"restarts", st.restarts},
           {"restart_nodes", st.restart_nodes},
@@ -93,6 +96,12 @@ SearchState search_from(const JsonIn& j) {
     throw hash.error("not 16 hexadecimal digits");
   st.finished = bitmap_from(j.at("finished"), st.subproblem_count);
   st.finished_counts = counters_from(j.at("finished_counts"));
+  const JsonIn each = j.at("finished_each");
+  for (std::size_t i = 0, n = each.array(0, st.subproblem_count); i < n; ++i) {
+    const JsonIn c = each[i];
+    c.array(3, 3);
+    st.finished_each.push_back({c[0].unsigned_integer(), c[1].unsigned_integer(), c[2].unsigned_integer()});
+  }
   const JsonIn in_flight = j.at("in_flight");
   const std::size_t n = in_flight.array(0, st.subproblem_count);
   for (std::size_t k = 0; k < n; ++k) {
@@ -233,18 +242,12 @@ std::string_view open_checkpoint(std::string_view text, std::string_view magic, 
 
 CheckpointFile decode_checkpoint_file(std::string_view text, const std::string& origin) {
   auto bad = [&](const std::string& why) { return InputError(fmt::format("checkpoint {}: {}", origin, why)); };
-  int version = 0;
-  std::string_view body = open_checkpoint(text, kMagic, 1, kCheckpointVersion, origin, &version);
+  std::string_view body = open_checkpoint(text, kMagic, kCheckpointVersion, kCheckpointVersion, origin);
   const std::string where = fmt::format("checkpoint {}", origin);
   const nlohmann::json doc = parse_json_input(body, where);
   const JsonIn j(doc, where);
   j.object();
   CheckpointFile f;
-  if (version == 1) {
-    f.request = nullptr;
-    f.search = search_from(j);
-    return f;
-  }
   const JsonIn request = j.at("request");
   if (!request.raw().is_null()) request.object();
   f.request = request.raw();
@@ -284,41 +287,60 @@ SearchState read_checkpoint(const std::string& path) {
 
 std::string fingerprint_difference(const std::string& here, const std::string& checkpoint) {
   if (here == checkpoint) return {};
+  // The checkpoint's fingerprint is outside input (JSON held as text in a string field): it goes
+  // through the same depth-limited parser as every other document, and anything but an object
+  // of parameters is simply "different".
   nlohmann::json a, b;
   try {
-    a = nlohmann::json::parse(here);
-    b = nlohmann::json::parse(checkpoint);
-  } catch (const std::exception&) {
+    a = parse_json_input(here, "fingerprint");
+    b = parse_json_input(checkpoint, "fingerprint");
+  } catch (const InputError&) {
     return "the search parameters differ";
   }
+  if (!a.is_object() || !b.is_object()) return "the search parameters differ";
+  auto shown = [](const nlohmann::json& v) {
+    std::string s = v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return s.size() > 200 ? s.substr(0, 197) + "..." : s;
+  };
   std::vector<std::string> diffs;
   for (auto it = a.begin(); it != a.end(); ++it) {
     auto other = b.find(it.key());
-    std::string theirs = other == b.end() ? "absent" : other->dump();
     if (other == b.end() || *other != it.value())
-      diffs.push_back(fmt::format("{} is {} here but {} in the checkpoint", it.key(), it.value().dump(), theirs));
+      diffs.push_back(fmt::format("{} is {} here but {} in the checkpoint", it.key(), shown(it.value()),
+                                  other == b.end() ? std::string("absent") : shown(*other)));
   }
   for (auto it = b.begin(); it != b.end(); ++it)
-    if (!a.contains(it.key())) diffs.push_back(fmt::format("{} is only in the checkpoint", it.key()));
+    if (!a.contains(it.key()))
+      diffs.push_back(fmt::format("{} is only in the checkpoint", utf8_or_question_marks(it.key().substr(0, 200))));
   if (diffs.empty()) return "the search parameters differ";
   return fmt::format("{}", fmt::join(diffs, "; "));
 }
 
-SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options, const nlohmann::json& request) {
-  SearchOptions plain = options;  // the fingerprint does not depend on the file names
-  plain.run.checkpoint_path.clear();
-  plain.run.resume_path.clear();
-  std::string here = search_fingerprint(problem, plain);
-  if (!options.run.resume_path.empty()) {
-    CheckpointFile f = read_checkpoint_file(options.run.resume_path);
-    if (!f.search)
-      throw InputError(
-          fmt::format("checkpoint {} holds a portfolio run, not a single search", options.run.resume_path));
-    std::string diff = fingerprint_difference(here, f.search->fingerprint);
-    if (!diff.empty())
-      throw InputError(fmt::format("checkpoint {} does not match this search: {}", options.run.resume_path, diff));
-    options.resume_state = std::move(*f.search);
+CheckpointFile read_resume_file(const TilingProblem& problem, const SearchOptions& options,
+                                const PortfolioOptions* portfolio) {
+  const std::string& path = options.run.resume_path;
+  CheckpointFile f = read_checkpoint_file(path);
+  if (portfolio) {
+    if (!f.portfolio) throw InputError(fmt::format("checkpoint {} holds a single search, not a portfolio run", path));
+    SearchOptions plain = options;
+    plain.run.checkpoint_path.clear();
+    plain.run.resume_path.clear();
+    std::string diff = fingerprint_difference(portfolio_fingerprint(problem, plain, *portfolio), f.portfolio->fingerprint);
+    if (!diff.empty()) throw InputError(fmt::format("checkpoint {} does not match this portfolio: {}", path, diff));
+  } else {
+    if (!f.search) throw InputError(fmt::format("checkpoint {} holds a portfolio run, not a single search", path));
+    SearchOptions plain = options;  // the fingerprint does not depend on the file names
+    plain.run.checkpoint_path.clear();
+    plain.run.resume_path.clear();
+    std::string diff = fingerprint_difference(search_fingerprint(problem, plain), f.search->fingerprint);
+    if (!diff.empty()) throw InputError(fmt::format("checkpoint {} does not match this search: {}", path, diff));
   }
+  return f;
+}
+
+SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options, const nlohmann::json& request) {
+  if (!options.run.resume_path.empty())
+    options.resume_state = std::move(*read_resume_file(problem, options, nullptr).search);
   if (!options.run.checkpoint_path.empty()) {
     std::string path = options.run.checkpoint_path;
     options.save_checkpoint = [path, request](const SearchState& s) {
@@ -330,17 +352,8 @@ SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions opti
 
 PortfolioResult run_portfolio_checkpointed(const TilingProblem& problem, const SearchOptions& options,
                                            PortfolioOptions portfolio, const nlohmann::json& request) {
-  if (!options.run.resume_path.empty()) {
-    CheckpointFile f = read_checkpoint_file(options.run.resume_path);
-    if (!f.portfolio)
-      throw InputError(
-          fmt::format("checkpoint {} holds a single search, not a portfolio run", options.run.resume_path));
-    std::string diff =
-        fingerprint_difference(portfolio_fingerprint(problem, options, portfolio), f.portfolio->fingerprint);
-    if (!diff.empty())
-      throw InputError(fmt::format("checkpoint {} does not match this portfolio: {}", options.run.resume_path, diff));
-    portfolio.resume_state = std::move(*f.portfolio);
-  }
+  if (!options.run.resume_path.empty())
+    portfolio.resume_state = std::move(*read_resume_file(problem, options, &portfolio).portfolio);
   if (!options.run.checkpoint_path.empty()) {
     std::string path = options.run.checkpoint_path;
     portfolio.save_checkpoint = [path, request](const PortfolioState& s) {

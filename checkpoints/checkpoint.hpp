@@ -3,17 +3,21 @@
 // portfolio's (every candidate's engine state and the schedule), with the request of the run
 // they belong to, so that `tilekit pack --resume FILE` alone continues it.
 //
-//   TILEKIT-CHECKPOINT 2\n            magic and format version
+//   TILEKIT-CHECKPOINT 3\n            magic and format version
 //   bytes <n> fnv1a64 <16 hex>\n      length and checksum of the body
 //   <body: n bytes of JSON>           {"request": {...} or null,
 //                                      "search": {fingerprint, subproblems, subproblem_hash,
 //                                                 finished (hex bitmap), finished_counts,
+//                                                 finished_each [[solutions, orbits, nodes] per
+//                                                 finished subproblem, in index order],
 //                                                 in_flight [{index, path, counted}], restarts,
 //                                                 restart_nodes, seconds}}
 //                                     or {"request": ..., "portfolio": {fingerprint, round,
 //                                         next, seconds, candidates [{name, empty, slices,
 //                                         nodes, seconds, engine: <search> or null}]}}
-// Version 1 files (the "search" object's fields at the top level, no request) are still read.
+// Versions 1 and 2 lacked finished_each, without which a cleared finished mark cannot be told
+// from an unfinished subproblem (it would be counted twice): they are refused, naming the
+// version (finish such a run with the build that started it).
 //
 // Written atomically (temp file, fsync, rename), so a kill at any moment leaves either the
 // previous checkpoint or the new one. Reading checks magic, version, length and checksum, then
@@ -31,7 +35,7 @@
 
 namespace tilekit {
 
-inline constexpr int kCheckpointVersion = 2;
+inline constexpr int kCheckpointVersion = 3;
 
 // The envelope every Tilekit checkpoint file shares (above, with its own magic and version):
 // seal_checkpoint() wraps a body; open_checkpoint() returns the body after checking magic, a
@@ -62,6 +66,13 @@ SearchState read_checkpoint(const std::string& path);
 // The differences between two search fingerprints, e.g. "mode: count here, all in the
 // checkpoint"; empty when equal.
 std::string fingerprint_difference(const std::string& here, const std::string& checkpoint);
+
+// The checkpoint at options.run.resume_path, checked to belong to this run: a single search
+// (portfolio null) or this portfolio, with a matching fingerprint (InputError naming what
+// differs). What solve_checkpointed() and run_portfolio_checkpointed() read; a command calls it
+// first to refuse a foreign checkpoint before it writes anything.
+CheckpointFile read_resume_file(const TilingProblem& problem, const SearchOptions& options,
+                                const PortfolioOptions* portfolio);
 
 // solve() with checkpoint files: reads options.run.resume_path (checking that it belongs to this
 // search: InputError naming what differs), and writes options.run.checkpoint_path every

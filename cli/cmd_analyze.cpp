@@ -30,7 +30,7 @@ void run_neighbors(const NeighbourArgs& a, const Context& ctx) {
   auto last = start;
   auto progress = [&](int done, int total) {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last > std::chrono::seconds(2) && done < total) {
+    if (!ctx.quiet && now - last > std::chrono::seconds(2) && done < total) {
       last = now;
       fmt::print(stderr, "analyze neighbors: {}/{} tilings\n", done, total);
     }

@@ -20,6 +20,8 @@
 #include "cli/cluster_scripts.hpp"
 #include "cli/command.hpp"
 #include "base/error.hpp"
+#include "base/json_input.hpp"
+#include "base/parse.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -37,20 +39,53 @@ struct SubmitArgs {
   ClusterPlan plan;
 };
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream b;
-  b << in.rdbuf();
-  return b.str();
+// A JSON file of the run directory through the checked reader (base/json_input.hpp); nullopt
+// when it is absent. `what` names it in messages.
+std::optional<nlohmann::json> read_json(const fs::path& p, std::string_view what) {
+  std::error_code ec;
+  if (!fs::exists(p, ec)) return std::nullopt;
+  return read_json_file(p.string(), what);
 }
 
-std::optional<nlohmann::json> read_json(const fs::path& p) {
-  if (!fs::exists(p)) return std::nullopt;
+// The same for the files the job scripts write (a kill may cut one short): an unreadable one
+// counts as not written yet, and only an object is one.
+std::optional<nlohmann::json> read_shard_json(const fs::path& p) {
   try {
-    return nlohmann::json::parse(read_text(p));
-  } catch (const nlohmann::json::exception&) {
-    return std::nullopt;
+    auto j = read_json(p, "shard result");
+    if (j && j->is_object()) return j;
+  } catch (const InputError&) {
   }
+  return std::nullopt;
+}
+
+// run.json as `cluster submit` wrote it: shards, pack_args and submissions checked.
+struct RunFile {
+  nlohmann::json doc;
+  int shards = 0;
+  std::vector<std::string> pack_args;
+  nlohmann::json submissions = nlohmann::json::array();
+};
+std::optional<RunFile> read_run_file(const fs::path& p) {
+  auto doc = read_json(p, "cluster run file");
+  if (!doc) return std::nullopt;
+  RunFile r;
+  r.doc = *doc;
+  const JsonIn j(r.doc, p.string());
+  r.shards = int(j.at("shards").integer(1, kMaxShards));
+  const JsonIn args = j.at("pack_args");
+  for (std::size_t i = 0, n = args.array(0, 4096); i < n; ++i) r.pack_args.push_back(args[i].string(4096));
+  if (auto s = j.find("submissions")) {
+    s->array();
+    r.submissions = s->raw();
+  }
+  return r;
+}
+
+// A member of a shard's result file if it has the given JSON type, else null.
+nlohmann::json member(const std::optional<nlohmann::json>& j, const char* key, bool (nlohmann::json::*is)() const noexcept) {
+  if (!j) return nullptr;
+  auto it = j->find(key);
+  return it != j->end() && ((*it).*is)() ? *it : nlohmann::json(nullptr);
 }
 
 ClusterPlan make_plan(const SubmitArgs& o) {
@@ -149,12 +184,12 @@ void run_submit(const SubmitArgs& o, const Context& ctx) {
 
   // A run directory holds one run: resubmitting the same run resumes it, another is refused.
   nlohmann::json record = run_record(p);
-  if (auto old = read_json(dir / "run.json")) {
+  if (auto old = read_run_file(dir / "run.json")) {
     for (const char* key : {"shards", "pack_args"})
-      if ((*old)[key] != record[key])
+      if (old->doc[key] != record[key])
         throw InputError(fmt::format("{} holds a different run ({}: {} vs {}); pick another --run-dir",
-                                     p.run_dir, key, (*old)[key].dump(), record[key].dump()));
-    record["submissions"] = (*old).value("submissions", nlohmann::json::array());
+                                     p.run_dir, key, old->doc[key].dump(), record[key].dump()));
+    record["submissions"] = old->submissions;
   } else if (fs::exists(dir) && !fs::is_empty(dir)) {
     throw InputError(fmt::format("{} exists and is not a Tilekit run directory", p.run_dir));
   }
@@ -220,21 +255,23 @@ nlohmann::json shard_status(const fs::path& shards, int i, int n) {
   std::ifstream in(f(".attempts"));
   for (std::string line; std::getline(in, line);) {
     try {
-      auto a = nlohmann::json::parse(line);
+      const auto a = parse_json_input(line, "attempt");
+      const auto exit = a.is_object() ? a.find("exit") : a.end();
+      if (exit == a.end() || !exit->is_number_integer()) continue;  // not an attempt line
       ++attempts;
-      if (a.value("exit", -1) == 3) ++interrupted;
-      last_exit = a["exit"];
-    } catch (const nlohmann::json::exception&) {  // a line cut short by a kill: skip it
+      if (*exit == 3) ++interrupted;
+      last_exit = *exit;
+    } catch (const InputError&) {  // a line cut short by a kill: skip it
     }
   }
   s["attempts"] = attempts;
   s["checkpointed_exits"] = interrupted;
   s["last_exit"] = last_exit;
-  auto done = read_json(f(".done.json"));
+  auto done = read_shard_json(f(".done.json"));
   bool has_ckpt = fs::exists(f(".ckpt"));
   s["state"] = done ? "done" : has_ckpt ? "checkpointed" : attempts || fs::exists(f(".sqlite")) ? "started" : "pending";
-  s["solutions"] = done ? done->value("solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr);
-  s["complete"] = done ? done->value("complete", nlohmann::json(nullptr)) : nlohmann::json(nullptr);
+  s["solutions"] = member(done, "solutions", &nlohmann::json::is_number_unsigned);
+  s["complete"] = member(done, "complete", &nlohmann::json::is_boolean);
   if (has_ckpt) {
     auto age = fs::file_time_type::clock::now() - fs::last_write_time(f(".ckpt"));
     s["checkpoint_age_seconds"] = std::chrono::duration_cast<std::chrono::seconds>(age).count();
@@ -248,10 +285,9 @@ nlohmann::json shard_status(const fs::path& shards, int i, int n) {
 
 void run_status(const StatusArgs& a, const Context& ctx) {
   fs::path dir = fs::absolute(a.run_dir);
-  auto run = read_json(dir / "run.json");
+  auto run = read_run_file(dir / "run.json");
   if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", dir.string()));
-  int shards = run->value("shards", 0);
-  if (shards < 1) throw InputError(fmt::format("{}/run.json: bad shard count", dir.string()));
+  const int shards = run->shards;
   nlohmann::json list = nlohmann::json::array();
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
@@ -261,10 +297,10 @@ void run_status(const StatusArgs& a, const Context& ctx) {
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);
   }
-  auto merged = read_json(dir / "merged.json");
+  auto merged = read_shard_json(dir / "merged.json");
   nlohmann::json j = {{"run_dir", dir.string()},
                       {"shards", shards},
-                      {"pack_args", (*run)["pack_args"]},
+                      {"pack_args", run->pack_args},
                       {"done", counts["done"]},
                       {"checkpointed", counts["checkpointed"]},
                       {"started", counts["started"]},
@@ -272,15 +308,13 @@ void run_status(const StatusArgs& a, const Context& ctx) {
                       {"solutions_in_done_shards", sum},
                       // From merged.json (`db stats`): solutions stored, each once, and how many
                       // of them differ up to symmetry.
-                      {"merged_solutions",
-                       merged ? merged->value("solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr)},
-                      {"merged_orbits",
-                       merged ? merged->value("distinct_solutions", nlohmann::json(nullptr)) : nlohmann::json(nullptr)},
-                      {"submissions", run->value("submissions", nlohmann::json::array())},
+                      {"merged_solutions", member(merged, "solutions", &nlohmann::json::is_number_unsigned)},
+                      {"merged_orbits", member(merged, "distinct_solutions", &nlohmann::json::is_number_unsigned)},
+                      {"submissions", run->submissions},
                       {"per_shard", list}};
   emit(ctx, j, [&] {
     std::string args;
-    for (const auto& a : (*run)["pack_args"]) args += " " + a.get<std::string>();
+    for (const auto& a : run->pack_args) args += " " + a;
     fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n",
                dir.string(), args, shards, counts["done"], counts["checkpointed"], counts["started"],
                counts["pending"]);

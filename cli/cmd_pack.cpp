@@ -141,6 +141,7 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   std::set<std::string> given;
   for (const auto& flag : identity_flags())
     if (cmd.count(flag)) given.insert(flag);
+  if (cmd.count("--time-limit")) given.insert("--time-limit");
   PackOutcome o = run_pack(req, given);
   std::string out_file;
   if (!a.out.empty() && !o.result.found.empty()) {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
@@ -20,6 +21,7 @@
 #include "points/point_io.hpp"
 #include "points/tile_set_file.hpp"
 #include "results/results_db.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -138,15 +140,18 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
   const Window w = parse_window(a.window);
   if (!a.out.empty() && !is_point_file_path(a.out)) check_extension(a.out, {".png", ".svg"}, "--out");
   const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
-  const Source src(a.source, threads, !a.quiet);
-  const double tile = src.tile_size(a.density);
-  ProgressReporter progress("points generate", 0, !a.quiet && w.area() * a.density > 5e7);
-  const auto start = std::chrono::steady_clock::now();
+  if (!(a.density > 0) || !std::isfinite(a.density))
+    throw InputError(fmt::format("--density must be positive, got {}", a.density));
   std::unique_ptr<DensityFunction> fn;
   if (!a.density_expr.empty() && !a.density_image.empty())
     throw InputError("give --density-expr or --density-image, not both");
   if (!a.density_expr.empty()) fn = expression_density(a.density_expr);
   if (!a.density_image.empty()) fn = image_density(a.density_image, w, a.density, a.invert);
+  require_window_memory(w, a.density, fn.get());  // before the tile set is built
+  const Source src(a.source, threads, !a.quiet);
+  const double tile = src.tile_size(a.density);
+  ProgressReporter progress("points generate", 0, !a.quiet && w.area() * a.density > 5e7);
+  const auto start = std::chrono::steady_clock::now();
   const auto xy = src.points(w, a.density, a.seed, threads, a.period, a.period > 0, fn.get(), &progress);
   const double seconds = seconds_since(start);
   progress.finish();
@@ -185,7 +190,7 @@ void add_tiles_command(CLI::App* points, Context& ctx) {
   auto* cmd = points->add_subcommand("tiles", "Build a Poisson disk tile set (thesis ch. 4) and check it");
   auto a = std::make_shared<TilesArgs>();
   cmd->add_option("--method", a->method, "corner (thesis 4.5, default) | wang (edge-based, 4.3) | dual (Li et al.)");
-  cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1, 64));
+  cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1u, kMaxCompleteSetColours));
   cmd->add_option("--edge-colors", a->edge_colors,
                   "corner: edge colours E hashed per lattice edge, C^4 E^4 tiles (thesis sec. 6.11; default 1)")
       ->check(CLI::Range(1, 16));
@@ -226,7 +231,7 @@ void add_generate_command(CLI::App* points, Context& ctx) {
   cmd->add_option("--period", a->period, "Repeat the tiling every M tiles (a toroidal set)")
       ->check(CLI::Range(1, 1 << 30));
   cmd->add_option("--threads", a->threads, "Threads, one tile row at a time (default: all cores)");
-  cmd->add_option("--out", a->out, "Points: .f32/.bin (float32 x,y pairs), .csv; or a picture: .png, .svg");
+  cmd->add_option("--out", a->out, "Points: .f32/.bin (float32 x,y pairs), .f64 (float64), .csv; or a picture: .png, .svg");
   cmd->add_option("--px", a->px, "Picture size in pixels (default 800)")->check(CLI::Range(16, 8192));
   cmd->add_flag("--analyze", a->analyze, "Add the radius analysis (overall and across tile borders)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");

@@ -51,16 +51,21 @@ class Source {
   // The points of `w` at a constant density, or (recursive only) following `density_fn`.
   // `seed` picks the tiling (hash tables) or the sampler's random numbers. `period` > 0: the
   // window is a torus of `period` tiles (tile methods, recursive), or `torus` for the samplers.
-  std::vector<float> points(const points::Window& w, double density, std::uint64_t seed, int threads,
-                            std::int64_t period = 0, bool torus = false,
-                            const points::DensityFunction* density_fn = nullptr,
-                            ProgressReporter* progress = nullptr) const;
+  std::vector<double> points(const points::Window& w, double density, std::uint64_t seed, int threads,
+                             std::int64_t period = 0, bool torus = false,
+                             const points::DensityFunction* density_fn = nullptr,
+                             ProgressReporter* progress = nullptr) const;
 
  private:
   SourceArgs a_;
   std::optional<points::PoissonTileSet> tiles_;
   std::optional<points::RecursiveWangTiles> recursive_;
 };
+
+// InputError (exit 2, naming the memory limit and TILEKIT_MEMORY) unless the points of `w` at
+// `density` (or following `fn`, sampled) fit in memory: every command that makes points calls it
+// before any work (Source::points does too).
+void require_window_memory(const points::Window& w, double density, const points::DensityFunction* fn);
 
 // The subcommands of `tilekit points`, by file.
 void add_tiles_command(CLI::App* points, Context& ctx);       // cmd_points.cpp

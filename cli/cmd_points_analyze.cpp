@@ -114,7 +114,7 @@ struct ZoneplateArgs {
 };
 
 // The smallest half-open window that holds every point (x,y pairs).
-Window bounding_window(const std::vector<float>& xy) {
+Window bounding_window(const std::vector<double>& xy) {
   Window w{xy[0], xy[1], xy[0], xy[1]};
   for (std::size_t i = 0; i < xy.size(); i += 2)
     w.x0 = std::min<double>(w.x0, xy[i]), w.x1 = std::max<double>(w.x1, xy[i]),
@@ -178,7 +178,7 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
 void add_analyze(CLI::App* points, Context& ctx) {
   auto* cmd = points->add_subcommand("analyze", "Radius and spectral analysis of a point file (thesis sec. 6.2)");
   auto a = std::make_shared<AnalyzeArgs>();
-  cmd->add_option("file", a->file, "Points: .f32/.bin (float32 x,y pairs) or .csv")->required();
+  cmd->add_option("file", a->file, "Points: .f32/.bin (float32 x,y pairs), .f64 (float64) or .csv")->required();
   cmd->add_option("--window", a->window, "x0,y0,x1,y1 the set covers (default: its bounding box)");
   cmd->add_option("--tile-size", a->tile_size, "Tile side: also measure rho inside tiles and across tile borders");
   cmd->add_option("--spectrum", a->spectrum, "Periodogram picture (.png) of the largest square at the window's corner");
@@ -210,6 +210,13 @@ void run_spectrum(const SpectrumArgs& a, const Context& ctx) {
   std::vector<PlotSeries> series;
   for (const Source& src : sources) {
     const SetLayout l = layout_for(src, a.set_points);
+    // The anisotropy band reaches 2 f_p: the periodogram (at most 2048 x 2048) must cover it.
+    const double reach = double(periodogram_size(l.density, l.window.width())) / 2 / l.window.width() /
+                         principal_frequency(l.density);
+    if (reach < 2)
+      throw InputError(fmt::format("--set-points {}: the periodogram reaches {:.2f} f_p, not the 2 f_p of the "
+                                   "anisotropy band (it is at most 2048 x 2048); use at most about {:.0f} points per set",
+                                   a.set_points, reach, a.set_points * reach * reach / 4 * 0.99));
     const Estimate e = estimate(src, l, a.sets, a.seed, threads, progress);
     const auto radial = radial_stats(e.spectrum);
     const double density = e.spectrum.density();

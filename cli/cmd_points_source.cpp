@@ -1,13 +1,16 @@
 // Where the point sets of `tilekit points` come from, and writing their pictures.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "atlas/atlas_image.hpp"
 #include "base/error.hpp"
+#include "base/resources.hpp"
 #include "cli/cmd_points.hpp"
 #include "points/reference_sets.hpp"
 #include "points/tile_set_file.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -18,7 +21,7 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
   cmd->add_option("--tiles", a.tiles,
                   "Tile set: a file from `points tiles --out` (or db:ID) or `points recursive --out`; "
                   "default: built in memory from --colors/--points/--rho");
-  cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1, 64));
+  cmd->add_option("--colors", a.colors, "Colours of a tile set built in memory (default 4)")->check(CLI::Range(1u, kMaxCompleteSetColours));
   cmd->add_option("--edge-colors", a.edge_colors, "corner: edge colours of a tile set built in memory (default 1)")
       ->check(CLI::Range(1, 16));
   cmd->add_option("--points", a.points,
@@ -93,10 +96,27 @@ double Source::tile_size(double density) const {
   return 0;
 }
 
-std::vector<float> Source::points(const Window& w, double density, std::uint64_t seed, int threads, std::int64_t period,
+void require_window_memory(const Window& w, double density, const DensityFunction* fn) {
+  // The points (16 bytes each, twice while rows are joined, and the analysis' index) must fit in
+  // memory: estimated before any is made. A density function is sampled on a 64 x 64 grid over
+  // the window (its largest value, or its own bound where it knows one, times the area).
+  double peak = density;
+  if (fn) {
+    peak = 0;
+    for (int j = 0; j < 64; ++j)
+      for (int i = 0; i < 64; ++i)
+        peak = std::max(peak, (*fn)(w.x0 + (i + 0.5) * w.width() / 64, w.y0 + (j + 0.5) * w.height() / 64));
+    peak = std::min(std::max(peak, density), fn->upper_bound(w.x0, w.y0, w.x1, w.y1));
+  }
+  const double expected = peak * w.area();
+  require_memory(expected * 40, fmt::format("a window of about {:.3g} points", expected));
+}
+
+std::vector<double> Source::points(const Window& w, double density, std::uint64_t seed, int threads, std::int64_t period,
                                   bool torus, const DensityFunction* density_fn, ProgressReporter* progress) const {
   if (!(density > 0) || !std::isfinite(density))
     throw InputError(fmt::format("--density must be positive, got {}", density));
+  require_window_memory(w, density, density_fn);
   const HashKind hash = parse_hash_kind(a_.hash);
   if (tiles_) {
     if (density_fn) throw InputError("a density function needs --method recursive (tile sets have constant density)");

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
@@ -110,19 +109,11 @@ struct AtlasArgs {
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
-  const std::string manifest = (fs::path(a.dir) / "tiles.json").string();
-  std::ifstream in(manifest);
-  if (!in) throw InputError(fmt::format("{}: no tiles.json (make the tiles with `tilekit texture tiles`)", manifest));
-  nlohmann::json m;
-  try {
-    m = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", manifest, e.what()));
-  }
-  const TileKind kind = m.value("kind", "corner") == "wang" ? TileKind::Wang : TileKind::Corner;
+  const TileSetManifest m = read_tile_set_manifest(a.dir);
+  const TileKind kind = m.kind;
   LookupOptions lo;
   if (!a.no_db) lo.db_path = a.db.empty() ? ResultsDb::default_path() : a.db;
-  const AtlasLookup lookup = atlas_lookup(kind, m.value("colors", 0u), lo);
+  const AtlasLookup lookup = atlas_lookup(kind, m.colours, lo);
   const TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));

@@ -53,7 +53,8 @@ void add_texture_preview(CLI::App& texture, Context& ctx) {
   cmd->footer(
       "--atlas is required; with --exemplar the page can also show the hex and hpn baselines.\n"
       "Query: ?capture=1&size=WxH&u=U&v=V&scale=S&seed=N&tilt=T[&method=tiles|hex|hpn&aniso=A] shows only the "
-      "canvas with that view (u,v: the texel at the top-left, as `texture render --origin U,V`).");
+      "canvas with that view (u,v: the texel at the top-left, as `texture render --origin U,V`).\n"
+      "Exit codes: 0 ok, 1 not found, 2 bad input.");
   cmd->callback([a, &ctx] { run_preview(*a, ctx); });
 }
 

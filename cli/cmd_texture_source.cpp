@@ -71,7 +71,7 @@ nlohmann::json source_json(const LoadedSource& s) {
 
 View parse_view(const std::string& size, double scale, const std::string& origin, double tilt) {
   View v;
-  const Dimensions d = parse_dimensions(size, 8192, std::int64_t(8192) * 8192, "--size WxH");
+  const Dimensions d = parse_dimensions(size, kMaxViewSide, std::int64_t(kMaxViewSide) * kMaxViewSide, "--size WxH");
   v.width = int(d.first);
   v.height = int(d.second);
   if (!origin.empty()) {

@@ -24,6 +24,7 @@ void emit(const Context& ctx, const nlohmann::json& j, const std::function<void(
 
 void add_json_flag(CLI::App* cmd, Context& ctx) {
   cmd->add_flag("--json", ctx.json, "Print exactly one JSON object on stdout");
+  if (!cmd->get_option_no_throw("--quiet")) cmd->add_flag("--quiet", ctx.quiet, "No progress output on stderr");
 }
 
 }  // namespace tilekit::cli

@@ -14,13 +14,15 @@ struct Exit {
 };
 
 struct Context {
-  bool json = false;  // print exactly one JSON object on stdout instead of human output
+  bool json = false;   // print exactly one JSON object on stdout instead of human output
+  bool quiet = false;  // no progress on stderr (commands with a --quiet of their own keep it in their args)
 };
 
 // Prints `j` (with --json) or runs `human`.
 void emit(const Context& ctx, const nlohmann::json& j, const std::function<void()>& human);
 
-// Adds the --json flag to a (sub)command.
+// Adds the --json flag to a (sub)command, and --quiet (into ctx.quiet) unless it has one of its
+// own: every command takes both (tests/cli/test_cli_contract.cpp walks every --help).
 void add_json_flag(CLI::App* cmd, Context& ctx);
 
 // Command groups, one per cmd_*.cpp.

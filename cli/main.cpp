@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include <string_view>
@@ -61,6 +62,11 @@ int main(int argc, char** argv) {
   } catch (const Interrupted& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;
     return 3;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file or folder the system refuses (permissions, a link loop, a full disk): the user's to
+    // fix, like any other bad input.
+    std::cerr << "tilekit: " << e.what() << std::endl;
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "tilekit: internal error: " << e.what() << std::endl;
     return 4;

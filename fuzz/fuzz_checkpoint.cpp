@@ -1,4 +1,4 @@
-// Checkpoint files (checkpoints/checkpoint.hpp), version 1 and 2, single searches and portfolios. The first byte picks
+// Checkpoint files (checkpoints/checkpoint.hpp), version 3, single searches and portfolios. The first byte picks
 // the mode: the input as a whole file (header, length, checksum), or the input as a body wrapped in a valid header so
 // that the fuzzer reaches the JSON and the structural checks past the checksum.
 #include <fmt/format.h>

@@ -77,8 +77,7 @@ TilingProblem make_problem(const PackRequest& a) {
     throw InputError("pack needs --kind corner|wang|window and --colors C (or --set SET, or --resume FILE)");
   if (a.kind != "corner" && a.kind != "wang")
     throw InputError(fmt::format("unknown tile kind '{}' (corner, wang or window)", a.kind));
-  check_colour_count(a.colours, "--colors");
-  return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, std::uint32_t(a.colours));
+  return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours);
 }
 
 // The engine options of a request (checks every flag that solve() does not).
@@ -149,6 +148,8 @@ void check_runnable(const PackRequest& a, const TilingProblem& problem, const Se
   } else {
     search_fingerprint(problem, check);
   }
+  // A checkpoint of another run is refused here, before the database or the file is touched.
+  if (!o.run.resume_path.empty()) read_resume_file(problem, o, use_portfolio ? &po : nullptr);
 }
 
 // The run's row in the results database, "running" until finish_record().
@@ -314,6 +315,10 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   po.candidates = a.candidates;
   check_runnable(a, problem, o, po, use_portfolio);
   const nlohmann::json identity = request_identity(a);
+  // What every checkpoint stores: the identity, and the time limit that `pack --resume F`
+  // alone applies again (a run setting, so a flag given on resume replaces it).
+  nlohmann::json stored = identity;
+  stored["time_limit"] = a.run.time_limit;
 
   ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
   out.db_path = db.path();
@@ -328,9 +333,9 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   // One search: the portfolio, or solve() (under the group with --impose).
   auto search = [&] {
     if (use_portfolio)
-      portfolio_search(out, o, po, identity, sink);
+      portfolio_search(out, o, po, stored, sink);
     else
-      out.result = solve_checkpointed(problem, o, identity);
+      out.result = solve_checkpointed(problem, o, stored);
     sink.flush();
   };
   try {
@@ -342,6 +347,13 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
       out.method = "search";
       search();
     }
+  } catch (const InputError&) {
+    // Bad input the engine found before it stored anything (a checkpoint inconsistent with this
+    // search): a refused command leaves no trace, so its run row goes again.
+    if (sink.added() == 0 && db.forget_run(record.id)) throw;
+    record.status = "failed";
+    db.finish_run(record);
+    throw;
   } catch (...) {
     record.status = "failed";
     db.finish_run(record);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "base/error.hpp"
@@ -89,6 +90,13 @@ PackRequest resume_request(const PackRequest& here, const std::set<std::string>&
     }
   }
   if (here.db.empty() && stored.contains("db") && stored["db"].is_string()) r.db = stored["db"].get<std::string>();
+  // The time limit the run was started with, unless --time-limit is given again.
+  if (!given.count("--time-limit") && stored.contains("time_limit")) {
+    const nlohmann::json& t = stored["time_limit"];
+    if (!t.is_number() || !(t.get<double>() >= 0) || !std::isfinite(t.get<double>()))
+      throw InputError(fmt::format("checkpoint {}: the request's time_limit is malformed", checkpoint));
+    r.run.time_limit = t.get<double>();
+  }
   return r;
 }
 

@@ -47,7 +47,8 @@ const std::vector<std::string>& identity_flags();
 
 // `pack --resume FILE` with the request stored in FILE: the stored identity fills every field
 // whose flag was not given; a given flag that differs is an InputError naming the flag, its
-// value here and in the checkpoint. A stored database path is used unless --db is given.
+// value here and in the checkpoint. A stored database path is used unless --db is given, and a
+// stored time limit unless --time-limit is given.
 // `given` holds the flags given on the command line (e.g. "--mode").
 PackRequest resume_request(const PackRequest& here, const std::set<std::string>& given, const nlohmann::json& stored,
                            const std::string& checkpoint);

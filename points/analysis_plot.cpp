@@ -135,7 +135,7 @@ Image spectrum_image(const PowerSpectrum& s, double max_fp) {
   return img;
 }
 
-Image points_image(const std::vector<float>& xy, const Window& w, int px, double dot, double tile_size) {
+Image points_image(const std::vector<double>& xy, const Window& w, int px, double dot, double tile_size) {
   const double scale = px / std::max(w.width(), w.height());
   Image img(std::max(1, int(std::lround(w.width() * scale))), std::max(1, int(std::lround(w.height() * scale))));
   if (tile_size > 0) {
@@ -149,7 +149,7 @@ Image points_image(const std::vector<float>& xy, const Window& w, int px, double
   return img;
 }
 
-std::string points_svg(const std::vector<float>& xy, const Window& w, int px, double dot, double tile_size) {
+std::string points_svg(const std::vector<double>& xy, const Window& w, int px, double dot, double tile_size) {
   const double scale = px / std::max(w.width(), w.height());
   const double width = w.width() * scale, height = w.height() * scale;
   std::string body;

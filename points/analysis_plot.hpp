@@ -29,7 +29,7 @@ Image spectrum_image(const PowerSpectrum& s, double max_fp = 2);
 
 // Points as black dots on white, `px` pixels across the window's longer side; `tile_size` > 0
 // draws the tile grid in light grey.
-Image points_image(const std::vector<float>& xy, const Window& w, int px, double dot_radius, double tile_size = 0);
-std::string points_svg(const std::vector<float>& xy, const Window& w, int px, double dot_radius, double tile_size = 0);
+Image points_image(const std::vector<double>& xy, const Window& w, int px, double dot_radius, double tile_size = 0);
+std::string points_svg(const std::vector<double>& xy, const Window& w, int px, double dot_radius, double tile_size = 0);
 
 }  // namespace tilekit::points

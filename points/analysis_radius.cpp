@@ -8,7 +8,7 @@
 
 namespace tilekit::points {
 
-RadiusStats radius_stats(const std::vector<float>& xy, double area, double tile_size) {
+RadiusStats radius_stats(const std::vector<double>& xy, double area, double tile_size) {
   std::vector<Point2> pts;
   pts.reserve(xy.size() / 2);
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) pts.push_back({xy[i], xy[i + 1]});

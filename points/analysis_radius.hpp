@@ -28,7 +28,7 @@ struct RadiusStats {
 // `xy`: interleaved (x, y); `area`: the window's area (the density is count / area).
 // `tile_size` > 0 splits by tiles. Pairs farther apart than twice the mean spacing are not
 // looked at: a category with no closer pair reports that bound.
-RadiusStats radius_stats(const std::vector<float>& xy, double area, double tile_size = 0);
+RadiusStats radius_stats(const std::vector<double>& xy, double area, double tile_size = 0);
 RadiusStats radius_stats(const std::vector<Point2>& pts, double area, double tile_size = 0);
 
 }  // namespace tilekit::points

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "base/error.hpp"
@@ -21,7 +22,7 @@ double principal_frequency(double density) {
   return 1 / (2 * 0.75 * max_poisson_radius(density));
 }
 
-void PowerSpectrum::add(const std::vector<float>& xy, double x0, double y0, int threads) {
+void PowerSpectrum::add(const std::vector<double>& xy, double x0, double y0, int threads) {
   std::vector<Point2> pts;
   pts.reserve(xy.size() / 2);
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) pts.push_back({xy[i], xy[i + 1]});
@@ -117,7 +118,10 @@ SpectralSummary summarize(const RadialStats& r, double density, double band_lo, 
     if (f < 0.5) low += r.power[i], ++low_n;
     if (first_high == r.power.size() && r.power[i] >= 0.1) first_high = i;
   }
-  s.mean_anisotropy_db = in_band ? sum_a / in_band : 0;
+  // No annulus in the band (a periodogram too small for the density): not measured, never a
+  // placeholder value (NaN prints as null in JSON).
+  if (!in_band) s.max_anisotropy_db = std::numeric_limits<double>::quiet_NaN();
+  s.mean_anisotropy_db = in_band ? sum_a / in_band : std::numeric_limits<double>::quiet_NaN();
   s.low_frequency_power = low_n ? low / low_n : 0;
   // Heck et al.: the radial power stays below 0.1 up to the effective Nyquist frequency.
   const double nyquist = first_high == 0 ? 0 : r.frequency[first_high - 1];

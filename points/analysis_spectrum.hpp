@@ -38,7 +38,7 @@ struct PowerSpectrum {
   }
   // Adds the periodogram of the points inside [x0, x0 + L) x [y0, y0 + L) (others are ignored).
   void add(const std::vector<Point2>& pts, double x0, double y0, int threads = 1);
-  void add(const std::vector<float>& xy, double x0, double y0, int threads = 1);
+  void add(const std::vector<double>& xy, double x0, double y0, int threads = 1);
   double density() const { return sets ? double(points) / double(sets) / (side * side) : 0; }
 };
 

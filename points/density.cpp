@@ -28,9 +28,16 @@ class Constant : public DensityFunction {
 
 // ---- expressions: a recursive-descent parser into a small tree --------------------------------
 
+// Expressions are bounded before they are built: at most kMaxExpressionBytes of text and
+// kMaxExpressionDepth levels of nesting (parentheses, operators, calls), so that parsing,
+// evaluating and destroying the tree, all recursive, stay far inside any stack.
+constexpr std::size_t kMaxExpressionBytes = 4096;
+constexpr int kMaxExpressionDepth = 100;
+
 struct Node {
   enum Kind { Num, X, Y, R, Neg, Add, Sub, Mul, Div, Pow, Call } kind = Num;
   double value = 0;
+  int depth = 1;  // levels of the tree below and including this node
   std::string fn;
   std::vector<Node> args;
   double eval(double x, double y) const {
@@ -81,6 +88,9 @@ class Parser {
  public:
   explicit Parser(const std::string& s) : s_(s) {}
   Node parse() {
+    if (s_.size() > kMaxExpressionBytes)
+      throw InputError(fmt::format("density expression: {} bytes, more than the {} an expression may have",
+                                   s_.size(), kMaxExpressionBytes));
     Node n = expr();
     skip();
     if (pos_ != s_.size()) fail("unexpected text");
@@ -89,8 +99,26 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(fmt::format("density expression '{}': {} at position {}", s_, what, pos_ + 1));
+    throw InputError(fmt::format("density expression '{}': {} at position {}", s_.size() > 80 ? s_.substr(0, 77) + "..." : s_,
+                                 what, pos_ + 1));
   }
+  // Every node is made through here: its depth is its deepest argument's plus one, checked.
+  Node node(Node::Kind k, std::vector<Node> args) {
+    Node n;
+    n.kind = k;
+    for (const Node& a : args) n.depth = std::max(n.depth, a.depth + 1);
+    if (n.depth > kMaxExpressionDepth) fail(fmt::format("nested deeper than {} levels", kMaxExpressionDepth));
+    n.args = std::move(args);
+    return n;
+  }
+  // Recursion guard of the descent itself (a long run of '(' or unary '-' before any node exists).
+  struct Level {
+    Parser& p;
+    explicit Level(Parser& parser) : p(parser) {
+      if (++p.levels_ > kMaxExpressionDepth) p.fail(fmt::format("nested deeper than {} levels", kMaxExpressionDepth));
+    }
+    ~Level() { --p.levels_; }
+  };
   void skip() {
     while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
   }
@@ -99,11 +127,11 @@ class Parser {
     if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
     return false;
   }
-  static Node bin(Node::Kind k, Node a, Node b) {
-    Node n;
-    n.kind = k;
-    n.args = {std::move(a), std::move(b)};
-    return n;
+  Node bin(Node::Kind k, Node a, Node b) {
+    std::vector<Node> args;
+    args.push_back(std::move(a));
+    args.push_back(std::move(b));
+    return node(k, std::move(args));
   }
   Node expr() {
     Node n = term();
@@ -128,11 +156,11 @@ class Parser {
     }
   }
   Node unary() {
+    const Level level(*this);
     if (eat('-')) {
-      Node n;
-      n.kind = Node::Neg;
-      n.args = {unary()};
-      return n;
+      std::vector<Node> args;
+      args.push_back(unary());
+      return node(Node::Neg, std::move(args));
     }
     if (eat('+')) return unary();
     Node base = primary();
@@ -174,17 +202,19 @@ class Parser {
     const auto f = std::find_if(fns.begin(), fns.end(), [&](const auto& p) { return p.first == name; });
     if (f == fns.end()) fail(fmt::format("unknown name '{}'", name));
     if (!eat('(')) fail(fmt::format("expected '(' after {}", name));
-    n.kind = Node::Call;
-    n.fn = name;
-    do n.args.push_back(expr());
+    std::vector<Node> args;
+    do args.push_back(expr());
     while (eat(','));
     if (!eat(')')) fail("expected ')'");
-    if (n.args.size() != f->second) fail(fmt::format("{} takes {} argument(s)", name, f->second));
+    if (args.size() != f->second) fail(fmt::format("{} takes {} argument(s)", name, f->second));
+    n = node(Node::Call, std::move(args));
+    n.fn = name;
     return n;
   }
 
   const std::string& s_;
   std::size_t pos_ = 0;
+  int levels_ = 0;
 };
 
 class Expression : public DensityFunction {

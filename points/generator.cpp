@@ -124,7 +124,7 @@ void PoissonTileGenerator::row_indices(std::int64_t ty, std::int64_t tx0, std::i
 }
 
 void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s,
-                               Scratch& sc, std::vector<float>& out) const {
+                               Scratch& sc, std::vector<double>& out) const {
   const std::int64_t cols = tx1 - tx0 + 1;
   row_indices(ty, tx0, cols, sc);
   const double by = double(ty) * s;
@@ -140,22 +140,22 @@ void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t t
     if (row_inside && bx >= w.x0 && bx + span < w.x1) {
       const std::size_t at = out.size();
       out.resize(at + 2 * std::size_t(e - b));
-      float* o = out.data() + at;
+      double* o = out.data() + at;
       const double* q = uv + 2 * std::size_t(b);
       for (std::uint32_t k = 0; k < 2 * (e - b); k += 2) {
-        o[k] = float(bx + q[k] * s);
-        o[k + 1] = float(by + q[k + 1] * s);
+        o[k] = bx + q[k] * s;
+        o[k + 1] = by + q[k + 1] * s;
       }
     } else {
       for (std::uint32_t k = b; k < e; ++k) {
         const double x = bx + uv[2 * std::size_t(k)] * s, y = by + uv[2 * std::size_t(k) + 1] * s;
-        if (x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1) out.insert(out.end(), {float(x), float(y)});
+        if (x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1) out.insert(out.end(), {x, y});
       }
     }
   }
 }
 
-std::vector<float> PoissonTileGenerator::generate(const Window& w, double density, int threads,
+std::vector<double> PoissonTileGenerator::generate(const Window& w, double density, int threads,
                                                   ProgressReporter* progress) const {
   const double s = tile_size(density);
   const double tiles_x = std::floor(w.x1 / s) - std::floor(w.x0 / s) + 1,
@@ -167,7 +167,7 @@ std::vector<float> PoissonTileGenerator::generate(const Window& w, double densit
   const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / s)), ty1 = std::int64_t(std::floor(w.y1 / s));
   const std::int64_t rows = ty1 - ty0 + 1;
   if (progress) progress->set_total(double(rows));
-  std::vector<float> out;
+  std::vector<double> out;
   if (threads <= 1 || rows < 2) {
     out.reserve(std::size_t(2 * (w.area() * density * 1.02 + double(set_.points) * (tiles_x + tiles_y) * 2)));
     Scratch sc;
@@ -177,7 +177,7 @@ std::vector<float> PoissonTileGenerator::generate(const Window& w, double densit
     }
     return out;
   }
-  std::vector<std::vector<float>> rows_out(static_cast<std::size_t>(rows));
+  std::vector<std::vector<double>> rows_out(static_cast<std::size_t>(rows));
   parallel_for(rows, threads, [&](std::int64_t r) {
     thread_local Scratch sc;
     row(ty0 + r, tx0, tx1, w, s, sc, rows_out[std::size_t(r)]);

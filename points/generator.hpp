@@ -7,7 +7,9 @@
 //
 // Coordinates: tile (tx, ty) covers [tx s, (tx + 1) s) x [ty s, (ty + 1) s) with s =
 // sqrt(N / density); y grows to the south like the tilings of tiling/. A point is
-// float(tx * s + u * s) (u its tile coordinate, all in double), whatever the window.
+// tx * s + u * s (u its tile coordinate), whatever the window. Coordinates are doubles, exact
+// to about 1e-16 of their size, so windows far from the origin keep their distances (float32
+// lost the disk radius from about 1e6 on).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -42,10 +44,10 @@ class PoissonTileGenerator {
   std::int64_t period() const { return period_; }
   double tile_size(double density) const;
 
-  // Interleaved float32 (x, y) of every point in the window, tile row by tile row (north to
+  // Interleaved (x, y) of every point in the window, tile row by tile row (north to
   // south), tiles west to east, each tile's points in stored order. Rows run on `threads`
   // threads; the output does not depend on the thread count. `progress` counts rows.
-  std::vector<float> generate(const Window& w, double density, int threads = 1,
+  std::vector<double> generate(const Window& w, double density, int threads = 1,
                               ProgressReporter* progress = nullptr) const;
 
   // The tile index (into set().tiles) of tile (tx, ty).
@@ -54,7 +56,7 @@ class PoissonTileGenerator {
  private:
   struct Scratch;
   void row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s, Scratch& scratch,
-           std::vector<float>& out) const;
+           std::vector<double>& out) const;
   void row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& scratch) const;
   std::uint32_t lattice(std::int64_t x, std::int64_t y) const;  // corner and dual sets
   // A colour at (mx, my) of the doubled lattice: edge-based sets' Wang edge colours from hash_,

@@ -32,6 +32,11 @@ std::vector<ObjectClass> parse_object_classes(const std::string& text) {
     total += p;
     pos = comma + 1;
   }
+  // Weights as large as 1e308 sum to infinity: scale by the largest first, then normalise.
+  double largest = 0;
+  for (const auto& c : out) largest = std::max(largest, c.probability);
+  total = 0;
+  for (auto& c : out) total += c.probability /= largest;
   for (auto& c : out) c.probability /= total;
   return out;
 }
@@ -100,7 +105,7 @@ std::vector<ObjectDistribution::Placed> ObjectDistribution::scatter(const Window
       for (std::uint32_t i = 0; i < pts.size(); ++i) {
         const double x = double(tx) * s_ + pts[i].x * s_, y = double(ty) * s_ + pts[i].y * s_;
         if (x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1)
-          out.push_back({float(x), float(y), object_of(point_id(tx, ty, i))});
+          out.push_back({x, y, object_of(point_id(tx, ty, i))});
       }
     }
   return out;

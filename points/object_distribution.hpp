@@ -46,7 +46,7 @@ class ObjectDistribution {
 
   // Every point of a window with its class: (x, y, class) rows.
   struct Placed {
-    float x, y;
+    double x, y;
     std::uint32_t object;
   };
   std::vector<Placed> scatter(const Window& w) const;

@@ -2,15 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/input.hpp"
 
 namespace tilekit::points {
 
@@ -19,45 +19,76 @@ namespace {
 bool ends_with(const std::string& s, const char* suffix) {
   return s.ends_with(suffix);
 }
-bool is_raw(const std::string& p) {
+bool is_raw32(const std::string& p) {
   return ends_with(p, ".f32") || ends_with(p, ".bin");
 }
+bool is_raw64(const std::string& p) { return ends_with(p, ".f64"); }
 
-static_assert(std::endian::native == std::endian::little, "raw point files are little-endian float32");
+static_assert(std::endian::native == std::endian::little, "raw point files are little-endian");
 
 }  // namespace
 
 bool is_point_file_path(const std::string& p) {
-  return is_raw(p) || ends_with(p, ".csv");
+  return is_raw32(p) || is_raw64(p) || ends_with(p, ".csv");
 }
 
-void write_points(const std::string& path, const std::vector<float>& xy) {
-  if (is_raw(path)) {
-    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(xy.data()), xy.size() * sizeof(float)));
+namespace {
+
+// float32 keeps 24 bits: far from the origin its rounding reaches the spacing of the points
+// (at 1e6 it is 0.06, near the spacing at density 100) and points collapse onto each other.
+// Refused when the rounding exceeds 1% of the mean spacing over the points' bounding box.
+void check_float32_fits(const std::string& path, const std::vector<double>& xy) {
+  const std::size_t n = xy.size() / 2;
+  if (n < 2) return;
+  double x0 = xy[0], x1 = xy[0], y0 = xy[1], y1 = xy[1], largest = 0;
+  for (std::size_t i = 0; i < xy.size(); i += 2) {
+    x0 = std::min(x0, xy[i]), x1 = std::max(x1, xy[i]), y0 = std::min(y0, xy[i + 1]), y1 = std::max(y1, xy[i + 1]);
+    largest = std::max({largest, std::abs(xy[i]), std::abs(xy[i + 1])});
+  }
+  const double spacing = std::sqrt(std::max(x1 - x0, 1e-300) * std::max(y1 - y0, 1e-300) / double(n));
+  const double rounding = largest * 0x1p-24;
+  if (rounding > 0.01 * spacing)
+    throw InputError(fmt::format("{}: float32 rounds coordinates as large as {:.6g} by up to {:.3g}, more than 1% of "
+                                 "the points' spacing ({:.3g}); write .f64 or .csv instead",
+                                 path, largest, rounding, spacing));
+}
+
+}  // namespace
+
+void write_points(const std::string& path, const std::vector<double>& xy) {
+  if (is_raw32(path)) {
+    check_float32_fits(path, xy);
+    const std::vector<float> f(xy.begin(), xy.end());
+    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(f.data()), f.size() * sizeof(float)));
+  } else if (is_raw64(path)) {
+    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(xy.data()), xy.size() * sizeof(double)));
   } else if (ends_with(path, ".csv")) {
     std::string out = "x,y\n";
     out.reserve(xy.size() * 12 + 8);
     for (std::size_t i = 0; i + 1 < xy.size(); i += 2) out += fmt::format("{},{}\n", xy[i], xy[i + 1]);
     write_file_atomic(path, out);
   } else {
-    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin or .csv)", path));
+    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin, .f64 or .csv)", path));
   }
 }
 
-std::vector<float> read_points(const std::string& path) {
+std::vector<double> read_points(const std::string& path) {
   if (!is_point_file_path(path))
-    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin or .csv)", path));
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(fmt::format("{}: cannot open", path));
-  std::stringstream b;
-  b << f.rdbuf();
-  const std::string data = b.str();
-  std::vector<float> xy;
-  if (is_raw(path)) {
-    if (data.size() % 8 != 0)
-      throw InputError(fmt::format("{}: {} bytes is not a whole number of 8-byte points", path, data.size()));
-    xy.resize(data.size() / 4);
-    std::memcpy(xy.data(), data.data(), data.size());
+    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin, .f64 or .csv)", path));
+  const std::string data = read_input_file(path, "point file");
+  std::vector<double> xy;
+  if (is_raw32(path) || is_raw64(path)) {
+    const std::size_t size = is_raw32(path) ? sizeof(float) : sizeof(double);
+    if (data.size() % (2 * size) != 0)
+      throw InputError(fmt::format("{}: {} bytes is not a whole number of {}-byte points", path, data.size(), 2 * size));
+    if (size == sizeof(double)) {
+      xy.resize(data.size() / size);
+      std::memcpy(xy.data(), data.data(), data.size());
+    } else {
+      std::vector<float> f(data.size() / size);
+      std::memcpy(f.data(), data.data(), data.size());
+      xy.assign(f.begin(), f.end());
+    }
   } else {
     std::size_t pos = 0;
     int line = 0;
@@ -69,7 +100,7 @@ std::vector<float> read_points(const std::string& path) {
       if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
       if (l.empty() || (line == 1 && l == "x,y")) continue;
       const std::size_t comma = l.find(',');
-      float x = 0, y = 0;
+      double x = 0, y = 0;
       const auto rx = std::from_chars(l.data(), l.data() + (comma == std::string_view::npos ? l.size() : comma), x);
       const auto ry = comma == std::string_view::npos ? std::from_chars_result{l.data(), std::errc::invalid_argument}
                                                       : std::from_chars(l.data() + comma + 1, l.data() + l.size(), y);
@@ -78,7 +109,7 @@ std::vector<float> read_points(const std::string& path) {
       xy.insert(xy.end(), {x, y});
     }
   }
-  for (float v : xy)
+  for (double v : xy)
     if (!std::isfinite(v)) throw InputError(fmt::format("{}: a coordinate is not a finite number", path));
   return xy;
 }

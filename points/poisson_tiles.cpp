@@ -12,6 +12,7 @@
 #include "base/parallel.hpp"
 #include "base/random.hpp"
 #include "points/tile_parts.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit::points {
 
@@ -45,7 +46,7 @@ std::uint32_t default_tile_points(PoissonTileMethod m) {
 void check_poisson_tile_params(const PoissonTileParams& asked) {
   PoissonTileParams p = asked;
   if (p.points == 0) p.points = default_tile_points(p.method);
-  if (p.colours < 1 || p.colours > 64) throw InputError(fmt::format("--colors must be 1..64, got {}", p.colours));
+  check_complete_set_colours(p.colours, "--colors");
   if (p.edge_colours < 1 || p.edge_colours > 16)
     throw InputError(fmt::format("--edge-colors must be 1..16, got {}", p.edge_colours));
   if (p.edge_colours > 1 && p.method != PoissonTileMethod::Corner)
@@ -54,6 +55,16 @@ void check_poisson_tile_params(const PoissonTileParams& asked) {
   if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
   if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));
   const double r = p.rho * max_poisson_radius(p.points) * (1 + kMargin);
+  // The sampler keeps a grid of cells 2r wide over each region (up to a whole tile) and, with
+  // Lloyd iterations, 10 x 10 samples per cell: bound both before anything is allocated.
+  const double cells = 1 / (4 * r * r), samples = p.lloyd > 0 ? 100 * cells : 0;
+  if (cells > double(1 << 24) || samples > double(1 << 26))
+    throw InputError(fmt::format(
+        "--rho {} with --points {}: the sampler would need {:.3g} grid cells{} per tile (at most 2^24 cells and 2^26 "
+        "Lloyd samples); use --rho {:.3g} or more{}",
+        p.rho, p.points, cells, p.lloyd > 0 ? fmt::format(" and {:.3g} Lloyd samples", samples) : "",
+        p.rho * std::sqrt(std::max(cells / double(1 << 24), samples / double(1 << 26))) * 1.001,
+        p.lloyd > 0 ? " (or --lloyd 0)" : ""));
   // Two corner regions and the 2r between edge regions must fit along an edge: 2c + 2r <= 1.
   if (2 * (1 + std::sqrt(2.0)) * r + 2 * r > 1)
     throw InputError(fmt::format("--points {} is too few for rho {}: corner regions would overlap (N >= {} needed)",

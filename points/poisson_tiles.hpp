@@ -89,7 +89,7 @@ std::uint64_t edged_tile_index(std::uint32_t nw, std::uint32_t ne, std::uint32_t
                                std::uint32_t n, std::uint32_t e, std::uint32_t s, std::uint32_t w, std::uint32_t ec);
 
 // Relative safety margin on the distance: the construction keeps points 2r (1 + kMargin) apart
-// so that float32 output (24-bit mantissa) of windows up to ~10^4 points across keeps 2r.
+// so that float32 point files (24-bit mantissa) of windows up to ~10^4 points across keep 2r.
 inline constexpr double kMargin = 1e-3;
 
 // N when none is asked for: 1024 for corner sets, 64 for the others. A corner set's C corner

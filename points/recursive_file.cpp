@@ -6,11 +6,11 @@
 //   end / fnv1a64 HEX
 #include <fmt/format.h>
 
-#include <fstream>
-#include <sstream>
+#include <limits>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/input.hpp"
 #include "points/recursive_tiles.hpp"
 #include "points/text_format.hpp"
 
@@ -49,13 +49,13 @@ RecursiveWangTiles recursive_tiles_from_text(const std::string& text, const std:
   text::LineReader in(text, source);
   if (in.expect("the header") != kMagic) in.fail(fmt::format("not a recursive tile-set file (expected '{}')", kMagic));
   RecursiveWangTiles t;
-  t.points = std::uint32_t(in.count(in.keyed("points")));
-  t.n = int(in.count(in.keyed("subdivision")));
+  t.points = std::uint32_t(in.count(in.keyed("points"), 65536));
+  t.n = int(in.count(in.keyed("subdivision"), 8));
   t.seed = in.count(in.keyed("seed"));
-  const std::uint64_t types = in.count(in.keyed("types"));
-  t.relax_iterations = int(in.count(in.keyed("relax_iterations")));
+  const std::uint64_t types = in.count(in.keyed("types"), 8);
+  t.relax_iterations = int(in.count(in.keyed("relax_iterations"), std::numeric_limits<int>::max()));
   t.relax_residual = in.number(in.keyed("relax_residual"));
-  if (t.points < 1 || t.points > 65536 || t.n < 2 || t.n > 8 || types != 8) in.fail("unsupported sizes");
+  if (t.points < 1 || t.n < 2 || types != 8) in.fail("unsupported sizes");
   const std::size_t sub = std::size_t(t.n) * std::size_t(t.n);
   t.wang.resize(types);
   t.base.resize(types);
@@ -82,7 +82,10 @@ RecursiveWangTiles recursive_tiles_from_text(const std::string& text, const std:
       if (!(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1)) in.fail("tile coordinates must lie in [0, 1)");
       t.base[type].push_back(p);
     }
-    for (auto r : counts(in, in.keyed("ranks"))) t.rank[type].push_back(std::uint32_t(r));
+    for (auto r : counts(in, in.keyed("ranks"))) {
+      if (r >= sub * t.points) in.fail("the ranks are not a permutation");
+      t.rank[type].push_back(std::uint32_t(r));
+    }
     if (t.rank[type].size() != sub * t.points) in.fail("wrong number of ranks");
     std::vector<char> seen(t.rank[type].size(), 0);
     for (auto r : t.rank[type]) {
@@ -102,11 +105,7 @@ void write_recursive_tiles(const std::string& path, const RecursiveWangTiles& t)
 }
 
 RecursiveWangTiles read_recursive_tiles(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(fmt::format("{}: cannot open", path));
-  std::stringstream b;
-  b << f.rdbuf();
-  return recursive_tiles_from_text(b.str(), path);
+  return recursive_tiles_from_text(read_input_file(path, "recursive tile-set file"), path);
 }
 
 }  // namespace tilekit::points

@@ -33,7 +33,7 @@ std::uint32_t RecursiveGenerator::base_type(std::int64_t tx, std::int64_t ty) co
 // The points born in `type`'s subdivision set (ranks N and above) whose rank is below the density
 // times the tile's area; sub-tiles where the density exceeds what this set gives are visited.
 void RecursiveGenerator::visit(std::uint32_t type, double x0, double y0, double size, int level, const Window& w,
-                               const DensityFunction& d, int max_levels, std::vector<float>& out) const {
+                               const DensityFunction& d, int max_levels, std::vector<double>& out) const {
   const double area = size * size;
   const std::uint32_t n = t_.points;
   const int k = t_.n;
@@ -51,13 +51,13 @@ void RecursiveGenerator::visit(std::uint32_t type, double x0, double y0, double 
       const double want = d(x, y) * area;
       deeper |= want >= capacity;
       if (rank[i] >= n && rank[i] < want && x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1)
-        out.insert(out.end(), {float(x), float(y)});
+        out.insert(out.end(), {x, y});
     }
     if (deeper && level + 1 < max_levels) visit(st, sx, sy, sub, level + 1, w, d, max_levels, out);
   }
 }
 
-std::vector<float> RecursiveGenerator::generate(const Window& w, const DensityFunction& d, double base_size,
+std::vector<double> RecursiveGenerator::generate(const Window& w, const DensityFunction& d, double base_size,
                                                 int max_levels, int threads) const {
   if (!(base_size > 0) || !std::isfinite(base_size)) throw InputError("--tile-size must be positive");
   if (max_levels < 0 || max_levels > 40) throw InputError("--levels must be 0..40");
@@ -65,7 +65,7 @@ std::vector<float> RecursiveGenerator::generate(const Window& w, const DensityFu
   const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / base_size)), ty1 = std::int64_t(std::floor(w.y1 / base_size));
   if (double(tx1 - tx0 + 1) * double(ty1 - ty0 + 1) > 1e9) throw InputError("the window covers over 10^9 base tiles");
   const std::int64_t rows = ty1 - ty0 + 1;
-  std::vector<std::vector<float>> parts(static_cast<std::size_t>(rows));
+  std::vector<std::vector<double>> parts(static_cast<std::size_t>(rows));
   const double area = base_size * base_size;
   parallel_for(rows, threads, [&](std::int64_t r) {
     auto& out = parts[std::size_t(r)];
@@ -77,12 +77,12 @@ std::vector<float> RecursiveGenerator::generate(const Window& w, const DensityFu
       for (std::uint32_t k = 0; k < pts.size(); ++k) {  // level 0: rank k below the density times the area
         const double x = x0 + pts[k].x * base_size, y = y0 + pts[k].y * base_size;
         if (k < d(x, y) * area && x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1)
-          out.insert(out.end(), {float(x), float(y)});
+          out.insert(out.end(), {x, y});
       }
       if (max_levels > 0) visit(type, x0, y0, base_size, 0, w, d, max_levels, out);
     }
   });
-  std::vector<float> all;
+  std::vector<double> all;
   for (const auto& p : parts) all.insert(all.end(), p.begin(), p.end());
   return all;
 }

@@ -79,8 +79,8 @@ class RecursiveGenerator {
   RecursiveGenerator(const RecursiveWangTiles& tiles, HashKind hash, std::uint64_t seed, std::int64_t period = 0);
 
   // Every point of the window for `density` (points per unit area), base tiles of side
-  // `base_size`, at most `max_levels` subdivisions below the base tiles. Interleaved float32.
-  std::vector<float> generate(const Window& w, const DensityFunction& density, double base_size, int max_levels = 20,
+  // `base_size`, at most `max_levels` subdivisions below the base tiles. Interleaved (x, y).
+  std::vector<double> generate(const Window& w, const DensityFunction& density, double base_size, int max_levels = 20,
                               int threads = 1) const;
 
   // The compact Wang tile type of base tile (tx, ty).
@@ -88,7 +88,7 @@ class RecursiveGenerator {
 
  private:
   void visit(std::uint32_t type, double x0, double y0, double size, int level, const Window& w,
-             const DensityFunction& d, int max_levels, std::vector<float>& out) const;
+             const DensityFunction& d, int max_levels, std::vector<double>& out) const;
 
   const RecursiveWangTiles& t_;
   ColourHash hash_;

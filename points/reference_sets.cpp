@@ -10,7 +10,7 @@
 
 namespace tilekit::points {
 
-std::vector<float> bridson_points(const Window& w, double d, std::uint64_t seed, bool torus, int candidates) {
+std::vector<double> bridson_points(const Window& w, double d, std::uint64_t seed, bool torus, int candidates) {
   if (!(d > 0)) throw InputError("Bridson sampling needs a positive minimum distance");
   const double cell = d / std::sqrt(2.0);  // at most one point per cell
   const int nx = int(std::ceil(w.width() / cell)), ny = int(std::ceil(w.height() / cell));
@@ -75,34 +75,34 @@ std::vector<float> bridson_points(const Window& w, double d, std::uint64_t seed,
       active.pop_back();
     }
   }
-  std::vector<float> out;
+  std::vector<double> out;
   out.reserve(2 * pts.size());
-  for (const Point2& p : pts) out.insert(out.end(), {float(p.x), float(p.y)});
+  for (const Point2& p : pts) out.insert(out.end(), {p.x, p.y});
   return out;
 }
 
-std::vector<float> white_noise_points(const Window& w, std::uint64_t count, std::uint64_t seed) {
+std::vector<double> white_noise_points(const Window& w, std::uint64_t count, std::uint64_t seed) {
   SplitMix64 rng(seed);
-  std::vector<float> out;
+  std::vector<double> out;
   out.reserve(2 * count);
   for (std::uint64_t i = 0; i < count; ++i)
-    out.insert(out.end(), {float(w.x0 + rng.uniform() * w.width()), float(w.y0 + rng.uniform() * w.height())});
+    out.insert(out.end(), {w.x0 + rng.uniform() * w.width(), w.y0 + rng.uniform() * w.height()});
   return out;
 }
 
-std::vector<float> grid_points(const Window& w, double density, bool jitter, std::uint64_t seed) {
+std::vector<double> grid_points(const Window& w, double density, bool jitter, std::uint64_t seed) {
   if (!(density > 0)) throw InputError(fmt::format("--density must be positive, got {}", density));
   const double a = 1 / std::sqrt(density);
   const long nx = long(std::ceil(w.width() / a - 1e-9)), ny = long(std::ceil(w.height() / a - 1e-9));
   if (double(nx) * double(ny) > 1e9) throw InputError("the grid would hold over 10^9 points");
   SplitMix64 rng(seed);
-  std::vector<float> out;
+  std::vector<double> out;
   out.reserve(std::size_t(2 * nx * ny));
   for (long j = 0; j < ny; ++j)
     for (long i = 0; i < nx; ++i) {
       const double u = jitter ? rng.uniform() : 0.5, v = jitter ? rng.uniform() : 0.5;
       const double x = w.x0 + (double(i) + u) * a, y = w.y0 + (double(j) + v) * a;
-      if (x < w.x1 && y < w.y1) out.insert(out.end(), {float(x), float(y)});
+      if (x < w.x1 && y < w.y1) out.insert(out.end(), {x, y});
     }
   return out;
 }

@@ -44,10 +44,11 @@ double LineReader::number(std::string_view s) {
   return v;
 }
 
-std::uint64_t LineReader::count(std::string_view s) {
+std::uint64_t LineReader::count(std::string_view s, std::uint64_t max) {
   std::uint64_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (r.ec != std::errc() || r.ptr != s.data() + s.size()) fail(fmt::format("'{}' is not a count", s.substr(0, 40)));
+  if (v > max) fail(fmt::format("{} is more than {}", v, max));
   return v;
 }
 

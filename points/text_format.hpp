@@ -19,7 +19,8 @@ class LineReader {
   // "key value" -> value, failing unless the next line starts with `key`.
   std::string_view keyed(const char* key);
   double number(std::string_view s);
-  std::uint64_t count(std::string_view s);
+  // A decimal count up to `max` (so that a narrower field never wraps a larger value around).
+  std::uint64_t count(std::string_view s, std::uint64_t max = UINT64_MAX);
   // Checks that the next line is "fnv1a64 HEX" of every byte before it.
   void checksum();
 

@@ -4,12 +4,13 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <limits>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/input.hpp"
+#include "base/parallel.hpp"
 #include "points/text_format.hpp"
 #include "results/results_db.hpp"
 
@@ -53,12 +54,13 @@ PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::strin
   if (version == 0) in.fail("point tile-set format version 0 does not exist");
   PoissonTileSet set;
   set.method = parse_poisson_tile_method(std::string(in.keyed("method")));
-  set.colours = std::uint32_t(in.count(in.keyed("colors")));
-  if (version >= 2) set.edge_colours = std::uint32_t(in.count(in.keyed("edge_colors")));
-  set.points = std::uint32_t(in.count(in.keyed("points")));
+  set.colours = std::uint32_t(in.count(in.keyed("colors"), std::numeric_limits<std::uint32_t>::max()));
+  if (version >= 2)
+    set.edge_colours = std::uint32_t(in.count(in.keyed("edge_colors"), std::numeric_limits<std::uint32_t>::max()));
+  set.points = std::uint32_t(in.count(in.keyed("points"), std::numeric_limits<std::uint32_t>::max()));
   set.rho = in.number(in.keyed("rho"));
   set.radius = in.number(in.keyed("radius"));
-  set.lloyd = int(in.count(in.keyed("lloyd")));
+  set.lloyd = int(in.count(in.keyed("lloyd"), std::numeric_limits<int>::max()));
   set.seed = in.count(in.keyed("seed"));
   const std::uint64_t tiles = in.count(in.keyed("tiles"));
   PoissonTileParams p;
@@ -90,6 +92,17 @@ PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::strin
   }
   if (in.expect("end") != "end") in.fail("expected 'end'");
   in.checksum();
+  // A checksum proves only that the file is as written: the radius and the distances it
+  // promises are checked as for a newly built set (the independent neighbour check).
+  const double radius = set.rho * max_poisson_radius(set.points);
+  if (!(std::abs(set.radius - radius) <= 1e-9 * radius))
+    throw InputError(fmt::format("{}: radius {} does not belong to rho {} with {} points (it is {})", source,
+                                 set.radius, set.rho, set.points, radius));
+  const TileSetCheck c = check_poisson_tiles(set, default_thread_count());
+  if (c.points_off_count || !(c.rho_within >= set.rho) || !(c.rho_across >= set.rho))
+    throw InputError(fmt::format(
+        "{}: the points do not keep rho {}: {:.4g} inside tiles, {:.4g} across tile borders ({} tiles without {} points)",
+        source, set.rho, c.rho_within, c.rho_across, c.points_off_count, set.points));
   return set;
 }
 
@@ -112,11 +125,7 @@ PoissonTileSet read_poisson_tiles(const std::string& path, const std::string& db
     if (!row) throw NotFound(fmt::format("{}: no tile set with id {}", db.path(), id));
     return poisson_tiles_from_text(row->text, fmt::format("{} tile set {}", db.path(), id));
   }
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(fmt::format("{}: cannot open", path));
-  std::stringstream b;
-  b << f.rdbuf();
-  return poisson_tiles_from_text(b.str(), path);
+  return poisson_tiles_from_text(read_input_file(path, "point tile-set file"), path);
 }
 
 std::string poisson_tiles_name(const PoissonTileSet& set) {

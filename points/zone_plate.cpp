@@ -25,7 +25,7 @@ double zone(double x, double y) {
 
 }  // namespace
 
-ZonePlate zone_plate(const std::vector<float>& xy, const Window& w, int res, double extent) {
+ZonePlate zone_plate(const std::vector<double>& xy, const Window& w, int res, double extent) {
   if (res < 8) throw InputError("the zone plate needs at least 8 x 8 pixels");
   std::vector<double> sum(std::size_t(res) * std::size_t(res), 0), weight(sum.size(), 0);
   const double px = extent / res;  // function units per pixel

@@ -18,6 +18,6 @@ struct ZonePlate {
   double rms_inner = 0, rms_outer = 0;
 };
 
-ZonePlate zone_plate(const std::vector<float>& xy, const Window& w, int resolution = 512, double extent = 48);
+ZonePlate zone_plate(const std::vector<double>& xy, const Window& w, int resolution = 512, double extent = 48);
 
 }  // namespace tilekit::points

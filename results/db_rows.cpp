@@ -65,12 +65,18 @@ SolutionRecord read_solution(const Statement& s, bool with_cells) {
   SolutionRecord r;
   r.id = s.int64(0);
   r.run_id = s.int64(1);
+  // Values a damaged or edited row may hold, checked before they size anything.
   const std::string kind = s.text(2);
+  const std::int64_t colours = s.int64(3), vertical = s.int64(4), rows = s.int64(5), cols = s.int64(6);
+  if ((kind != "wang" && kind != "corner" && kind != "window") || colours < 1 || colours > std::int64_t(kMaxWangColourProduct) ||
+      vertical < 0 || vertical > std::int64_t(kMaxWangColourProduct) || rows < 1 || rows > kMaxTilingSide || cols < 1 ||
+      cols > kMaxTilingSide || rows * cols > kMaxTilingCells)
+    throw InputError(fmt::format("solution {}: its kind, colours or size is out of range (damaged row)", r.id));
   r.tiling.kind = kind == "wang" ? TileKind::Wang : kind == "window" ? TileKind::Window : TileKind::Corner;
-  r.tiling.colours = std::uint32_t(s.int64(3));
-  r.tiling.vertical_colours = std::uint32_t(s.int64(4));
-  r.tiling.rows = int(s.int64(5));
-  r.tiling.cols = int(s.int64(6));
+  r.tiling.colours = std::uint32_t(colours);
+  r.tiling.vertical_colours = std::uint32_t(vertical);
+  r.tiling.rows = int(rows);
+  r.tiling.cols = int(cols);
   r.tiling.torus = s.int64(7) != 0;
   r.method = s.text(8);
   r.solution_hash = s.text(9);
@@ -92,7 +98,7 @@ SolutionRecord read_solution(const Statement& s, bool with_cells) {
 
 const char* const kSelectRun =
     "SELECT id, uid, command, params, status, solutions, orbits, nodes, seconds, threads, host, version, "
-    "started_at, COALESCE(finished_at, '') FROM runs";
+    "started_at, COALESCE(finished_at, ''), COALESCE(pid, 0), COALESCE(pid_start, 0) FROM runs";
 
 RunRecord read_run(const Statement& s) {
   RunRecord r;
@@ -110,6 +116,7 @@ RunRecord read_run(const Statement& s) {
   r.version = s.text(11);
   r.started_at = s.text(12);
   r.finished_at = s.text(13);
+  if (r.status == "running" && process_gone(r.host, s.int64(14), s.int64(15))) r.status = "killed";
   return r;
 }
 

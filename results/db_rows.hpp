@@ -23,7 +23,11 @@ extern const char* const kSelectSolutionNoCells;
 SolutionRecord read_solution(const sqlitedb::Statement& s, bool with_cells);
 
 extern const char* const kSelectRun;
+// A "running" row whose process is gone reads as "killed" (on the host that ran it).
 RunRecord read_run(const sqlitedb::Statement& s);
+// The process `pid` that started at `start` (clock ticks after boot) no longer runs on `host`,
+// which is this host (results_db.cpp).
+bool process_gone(const std::string& host, std::int64_t pid, std::int64_t start);
 extern const char* const kSelectTileset;
 TilesetRecord read_tileset(const sqlitedb::Statement& s);
 extern const char* const kSelectConversion;

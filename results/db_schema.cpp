@@ -1,5 +1,12 @@
 #include "results/db_schema.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "results/db_sqlite.hpp"
+
 namespace tilekit::dbschema {
 
 namespace {
@@ -117,10 +124,18 @@ CREATE INDEX solutions_by_canonical ON solutions(canonical_hash);
 CREATE INDEX solutions_by_run ON solutions(run_id);
 )SQL";
 
+// Version 2 -> 3: the process of a run (pid and its start time in clock ticks after boot, from
+// /proc/PID/stat), so that a run whose process died without closing its row (SIGKILL, a crash,
+// a node lost) is marked "killed" when the database is next opened on that host.
+constexpr std::string_view kSchemaV3 = R"SQL(
+ALTER TABLE runs ADD COLUMN pid INTEGER;
+ALTER TABLE runs ADD COLUMN pid_start INTEGER;
+)SQL";
+
 }  // namespace
 
 const std::vector<std::string_view>& migrations() {
-  static const std::vector<std::string_view> list = {kSchemaV1, kSchemaV2};
+  static const std::vector<std::string_view> list = {kSchemaV1, kSchemaV2, kSchemaV3};
   return list;
 }
 
@@ -128,6 +143,120 @@ const std::vector<std::string_view>& required_tables() {
   static const std::vector<std::string_view> list = {"tilekit_meta", "runs", "solutions", "tilesets",
                                                      "conversions"};
   return list;
+}
+
+namespace {
+
+using sqlitedb::Statement;
+
+struct Object {
+  std::string type, table, sql;  // sql: NULL for SQLite's automatic indices
+};
+// Every schema object but SQLite's statistics tables, by name.
+std::map<std::string, Object> objects(sqlite3* db) {
+  std::map<std::string, Object> out;
+  Statement s(db, "SELECT type, name, tbl_name, COALESCE(sql, '') FROM sqlite_master WHERE name NOT LIKE 'sqlite_stat%'");
+  while (s.step()) out[s.text(1)] = {s.text(0), s.text(2), s.text(3)};
+  return out;
+}
+
+struct Column {
+  std::string type, default_value;
+  bool not_null = false;
+  std::int64_t key = 0;
+  friend bool operator==(const Column&, const Column&) = default;
+};
+std::vector<std::pair<std::string, Column>> columns(sqlite3* db, const std::string& table) {
+  std::vector<std::pair<std::string, Column>> out;
+  Statement s(db, "SELECT name, type, \"notnull\", COALESCE(dflt_value, ''), pk FROM pragma_table_xinfo(?1)");
+  s.bind(1, table);
+  while (s.step()) out.push_back({s.text(0), {s.text(1), s.text(3), s.int64(2) != 0, s.int64(4)}});
+  return out;
+}
+
+// The reference: an in-memory database made by the first `version` migrations (milliseconds).
+struct Reference {
+  sqlite3* db = nullptr;
+  explicit Reference(std::int64_t version) {
+    if (sqlite3_open(":memory:", &db) != SQLITE_OK) throw std::runtime_error("cannot open an in-memory database");
+    for (std::int64_t v = 0; v < version; ++v) sqlitedb::exec(db, std::string(migrations()[std::size_t(v)]).c_str());
+  }
+  ~Reference() { sqlite3_close(db); }
+};
+
+std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+std::string table_difference(sqlite3* db, sqlite3* ref, const std::string& table) {
+  const auto have = columns(db, table), want = columns(ref, table);
+  for (const auto& [name, col] : want) {
+    auto it = std::find_if(have.begin(), have.end(), [&](const auto& c) { return c.first == name; });
+    if (it == have.end()) return fmt::format("table {} has no column {}", quoted(table), quoted(name));
+    if (!(it->second == col))
+      return fmt::format("column {} of table {} is declared differently ({}{}{}; Tilekit's: {}{}{})", quoted(name),
+                         quoted(table), it->second.type, it->second.not_null ? " NOT NULL" : "",
+                         it->second.default_value.empty() ? "" : " DEFAULT " + it->second.default_value, col.type,
+                         col.not_null ? " NOT NULL" : "", col.default_value.empty() ? "" : " DEFAULT " + col.default_value);
+  }
+  for (const auto& [name, col] : have)
+    if (std::none_of(want.begin(), want.end(), [&](const auto& c) { return c.first == name; }))
+      return fmt::format("table {} has a column {} that Tilekit does not make", quoted(table), quoted(name));
+  if (std::equal(have.begin(), have.end(), want.begin(), want.end())) return {};
+  return fmt::format("the columns of table {} are in another order", quoted(table));
+}
+
+}  // namespace
+
+std::string schema_difference(sqlite3* db, std::int64_t version) {
+  const Reference ref(version);
+  const auto have = objects(db), want = objects(ref.db);
+  // What the file has of its own first: triggers and views are the dangerous part.
+  for (const char* type : {"trigger", "view", "table", "index"})
+    for (const auto& [name, o] : have)
+      if (o.type == type && !want.count(name))
+        return o.type == "trigger" ? fmt::format("it has a trigger {} of its own (on {})", quoted(name), quoted(o.table))
+               : o.type == "view"  ? fmt::format("it has a view {} of its own", quoted(name))
+               : o.type == "table" ? fmt::format("it has a table {} that Tilekit does not make", quoted(name))
+                                   : fmt::format("it has an index {} on {} that Tilekit does not make", quoted(name),
+                                                 quoted(o.table));
+  for (const auto& [name, o] : want) {
+    auto it = have.find(name);
+    if (it == have.end()) return fmt::format("{} {} is missing", o.type, quoted(name));
+    if (it->second.type != o.type || it->second.table != o.table)
+      return fmt::format("{} is a {} on {}, not a {} on {}", quoted(name), it->second.type, quoted(it->second.table),
+                         o.type, quoted(o.table));
+    if (it->second.sql == o.sql) continue;
+    if (o.type == "table") {
+      std::string d = table_difference(db, ref.db, name);
+      return d.empty() ? fmt::format("table {} has other constraints than Tilekit's", quoted(name)) : d;
+    }
+    return fmt::format("{} {} is defined differently", o.type, quoted(name));
+  }
+  return {};
+}
+
+std::string type_difference(sqlite3* db, std::int64_t version) {
+  const Reference ref(version);
+  for (std::string_view t : required_tables()) {
+    const std::string table(t);
+    // One scan per table: the first row with a value whose type does not fit, and which column.
+    std::string cases;
+    for (const auto& [name, col] : columns(ref.db, table)) {
+      std::string allowed = col.type == "INTEGER" ? "'integer'" : col.type == "REAL" ? "'real', 'integer'" : "'text'";
+      if (!col.not_null && col.key == 0) allowed += ", 'null'";
+      cases += fmt::format(" WHEN typeof(\"{0}\") NOT IN ({1}) THEN '{0}'", name, allowed);
+    }
+    Statement s(db, fmt::format("SELECT rowid, bad FROM (SELECT rowid, CASE{} END AS bad FROM \"{}\") "
+                                "WHERE bad IS NOT NULL LIMIT 1",
+                                cases, table));
+    if (s.step()) {
+      Statement v(db, fmt::format("SELECT typeof(\"{}\") FROM \"{}\" WHERE rowid = ?1", s.text(1), table));
+      v.bind(1, s.int64(0));
+      const std::string type = v.step() ? v.text(0) : "?";
+      return fmt::format("{} row {}: column {} holds {} (a value of the wrong type)", table, s.int64(0),
+                         quoted(s.text(1)), type == "null" ? "NULL" : type);
+    }
+  }
+  return {};
 }
 
 }  // namespace tilekit::dbschema

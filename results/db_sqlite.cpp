@@ -23,7 +23,11 @@ void fail(sqlite3* db, int rc, std::string_view what) {
     throw InputError(msg + " (the database or its directory cannot be written; nothing was changed)");
   if (primary == SQLITE_FULL) throw InputError(msg + " (the disk is full; the transaction was rolled back)");
   if (primary == SQLITE_IOERR) throw InputError(msg + " (an I/O error; the transaction was rolled back)");
-  throw std::runtime_error(msg);
+  // Misuse of the API or SQLite's own failures are bugs; anything else the file made happen (a
+  // constraint its rows break, a value too big) is exit 2 like the rest, and every write runs in
+  // a transaction, so nothing of it was kept.
+  if (primary == SQLITE_MISUSE || primary == SQLITE_INTERNAL || primary == SQLITE_NOMEM) throw std::runtime_error(msg);
+  throw InputError(msg + " (nothing of this write was kept)");
 }
 
 void exec(sqlite3* db, const char* sql) {

@@ -11,7 +11,8 @@
 
 namespace tilekit::sqlitedb {
 
-// Throws InputError for SQLITE_CORRUPT / SQLITE_NOTADB, std::runtime_error otherwise.
+// Throws InputError (exit 2) for what the file or its surroundings caused (corrupt, busy, read-only,
+// full, a constraint), std::runtime_error for misuse, SQLite's internal errors and out of memory.
 [[noreturn]] void fail(sqlite3* db, int rc, std::string_view what);
 
 void exec(sqlite3* db, const char* sql);

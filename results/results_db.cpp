@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "results/db_rows.hpp"
@@ -127,16 +128,17 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
       throw not_ours(path, fmt::format("written by a newer Tilekit (schema version {}; this build knows up to {})",
                                        version, ResultsDb::kSchemaVersion));
     if (version < 1) throw not_ours(path, "marked as Tilekit's but without a schema version (damaged)");
-    if (version == ResultsDb::kSchemaVersion)
-      for (std::string_view t : dbschema::required_tables())
-        if (std::find(names.begin(), names.end(), t) == names.end())
-          throw not_ours(path, fmt::format("table '{}' is missing (damaged)", t));
+    // The schema must be exactly the one this build makes: a dropped or renamed column would
+    // fail a query half-way, a trigger could refuse or rewrite any write.
+    if (std::string diff = dbschema::schema_difference(db, version); !diff.empty())
+      throw not_ours(path, fmt::format("its schema differs from Tilekit's: {}", diff));
     if (opt.integrity_check) {
       Statement check(db, "PRAGMA integrity_check(5)");
       std::vector<std::string> problems;
       while (check.step())
         if (check.text(0) != "ok") problems.push_back(check.text(0));
       if (!problems.empty()) throw not_ours(path, fmt::format("corrupt (integrity_check: {})", problems.front()));
+      if (std::string bad = dbschema::type_difference(db, version); !bad.empty()) throw not_ours(path, "damaged: " + bad);
     }
     return version == ResultsDb::kSchemaVersion ? FileState::Current : FileState::Older;
   } catch (const NotOurs&) {
@@ -149,6 +151,21 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
     side.refused = true;
     throw not_ours(path, fmt::format("unreadable ({})", e.what()));
   }
+}
+
+// Field 22 of /proc/PID/stat: the process's start time in clock ticks after boot (0 when the
+// process does not exist). With the pid it names one process, whatever reuses the pid later.
+std::int64_t process_start(long pid) {
+  std::ifstream in(fmt::format("/proc/{}/stat", pid));
+  std::string stat;
+  if (!std::getline(in, stat)) return 0;
+  const auto close = stat.rfind(')');  // the command name may hold spaces and parentheses
+  if (close == std::string::npos) return 0;
+  std::istringstream rest(stat.substr(close + 1));
+  std::string field;
+  for (int i = 3; i <= 22 && rest >> field; ++i)
+    if (i == 22) return std::strtoll(field.c_str(), nullptr, 10);
+  return 0;
 }
 
 std::string host_name() {
@@ -208,6 +225,7 @@ ResultsDb::ResultsDb(const std::string& path, const DbOpenOptions& opt) : path_(
       throw NotFound(fmt::format("{}: no results database there", path));
     open_connection(false, opt.busy_timeout_ms);
     migrate();
+    mark_killed_runs();
     if (opt.read_only) {
       sqlite3_close(db_);
       db_ = nullptr;
@@ -234,10 +252,15 @@ void ResultsDb::open_connection(bool read_only, int busy_timeout_ms) {
   read_only_ = read_only;
   sqlite3_busy_timeout(db_, busy_timeout_ms);
   sqlite3_extended_result_codes(db_, 1);
-  if (read_only && sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) != SQLITE_OK &&
-      (sqlite3_extended_errcode(db_) & 0xff) == SQLITE_CANTOPEN) {
-    // A WAL database on read-only media (or in a read-only directory) cannot get its -shm file.
-    // Then no process can be writing to it either, so reading it as immutable is exact.
+  const auto probe_fails = [&] {
+    if (sqlite3_exec(db_, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr) == SQLITE_OK) return false;
+    const int code = sqlite3_extended_errcode(db_) & 0xff;
+    return code == SQLITE_CANTOPEN || code == SQLITE_READONLY;
+  };
+  if (read_only && probe_fails()) {
+    // A WAL database on read-only media (or in a read-only directory) cannot get its -shm file
+    // (SQLite says it cannot open it, or that it cannot write it). Then no process can be
+    // writing to it either, so reading it as immutable is exact.
     sqlite3_close(db_);
     db_ = nullptr;
     if (sqlite3_open_v2(immutable_uri(path_).c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) !=
@@ -255,6 +278,25 @@ void ResultsDb::open_connection(bool read_only, int busy_timeout_ms) {
     sqlitedb::exec(db_, "PRAGMA synchronous = NORMAL");
   }
   sqlitedb::exec(db_, "PRAGMA foreign_keys = ON");
+}
+
+bool dbrows::process_gone(const std::string& host, std::int64_t pid, std::int64_t start) {
+  return pid > 0 && host == host_name() && process_start(long(pid)) != start;
+}
+
+void ResultsDb::mark_killed_runs() {
+  // Runs of this host still "running" whose process is gone (or is another process now).
+  std::vector<std::int64_t> dead;
+  {
+    Statement s(db_, "SELECT id, host, pid, pid_start FROM runs WHERE status = 'running' AND pid IS NOT NULL");
+    while (s.step())
+      if (dbrows::process_gone(s.text(1), s.int64(2), s.int64(3))) dead.push_back(s.int64(0));
+  }
+  if (dead.empty()) return;
+  Transaction tx(db_);
+  Statement mark(db_, "UPDATE runs SET status = 'killed' WHERE id = ?1 AND status = 'running'");
+  for (std::int64_t id : dead) mark.bind(1, id).run();
+  tx.commit();
 }
 
 void ResultsDb::migrate() {
@@ -287,8 +329,8 @@ std::string ResultsDb::default_path() {
 std::int64_t ResultsDb::begin_run(const RunRecord& run) {
   Statement s(db_,
               "INSERT INTO runs(uid, command, params, status, solutions, orbits, nodes, seconds, threads, host, "
-              "version, started_at, finished_at) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
-              "COALESCE(NULLIF(?12, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')), NULLIF(?13, ''))");
+              "version, started_at, finished_at, pid, pid_start) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, "
+              "COALESCE(NULLIF(?12, ''), strftime('%Y-%m-%dT%H:%M:%fZ', 'now')), NULLIF(?13, ''), ?14, ?15)");
   s.bind(1, run.uid.empty() ? make_run_uid(run) : run.uid)
       .bind(2, run.command)
       .bind(3, run.params.is_null() ? std::string("{}") : run.params.dump())
@@ -301,7 +343,9 @@ std::int64_t ResultsDb::begin_run(const RunRecord& run) {
       .bind(10, run.host.empty() ? host_name() : run.host)
       .bind(11, run.version.empty() ? version_line() : run.version)
       .bind(12, run.started_at)
-      .bind(13, run.finished_at);
+      .bind(13, run.finished_at)
+      .bind(14, std::int64_t(getpid()))
+      .bind(15, process_start(long(getpid())));
   s.run();
   return sqlite3_last_insert_rowid(db_);
 }
@@ -317,6 +361,12 @@ void ResultsDb::finish_run(const RunRecord& run) {
   s.bind(5, std::int64_t(run.nodes)).bind(6, run.seconds).bind(7, std::int64_t(run.threads)).bind(8, run.finished_at);
   s.run();
   if (sqlite3_changes(db_) == 0) throw NotFound(fmt::format("{}: no run with id {}", path_, run.id));
+}
+
+bool ResultsDb::forget_run(std::int64_t id) {
+  Statement s(db_, "DELETE FROM runs WHERE id = ?1 AND NOT EXISTS (SELECT 1 FROM solutions WHERE run_id = ?1)");
+  s.bind(1, id).run();
+  return sqlite3_changes(db_) > 0;
 }
 
 bool ResultsDb::add_solution(const SolutionRecord& s) { return add_solutions({s}) == 1; }

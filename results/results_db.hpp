@@ -31,7 +31,9 @@ struct RunRecord {
   std::int64_t id = 0;
   std::string command;       // e.g. "pack", "aperiodic verify"
   nlohmann::json params;     // the command's parameters
-  std::string status;        // "running", "complete", "incomplete", "interrupted", "failed"
+  // "running", "complete", "incomplete", "interrupted", "failed"; "killed": its process ended
+  // without closing the row (seen on a later open on the same host)
+  std::string status;
   std::uint64_t solutions = 0, nodes = 0;
   std::optional<std::uint64_t> orbits;
   double seconds = 0;
@@ -105,7 +107,7 @@ struct DbOpenOptions {
 
 class ResultsDb {
  public:
-  static constexpr int kSchemaVersion = 2;
+  static constexpr int kSchemaVersion = 3;
   static constexpr std::int32_t kApplicationId = 0x544B4954;  // "TKIT" (PRAGMA application_id)
 
   // Opens or creates (create=true) a Tilekit database and migrates it to the current schema.
@@ -123,6 +125,9 @@ class ResultsDb {
 
   std::int64_t begin_run(const RunRecord& run);  // returns the run id
   void finish_run(const RunRecord& run);         // updates status, counts, timings by run.id
+  // Removes the row of a run that stored nothing (a command refused after begin_run): true when
+  // it was removed, false when solutions refer to it.
+  bool forget_run(std::int64_t id);
   // Returns false if an identical solution (same solution_hash) is already stored.
   bool add_solution(const SolutionRecord& s);
   // Many at once in one transaction; returns how many were new.
@@ -182,6 +187,7 @@ class ResultsDb {
 
  private:
   void open_connection(bool read_only, int busy_timeout_ms);
+  void mark_killed_runs();
   std::size_t insert_solutions(const std::vector<SolutionRecord>& batch);  // inside a transaction
   void migrate();
   std::string path_;

@@ -6,13 +6,14 @@
 # build-fuzz/crashes/NAME/; turn it into a regression test). Usage:
 #   scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
 #   FUZZ_RUNS=1000000 scripts/fuzz.sh 0   each harness for exactly that many executions (SECONDS 0:
-#                                         no time bound), the issue-15 figure in docs/TESTING.md
+#                                         no time bound), the 10^6-execution figures in docs/TESTING.md
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-10}
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(tile_set tiling checkpoint db_export group_spec portfolio_stats probability_map flags)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(tile_set tiling checkpoint db_export group_spec portfolio_stats probability_map flags
+  results_db texture_input point_tiles specs decide_checkpoint)
 "$root/scripts/setup.sh"
 [ -x "$root/build/tilekit" ] || "$root/scripts/build.sh"
 fz=$root/build-fuzz
@@ -75,6 +76,48 @@ make_seeds() {
     { printf '\001'; cat "$c"; } >"$c.whole" && seed checkpoint "$c.whole"
     { printf '\000'; tail -n +3 "$c"; } >"$c.body" && seed checkpoint "$c.body"
   done
+  # results database edit programs (fuzz_results_db.cpp reads bytes as choices)
+  for p in '' '\000\000\000' '\004\001\007' '\007\001\003\001\002' '\005\002\001' '\010\001\001\002\003\004\005\006'; do
+    i=$((${i:-0} + 1))
+    printf "$p" >"$s/edits-$i" && seed results_db "$s/edits-$i"
+  done
+  # texture inputs: a PNG, image headers that claim 23000 x 23000 pixels, an atlas manifest of a
+  # two-colour atlas with 16-pixel tiles, and the tiles.json beside its tiles
+  "$tk" texture tiles --exemplar brick --colors 2 --tile-px 16 --search 0 \
+    --quiet --out "$s/ttiles" >/dev/null
+  "$tk" texture atlas "$s/ttiles" --out "$s/atlas/atlas.png" --no-db --quiet >/dev/null
+  { printf '\000'; cat "$s/ttiles/tile-0000.png"; } >"$s/img.png" && seed texture_input "$s/img.png"
+  python3 - "$s" <<'PY'
+import struct, sys, zlib
+def chunk(t, d): return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 23000, 23000, 8, 2, 0, 0, 0)) + \
+      chunk(b"IDAT", zlib.compress(b"\0" * 64)) + chunk(b"IEND", b"")
+open(sys.argv[1] + "/bomb.png", "wb").write(b"\0" + png)
+open(sys.argv[1] + "/bomb.ppm", "wb").write(b"\0P6\n23000 23000\n255\n" + b"\0" * 64)
+PY
+  seed texture_input "$s/bomb.png" && seed texture_input "$s/bomb.ppm"
+  { printf '\001'; cat "$s/atlas/atlas.json"; } >"$s/atlas.seed" && seed texture_input "$s/atlas.seed"
+  { printf '\002'; cat "$s/ttiles/tiles.json"; } >"$s/tiles.seed" && seed texture_input "$s/tiles.seed"
+  # point tile files, whole (byte 0: 0 .ptiles, 1 .rtiles) and without their checksum line (2, 3)
+  "$tk" points tiles --colors 1 --points 8 --rho 0.5 --no-db --quiet --out "$s/t.ptiles" >/dev/null
+  "$tk" points recursive --points 8 --no-db --quiet --out "$s/t.rtiles" >/dev/null
+  { printf '\000'; cat "$s/t.ptiles"; } >"$s/p0" && seed point_tiles "$s/p0"
+  { printf '\001'; cat "$s/t.rtiles"; } >"$s/p1" && seed point_tiles "$s/p1"
+  { printf '\002'; head -n -1 "$s/t.ptiles"; } >"$s/p2" && seed point_tiles "$s/p2"
+  { printf '\003'; head -n -1 "$s/t.rtiles"; } >"$s/p3" && seed point_tiles "$s/p3"
+  # the small languages: density expressions, objects, windows, lifts, method and hash names
+  i=0
+  for v in '\000500 * x' '\0001000 * (exp(-20 * ((x-0.5)^2 + (y-0.5)^2)) + 0.05)' '\000clamp(sin(pi*x), 0, r)' \
+    '\001tree:1,rock:3' '\0020,0,100,100' '\002-1.5e3,2,4e-1,1e2' '\0034' '\003m=4,base=b.json' '\004dual' '\005perm'; do
+    printf "$v" >"$s/spec-$i" && seed specs "$s/spec-$i"
+    i=$((i + 1))
+  done
+  # verify checkpoints of kari-14 (undecided at k = 2): whole (odd byte 0) and body (even)
+  "$tk" aperiodic verify kari-14 --route transducer --max-k 2 --checkpoint "$s/d.ckpt" --quiet >/dev/null 2>&1 || true
+  if [ -f "$s/d.ckpt" ]; then
+    { printf '\001'; cat "$s/d.ckpt"; } >"$s/d.whole" && seed decide_checkpoint "$s/d.whole"
+    { printf '\000'; tail -n +3 "$s/d.ckpt"; } >"$s/d.body" && seed decide_checkpoint "$s/d.body"
+  fi
 }
 make_seeds
 

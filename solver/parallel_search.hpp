@@ -170,10 +170,27 @@ class ParallelSearch {
   // ---- count / all / first-in-order: subproblems ----
   void run_subproblems(ParallelOutcome& out) {
     std::uint64_t split_nodes = 0;
-    subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes);
+    // Only a signal stops the split (at most kMaxSplitSubproblems, a fraction of a second): a time
+    // limit is looked at once it is done, so that even slices shorter than the split checkpoint
+    // the run and the next slice gets past it.
+    subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes, [this] {
+      if (cfg_.run.catch_signals && SignalCatcher::caught()) {
+        signal_ = SignalCatcher::caught();
+        stop_.request(StopReason::Signal);
+      }
+      return stop_.requested();
+    });
+    if (stop_.requested()) {  // stopped while splitting: no subproblem list, nothing to checkpoint
+      const StopReason why = stop_.reason();
+      out.interrupted = why == StopReason::Signal;
+      out.timed_out = why == StopReason::TimeLimit;
+      out.counts.nodes = split_nodes;
+      return;
+    }
     std::uint64_t hash = hash_subproblems(subs_);
     out.subproblems = subs_.size();
     finished_.assign(subs_.size(), false);
+    finished_each_.assign(subs_.size(), SearchCounters{});
     std::vector<Job> jobs;
     if (const SearchState* r = cfg_.resume) {
       if (r->subproblem_count != subs_.size() || r->subproblem_hash != hash)
@@ -186,6 +203,8 @@ class ParallelSearch {
       }
       finished_ = r->finished;
       finished_counts_ = r->finished_counts;
+      for (std::uint64_t i = 0, k = 0; i < finished_.size(); ++i)
+        if (finished_[i]) finished_each_[i] = r->finished_each[k++];
       for (const InFlightSubproblem& f : r->in_flight) jobs.push_back({f.index, f.path, f.counted});
     }
     for (std::uint64_t i = 0; i < subs_.size(); ++i) {
@@ -254,6 +273,7 @@ class ParallelSearch {
       assert(!finished_[job.index] && "a subproblem is finished once");
       finished_[job.index] = true;
       finished_counts_ += c;
+      finished_each_[job.index] = c;
       std::lock_guard sl(slot.mu);
       slot.active = false;
       slot.live_nodes.store(0);
@@ -348,11 +368,7 @@ class ParallelSearch {
         monitor_cv_.wait_for(lock, std::chrono::milliseconds(20), [&] { return done.load(); });
         if (done) break;
       }
-      if (cfg_.run.catch_signals && SignalCatcher::caught()) {
-        signal_ = SignalCatcher::caught();
-        stop_.request(StopReason::Signal);
-      }
-      if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
+      poll_stop();
       auto now = std::chrono::steady_clock::now();
       if (cfg_.save && cfg_.run.checkpoint_every > 0 && !stop_.requested() &&
           std::chrono::duration<double>(now - last_ckpt).count() >= cfg_.run.checkpoint_every) {
@@ -362,6 +378,16 @@ class ParallelSearch {
       if (cfg_.run.progress) report(progress);
     }
     if (cfg_.run.progress) report(progress);
+  }
+
+  // Signals and the time limit: requests the stop, and says whether one is requested.
+  bool poll_stop() {
+    if (cfg_.run.catch_signals && SignalCatcher::caught()) {
+      signal_ = SignalCatcher::caught();
+      stop_.request(StopReason::Signal);
+    }
+    if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
+    return stop_.requested();
   }
 
   void report(ProgressReporter& p) {
@@ -417,6 +443,8 @@ class ParallelSearch {
       st.subproblem_hash = subs_.empty() ? 0 : hash_subproblems(subs_);
       st.finished = finished_;
       st.finished_counts = finished_counts_;
+      for (std::size_t i = 0; i < finished_.size(); ++i)
+        if (finished_[i]) st.finished_each.push_back(finished_each_[i]);
       for (auto& s : slots_) {
         std::lock_guard sl(s->mu);
         if (s->active) st.in_flight.push_back(s->snap);
@@ -459,6 +487,7 @@ class ParallelSearch {
   std::size_t next_job_ = 0;
   std::vector<bool> finished_;
   SearchCounters finished_counts_;
+  std::vector<SearchCounters> finished_each_;  // per subproblem, what it counted once finished
   std::uint64_t split_nodes_ = 0, shard_total_ = 0;
   std::vector<std::unique_ptr<Slot>> slots_;
 

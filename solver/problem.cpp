@@ -12,9 +12,7 @@
 namespace tilekit {
 
 TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours) {
-  if (colours < 1 || colours > std::int64_t(kMaxPackingColours))
-    throw InputError(fmt::format("--colors must be between 1 and {} for a packing of the complete set, got {}",
-                                 kMaxPackingColours, colours));
+  check_complete_set_colours(colours);
   TilingProblem p;
   const auto c = std::uint32_t(colours);
   p.set = kind == TileKind::Wang ? complete_wang_set(c, c) : complete_corner_set(c);

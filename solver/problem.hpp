@@ -24,14 +24,8 @@ struct TilingProblem {
   bool packing = false;  // true: every tile of the set exactly once (needs rows*cols == set.size())
 };
 
-// The largest C for packings of the complete set: C^4 = 16.8 M tiles on a 4096 x 4096 torus
-// (the largest atlas, atlas/lookup.hpp). Beyond it building the set alone took minutes and
-// gigabytes before a search that could never end; a construction of that size is also the
-// largest atlas a GPU takes.
-inline constexpr std::uint32_t kMaxPackingColours = 64;
-
 // The default packing problem: the complete Wang or corner set over C colours on the C^2 x C^2
-// torus. InputError for C outside 1..kMaxPackingColours.
+// torus. InputError for C outside 1..kMaxCompleteSetColours (tilesets/tile_set.hpp).
 TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours);
 
 // A de Bruijn torus: every K x L window over C symbols once on the R x S torus

@@ -28,10 +28,29 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
     throw InputError(fmt::format("the finished bitmap has {} entries for {} subproblems", st.finished.size(),
                                  st.subproblem_count));
   check_counters(st.finished_counts, "the finished subproblems' total");
-  bool any_finished = false;
-  for (bool f : st.finished) any_finished = any_finished || f;
-  if (!any_finished && st.finished_counts != SearchCounters{})
-    throw InputError("it counts solutions or nodes for finished subproblems but none is finished");
+  std::uint64_t finished = 0;
+  for (std::uint64_t i = 0; i < st.subproblem_count; ++i) {
+    if (!st.finished[i]) continue;
+    ++finished;
+    if (subproblems > 0 && shard_count > 0 && i % std::uint64_t(shard_count) != std::uint64_t(shard_index))
+      throw InputError(fmt::format("finished subproblem {} is not in shard {}/{}", i, shard_index, shard_count));
+  }
+  if (st.finished_each.size() != finished)
+    throw InputError(fmt::format("it holds the counts of {} finished subproblems but {} are marked finished",
+                                 st.finished_each.size(), finished));
+  SearchCounters sum;
+  for (const SearchCounters& c : st.finished_each) {
+    check_counters(c, "a finished subproblem");
+    // Sums beyond 2^64 would wrap around to a total that matches anything.
+    if (__builtin_add_overflow(sum.solutions, c.solutions, &sum.solutions) ||
+        __builtin_add_overflow(sum.orbits, c.orbits, &sum.orbits) ||
+        __builtin_add_overflow(sum.nodes, c.nodes, &sum.nodes))
+      throw InputError("the finished subproblems' counts overflow 64 bits");
+  }
+  if (sum != st.finished_counts)
+    throw InputError(fmt::format("the finished subproblems count {} solutions and {} nodes, but their total says {} "
+                                 "and {}",
+                                 sum.solutions, sum.nodes, st.finished_counts.solutions, st.finished_counts.nodes));
   std::unordered_set<std::uint64_t> seen;
   for (const InFlightSubproblem& f : st.in_flight) {
     if (f.index >= st.subproblem_count)

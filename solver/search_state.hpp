@@ -45,6 +45,10 @@ struct SearchState {
   std::uint64_t subproblem_hash = 0;   // hash of every subproblem prefix
   std::vector<bool> finished;          // per subproblem
   SearchCounters finished_counts;      // sum over finished subproblems
+  // What each finished subproblem counted, in index order (one entry per set bit of
+  // `finished`): the sum must equal finished_counts, so a state whose finished marks and
+  // counts disagree (a subproblem counted but unmarked, to be counted again) is refused.
+  std::vector<SearchCounters> finished_each;
   std::vector<InFlightSubproblem> in_flight;
   std::uint64_t restarts = 0;       // first mode with restarts: restarts done so far
   std::uint64_t restart_nodes = 0;  // nodes spent in those restarts
@@ -57,16 +61,20 @@ struct SearchState {
 // of at least one node each would take years; a larger count would only make the Luby
 // schedule overflow.
 inline constexpr std::uint64_t kMaxSubproblems = std::uint64_t(1) << 24;
+// The most subproblems a search splits into by itself (64 per shard up to 1024 shards): the
+// split replays every prefix, and beyond this it took longer than whole searches (a corner
+// C=3 count split for --shard 77/100000 ran past the count itself).
+inline constexpr std::size_t kMaxSplitSubproblems = std::size_t(1) << 16;
 inline constexpr std::size_t kMaxDecisionPath = std::size_t(1) << 24;
 inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 
 // Structural validation of a state read from a checkpoint, as data: the finished bitmap has
 // one bit per subproblem; every in-flight subproblem is in range, unfinished and listed once;
-// counters are consistent (orbits <= solutions; nothing counted for finished subproblems when
-// none finished); restarts and seconds bounded. (Restart nodes without a finished restart are
+// counters are consistent (orbits <= solutions; one count per finished subproblem, summing to
+// the finished total); restarts and seconds bounded. (Restart nodes without a finished restart are
 // normal: a checkpoint resumes at the lowest dive cut short, whose nodes are already counted.)
 // With `subproblems` > 0 it also checks the state against the search resuming it (its
-// subproblem count, and that every in-flight subproblem belongs to shard I of N). A
+// subproblem count, and that every finished and in-flight subproblem belongs to shard I of N). A
 // checksum only proves the file is as written; this proves it can be resumed to the
 // uninterrupted result. Throws InputError naming the first problem found.
 void check_search_state(const SearchState& state, std::uint64_t subproblems = 0, int shard_index = 0,

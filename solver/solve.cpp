@@ -181,7 +181,12 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   const std::uint64_t auto_base = pl.domain ? kRestartPerSite * std::uint64_t(pl.domain->num_sites) + kRestartFloor
                                             : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.restart_base = o.restart_base ? o.restart_base : auto_base;
-  pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count));
+  // About 64 subproblems per shard, at most kMaxSplitSubproblems: a split into more would take
+  // longer (and gigabytes more) than many whole searches, while shards beyond it simply get
+  // fewer subproblems each (or none: an empty shard counts 0).
+  pl.subproblems = o.subproblems ? o.subproblems
+                                 : std::min<std::size_t>(kMaxSplitSubproblems,
+                                                         std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count)));
   return pl;
 }
 

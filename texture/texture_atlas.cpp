@@ -3,12 +3,13 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/json_input.hpp"
+#include "tilesets/tile_grid.hpp"
+#include "tilesets/tile_set.hpp"
 #include "texture/mipmap.hpp"
 
 namespace tilekit {
@@ -59,10 +60,13 @@ std::string atlas_stem(const std::string& path) {
 AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source) {
   const std::string stem = atlas_stem(png);
   AtlasFiles f;
+  // All files or none: each is staged (written beside its target) and renamed into place only
+  // when every one is complete, the manifest last, so an old atlas stays whole until then.
+  AtomicFileSet files;
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < a.levels.size(); ++k) {
     const std::string file = k == 0 ? stem + ".png" : fmt::format("{}.mip{}.png", stem, k);
-    write_png(file, a.levels[k]);
+    files.stage(file, encode_png(a.levels[k]));
     f.levels.push_back(file);
     levels.push_back(
         {{"file", fs::path(file).filename().string()}, {"width", a.levels[k].width}, {"height", a.levels[k].height}});
@@ -79,60 +83,85 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
   f.manifest = stem + ".json";
   f.header = stem + ".h";
   f.glsl = stem + ".glsl";
-  write_file_atomic(f.header, lookup_c_header(a.lookup));
-  write_file_atomic(f.glsl, glsl_source);
-  write_file_atomic(f.manifest, j.dump(1) + "\n");  // last: its presence means the atlas is complete
+  files.stage(f.header, lookup_c_header(a.lookup));
+  files.stage(f.glsl, glsl_source);
+  files.stage(f.manifest, j.dump(1) + "\n");  // last: its presence means the atlas is complete
+  files.commit();
   return f;
 }
 
 TextureAtlas read_texture_atlas(const std::string& path) {
   const std::string stem = atlas_stem(path), manifest = stem + ".json";
-  std::ifstream in(manifest);
-  if (!in)
+  std::error_code ec;
+  if (!fs::exists(manifest, ec))
     throw InputError(fmt::format(
         "{}: no atlas manifest (write the atlas with `tilekit texture atlas DIR --out {}.png`)", manifest, stem));
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text.str());
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", manifest, e.what()));
+  const nlohmann::json doc = read_json_file(manifest, "atlas manifest");
+  const JsonIn j(doc, manifest);
+  // The lookup is a tiling file (tilesets/tile_grid.hpp, checked there) that must be a packing
+  // of the complete set (lookup_from_packing runs the independent validator).
+  const JsonIn l = j.at("lookup");
+  const Tiling t = tiling_from_json(l);
+  check_complete_set_colours(t.colours, "the lookup's colors");
+  if (auto kind = j.find("kind"); kind && kind->string() != kind_name(t.kind))
+    throw kind->error(fmt::format("\"{}\", but the lookup is a {} packing", kind->string(), kind_name(t.kind)));
+  TextureAtlas a;
+  a.lookup = lookup_from_packing(t, l.string_or("source", "file"), l.string_or("how", manifest),
+                                 l.boolean_or("closed_form", false));
+  // Level 0 is cols * tile_px x rows * tile_px pixels, at most kMaxImagePixels: checked in 64 bits.
+  const JsonIn px = j.at("tile_px");
+  const std::int64_t tile_px = px.integer(1, kMaxImagePixels);
+  if (tile_px * tile_px * a.lookup.rows * a.lookup.cols > kMaxImagePixels)
+    throw px.error(fmt::format("{}-pixel tiles make a {}x{} atlas of more than {} pixels", tile_px, a.lookup.rows,
+                               a.lookup.cols, kMaxImagePixels));
+  a.tile_px = int(tile_px);
+  a.tiles_dir = j.string_or("tiles_dir", "");
+  const fs::path dir = fs::path(manifest).parent_path();
+  const JsonIn levels = j.at("levels");
+  const std::size_t n = levels.array(1, 64);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::string file = (dir / levels[k].at("file").string(4096)).string();
+    const std::int64_t want_w = a.levels.empty() ? a.lookup.cols * tile_px : std::max(1, a.levels.back().width / 2);
+    const std::int64_t want_h = a.levels.empty() ? a.lookup.rows * tile_px : std::max(1, a.levels.back().height / 2);
+    Image img = read_image(file);
+    if (img.width != want_w || img.height != want_h)
+      throw InputError(fmt::format("{}: {}x{} pixels, but level {} of this atlas is {}x{}", file, img.width,
+                                   img.height, a.levels.size(), want_w, want_h));
+    a.levels.push_back(std::move(img));
   }
-  try {
-    const nlohmann::json& l = j.at("lookup");
-    Tiling t(l.at("kind").get<std::string>() == "wang" ? TileKind::Wang : TileKind::Corner,
-             l.at("colors").get<std::uint32_t>(), l.at("rows").get<int>(), l.at("cols").get<int>(), true);
-    std::size_t i = 0;
-    for (const auto& row : l.at("cells"))
-      for (const auto& cell : row) {
-        if (i >= t.cells.size()) throw InputError(fmt::format("{}: more cells than rows x cols", manifest));
-        t.cells[i++] = cell.get<TileIndex>();
-      }
-    if (i != t.cells.size()) throw InputError(fmt::format("{}: fewer cells than rows x cols", manifest));
-    TextureAtlas a;
-    a.lookup =
-        lookup_from_packing(t, l.value("source", "file"), l.value("how", manifest), l.value("closed_form", false));
-    a.tile_px = j.at("tile_px").get<int>();
-    a.tiles_dir = j.value("tiles_dir", "");
-    const fs::path dir = fs::path(manifest).parent_path();
-    for (const auto& level : j.at("levels")) {
-      const std::string file = (dir / level.at("file").get<std::string>()).string();
-      Image img = read_image(file);
-      const int w = img.width, h = img.height;
-      const int want_w = a.levels.empty() ? a.lookup.cols * a.tile_px : std::max(1, a.levels.back().width / 2);
-      const int want_h = a.levels.empty() ? a.lookup.rows * a.tile_px : std::max(1, a.levels.back().height / 2);
-      if (w != want_w || h != want_h)
-        throw InputError(fmt::format("{}: {}x{} pixels, but level {} of this atlas is {}x{}", file, w, h,
-                                     a.levels.size(), want_w, want_h));
-      a.levels.push_back(std::move(img));
-    }
-    if (a.levels.empty() || a.levels.back().width != 1 || a.levels.back().height != 1)
-      throw InputError(fmt::format("{}: the mip chain does not reach 1x1", manifest));
-    return a;
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not an atlas manifest ({})", manifest, e.what()));
+  if (a.levels.back().width != 1 || a.levels.back().height != 1)
+    throw InputError(fmt::format("{}: the mip chain does not reach 1x1", manifest));
+  return a;
+}
+
+TileSetManifest read_tile_set_manifest(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "tiles.json").string();
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw InputError(fmt::format("{}: no tiles.json (make the tiles with `tilekit texture tiles`)", path));
+  const nlohmann::json doc = read_json_file(path, "texture tile-set manifest");
+  const JsonIn j(doc, path);
+  TileSetManifest m;
+  const JsonIn kind = j.at("kind");
+  const std::string k = kind.string(16);
+  if (k != "corner" && k != "wang") throw kind.error("expected \"corner\" or \"wang\"");
+  m.kind = k == "wang" ? TileKind::Wang : TileKind::Corner;
+  m.colours = std::uint32_t(j.at("colors").integer(1, kMaxCompleteSetColours));
+  // The synthesis methods make one kind each (texture/tile_synthesis.hpp): a manifest whose kind
+  // and method disagree was edited, and its tiles would be laid out by the wrong packing.
+  if (auto method = j.find("method")) {
+    const std::string name = method->string(64);
+    if ((name == "ng-corner" && m.kind != TileKind::Corner) || (name == "cohen-wang" && m.kind != TileKind::Wang))
+      throw method->error(fmt::format("\"{}\" makes {} tiles, but kind is \"{}\"", name,
+                                      name == "ng-corner" ? "corner" : "wang", k));
   }
+  if (auto tiles = j.find("tiles")) {
+    const std::uint64_t want = std::uint64_t(m.colours) * m.colours * m.colours * m.colours;
+    if (tiles->unsigned_integer() != want)
+      throw tiles->error(fmt::format("{} tiles, but the complete {} set over {} colours has {}",
+                                     tiles->unsigned_integer(), k, m.colours, want));
+  }
+  return m;
 }
 
 }  // namespace tilekit

@@ -38,6 +38,15 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
 // cells are not a packing (checked by the independent validator).
 TextureAtlas read_texture_atlas(const std::string& png_or_manifest);
 
+// What `texture atlas` needs from the tiles.json that `texture tiles` writes beside the tile
+// images: the kind (checked against the synthesis method) and the colours (1..64, checked
+// against the tile count). InputError (exit 2) naming the file and the JSON path otherwise.
+struct TileSetManifest {
+  TileKind kind = TileKind::Corner;
+  std::uint32_t colours = 0;
+};
+TileSetManifest read_tile_set_manifest(const std::string& dir);
+
 // The stem shared by an atlas's files: "dir/atlas" for "dir/atlas.png" or "dir/atlas.json".
 std::string atlas_stem(const std::string& path);
 

@@ -31,6 +31,11 @@ void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
   if (o.colours < 1 || o.colours > 16) throw InputError(fmt::format("--colors must be 1..16, got {}", o.colours));
   if (o.search < 0 || o.rounds < 0 || o.centre_candidates < 1 || o.centre_cuts < 1)
     throw InputError("--search and the centre candidates must not be negative");
+  // Each round holds the candidates of one sample at once; beyond 2^16 a search costs hours per
+  // round and the memory grows with it, while the exemplars have at most a few million positions.
+  if (o.search > kMaxSynthesisSearch)
+    throw InputError(fmt::format("--search {} is more than the {} candidates a round may try", o.search,
+                                 kMaxSynthesisSearch));
   const int need = o.tile_px + 16;  // a centre patch of n pixels, with room to choose where
   if (e.width() < need || e.height() < need)
     throw InputError(

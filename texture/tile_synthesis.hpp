@@ -29,7 +29,7 @@ struct SynthesisOptions {
   int threads = 1;
   // Candidate exemplar positions tried per corner/edge sample and round of the search; 0 keeps
   // the first random draw (no search: the "plain minimum-error cut" baseline).
-  int search = 96;
+  int search = 96;  // at most kMaxSynthesisSearch
   int rounds = 3;
   int centre_candidates = 32;  // centre patches scored per tile on the band where the cut runs
   int centre_cuts = 2;         // of those, the best this many get the full graph cut
@@ -58,6 +58,8 @@ struct TileGeometry {
   int extent = 0;  // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
   explicit TileGeometry(int tile_px);
 };
+
+inline constexpr int kMaxSynthesisSearch = 1 << 16;
 
 struct TextureTileSet {
   TileKind kind = TileKind::Corner;

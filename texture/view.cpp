@@ -19,8 +19,8 @@ std::pair<std::int32_t, std::uint32_t> fixed(double v) {
 }  // namespace
 
 ViewRows view_rows(const View& v, int tile_px) {
-  if (v.width < 1 || v.height < 1 || v.width > 8192 || v.height > 8192)
-    throw InputError(fmt::format("--size {}x{}: width and height must be 1..8192", v.width, v.height));
+  if (v.width < 1 || v.height < 1 || v.width > kMaxViewSide || v.height > kMaxViewSide)
+    throw InputError(fmt::format("--size {}x{}: width and height must be 1..{}", v.width, v.height, kMaxViewSide));
   if (!std::isfinite(v.scale) || v.scale <= 0)
     throw InputError(fmt::format("--scale must be positive, got {}", v.scale));
   if (!std::isfinite(v.tilt) || v.tilt < 0 || v.tilt > 100)

@@ -16,6 +16,7 @@ namespace tilekit {
 
 inline constexpr int kFracBits = 16;  // fixed-point bits of a tile
 inline constexpr std::uint32_t kFracOne = 1u << kFracBits;
+inline constexpr int kMaxViewSide = 8192;  // pixels per side of a rendered window
 
 struct View {
   int width = 512, height = 512;
@@ -39,7 +40,7 @@ struct ViewRows {
   float dudy_step = 0;
 };
 
-// InputError for a view the fixed point cannot hold (size outside 1..8192, a step of 2 tiles or
+// InputError for a view the fixed point cannot hold (size outside 1..kMaxViewSide, a step of 2 tiles or
 // more per pixel, coordinates beyond +-2^30 tiles, non-finite or negative scale or tilt).
 ViewRows view_rows(const View& v, int tile_px);
 

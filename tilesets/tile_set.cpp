@@ -25,6 +25,12 @@ void check_colour_count(std::int64_t c, const char* what) {
   if (c < 1 || c > 255) throw InputError(fmt::format("{} must be between 1 and 255, got {}", what, c));
 }
 
+void check_complete_set_colours(std::int64_t c, const char* what) {
+  if (c < 1 || c > std::int64_t(kMaxCompleteSetColours))
+    throw InputError(fmt::format("{} must be between 1 and {} for a packing or atlas of the complete set, got {}", what,
+                                 kMaxCompleteSetColours, c));
+}
+
 TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string source, std::uint32_t ch,
                       std::uint32_t cv) {
   TileSet s;

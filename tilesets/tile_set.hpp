@@ -95,4 +95,13 @@ TileSet corner_to_wang(const TileSet& corner);
 // Checks 1 <= C <= 255 for the built-in families; throws InputError naming the parameter.
 void check_colour_count(std::int64_t c, const char* what = "colours");
 
+// The largest C whose complete set is packed (`pack`) or laid out as an atlas (`atlas lookup`,
+// `texture atlas`): C^4 = 16.8 M tiles on a 4096 x 4096 torus, 64 MB of cells and as much again
+// of positions; with tiles of at least 4 pixels a 16384-pixel texture, the largest most GPUs
+// take. Beyond it building the set alone took minutes and gigabytes (larger C ended in
+// std::bad_alloc) before a search that could never end.
+inline constexpr std::uint32_t kMaxCompleteSetColours = 64;
+// Checks 1 <= C <= kMaxCompleteSetColours; throws InputError naming `what` ("--colors").
+void check_complete_set_colours(std::int64_t c, const char* what = "--colors");
+
 }  // namespace tilekit

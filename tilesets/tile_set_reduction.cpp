@@ -12,7 +12,7 @@ namespace tilekit {
 namespace {
 
 void check_range(std::int64_t c, std::int64_t k) {
-  if (c < 1 || c > 255) throw InputError(fmt::format("colours must be between 1 and 255, got {}", c));
+  check_colour_count(c);
   if (k < 0 || 2 * k > c)
     throw InputError(fmt::format("k disjoint colour pairs need 0 <= k <= C/2, got k={} for C={}", k, c));
 }

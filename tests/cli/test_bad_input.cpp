@@ -113,9 +113,9 @@ TEST(BadInput, OutOfRangeNumbersAndWrongTypesNameTheJsonPath) {
 
 TEST(BadInput, AtlasLookupWithExtremeColoursIsRefusedNotBadAlloc) {
   expect_refused(run_cli("atlas lookup --kind wang --colors 255"),
-                 "--colors must be between 1 and 64 for an atlas, got 255");
+                 "--colors must be between 1 and 64 for a packing or atlas of the complete set, got 255");
   expect_refused(run_cli("atlas lookup --kind corner --colors 4294967295"),
-                 "--colors must be between 1 and 64 for an atlas, got 4294967295");
+                 "--colors must be between 1 and 64 for a packing or atlas of the complete set, got 4294967295");
 }
 
 TEST(BadInput, RefusedMergeLeavesNoNewDatabase) {
@@ -181,7 +181,12 @@ TEST(BadInput, CheckpointListingAnInFlightSubproblemTwiceIsRefused) {
   ASSERT_EQ(run_cli(run).code, 0);
   SearchState st = read_checkpoint(d / "ck");  // the final checkpoint: everything finished
   ASSERT_GT(st.subproblem_count, 3u);
-  st.finished[3] = false;
+  st.finished[3] = false;  // with its counts, so that only the in-flight list is wrong
+  const SearchCounters c3 = st.finished_each[3];
+  st.finished_each.erase(st.finished_each.begin() + 3);
+  st.finished_counts.solutions -= c3.solutions;
+  st.finished_counts.orbits -= c3.orbits;
+  st.finished_counts.nodes -= c3.nodes;
   st.in_flight = {{3, {}, {}}, {3, {}, {}}};
   write_checkpoint(d / "ck", st);  // a valid checksum over an impossible state
   expect_refused(run_cli(run + " --resume " + d / "ck"),
@@ -282,7 +287,7 @@ TEST(BadInput, FileMessagesNameTheLine) {
   expect_refused(
       run_cli("tileset show " + d / "dup.json"),
       d / "dup.json" + ": tiles[1]: duplicate tile: repeats the tile of " + d / "dup.json" + ": tiles[0] (0 1 1 0)");
-  write_text(d / "ck", "TILEKIT-CHECKPOINT 1\nbytes 99999999999999999999999 fnv1a64 0000000000000000\n{}");
+  write_text(d / "ck", "TILEKIT-CHECKPOINT 3\nbytes 99999999999999999999999 fnv1a64 0000000000000000\n{}");
   expect_refused(run_cli("pack --kind wang --colors 2 --mode count --resume " + d / "ck" + " --db " + d / "db.sqlite"),
                  "checkpoint " + d / "ck" + ": corrupt header");
 }

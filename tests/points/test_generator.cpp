@@ -29,7 +29,7 @@ const PoissonTileSet& tiles() {
 }
 
 // Smallest distance between two of the points, by a sweep over x (independent of PointGrid).
-double sweep_min_distance(const std::vector<float>& xy) {
+double sweep_min_distance(const std::vector<double>& xy) {
   std::vector<std::pair<double, double>> p;
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) p.emplace_back(xy[i], xy[i + 1]);
   std::sort(p.begin(), p.end());
@@ -40,7 +40,7 @@ double sweep_min_distance(const std::vector<float>& xy) {
   return best;
 }
 
-std::set<std::pair<float, float>> as_set(const std::vector<float>& xy) {
+std::set<std::pair<float, float>> as_set(const std::vector<double>& xy) {
   std::set<std::pair<float, float>> s;
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) s.emplace(xy[i], xy[i + 1]);
   return s;
@@ -72,8 +72,8 @@ TEST(PoissonTileGenerator, OverlappingWindowsAgreeOnTheirOverlap) {
   const PoissonTileGenerator gen(tiles(), HashKind::LongPeriod, 3);
   const double density = 400;
   const Window a{-1.3, 2.05, 2.2, 4.4}, b{0.7, 3.1, 3.9, 6.0}, both{0.7, 3.1, 2.2, 4.4};
-  const auto in_overlap = [&](const std::vector<float>& xy) {
-    std::vector<float> out;
+  const auto in_overlap = [&](const std::vector<double>& xy) {
+    std::vector<double> out;
     for (std::size_t i = 0; i < xy.size(); i += 2)
       if (xy[i] >= both.x0 && xy[i] < both.x1 && xy[i + 1] >= both.y0 && xy[i + 1] < both.y1)
         out.insert(out.end(), {xy[i], xy[i + 1]});
@@ -104,7 +104,7 @@ TEST(PoissonTileGenerator, PeriodicTilingRepeatsWithItsPeriod) {
   const PoissonTileGenerator gen(tiles(), HashKind::LongPeriod, 4, 5);
   const auto a = gen.generate({0, 0, 5, 5}, 32.0), b = gen.generate({5, 10, 10, 15}, 32.0);
   ASSERT_EQ(a.size(), b.size());
-  std::vector<float> shifted;
+  std::vector<double> shifted;
   for (std::size_t i = 0; i < b.size(); i += 2) shifted.insert(shifted.end(), {b[i] - 5, b[i + 1] - 10});
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], shifted[i], 1e-5);
 }

@@ -29,7 +29,7 @@ const RecursiveWangTiles& rtiles() {
   return t;
 }
 
-std::set<std::pair<float, float>> as_set(const std::vector<float>& xy) {
+std::set<std::pair<float, float>> as_set(const std::vector<double>& xy) {
   std::set<std::pair<float, float>> s;
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) s.emplace(xy[i], xy[i + 1]);
   return s;

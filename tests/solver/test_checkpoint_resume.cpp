@@ -25,6 +25,7 @@ SearchState sample_state() {
   s.subproblem_hash = 0xdeadbeef12345678ull;
   s.finished = {true, false, true, true, false, false, false, false, false, true};
   s.finished_counts = {12, 3, 456};
+  s.finished_each = {{3, 1, 100}, {3, 1, 100}, {3, 1, 100}, {3, 0, 156}};
   s.in_flight.push_back({4, {{0, 1}, {5, 7}, {6, 2}}, {1, 0, 17}});
   s.restarts = 9;
   s.restart_nodes = 99;
@@ -59,6 +60,7 @@ TEST(CheckpointFile, RoundTripsEveryField) {
   EXPECT_EQ(t.subproblem_hash, s.subproblem_hash);
   EXPECT_EQ(t.finished, s.finished);
   EXPECT_EQ(t.finished_counts, s.finished_counts);
+  EXPECT_EQ(t.finished_each, s.finished_each);
   ASSERT_EQ(t.in_flight.size(), 1u);
   EXPECT_EQ(t.in_flight[0].path, s.in_flight[0].path);
   EXPECT_EQ(t.in_flight[0].counted, s.in_flight[0].counted);
@@ -76,8 +78,8 @@ TEST(CheckpointFile, CorruptTruncatedForeignAndFutureFilesAreInputErrors) {
   EXPECT_NE(expect_input_error([&] { decode_checkpoint("hello world\n", "f"); }).find("not a Tilekit checkpoint"),
             std::string::npos);
   std::string future = good;
-  future.replace(future.find(" 2\n"), 3, " 3\n");  // this build writes version 2
-  EXPECT_NE(expect_input_error([&] { decode_checkpoint(future, "f"); }).find("version 3"), std::string::npos);
+  future.replace(future.find(" 3\n"), 3, " 4\n");  // this build writes version 3
+  EXPECT_NE(expect_input_error([&] { decode_checkpoint(future, "f"); }).find("version 4"), std::string::npos);
   EXPECT_EQ(expect_input_error([&] { read_checkpoint("/nonexistent/ckpt"); }), "/nonexistent/ckpt: no such checkpoint");
 }
 

@@ -23,6 +23,7 @@ SearchState good_state() {
   st.subproblem_count = 8;
   st.finished = {true, true, false, false, false, false, false, false};
   st.finished_counts = {96, 3, 1000};
+  st.finished_each = {{90, 2, 600}, {6, 1, 400}};
   st.in_flight = {{2, {{0, 1}, {3, 2}}, {16, 1, 40}}, {5, {{0, 4}}, {0, 0, 7}}};
   return st;
 }
@@ -68,7 +69,11 @@ TEST(SearchStateCheck, CountersMustBeConsistent) {
   EXPECT_EQ(problem_of(st), "the finished subproblems' total counts 97 orbits but only 96 solutions");
   st = good_state();
   st.finished.assign(8, false);
-  EXPECT_EQ(problem_of(st), "it counts solutions or nodes for finished subproblems but none is finished");
+  EXPECT_EQ(problem_of(st), "it holds the counts of 2 finished subproblems but 0 are marked finished");
+  st = good_state();
+  st.finished_each[1].nodes = 401;
+  EXPECT_EQ(problem_of(st),
+            "the finished subproblems count 96 solutions and 1001 nodes, but their total says 96 and 1000");
   st = good_state();
   st.in_flight[0].counted.orbits = 17;
   EXPECT_EQ(problem_of(st), "in-flight subproblem 2 counts 17 orbits but only 16 solutions");
@@ -91,8 +96,14 @@ TEST(SearchStateCheck, RestartsAreBounded) {
 
 TEST(SearchStateCheck, AgainstTheResumingSearchCountAndShardMustMatch) {
   EXPECT_EQ(problem_of(good_state(), 9), "it has 8 subproblems but this search has 9 (different problem or options)");
-  EXPECT_EQ(problem_of(good_state(), 8, 0, 2), "in-flight subproblem 5 is not in shard 0/2");
+  EXPECT_EQ(problem_of(good_state(), 8, 0, 2), "finished subproblem 1 is not in shard 0/2");
   SearchState st = good_state();
+  st.finished[1] = false;
+  st.finished_each = {{96, 3, 1000}};
+  EXPECT_EQ(problem_of(st, 8, 0, 2), "in-flight subproblem 5 is not in shard 0/2");
+  st.finished[0] = false;
+  st.finished_each.clear();
+  st.finished_counts = {};
   st.in_flight = {{4, {}, {}}, {7, {}, {}}};  // both in shard 1/3
   EXPECT_EQ(problem_of(st, 8, 1, 3), "");
   st.in_flight[1].index = 5;
@@ -112,6 +123,7 @@ TEST(SearchStateCheck, TheEngineRefusesABadStateGivenInMemory) {
   ASSERT_GT(saved.subproblem_count, 1u);
   saved.finished[0] = false;
   saved.finished_counts = {};
+  saved.finished_each.clear();
   saved.finished.assign(saved.finished.size(), false);
   saved.in_flight = {{0, {}, {}}, {0, {}, {}}};
   o.save_checkpoint = nullptr;

@@ -1,0 +1,36 @@
+#pragma once
+// The two resources every long command budgets: memory and time.
+//
+// Memory: commands estimate what a request needs before they start (points of a window, pixels
+// of an image, states of a search) and refuse what cannot fit with exit 2 and a message naming
+// the limit and how to raise it, instead of running for seconds and ending in std::bad_alloc
+// or the kernel's OOM killer. The limit is TILEKIT_MEMORY (bytes, or with a K, M, G or T
+// suffix) when set, else half of the memory this process can have: the machine's physical
+// memory, or the cgroup's memory.max (a Slurm job, a container) when that is lower.
+//
+// Time: a time limit of 0 means none, and so does a limit beyond kMaxTimeLimitSeconds (about
+// 31 years): a deadline that far ahead would overflow the clock's 64-bit nanoseconds and
+// fall in the past.
+#include <chrono>
+#include <cstdint>
+#include <string_view>
+
+namespace tilekit {
+
+std::uint64_t memory_limit();
+
+// Throws InputError "WHAT needs about X GiB of memory, more than the limit of Y GiB (half of
+// this machine's memory; set TILEKIT_MEMORY=... to raise it)" when `bytes` exceeds it.
+void require_memory(double bytes, std::string_view what);
+
+inline constexpr double kMaxTimeLimitSeconds = 1e9;
+
+// now + seconds on the steady clock, or time_point::max() for no limit (0 or beyond the bound).
+inline std::chrono::steady_clock::time_point deadline_after(double seconds,
+                                                            std::chrono::steady_clock::time_point from =
+                                                                std::chrono::steady_clock::now()) {
+  if (!(seconds > 0) || seconds > kMaxTimeLimitSeconds) return std::chrono::steady_clock::time_point::max();
+  return from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace tilekit
