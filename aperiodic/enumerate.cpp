@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -77,9 +78,11 @@ std::string decide_lead(const TileSet& set, int max_k, std::string* label) {
                                  : fmt::format("unknown at k={} ({})", r.k, r.stopped_by);
 }
 
-std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o) {
+// Stops between steps when `stop` asks (the batch is then dropped and redone on resume).
+std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const std::function<bool()>& stop) {
   std::vector<Child> out;
   for (const std::string& step : steps_of(set.kind())) {
+    if (stop()) return out;
     std::optional<StepResult> r = apply_step(set, step);
     if (!r) continue;
     Child c{step, r->label, r->argument, std::nullopt, {}};
@@ -307,7 +310,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     last_checkpoint = Clock::now();
   };
   ProgressReporter progress("enumerate", 0, o.progress);
-  std::size_t best_corner = 0;
+  std::size_t best_corner = 0, batches_here = 0;
   for (;;) {
     std::vector<const EnumNode*> queue = pending();
     if (queue.empty()) {
@@ -319,7 +322,9 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       r.signal = SignalCatcher::caught();
       break;
     }
-    if (o.time_limit > 0 && elapsed() >= o.time_limit) {
+    // Each run finishes one batch at least, so that a short limit still makes progress.
+    const bool may_time_out = o.time_limit > 0 && batches_here > 0;
+    if (may_time_out && elapsed() >= o.time_limit) {
       r.timed_out = true;
       break;
     }
@@ -329,8 +334,23 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     std::vector<const TileSet*> batch_sets;
     for (const EnumNode& n : batch) batch_sets.push_back(&set_of(n));
     std::vector<std::vector<Child>> children(batch.size());
-    parallel_for(std::int64_t(batch.size()), threads,
-                 [&](std::int64_t i) { children[std::size_t(i)] = expand(*batch_sets[std::size_t(i)], o); });
+    // A signal or the time limit in the middle of a batch drops the batch: the state stays that of
+    // the last batch boundary, which the checkpoint below records.
+    StopToken stop;
+    auto stopping = [&] {
+      if (o.catch_signals && SignalCatcher::caught()) stop.request(StopReason::Signal);
+      if (may_time_out && elapsed() >= o.time_limit) stop.request(StopReason::TimeLimit);
+      return stop.requested();
+    };
+    parallel_for(
+        std::int64_t(batch.size()), threads,
+        [&](std::int64_t i) { children[std::size_t(i)] = expand(*batch_sets[std::size_t(i)], o, stopping); }, &stop);
+    if (stop.requested()) {
+      r.interrupted = stop.reason() == StopReason::Signal;
+      r.signal = r.interrupted ? SignalCatcher::caught() : 0;
+      r.timed_out = stop.reason() == StopReason::TimeLimit;
+      break;
+    }
     // Merge in batch order, steps in order: the same state whatever the threads did.
     for (std::size_t i = 0; i < batch.size(); ++i) {
       EnumNode& parent = r.nodes.at(batch[i].hash);
@@ -376,6 +396,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       }
     }
     ++r.batches;
+    ++batches_here;
     progress.update(double(r.expanded), double(r.expanded + queue.size() - take),
                     fmt::format("{} sets, {} edges, smallest sound corner set {}", r.nodes.size(), r.edges.size(),
                                 best_corner == 0 ? std::string("-") : std::to_string(best_corner)));

@@ -29,6 +29,7 @@ double cpu_seconds() {
 struct EnumerateArgs {
   EnumerateOptions o;
   std::string shard = "0/1";
+  std::int64_t max_tiles = 60, batch = 8;  // checked here: CLI11 would wrap a negative size_t
   bool quiet = false;
   int verify_period = 6;
 };
@@ -58,6 +59,10 @@ nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g)
 }
 
 void run_enumerate(const Context& ctx, EnumerateArgs& a) {
+  if (a.max_tiles < 1) throw InputError(fmt::format("--max-tiles must be >= 1, got {}", a.max_tiles));
+  if (a.batch < 1 || a.batch > 1000000) throw InputError(fmt::format("--batch must be between 1 and 1000000, got {}", a.batch));
+  a.o.max_tiles = std::size_t(a.max_tiles);
+  a.o.batch = std::size_t(a.batch);
   const ShardSpec sh = parse_shard(a.shard);
   a.o.shard = sh.index;
   a.o.shards = sh.count;
@@ -207,8 +212,8 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
                   "A published set to start from (repeatable; default: all of " +
                       fmt::format("{}", fmt::join(published_enumeration_sources(), ", ")) + ")");
   cmd->add_option("--max-depth", args->o.max_depth, "Longest chain expanded, in steps (default 3)");
-  cmd->add_option("--max-tiles", args->o.max_tiles, "Sets with more tiles are counted, not kept (default 60)");
-  cmd->add_option("--batch", args->o.batch, "Sets expanded per batch (default 8; part of the run's identity)");
+  cmd->add_option("--max-tiles", args->max_tiles, "Sets with more tiles are counted, not kept (default 60)");
+  cmd->add_option("--batch", args->batch, "Sets expanded per batch (default 8; part of the run's identity)");
   cmd->add_option("--threads", args->o.threads, "Threads (default: all; results never depend on it)")
       ->check(CLI::Range(1, kMaxThreads));
   cmd->add_option("--shard", args->shard, "I/N: continue only from the first steps whose hash is I mod N");

@@ -24,6 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct SubmitOptions {
+  std::string command = "pack";
   std::string kind, method, mode = "all", run_dir, tilekit, job_name, sbatch = "sbatch";
   int colors = 0;
   std::string seed;
@@ -52,12 +53,23 @@ std::optional<nlohmann::json> read_json(const fs::path& p) {
 
 ClusterPlan make_plan(SubmitOptions& o) {
   ClusterPlan p = o.plan;
-  if (o.kind != "wang" && o.kind != "corner") throw InputError("--kind must be wang or corner");
-  if (o.colors < 1) throw InputError("--colors must be at least 1");
-  p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
-  if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
-  p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
-  if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
+  if (o.command == "enumerate") {
+    // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
+    // with --pack-arg.
+    if (!o.kind.empty() || o.colors != 0 || !o.method.empty() || !o.seed.empty())
+      throw InputError("--command enumerate takes no --kind, --colors, --method or --seed (use --pack-arg)");
+    p.command = {"aperiodic", "enumerate"};
+    p.pack_args.clear();
+  } else if (o.command == "pack") {
+    if (o.kind != "wang" && o.kind != "corner") throw InputError("--kind must be wang or corner");
+    if (o.colors < 1) throw InputError("--colors must be at least 1");
+    p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
+    if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
+    p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
+    if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
+  } else {
+    throw InputError(fmt::format("--command must be pack or enumerate, got '{}'", o.command));
+  }
   for (const auto& a : o.pack_extra) {
     for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
                             "--portfolio-stats"})
@@ -65,11 +77,12 @@ ClusterPlan make_plan(SubmitOptions& o) {
         throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);
   }
-  if (o.run_dir.empty()) o.run_dir = fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
+  if (o.run_dir.empty())
+    o.run_dir = o.command == "enumerate" ? "tilekit-run-enumerate" : fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
   p.run_dir = fs::absolute(o.run_dir).lexically_normal().string();
   if (p.run_dir.size() > 1 && p.run_dir.back() == '/') p.run_dir.pop_back();
   p.tilekit = o.tilekit.empty() ? fs::canonical("/proc/self/exe").string() : fs::absolute(o.tilekit).string();
-  p.job_name = o.job_name.empty() ? fmt::format("tk-{}{}", o.kind, o.colors) : o.job_name;
+  p.job_name = !o.job_name.empty() ? o.job_name : o.command == "enumerate" ? "tk-enumerate" : fmt::format("tk-{}{}", o.kind, o.colors);
   p.merge_time = o.merge_time.empty() ? p.time : o.merge_time;
   p.signal_seconds = o.signal_seconds > 0 ? o.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
   check_plan(p);
@@ -78,7 +91,8 @@ ClusterPlan make_plan(SubmitOptions& o) {
 
 nlohmann::json run_record(const ClusterPlan& p) {
   return {{"format", "tilekit-cluster-run"}, {"version", 1},         {"tilekit", p.tilekit},
-          {"shards", p.shards},              {"pack_args", p.pack_args}, {"cpus_per_task", p.cpus_per_task},
+          {"shards", p.shards},              {"command", p.command},     {"pack_args", p.pack_args},
+          {"cpus_per_task", p.cpus_per_task},
           {"time", p.time},                  {"signal_seconds", p.signal_seconds},
           {"max_requeues", p.max_requeues},  {"checkpoint_every", p.checkpoint_every},
           {"partition", p.partition},        {"submissions", nlohmann::json::array()}};
@@ -185,7 +199,7 @@ nlohmann::json checkpoint_progress(const fs::path& file, int i, int n) {
 }
 
 // Per-shard state from the files the job script writes (pack-array.body.sh).
-nlohmann::json shard_status(const fs::path& shards, int i, int n) {
+nlohmann::json shard_status(const fs::path& shards, int i, int n, bool pack) {
   auto f = [&](const char* ext) { return shards / fmt::format("shard-{}{}", i, ext); };
   nlohmann::json s = {{"shard", i}};
   int attempts = 0, interrupted = 0;
@@ -211,7 +225,8 @@ nlohmann::json shard_status(const fs::path& shards, int i, int n) {
   if (has_ckpt) {
     auto age = fs::file_time_type::clock::now() - fs::last_write_time(f(".ckpt"));
     s["checkpoint_age_seconds"] = std::chrono::duration_cast<std::chrono::seconds>(age).count();
-    s["progress"] = checkpoint_progress(f(".ckpt"), i, n);
+    s["progress"] = pack ? checkpoint_progress(f(".ckpt"), i, n)
+                         : nlohmann::json{{"error", "an enumerate checkpoint (progress lines: the shard's log)"}};
   } else {
     s["checkpoint_age_seconds"] = nullptr;
     s["progress"] = nullptr;
@@ -229,7 +244,8 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
   for (int i = 0; i < shards; ++i) {
-    auto s = shard_status(dir / "shards", i, shards);
+    auto s = shard_status(dir / "shards", i, shards, run->value("command", nlohmann::json::array({"pack"})) ==
+                                                         nlohmann::json::array({"pack"}));
     counts[s["state"].get<std::string>()]++;
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);
@@ -294,12 +310,14 @@ void add_cluster_commands(CLI::App& app, Context& ctx) {
   auto* sub = cluster->add_subcommand(
       "submit",
       "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
-  sub->add_option("--kind", o.kind, "Tile kind: wang or corner")->required();
-  sub->add_option("--colors", o.colors, "Number of colours C")->required();
+  sub->add_option("--command", o.command, "The shard command: pack (default) or enumerate (aperiodic enumerate)");
+  sub->add_option("--kind", o.kind, "pack: tile kind, wang or corner (required)");
+  sub->add_option("--colors", o.colors, "pack: number of colours C (required)");
   sub->add_option("--method", o.method, "Passed to pack: auto, search or construct");
   sub->add_option("--mode", o.mode, "Passed to pack: first, count or all")->capture_default_str();
   sub->add_option("--seed", o.seed, "Passed to pack");
-  sub->add_option("--pack-arg", o.pack_extra, "Another `tilekit pack` argument for every shard (repeatable)");
+  sub->add_option("--pack-arg", o.pack_extra,
+                  "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
   sub->add_option("--shards", o.plan.shards, "Number of shards = array tasks")->required();
   sub->add_option("--cpus-per-task", o.plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
   sub->add_option("--time", o.plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")

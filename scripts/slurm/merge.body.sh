@@ -53,3 +53,4 @@ if [ "${rows:-0}" != "$sum" ]; then
   echo "tilekit merge: note: the database holds ${rows:-?} (a count-only mode stores none; see the shard logs)"
 fi
 echo "final count: ${rows:-?} distinct solutions (${orbits:-?} up to symmetry)"
+echo "tilekit merge: $(number tilesets) tile sets and $(number conversions) conversions (aperiodic enumerate)"
