@@ -44,8 +44,8 @@ Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_p
   p.packing = false;
   SearchOptions o;
   o.mode = SearchMode::First;
-  o.threads = 1;
-  o.time_limit = time_limit;
+  o.run.threads = 1;
+  o.run.time_limit = time_limit;
   o.restarts = 0;  // exhaustive: a failure must be a proof
   SearchResult r = solve(p, o);
   out.nodes = r.nodes;

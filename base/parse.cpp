@@ -57,4 +57,8 @@ ShardSpec parse_shard(std::string_view text, std::string_view what) {
   return {int(i), int(n)};
 }
 
+std::string shard_text(const ShardSpec& shard) {
+  return fmt::format("{}/{}", shard.index, shard.count);
+}
+
 }  // namespace tilekit

@@ -4,6 +4,7 @@
 // spaces, no trailing text, no overflow) and throws InputError naming the flag and the value,
 // so `--shard 4294967296/1` is refused instead of wrapping around to shard 0.
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace tilekit {
@@ -27,5 +28,7 @@ struct ShardSpec {
   int index = 0, count = 1;
 };
 ShardSpec parse_shard(std::string_view text, std::string_view what = "--shard");
+// "I/N", the text parse_shard() reads.
+std::string shard_text(const ShardSpec& shard);
 
 }  // namespace tilekit

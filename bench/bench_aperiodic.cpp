@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
       so.formulation = f;
       so.ordering = ord;
       so.restarts = 0;
-      so.time_limit = 60;
+      so.run.time_limit = 60;
       SearchResult r;
       double s = median_seconds(1, [&] { r = solve(pr, so); });
       fmt::print(R"({{"case":"torus","set":"{}","shape":{},"formulation":"{}","ordering":"{}","found":{},"complete":{},"nodes":{},"seconds":{:.4f}}})"

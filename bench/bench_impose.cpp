@@ -63,9 +63,9 @@ struct Knobs {
 SearchResult run_one(const Case& c, const std::string& spec, int threads, double limit, std::uint64_t seed,
                      const Knobs& k, double& cpu) {
   SearchOptions o;
-  o.threads = threads;
-  o.seed = seed;
-  o.time_limit = limit;
+  o.run.threads = threads;
+  o.run.seed = seed;
+  o.run.time_limit = limit;
   o.impose = spec;
   o.impose_patterns = k.patterns;
   o.ordering = k.static_order ? "static" : "auto";
@@ -151,9 +151,9 @@ int main(int argc, char** argv) {
       Case c = parse_case(pf + ":");
       for (int r = 0; r < reps; ++r) {
         SearchOptions o;
-        o.threads = threads;
-        o.seed = seed + std::uint64_t(r);
-        o.time_limit = limit;
+        o.run.threads = threads;
+        o.run.seed = seed + std::uint64_t(r);
+        o.run.time_limit = limit;
         PortfolioOptions po;
         po.stats_path = stats;
         const double cpu0 = cpu_seconds();
@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
                                      {"colors", c.colours},
                                      {"threads", threads},
                                      {"cores", std::thread::hardware_concurrency()},
-                                     {"seed", o.seed},
+                                     {"seed", o.run.seed},
                                      {"found", res.found},
                                      {"group", res.winner},
                                      {"seconds", res.seconds},

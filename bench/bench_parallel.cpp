@@ -39,10 +39,9 @@ struct Run {
 
 Run run_count(const TilingProblem& p, const std::string& spec, int threads, int shard, int shards) {
   SearchOptions o;
-  o.shard_index = shard;
-  o.shard_count = shards;
+  o.run.shard = {shard, shards};
   o.mode = SearchMode::Count;
-  o.threads = threads;
+  o.run.threads = threads;
   o.count_orbits = false;
   if (spec != "plain") o.impose = spec;
   Run r;

@@ -115,10 +115,10 @@ SearchResult run(const TilingProblem& p, SearchMode mode, int threads, const std
                  std::uint64_t seed = 0, double time_limit = 0) {
   SearchOptions o;
   o.mode = mode;
-  o.threads = threads;
+  o.run.threads = threads;
   o.formulation = formulation;
-  o.seed = seed;
-  o.time_limit = time_limit;
+  o.run.seed = seed;
+  o.run.time_limit = time_limit;
   return solve(p, o);
 }
 
@@ -301,10 +301,10 @@ void bench_checkpoint_cost() {
       SearchOptions o;
       o.mode = SearchMode::Count;
       o.formulation = "pegs";
-      o.time_limit = 4;
+      o.run.time_limit = 4;
       double in_ckpt = 0;
       if (every > 0) {
-        o.checkpoint_every = every;
+        o.run.checkpoint_every = every;
         o.save_checkpoint = [&](const SearchState& st) {
           double t0 = now();
           write_checkpoint(path, st);
@@ -340,7 +340,7 @@ void bench_speedup() {
     for (int threads : {1, 2}) {
       SearchOptions o;
       o.mode = SearchMode::Count;
-      o.threads = threads;
+      o.run.threads = threads;
       o.formulation = f;
       o.ordering = "static";
       double t0 = now(), c0 = cpu_seconds();

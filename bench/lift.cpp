@@ -62,9 +62,9 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
   int found = 0;
   for (int r = 0; r < reps; ++r) {
     SearchOptions o;
-    o.threads = threads;
-    o.seed = seed0 + std::uint64_t(r);
-    o.time_limit = limit;
+    o.run.threads = threads;
+    o.run.seed = seed0 + std::uint64_t(r);
+    o.run.time_limit = limit;
     o.lift = c.lift;
     o.formulation = c.formulation;
     o.restart_base = restart_base;

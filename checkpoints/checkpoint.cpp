@@ -12,6 +12,7 @@
 #include "base/hash.hpp"
 #include "base/input.hpp"
 #include "base/json_input.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -305,20 +306,21 @@ std::string fingerprint_difference(const std::string& here, const std::string& c
 
 SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options, const nlohmann::json& request) {
   SearchOptions plain = options;  // the fingerprint does not depend on the file names
-  plain.checkpoint_path.clear();
-  plain.resume_path.clear();
+  plain.run.checkpoint_path.clear();
+  plain.run.resume_path.clear();
   std::string here = search_fingerprint(problem, plain);
-  if (!options.resume_path.empty()) {
-    CheckpointFile f = read_checkpoint_file(options.resume_path);
+  if (!options.run.resume_path.empty()) {
+    CheckpointFile f = read_checkpoint_file(options.run.resume_path);
     if (!f.search)
-      throw InputError(fmt::format("checkpoint {} holds a portfolio run, not a single search", options.resume_path));
+      throw InputError(
+          fmt::format("checkpoint {} holds a portfolio run, not a single search", options.run.resume_path));
     std::string diff = fingerprint_difference(here, f.search->fingerprint);
     if (!diff.empty())
-      throw InputError(fmt::format("checkpoint {} does not match this search: {}", options.resume_path, diff));
+      throw InputError(fmt::format("checkpoint {} does not match this search: {}", options.run.resume_path, diff));
     options.resume_state = std::move(*f.search);
   }
-  if (!options.checkpoint_path.empty()) {
-    std::string path = options.checkpoint_path;
+  if (!options.run.checkpoint_path.empty()) {
+    std::string path = options.run.checkpoint_path;
     options.save_checkpoint = [path, request](const SearchState& s) {
       write_checkpoint(path, CheckpointFile{request, s, {}});
     };
@@ -328,26 +330,26 @@ SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions opti
 
 PortfolioResult run_portfolio_checkpointed(const TilingProblem& problem, const SearchOptions& options,
                                            PortfolioOptions portfolio, const nlohmann::json& request) {
-  if (!options.resume_path.empty()) {
-    CheckpointFile f = read_checkpoint_file(options.resume_path);
+  if (!options.run.resume_path.empty()) {
+    CheckpointFile f = read_checkpoint_file(options.run.resume_path);
     if (!f.portfolio)
-      throw InputError(fmt::format("checkpoint {} holds a single search, not a portfolio run", options.resume_path));
+      throw InputError(
+          fmt::format("checkpoint {} holds a single search, not a portfolio run", options.run.resume_path));
     std::string diff =
         fingerprint_difference(portfolio_fingerprint(problem, options, portfolio), f.portfolio->fingerprint);
     if (!diff.empty())
-      throw InputError(fmt::format("checkpoint {} does not match this portfolio: {}", options.resume_path, diff));
+      throw InputError(fmt::format("checkpoint {} does not match this portfolio: {}", options.run.resume_path, diff));
     portfolio.resume_state = std::move(*f.portfolio);
   }
-  if (!options.checkpoint_path.empty()) {
-    std::string path = options.checkpoint_path;
+  if (!options.run.checkpoint_path.empty()) {
+    std::string path = options.run.checkpoint_path;
     portfolio.save_checkpoint = [path, request](const PortfolioState& s) {
       write_checkpoint(path, CheckpointFile{request, {}, s});
     };
-    portfolio.checkpoint_every = options.checkpoint_every;
   }
   SearchOptions o = options;
-  o.checkpoint_path.clear();
-  o.resume_path.clear();
+  o.run.checkpoint_path.clear();
+  o.run.resume_path.clear();
   return run_portfolio(problem, o, portfolio);
 }
 

@@ -26,8 +26,8 @@
 #include <string_view>
 
 #include "solver/portfolio.hpp"
+#include "solver/problem.hpp"
 #include "solver/search_state.hpp"
-#include "solver/solve.hpp"
 
 namespace tilekit {
 
@@ -63,15 +63,15 @@ SearchState read_checkpoint(const std::string& path);
 // checkpoint"; empty when equal.
 std::string fingerprint_difference(const std::string& here, const std::string& checkpoint);
 
-// solve() with checkpoint files: reads options.resume_path (checking that it belongs to this
-// search: InputError naming what differs), and writes options.checkpoint_path every
-// options.checkpoint_every seconds, on a signal (with catch_signals) and at the end, with
+// solve() with checkpoint files: reads options.run.resume_path (checking that it belongs to this
+// search: InputError naming what differs), and writes options.run.checkpoint_path every
+// options.run.checkpoint_every seconds, on a signal (with run.catch_signals) and at the end, with
 // `request` in every file written.
 SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options,
                                 const nlohmann::json& request = nullptr);
 
-// run_portfolio() with checkpoint files, the same way: options.resume_path must hold a
-// portfolio state of this portfolio, options.checkpoint_path receives it.
+// run_portfolio() with checkpoint files, the same way: options.run.resume_path must hold a
+// portfolio state of this portfolio, options.run.checkpoint_path receives it.
 PortfolioResult run_portfolio_checkpointed(const TilingProblem& problem, const SearchOptions& options,
                                            PortfolioOptions portfolio, const nlohmann::json& request = nullptr);
 

@@ -55,7 +55,7 @@ struct ConvertArgs {
   VerifyOptions vo;
 };
 
-void run_convert_command(const Context& ctx, ConvertArgs& a) {
+void run_convert_command(const ConvertArgs& a, const Context& ctx) {
   ConvertRequest req;
   req.set = a.set;
   req.spec = {parse_method(a.method), {a.merge_centres, a.star_edge}, a.prune};
@@ -100,24 +100,25 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   ap->require_subcommand(1);
 
   auto* conv = ap->add_subcommand("convert", "Convert a Wang set to a corner set (or back) by a thesis ch. 8 method");
-  static ConvertArgs ca;
-  conv->add_option("SET", ca.set, "Built-in name or tile-set file")->required();
-  conv->add_option("--method", ca.method,
-                   "diagonal (8.3.1) | horizontal | vertical (8.3.2) | rotation (8.3.3) | subdivision (8.3.4) | to-wang (8.4)")
+  auto a = std::make_shared<ConvertArgs>();
+  conv->add_option("SET", a->set, "Built-in name or tile-set file")->required();
+  conv->add_option(
+          "--method", a->method,
+          "diagonal (8.3.1) | horizontal | vertical (8.3.2) | rotation (8.3.3) | subdivision (8.3.4) | to-wang (8.4)")
       ->required();
-  conv->add_option("--prune", ca.prune, "Prune the result: surround radius R, then transducer SCCs (R >= 0)");
-  conv->add_flag("--merge-centres", ca.merge_centres, "subdivision: merge centre colours where provably sound");
-  conv->add_flag("--star-edge-colour", ca.star_edge, "subdivision: reuse an edge colour as the star (unverified)");
-  conv->add_flag("--list", ca.list, "Include the result's tiles");
-  conv->add_option("--out", ca.out, "Write the result as a tile-set file (atomically)");
-  conv->add_option("--verify", ca.verify,
+  conv->add_option("--prune", a->prune, "Prune the result: surround radius R, then transducer SCCs (R >= 0)");
+  conv->add_flag("--merge-centres", a->merge_centres, "subdivision: merge centre colours where provably sound");
+  conv->add_flag("--star-edge-colour", a->star_edge, "subdivision: reuse an edge colour as the star (unverified)");
+  conv->add_flag("--list", a->list, "Include the result's tiles");
+  conv->add_option("--out", a->out, "Write the result as a tile-set file (atomically)");
+  conv->add_option("--verify", a->verify,
                    "Also verify the result (label periodic if a witness turns up); the value is the torus route's "
                    "--max-period")
       ->check(CLI::PositiveNumber);
-  add_verify_flags(conv, ca.vo);
-  conv->add_option("--db", ca.db, "Store source, result and conversion in this results database");
+  add_verify_flags(conv, a->vo);
+  conv->add_option("--db", a->db, "Store source, result and conversion in this results database");
   add_json_flag(conv, ctx);
-  conv->callback([&ctx] { run_convert_command(ctx, ca); });
+  conv->callback([a, &ctx] { run_convert_command(*a, ctx); });
 
   add_aperiodic_table_command(ap, ctx);
   add_aperiodic_verify_command(ap, ctx);

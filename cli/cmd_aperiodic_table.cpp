@@ -92,7 +92,7 @@ void print_smallest(const CornerSetCandidate& c, const VerifyResult& v) {
   fmt::print("{}\n", format_tile_set_text(c.set));
 }
 
-void run_table_command(const Context& ctx, const TableArgs& a) {
+void run_table_command(const TableArgs& a, const Context& ctx) {
   TableRun run = run_table(a.opts, a.checks, !a.no_verify);
   const TablesReport& r = run.tables;
   nlohmann::json j = tables_json(r);
@@ -173,17 +173,48 @@ void print_stored_smallest(const Context& ctx, const std::string& path, const Ve
                       {"db", path}};
   if (!out.empty()) write_file_atomic(out, format_tile_set_text(last)), j["out"] = out;
   emit(ctx, j, [&] {
-    fmt::print("The smallest corner set with a sound chain in {}: {} tiles, {} colours (from {})
-", path, last.size(),
+    fmt::print("The smallest corner set with a sound chain in {}: {} tiles, {} colours (from {})\n", path, last.size(),
                last.colours(), b.source);
     for (const auto& l : chain)
-      fmt::print("  {} -> {} tiles [{}]: {}
-", l["step"].get<std::string>(), l["tiles"].get<std::size_t>(),
+      fmt::print("  {} -> {} tiles [{}]: {}\n", l["step"].get<std::string>(), l["tiles"].get<std::size_t>(),
                  l["label"].get<std::string>(), l["check"].get<std::string>());
-    fmt::print("Check: `aperiodic verify` finds {}.
-
-{}", verdict_text(v), format_tile_set_text(last));
+    fmt::print("Check: `aperiodic verify` finds {}.\n\n{}", verdict_text(v), format_tile_set_text(last));
   });
+}
+
+struct SmallestArgs {
+  int prune_radius = 3;
+  VerifyOptions vo;
+  std::string out, db;
+};
+
+void run_smallest_command(const SmallestArgs& a, const Context& ctx) {
+  if (!a.db.empty()) {
+    print_stored_smallest(ctx, a.db, a.vo, a.out);
+    return;
+  }
+  CornerSetCandidate best = smallest_aperiodic_corner_set(a.prune_radius);
+  VerifyResult v = verify_for_table(best.set, a.vo, false);
+  nlohmann::json j = smallest_json(best, v);
+  if (!a.out.empty()) write_file_atomic(a.out, format_tile_set_text(best.set)), j["out"] = a.out;
+  emit(ctx, j, [&] { print_smallest(best, v); });
+}
+
+void add_smallest_command(CLI::App* ap, Context& ctx) {
+  auto* cmd = ap->add_subcommand("smallest", "The smallest corner set whose aperiodicity follows from a sound chain");
+  auto a = std::make_shared<SmallestArgs>();
+  a->vo.time_limit = 5;
+  cmd->add_option("--prune", a->prune_radius, "Pruning radius (default 3)")->check(CLI::Range(0, 10));
+  cmd->add_option("--time-limit", a->vo.time_limit, "verify: transducer seconds at most (default 5)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-period", a->vo.max_period, "verify: the torus search up to this period (default 8)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--out", a->out, "Write the set as a tile-set file (atomically)");
+  cmd->add_option("--db", a->db,
+                  "Read the best sound chain from this database (what `aperiodic enumerate --db` stored) instead of "
+                  "the built-in chains");
+  add_json_flag(cmd, ctx);
+  cmd->callback([a, &ctx] { run_smallest_command(*a, ctx); });
 }
 
 }  // namespace
@@ -191,46 +222,21 @@ void print_stored_smallest(const Context& ctx, const std::string& path, const Ve
 void add_aperiodic_table_command(CLI::App* ap, Context& ctx) {
   auto* cmd = ap->add_subcommand(
       "table", "Recompute thesis Tables 8.1-8.7, verify Table 8.1, report the smallest sound corner set");
-  static TableArgs ta;
-  cmd->add_option("--levels", ta.opts.levels, "Corner sets per iteration column (thesis: 4)")->check(CLI::Range(1, 6));
-  ta.checks.verify.time_limit = 5;
-  cmd->add_option("--time-limit", ta.checks.verify.time_limit, "verify: transducer seconds per set at most (default 5)")
+  auto a = std::make_shared<TableArgs>();
+  cmd->add_option("--levels", a->opts.levels, "Corner sets per iteration column (thesis: 4)")->check(CLI::Range(1, 6));
+  a->checks.verify.time_limit = 5;
+  cmd->add_option("--time-limit", a->checks.verify.time_limit, "verify: transducer seconds per set at most (default 5)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--max-period", ta.checks.verify.max_period,
+  cmd->add_option("--max-period", a->checks.verify.max_period,
                   "verify: the torus search up to this period where the transducer reached less (default 8)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--prune", ta.checks.prune, "Pruning radius for the pruned forms (default 3)")
+  cmd->add_option("--prune", a->checks.prune, "Pruning radius for the pruned forms (default 3)")
       ->check(CLI::Range(0, 10));
-  cmd->add_flag("--no-verify", ta.no_verify, "Only the tables: no verify, no smallest-set report");
+  cmd->add_flag("--no-verify", a->no_verify, "Only the tables: no verify, no smallest-set report");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] { run_table_command(ctx, ta); });
+  cmd->callback([a, &ctx] { run_table_command(*a, ctx); });
 
-  auto* sm = ap->add_subcommand("smallest", "The smallest corner set whose aperiodicity follows from a sound chain");
-  static int prune_radius = 3;
-  static VerifyOptions vo;
-  static std::string out, db;
-  vo.time_limit = 5;
-  sm->add_option("--db", db,
-                 "Read the best sound chain from this database (what `aperiodic enumerate --db` stored) instead of "
-                 "the built-in chains");
-  sm->add_option("--prune", prune_radius, "Pruning radius (default 3)")->check(CLI::Range(0, 10));
-  sm->add_option("--time-limit", vo.time_limit, "verify: transducer seconds at most (default 5)")
-      ->check(CLI::NonNegativeNumber);
-  sm->add_option("--max-period", vo.max_period, "verify: the torus search up to this period (default 8)")
-      ->check(CLI::PositiveNumber);
-  sm->add_option("--out", out, "Write the set as a tile-set file (atomically)");
-  add_json_flag(sm, ctx);
-  sm->callback([&ctx] {
-    if (!db.empty()) {
-      print_stored_smallest(ctx, db, vo, out);
-      return;
-    }
-    CornerSetCandidate best = smallest_aperiodic_corner_set(prune_radius);
-    VerifyResult v = verify_for_table(best.set, vo, false);
-    nlohmann::json j = smallest_json(best, v);
-    if (!out.empty()) write_file_atomic(out, format_tile_set_text(best.set)), j["out"] = out;
-    emit(ctx, j, [&] { print_smallest(best, v); });
-  });
+  add_smallest_command(ap, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -60,29 +60,30 @@ void print_verify(const VerifyReport& rep) {
   fmt::print("{:.2f} s\n", r.seconds);
 }
 
-void run_verify_command(const Context& ctx, VerifyArgs& a) {
-  a.req.options.progress = !a.quiet;
-  a.req.options.decide.catch_signals = true;
-  VerifyReport rep = run_verify(a.req);
+void run_verify_command(const VerifyArgs& a, const Context& ctx) {
+  VerifyRequest req = a.req;
+  req.options.progress = !a.quiet;
+  req.options.decide.catch_signals = true;
+  VerifyReport rep = run_verify(req);
   const VerifyResult& r = rep.result;
   nlohmann::json j = verify_json(r);
   j["set"] = rep.set.name();
   j["kind"] = std::string(kind_name(rep.set.kind()));
   j["tiles"] = rep.set.size();
   j["colors"] = rep.set.colours();
-  j["time_limit"] = a.req.options.time_limit;
-  j["max_period"] = a.req.options.max_period;
-  j["max_square"] = a.req.options.max_square;
+  j["time_limit"] = req.options.time_limit;
+  j["max_period"] = req.options.max_period;
+  j["max_square"] = req.options.max_square;
   if (!rep.repeated.empty()) {
     nlohmann::json rj = nlohmann::json::array();
     for (const RepeatedTile& t : rep.repeated) rj.push_back({{"where", t.where}, {"repeats", t.first}, {"colours", t.colours}});
     j["repeated_tiles"] = rj;
   }
-  if (rep.pruned) j["pruned"] = prune_json(*rep.pruned, a.req.prune);
-  if (!a.req.db.empty()) j["run_id"] = rep.run_id, j["db"] = a.req.db;
+  if (rep.pruned) j["pruned"] = prune_json(*rep.pruned, req.prune);
+  if (!req.db.empty()) j["run_id"] = rep.run_id, j["db"] = req.db;
   emit(ctx, j, [&] { print_verify(rep); });
   if (r.interrupted) {
-    const std::string& ck = a.req.options.decide.checkpoint_path;
+    const std::string& ck = req.options.decide.checkpoint_path;
     throw Interrupted(fmt::format("interrupted by signal {}; {}", r.transducer ? r.transducer->signal : 0,
                                   ck.empty() ? std::string("no checkpoint (use --checkpoint F to resume later)")
                                              : "checkpoint written to " + ck + " (continue with --resume " + ck + ")"));
@@ -94,23 +95,24 @@ void run_verify_command(const Context& ctx, VerifyArgs& a) {
 void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   auto* cmd = ap->add_subcommand(
       "verify", "Decide a tile set: periodic (validated witness), finite (no large square), or unknown at the k reached");
-  static VerifyArgs va;
-  cmd->add_option("SET", va.req.set, "Built-in name or tile-set file (Wang or corner; repeated tiles are dropped)")
+  auto a = std::make_shared<VerifyArgs>();
+  cmd->add_option("SET", a->req.set, "Built-in name or tile-set file (Wang or corner; repeated tiles are dropped)")
       ->required();
-  add_verify_flags(cmd, va.req.options);
-  cmd->add_option("--prune", va.req.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
-  cmd->add_option("--checkpoint", va.req.options.decide.checkpoint_path,
+  add_verify_flags(cmd, a->req.options);
+  cmd->add_option("--prune", a->req.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
+  cmd->add_option("--checkpoint", a->req.options.decide.checkpoint_path,
                   "transducer: write checkpoints here (every --checkpoint-every s, at the end, on SIGTERM/SIGUSR1)");
-  cmd->add_option("--checkpoint-every", va.req.options.decide.checkpoint_every, "Seconds between checkpoints (default 300)")
+  cmd->add_option("--checkpoint-every", a->req.options.decide.checkpoint_every,
+                  "Seconds between checkpoints (default 300)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--resume", va.req.options.decide.resume_path, "transducer: continue the run this checkpoint holds");
-  cmd->add_option("--db", va.req.db, "Store the run, the tile set and the witness in this results database");
-  cmd->add_flag("--quiet", va.quiet, "No progress output on stderr");
+  cmd->add_option("--resume", a->req.options.decide.resume_path, "transducer: continue the run this checkpoint holds");
+  cmd->add_option("--db", a->req.db, "Store the run, the tile set and the witness in this results database");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer(
       "Exit codes: 0 ok (whatever the verdict), 2 bad input or checkpoint, 3 interrupted (checkpoint written with "
       "--checkpoint).");
-  cmd->callback([&ctx] { run_verify_command(ctx, va); });
+  cmd->callback([a, &ctx] { run_verify_command(*a, ctx); });
 }
 
 }  // namespace tilekit::cli

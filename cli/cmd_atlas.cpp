@@ -35,81 +35,100 @@ AtlasLookup lookup(const PackingArgs& a) {
   return atlas_lookup(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, o);
 }
 
+struct LookupArgs {
+  PackingArgs packing;
+  std::string format = "json", out;
+  std::uint64_t seed = 1;
+};
+
+void run_lookup(const LookupArgs& a, const Context& ctx) {
+  AtlasLookup l = lookup(a.packing);
+  std::string text = a.format == "json" ? lookup_json_text(l) + "\n"
+                     : a.format == "c"  ? lookup_c_header(l)
+                                        : lookup_glsl(l, a.seed);
+  if (!a.out.empty()) {
+    write_file_atomic(a.out, text);
+    nlohmann::json s = {{"kind", a.packing.kind},
+                        {"colors", l.colours},
+                        {"rows", l.rows},
+                        {"cols", l.cols},
+                        {"source", l.source},
+                        {"how", l.how},
+                        {"closed_form", l.closed_form},
+                        {"format", a.format},
+                        {"out", a.out}};
+    emit(ctx, s, [&] {
+      fmt::print("{} packing over {} colours ({}: {}) written as {} to {}\n", a.packing.kind, l.colours, l.source,
+                 l.how, a.format, a.out);
+    });
+    return;
+  }
+  if (a.format == "json" || !ctx.json) {
+    std::cout << text;
+    std::cout.flush();
+    return;
+  }
+  nlohmann::json j = lookup_json(l);
+  j["format"] = a.format;
+  j["text"] = text;
+  emit(ctx, j, [] {});
+}
+
 void add_lookup(CLI::App& atlas, Context& ctx) {
   auto* cmd = atlas.add_subcommand("lookup", "A packing as an atlas layout and its inverse: JSON, C header or GLSL");
-  static PackingArgs a;
-  static std::string format = "json", out;
-  static std::uint64_t seed = 1;
-  add_packing_options(cmd, a);
-  cmd->add_option("--format", format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
+  auto a = std::make_shared<LookupArgs>();
+  add_packing_options(cmd, a->packing);
+  cmd->add_option("--format", a->format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
       ->check(CLI::IsMember({"json", "c", "glsl"}))
       ->capture_default_str();
-  cmd->add_option("--seed", seed, "Seed of the hash permutation table in the GLSL snippet")->capture_default_str();
-  cmd->add_option("--out", out, "Write the lookup to this file (atomically) instead of stdout");
+  cmd->add_option("--seed", a->seed, "Seed of the hash permutation table in the GLSL snippet")->capture_default_str();
+  cmd->add_option("--out", a->out, "Write the lookup to this file (atomically) instead of stdout");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    AtlasLookup l = lookup(a);
-    std::string text = format == "json" ? lookup_json_text(l) + "\n" : format == "c" ? lookup_c_header(l) : lookup_glsl(l, seed);
-    if (!out.empty()) {
-      write_file_atomic(out, text);
-      nlohmann::json s = {{"kind", a.kind}, {"colors", l.colours}, {"rows", l.rows}, {"cols", l.cols},
-                          {"source", l.source}, {"how", l.how}, {"closed_form", l.closed_form},
-                          {"format", format}, {"out", out}};
-      emit(ctx, s, [&] {
-        fmt::print("{} packing over {} colours ({}: {}) written as {} to {}\n", a.kind, l.colours, l.source, l.how,
-                   format, out);
-      });
-      return;
-    }
-    if (format == "json" || !ctx.json) {
-      std::cout << text;
-      std::cout.flush();
-      return;
-    }
-    nlohmann::json j = lookup_json(l);
-    j["format"] = format;
-    j["text"] = text;
-    emit(ctx, j, [] {});
+  cmd->callback([a, &ctx] { run_lookup(*a, ctx); });
+}
+
+struct BuildArgs {
+  PackingArgs packing;
+  std::string tiles_dir, out;
+  int tile_size = 32;
+};
+
+void run_build(const BuildArgs& a, const Context& ctx) {
+  AtlasLookup l = lookup(a.packing);
+  Image img = a.tiles_dir.empty() ? atlas_from_generated_tiles(l, a.tile_size) : atlas_from_tile_images(l, a.tiles_dir);
+  const int size = img.width / l.cols;
+  SeamReport seams = measure_seams(img, size);
+  write_png(a.out, img);
+  nlohmann::json j = {{"out", a.out},
+                      {"kind", a.packing.kind},
+                      {"colors", l.colours},
+                      {"rows", l.rows},
+                      {"cols", l.cols},
+                      {"tile_size", size},
+                      {"width", img.width},
+                      {"height", img.height},
+                      {"tiles", a.tiles_dir.empty() ? "generated" : a.tiles_dir},
+                      {"source", l.source},
+                      {"how", l.how},
+                      {"seam_jump", seams.seam_jump},
+                      {"interior_jump", seams.interior_jump}};
+  emit(ctx, j, [&] {
+    fmt::print("{}: {}x{} atlas of {} {} tiles over {} colours ({} {}x{} tiles, packing from {}: {})\n", a.out,
+               img.width, img.height, l.cells.size(), a.packing.kind, l.colours, l.rows, l.cols, size, l.source, l.how);
+    fmt::print("largest colour step across tile borders {} (inside tiles {})\n", seams.seam_jump, seams.interior_jump);
   });
 }
 
 void add_build(CLI::App& atlas, Context& ctx) {
   auto* cmd = atlas.add_subcommand(
       "build", "Build an atlas PNG from tile images named by tile index, or from generated colour-blend tiles");
-  static PackingArgs a;
-  static std::string tiles_dir, out;
-  static int tile_size = 32;
-  add_packing_options(cmd, a);
-  cmd->add_option("--tiles", tiles_dir, "Folder of tile images named by tile index (e.g. 0.png ... 80.png)");
-  cmd->add_option("--tile-size", tile_size, "Pixels per generated tile (without --tiles)")->capture_default_str();
-  cmd->add_option("--out", out, "Atlas PNG to write")->required();
+  auto a = std::make_shared<BuildArgs>();
+  add_packing_options(cmd, a->packing);
+  cmd->add_option("--tiles", a->tiles_dir, "Folder of tile images named by tile index (e.g. 0.png ... 80.png)");
+  cmd->add_option("--tile-size", a->tile_size, "Pixels per generated tile (without --tiles)")->capture_default_str();
+  cmd->add_option("--out", a->out, "Atlas PNG to write")->required();
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    AtlasLookup l = lookup(a);
-    Image img = tiles_dir.empty() ? atlas_from_generated_tiles(l, tile_size) : atlas_from_tile_images(l, tiles_dir);
-    const int size = img.width / l.cols;
-    SeamReport seams = measure_seams(img, size);
-    write_png(out, img);
-    nlohmann::json j = {{"out", out},
-                        {"kind", a.kind},
-                        {"colors", l.colours},
-                        {"rows", l.rows},
-                        {"cols", l.cols},
-                        {"tile_size", size},
-                        {"width", img.width},
-                        {"height", img.height},
-                        {"tiles", tiles_dir.empty() ? "generated" : tiles_dir},
-                        {"source", l.source},
-                        {"how", l.how},
-                        {"seam_jump", seams.seam_jump},
-                        {"interior_jump", seams.interior_jump}};
-    emit(ctx, j, [&] {
-      fmt::print("{}: {}x{} atlas of {} {} tiles over {} colours ({} {}x{} tiles, packing from {}: {})\n", out,
-                 img.width, img.height, l.cells.size(), a.kind, l.colours, l.rows, l.cols, size, l.source, l.how);
-      fmt::print("largest colour step across tile borders {} (inside tiles {})\n", seams.seam_jump,
-                 seams.interior_jump);
-    });
-  });
+  cmd->callback([a, &ctx] { run_build(*a, ctx); });
 }
 
 }  // namespace

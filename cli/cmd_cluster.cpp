@@ -23,8 +23,8 @@ namespace tilekit::cli {
 namespace fs = std::filesystem;
 namespace {
 
-struct SubmitOptions {
-  std::string command = "pack";
+struct SubmitArgs {
+  std::string command = "pack";  // or "enumerate": tilekit aperiodic enumerate
   std::string kind, method, mode = "all", run_dir, tilekit, job_name, sbatch = "sbatch";
   int colors = 0;
   std::string seed;
@@ -51,9 +51,10 @@ std::optional<nlohmann::json> read_json(const fs::path& p) {
   }
 }
 
-ClusterPlan make_plan(SubmitOptions& o) {
+ClusterPlan make_plan(const SubmitArgs& o) {
   ClusterPlan p = o.plan;
-  if (o.command == "enumerate") {
+  const bool enumerate = o.command == "enumerate";
+  if (enumerate) {
     // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
     // with --pack-arg.
     if (!o.kind.empty() || o.colors != 0 || !o.method.empty() || !o.seed.empty())
@@ -77,12 +78,15 @@ ClusterPlan make_plan(SubmitOptions& o) {
         throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);
   }
-  if (o.run_dir.empty())
-    o.run_dir = o.command == "enumerate" ? "tilekit-run-enumerate" : fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
-  p.run_dir = fs::absolute(o.run_dir).lexically_normal().string();
+  const std::string run_dir = !o.run_dir.empty() ? o.run_dir
+                              : enumerate        ? std::string("tilekit-run-enumerate")
+                                                 : fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
+  p.run_dir = fs::absolute(run_dir).lexically_normal().string();
   if (p.run_dir.size() > 1 && p.run_dir.back() == '/') p.run_dir.pop_back();
   p.tilekit = o.tilekit.empty() ? fs::canonical("/proc/self/exe").string() : fs::absolute(o.tilekit).string();
-  p.job_name = !o.job_name.empty() ? o.job_name : o.command == "enumerate" ? "tk-enumerate" : fmt::format("tk-{}{}", o.kind, o.colors);
+  p.job_name = !o.job_name.empty() ? o.job_name
+               : enumerate           ? std::string("tk-enumerate")
+                                     : fmt::format("tk-{}{}", o.kind, o.colors);
   p.merge_time = o.merge_time.empty() ? p.time : o.merge_time;
   p.signal_seconds = o.signal_seconds > 0 ? o.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
   check_plan(p);
@@ -128,7 +132,7 @@ void write_script(const fs::path& path, const std::string& text) {
                   fs::perm_options::add);
 }
 
-void submit(const Context& ctx, SubmitOptions& o) {
+void run_submit(const SubmitArgs& o, const Context& ctx) {
   ClusterPlan p = make_plan(o);
   const std::vector<std::pair<std::string, std::string>> scripts = {
       {"pack-array.sbatch", pack_array_script(p)}, {"merge.sbatch", merge_script(p)}, {"submit.sh", submit_script(p)}};
@@ -179,6 +183,10 @@ void submit(const Context& ctx, SubmitOptions& o) {
 // Progress of shard i of n from its checkpoint: subproblem k belongs to shard k mod n
 // (solver/parallel_search.hpp); counts are those of finished subproblems plus the part of the
 // in-flight ones explored so far. null (with a reason) when the file cannot be read.
+struct StatusArgs {
+  std::string run_dir;
+};
+
 nlohmann::json checkpoint_progress(const fs::path& file, int i, int n) {
   SearchState st;
   try {
@@ -234,8 +242,8 @@ nlohmann::json shard_status(const fs::path& shards, int i, int n, bool pack) {
   return s;
 }
 
-void status(const Context& ctx, const std::string& run_dir_arg) {
-  fs::path dir = fs::absolute(run_dir_arg);
+void run_status(const StatusArgs& a, const Context& ctx) {
+  fs::path dir = fs::absolute(a.run_dir);
   auto run = read_json(dir / "run.json");
   if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", dir.string()));
   int shards = run->value("shards", 0);
@@ -244,8 +252,8 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
   for (int i = 0; i < shards; ++i) {
-    auto s = shard_status(dir / "shards", i, shards, run->value("command", nlohmann::json::array({"pack"})) ==
-                                                         nlohmann::json::array({"pack"}));
+    auto s = shard_status(dir / "shards", i, shards,
+                          run->value("command", nlohmann::json::array({"pack"})) == nlohmann::json::array({"pack"}));
     counts[s["state"].get<std::string>()]++;
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);
@@ -300,49 +308,55 @@ void status(const Context& ctx, const std::string& run_dir_arg) {
   });
 }
 
+void add_submit(CLI::App& cluster, Context& ctx) {
+  auto* cmd = cluster.add_subcommand(
+      "submit",
+      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
+  auto a = std::make_shared<SubmitArgs>();
+  cmd->add_option("--command", a->command, "The shard command: pack (default) or enumerate (aperiodic enumerate)");
+  cmd->add_option("--kind", a->kind, "pack: tile kind, wang or corner (required)");
+  cmd->add_option("--colors", a->colors, "pack: number of colours C (required)");
+  cmd->add_option("--method", a->method, "Passed to pack: auto, search or construct");
+  cmd->add_option("--mode", a->mode, "Passed to pack: first, count or all")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Passed to pack");
+  cmd->add_option("--pack-arg", a->pack_extra,
+                  "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
+  cmd->add_option("--shards", a->plan.shards, "Number of shards = array tasks")->required();
+  cmd->add_option("--cpus-per-task", a->plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
+  cmd->add_option("--time", a->plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")
+      ->capture_default_str();
+  cmd->add_option("--partition", a->plan.partition, "Slurm partition (default: the cluster's)");
+  cmd->add_option("--checkpoint-every", a->plan.checkpoint_every, "Seconds between checkpoints")->capture_default_str();
+  cmd->add_option("--signal-seconds", a->signal_seconds,
+                  "USR1 this many seconds before the wall-time limit (default: 120, at most half the limit)");
+  cmd->add_option("--max-requeues", a->plan.max_requeues, "Most requeues of one shard task")->capture_default_str();
+  cmd->add_option("--merge-time", a->merge_time, "Wall time of the merge job (default: --time)");
+  cmd->add_option("--run-dir", a->run_dir,
+                  "Run directory on the shared filesystem (default: ./tilekit-run-KINDC-MODE)");
+  cmd->add_option("--job-name", a->job_name, "Slurm job name (default: tk-KINDC)");
+  cmd->add_option("--tilekit", a->tilekit, "The tilekit binary the jobs run (default: this one)");
+  cmd->add_option("--sbatch-arg", a->plan.sbatch_args, "Another #SBATCH directive, e.g. --account=NAME (repeatable)");
+  cmd->add_option("--sbatch", a->sbatch, "The sbatch command")->capture_default_str();
+  cmd->add_flag("--dry-run", a->dry_run, "Print the scripts; write and queue nothing");
+  add_json_flag(cmd, ctx);
+  cmd->callback([a, &ctx] { run_submit(*a, ctx); });
+}
+
+void add_status(CLI::App& cluster, Context& ctx) {
+  auto* cmd = cluster.add_subcommand("status", "Per-shard progress of a run, read from its run directory");
+  auto a = std::make_shared<StatusArgs>();
+  cmd->add_option("--run-dir", a->run_dir, "The run directory given to submit")->required();
+  add_json_flag(cmd, ctx);
+  cmd->callback([a, &ctx] { run_status(*a, ctx); });
+}
+
 }  // namespace
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {
   auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array");
   cluster->require_subcommand(1);
-
-  static SubmitOptions o;
-  auto* sub = cluster->add_subcommand(
-      "submit",
-      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
-  sub->add_option("--command", o.command, "The shard command: pack (default) or enumerate (aperiodic enumerate)");
-  sub->add_option("--kind", o.kind, "pack: tile kind, wang or corner (required)");
-  sub->add_option("--colors", o.colors, "pack: number of colours C (required)");
-  sub->add_option("--method", o.method, "Passed to pack: auto, search or construct");
-  sub->add_option("--mode", o.mode, "Passed to pack: first, count or all")->capture_default_str();
-  sub->add_option("--seed", o.seed, "Passed to pack");
-  sub->add_option("--pack-arg", o.pack_extra,
-                  "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
-  sub->add_option("--shards", o.plan.shards, "Number of shards = array tasks")->required();
-  sub->add_option("--cpus-per-task", o.plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
-  sub->add_option("--time", o.plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")
-      ->capture_default_str();
-  sub->add_option("--partition", o.plan.partition, "Slurm partition (default: the cluster's)");
-  sub->add_option("--checkpoint-every", o.plan.checkpoint_every, "Seconds between checkpoints")->capture_default_str();
-  sub->add_option("--signal-seconds", o.signal_seconds,
-                  "USR1 this many seconds before the wall-time limit (default: 120, at most half the limit)");
-  sub->add_option("--max-requeues", o.plan.max_requeues, "Most requeues of one shard task")->capture_default_str();
-  sub->add_option("--merge-time", o.merge_time, "Wall time of the merge job (default: --time)");
-  sub->add_option("--run-dir", o.run_dir,
-                  "Run directory on the shared filesystem (default: ./tilekit-run-KINDC-MODE)");
-  sub->add_option("--job-name", o.job_name, "Slurm job name (default: tk-KINDC)");
-  sub->add_option("--tilekit", o.tilekit, "The tilekit binary the jobs run (default: this one)");
-  sub->add_option("--sbatch-arg", o.plan.sbatch_args, "Another #SBATCH directive, e.g. --account=NAME (repeatable)");
-  sub->add_option("--sbatch", o.sbatch, "The sbatch command")->capture_default_str();
-  sub->add_flag("--dry-run", o.dry_run, "Print the scripts; write and queue nothing");
-  add_json_flag(sub, ctx);
-  sub->callback([&ctx] { submit(ctx, o); });
-
-  static std::string run_dir;
-  auto* st = cluster->add_subcommand("status", "Per-shard progress of a run, read from its run directory");
-  st->add_option("--run-dir", run_dir, "The run directory given to submit")->required();
-  add_json_flag(st, ctx);
-  st->callback([&ctx] { status(ctx, run_dir); });
+  add_submit(*cluster, ctx);
+  add_status(*cluster, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -7,6 +7,7 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
+#include "base/parse.hpp"
 #include "cli/command.hpp"
 #include "packing/pack.hpp"
 #include "tilesets/tile_set_io.hpp"
@@ -22,7 +23,8 @@ struct PackArgs {
   std::vector<std::string> portfolio_stats;
   bool portfolio_report = false;
   bool quiet = false;
-  std::int64_t threads = 0;  // when --threads is not given: default_thread_count()
+  std::int64_t threads = 0;   // when --threads is not given: default_thread_count()
+  std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
 };
 
 std::string grid_text(const Tiling& t) {
@@ -69,7 +71,7 @@ nlohmann::json outcome_json(const PackOutcome& o, const std::string& out_file) {
                       {"threads", r.threads},
                       {"formulation", r.formulation},
                       {"ordering", r.ordering},
-                      {"shard", a.shard},
+                      {"shard", shard_text(a.run.shard)},
                       {"subproblems", r.shard_subproblems},
                       {"subproblems_done", r.subproblems_done},
                       {"interrupted", o.interrupted},
@@ -102,7 +104,7 @@ void print_outcome(const PackOutcome& o) {
   if (o.method == "search")
     fmt::print("{} C={} {}x{} packing by search, mode {}, {} ({} formulation, {} threads, shard {})\n", kind, colours,
                p.rows, p.cols, o.request.mode, r.complete ? "complete" : "incomplete", r.formulation, r.threads,
-               o.request.shard);
+               shard_text(o.request.run.shard));
   else
     fmt::print("{} C={} {}x{} packing from {}{}\n", kind, colours, p.rows, p.cols,
                o.method == "db" ? "the database" : "a construction",
@@ -118,11 +120,12 @@ void print_outcome(const PackOutcome& o) {
   if (!r.found.empty()) fmt::print("{}", grid_text(r.found.front()));
 }
 
-void run(PackArgs& a, const CLI::App& cmd, const Context& ctx) {
+void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx) {
   if (a.portfolio_report) return print_portfolio_report(a, ctx);
   PackRequest req = a.request;
-  req.threads = cmd.count("--threads") ? checked_thread_count(a.threads) : default_thread_count();
-  req.progress = !a.quiet;
+  req.run.threads = cmd.count("--threads") ? checked_thread_count(a.threads) : default_thread_count();
+  req.run.shard = parse_shard(a.shard);
+  req.run.progress = !a.quiet;
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
   if (!a.portfolio_stats.empty()) req.portfolio_stats = a.portfolio_stats.front();
   std::set<std::string> given;
@@ -158,20 +161,20 @@ void add_pack_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--mode", r.mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)");
-  cmd->add_option("--seed", r.seed, "Seed of the value order and restarts")->capture_default_str();
+  cmd->add_option("--seed", r.run.seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", r.formulation,
                   "auto, cell, pegs (corner), edges (Wang) or sat (with --impose or --lift)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
-  cmd->add_option("--checkpoint", r.checkpoint, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", r.checkpoint_every,
+  cmd->add_option("--checkpoint", r.run.checkpoint_path, "Write checkpoints to this file");
+  cmd->add_option("--checkpoint-every", r.run.checkpoint_every,
                   "Seconds between checkpoints (default 300 with --checkpoint)");
   cmd->add_option(
-      "--resume", r.resume,
+      "--resume", r.run.resume_path,
       "Resume from this checkpoint (and keep checkpointing to it); alone, it continues the run it describes");
   cmd->add_option("--db", r.db, "Results database");
-  cmd->add_option("--shard", r.shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
-  cmd->add_option("--time-limit", r.time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
+  cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
+  cmd->add_option("--time-limit", r.run.time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out,
                   "Write the packing found to this JSON file (with --portfolio-report: the summed statistics)");
   cmd->add_option("--impose", r.impose,
@@ -194,7 +197,7 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->footer(
       "`tilekit pack --resume FILE [--db DB]` alone continues the run FILE describes.\n"
       "Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");
-  cmd->callback([a, cmd, &ctx] { run(*a, *cmd, ctx); });
+  cmd->callback([a, cmd, &ctx] { run_pack_command(*a, *cmd, ctx); });
 }
 
 }  // namespace tilekit::cli

@@ -21,7 +21,7 @@
 #include "points/point_io.hpp"
 #include "points/tile_set_file.hpp"
 
-namespace tilekit::cli {
+namespace tilekit::cli::pts {
 
 using namespace tilekit::points;
 
@@ -52,7 +52,7 @@ struct TilesArgs {
 };
 
 struct GenerateArgs {
-  pts::SourceArgs source;
+  SourceArgs source;
   std::string window, out, density_expr, density_image;
   bool invert = false;
   double density = 0;
@@ -62,170 +62,174 @@ struct GenerateArgs {
   bool analyze = false, quiet = false;
 };
 
-}  // namespace
+void run_tiles(const TilesArgs& a, const Context& ctx) {
+  check_extension(a.picture, {".png", ".svg"}, "--picture");
+  PoissonTileParams p;
+  p.method = parse_poisson_tile_method(a.method);
+  p.colours = a.colors;
+  p.points = a.points;
+  p.rho = a.rho;
+  p.lloyd = a.lloyd;
+  p.seed = a.seed;
+  p.threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  p.progress = !a.quiet;
+  check_poisson_tile_params(p);
+  const PoissonTileSet set = build_poisson_tiles(p);
+  nlohmann::json j = {{"method", method_name(set.method)},
+                      {"colors", set.colours},
+                      {"points", set.points},
+                      {"rho", set.rho},
+                      {"radius", set.radius},
+                      {"tiles", set.tiles.size()},
+                      {"lattice_colors", set.lattice_colours()},
+                      {"corner_regions", set.corner_regions},
+                      {"edge_regions", set.edge_regions},
+                      {"interiors", set.interiors},
+                      {"seconds", set.seconds},
+                      {"threads", p.threads},
+                      {"seed", set.seed}};
+  if (!a.no_check) {
+    const auto c = check_poisson_tiles(set, p.threads);
+    j["check"] = {{"rho_within", c.rho_within},
+                  {"rho_across", c.rho_across},
+                  {"exhaustive", c.exhaustive},
+                  {"pairs_checked", c.pairs_checked},
+                  {"tiles_not_n_points", c.points_off_count}};
+    if (c.rho_across < set.rho || c.rho_within < set.rho || c.points_off_count)
+      throw std::runtime_error("the built tile set failed its independent check");
+  }
+  const std::string text = poisson_tiles_to_text(set);
+  if (!a.out.empty()) write_file_atomic(a.out, text), j["out"] = a.out;
+  if (!a.picture.empty()) {
+    const PoissonTileGenerator gen(set, HashKind::LongPeriod, 1);
+    const Window w{0, 0, 8, 8};
+    const auto xy = gen.generate(w, set.points);
+    if (is_svg(a.picture))
+      write_file_atomic(a.picture, points_svg(xy, w, 640, 2, 1));
+    else
+      write_image(a.picture, points_image(xy, w, 640, 2, 1));
+    j["picture"] = a.picture;
+  }
+  if (!a.no_db) {
+    ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
+    j["db"] = db.path();
+    j["tileset_id"] = store_poisson_tiles(db, set, text, p.threads);
+  }
+  emit(ctx, j, [&] {
+    fmt::print(
+        "{} Poisson disk tiles: C={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} s\n",
+        method_name(set.method), set.colours, set.points, set.rho, set.tiles.size(), set.corner_regions,
+        set.edge_regions, set.interiors, set.seconds);
+    if (j.contains("check"))
+      fmt::print("  check: rho {:.4f} inside tiles, {:.4f} across borders ({} {})\n",
+                 j["check"]["rho_within"].get<double>(), j["check"]["rho_across"].get<double>(),
+                 j["check"]["pairs_checked"].get<std::uint64_t>(),
+                 j["check"]["exhaustive"].get<bool>() ? "neighbour pairs, all" : "random tilings");
+    if (j.contains("out")) fmt::print("  -> {}\n", a.out);
+    if (j.contains("tileset_id"))
+      fmt::print("  stored as tile set {} in {}\n", j["tileset_id"].get<std::int64_t>(), j["db"].get<std::string>());
+  });
+}
 
-namespace pts {
+void run_generate(const GenerateArgs& a, const Context& ctx) {
+  const Window w = parse_window(a.window);
+  if (!a.out.empty() && !is_point_file_path(a.out)) check_extension(a.out, {".png", ".svg"}, "--out");
+  const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  const Source src(a.source, threads, !a.quiet);
+  const double tile = src.tile_size(a.density);
+  ProgressReporter progress("points generate", 0, !a.quiet && w.area() * a.density > 5e7);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<DensityFunction> fn;
+  if (!a.density_expr.empty() && !a.density_image.empty())
+    throw InputError("give --density-expr or --density-image, not both");
+  if (!a.density_expr.empty()) fn = expression_density(a.density_expr);
+  if (!a.density_image.empty()) fn = image_density(a.density_image, w, a.density, a.invert);
+  const auto xy = src.points(w, a.density, a.seed, threads, a.period, a.period > 0, fn.get(), &progress);
+  const double seconds = seconds_since(start);
+  progress.finish();
+  const std::uint64_t count = xy.size() / 2;
+  nlohmann::json j = {{"method", src.method()}, {"source", src.describe()},
+                      {"points", count},        {"window", {w.x0, w.y0, w.x1, w.y1}},
+                      {"density", a.density},   {"seed", a.seed},
+                      {"seconds", seconds},     {"points_per_second", seconds > 0 ? double(count) / seconds : 0},
+                      {"threads", threads}};
+  if (tile > 0) j["tile_size"] = tile;
+  if (fn) j["density_function"] = fn->describe();
+  if (a.analyze && count >= 2) j["radius"] = radius_json(radius_stats(xy, w.area(), tile));
+  if (!a.out.empty()) {
+    if (is_point_file_path(a.out))
+      write_points(a.out, xy);
+    else if (is_svg(a.out))
+      write_file_atomic(a.out, points_svg(xy, w, a.px, 1.5, 0));
+    else
+      write_image(a.out, points_image(xy, w, a.px, 1.5, 0));
+    j["out"] = a.out;
+  }
+  emit(ctx, j, [&] {
+    fmt::print("{}: {} points in [{}, {}) x [{}, {}) at density {} in {:.3f} s ({:.1f} M points/s){}\n", src.describe(),
+               count, w.x0, w.x1, w.y0, w.y1, a.density, seconds, count / std::max(seconds, 1e-9) / 1e6,
+               a.out.empty() ? "" : " -> " + a.out);
+    if (j.contains("radius"))
+      fmt::print("  rho {:.4f} (across tile borders {:.4f}), mean nearest-neighbour distance {:.3f} x 2 r_max\n",
+                 j["radius"]["rho"].get<double>(), j["radius"].value("rho_across", 0.0),
+                 j["radius"]["mean_nn_relative"].get<double>());
+  });
+}
+
+}  // namespace
 
 void add_tiles_command(CLI::App* points, Context& ctx) {
   auto* cmd = points->add_subcommand("tiles", "Build a Poisson disk tile set (thesis ch. 4) and check it");
-  static TilesArgs a;
-  cmd->add_option("--method", a.method, "corner (thesis 4.5, default) | wang (edge-based, 4.3) | dual (Li et al.)");
-  cmd->add_option("--colors", a.colors, "Colours C (default 4)")->check(CLI::Range(1, 64));
-  cmd->add_option("--points", a.points, "Points per tile N (default 64)")->check(CLI::Range(1, 65536));
-  cmd->add_option("--rho", a.rho, "Relative radius: no two points closer than 2 rho r_max(N) (default 0.75)");
-  cmd->add_option("--lloyd", a.lloyd, "Lloyd iterations at least per region (default 0: only until rho is met)")
+  auto a = std::make_shared<TilesArgs>();
+  cmd->add_option("--method", a->method, "corner (thesis 4.5, default) | wang (edge-based, 4.3) | dual (Li et al.)");
+  cmd->add_option("--colors", a->colors, "Colours C (default 4)")->check(CLI::Range(1, 64));
+  cmd->add_option("--points", a->points, "Points per tile N (default 64)")->check(CLI::Range(1, 65536));
+  cmd->add_option("--rho", a->rho, "Relative radius: no two points closer than 2 rho r_max(N) (default 0.75)");
+  cmd->add_option("--lloyd", a->lloyd, "Lloyd iterations at least per region (default 0: only until rho is met)")
       ->check(CLI::Range(0, 10000));
-  cmd->add_option("--seed", a.seed, "Random seed (default 1)");
-  cmd->add_option("--threads", a.threads, "Threads (default: all cores)");
-  cmd->add_option("--out", a.out, "Write the tile set (text, points/README.md)");
-  cmd->add_option("--picture", a.picture, "Draw 8 x 8 tiles of a tiling with the tile grid (.png or .svg)");
-  cmd->add_option("--db", a.db, "Results database (default: $TILEKIT_DB or the per-user one)");
-  cmd->add_flag("--no-db", a.no_db, "Do not store the set in the results database");
-  cmd->add_flag("--no-check", a.no_check, "Skip the independent neighbour check");
-  cmd->add_flag("--quiet", a.quiet, "No progress output on stderr");
+  cmd->add_option("--seed", a->seed, "Random seed (default 1)");
+  cmd->add_option("--threads", a->threads, "Threads (default: all cores)");
+  cmd->add_option("--out", a->out, "Write the tile set (text, points/README.md)");
+  cmd->add_option("--picture", a->picture, "Draw 8 x 8 tiles of a tiling with the tile grid (.png or .svg)");
+  cmd->add_option("--db", a->db, "Results database (default: $TILEKIT_DB or the per-user one)");
+  cmd->add_flag("--no-db", a->no_db, "Do not store the set in the results database");
+  cmd->add_flag("--no-check", a->no_check, "Skip the independent neighbour check");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    check_extension(a.picture, {".png", ".svg"}, "--picture");
-    PoissonTileParams p;
-    p.method = parse_poisson_tile_method(a.method);
-    p.colours = a.colors;
-    p.points = a.points;
-    p.rho = a.rho;
-    p.lloyd = a.lloyd;
-    p.seed = a.seed;
-    p.threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
-    p.progress = !a.quiet;
-    check_poisson_tile_params(p);
-    const PoissonTileSet set = build_poisson_tiles(p);
-    nlohmann::json j = {{"method", method_name(set.method)},
-                        {"colors", set.colours},
-                        {"points", set.points},
-                        {"rho", set.rho},
-                        {"radius", set.radius},
-                        {"tiles", set.tiles.size()},
-                        {"lattice_colors", set.lattice_colours()},
-                        {"corner_regions", set.corner_regions},
-                        {"edge_regions", set.edge_regions},
-                        {"interiors", set.interiors},
-                        {"seconds", set.seconds},
-                        {"threads", p.threads},
-                        {"seed", set.seed}};
-    if (!a.no_check) {
-      const auto c = check_poisson_tiles(set, p.threads);
-      j["check"] = {{"rho_within", c.rho_within},
-                    {"rho_across", c.rho_across},
-                    {"exhaustive", c.exhaustive},
-                    {"pairs_checked", c.pairs_checked},
-                    {"tiles_not_n_points", c.points_off_count}};
-      if (c.rho_across < set.rho || c.rho_within < set.rho || c.points_off_count)
-        throw std::runtime_error("the built tile set failed its independent check");
-    }
-    const std::string text = poisson_tiles_to_text(set);
-    if (!a.out.empty()) write_file_atomic(a.out, text), j["out"] = a.out;
-    if (!a.picture.empty()) {
-      const PoissonTileGenerator gen(set, HashKind::LongPeriod, 1);
-      const Window w{0, 0, 8, 8};
-      const auto xy = gen.generate(w, set.points);
-      if (is_svg(a.picture))
-        write_file_atomic(a.picture, points_svg(xy, w, 640, 2, 1));
-      else
-        write_image(a.picture, points_image(xy, w, 640, 2, 1));
-      j["picture"] = a.picture;
-    }
-    if (!a.no_db) {
-      ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
-      j["db"] = db.path();
-      j["tileset_id"] = store_poisson_tiles(db, set, text, p.threads);
-    }
-    emit(ctx, j, [&] {
-      fmt::print(
-          "{} Poisson disk tiles: C={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} s\n",
-          method_name(set.method), set.colours, set.points, set.rho, set.tiles.size(), set.corner_regions,
-          set.edge_regions, set.interiors, set.seconds);
-      if (j.contains("check"))
-        fmt::print("  check: rho {:.4f} inside tiles, {:.4f} across borders ({} {})\n",
-                   j["check"]["rho_within"].get<double>(), j["check"]["rho_across"].get<double>(),
-                   j["check"]["pairs_checked"].get<std::uint64_t>(),
-                   j["check"]["exhaustive"].get<bool>() ? "neighbour pairs, all" : "random tilings");
-      if (j.contains("out")) fmt::print("  -> {}\n", a.out);
-      if (j.contains("tileset_id"))
-        fmt::print("  stored as tile set {} in {}\n", j["tileset_id"].get<std::int64_t>(), j["db"].get<std::string>());
-    });
-  });
+  cmd->callback([a, &ctx] { run_tiles(*a, ctx); });
 }
 
 void add_generate_command(CLI::App* points, Context& ctx) {
   auto* cmd = points->add_subcommand(
       "generate",
       "All points of a window at a density: tiles through the direct stochastic tiling, or a reference set");
-  static GenerateArgs a;
-  add_source_options(cmd, a.source);
-  cmd->add_option("--window", a.window, "x0,y0,x1,y1 (half-open; y grows south)")->required();
-  cmd->add_option("--density", a.density,
+  auto a = std::make_shared<GenerateArgs>();
+  add_source_options(cmd, a->source);
+  cmd->add_option("--window", a->window, "x0,y0,x1,y1 (half-open; y grows south)")->required();
+  cmd->add_option("--density", a->density,
                   "Points per unit area (with --density-expr: the scale of the base tiles; with --density-image: "
                   "the density of black)")
       ->required();
-  cmd->add_option("--density-expr", a.density_expr,
+  cmd->add_option("--density-expr", a->density_expr,
                   "recursive: density as an expression in x, y, e.g. '2000 * exp(-20 * ((x-0.5)^2 + (y-0.5)^2))'");
-  cmd->add_option("--density-image", a.density_image,
+  cmd->add_option("--density-image", a->density_image,
                   "recursive: density from a grey image over the window (dark = dense)");
-  cmd->add_flag("--invert", a.invert, "--density-image: light = dense");
-  cmd->add_option("--seed", a.seed, "Seed of the tiling's hash tables (or the sampler) (default 1)");
-  cmd->add_option("--period", a.period, "Repeat the tiling every M tiles (a toroidal set)")
+  cmd->add_flag("--invert", a->invert, "--density-image: light = dense");
+  cmd->add_option("--seed", a->seed, "Seed of the tiling's hash tables (or the sampler) (default 1)");
+  cmd->add_option("--period", a->period, "Repeat the tiling every M tiles (a toroidal set)")
       ->check(CLI::Range(1, 1 << 30));
-  cmd->add_option("--threads", a.threads, "Threads, one tile row at a time (default: all cores)");
-  cmd->add_option("--out", a.out, "Points: .f32/.bin (float32 x,y pairs), .csv; or a picture: .png, .svg");
-  cmd->add_option("--px", a.px, "Picture size in pixels (default 800)")->check(CLI::Range(16, 8192));
-  cmd->add_flag("--analyze", a.analyze, "Add the radius analysis (overall and across tile borders)");
-  cmd->add_flag("--quiet", a.quiet, "No progress output on stderr");
+  cmd->add_option("--threads", a->threads, "Threads, one tile row at a time (default: all cores)");
+  cmd->add_option("--out", a->out, "Points: .f32/.bin (float32 x,y pairs), .csv; or a picture: .png, .svg");
+  cmd->add_option("--px", a->px, "Picture size in pixels (default 800)")->check(CLI::Range(16, 8192));
+  cmd->add_flag("--analyze", a->analyze, "Add the radius analysis (overall and across tile borders)");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->callback([&ctx] {
-    const Window w = parse_window(a.window);
-    if (!a.out.empty() && !is_point_file_path(a.out)) check_extension(a.out, {".png", ".svg"}, "--out");
-    const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
-    const Source src(a.source, threads, !a.quiet);
-    const double tile = src.tile_size(a.density);
-    ProgressReporter progress("points generate", 0, !a.quiet && w.area() * a.density > 5e7);
-    const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<DensityFunction> fn;
-    if (!a.density_expr.empty() && !a.density_image.empty())
-      throw InputError("give --density-expr or --density-image, not both");
-    if (!a.density_expr.empty()) fn = expression_density(a.density_expr);
-    if (!a.density_image.empty()) fn = image_density(a.density_image, w, a.density, a.invert);
-    const auto xy = src.points(w, a.density, a.seed, threads, a.period, a.period > 0, fn.get(), &progress);
-    const double seconds = seconds_since(start);
-    progress.finish();
-    const std::uint64_t count = xy.size() / 2;
-    nlohmann::json j = {{"method", src.method()}, {"source", src.describe()},
-                        {"points", count},        {"window", {w.x0, w.y0, w.x1, w.y1}},
-                        {"density", a.density},   {"seed", a.seed},
-                        {"seconds", seconds},     {"points_per_second", seconds > 0 ? double(count) / seconds : 0},
-                        {"threads", threads}};
-    if (tile > 0) j["tile_size"] = tile;
-    if (fn) j["density_function"] = fn->describe();
-    if (a.analyze && count >= 2) j["radius"] = radius_json(radius_stats(xy, w.area(), tile));
-    if (!a.out.empty()) {
-      if (is_point_file_path(a.out))
-        write_points(a.out, xy);
-      else if (is_svg(a.out))
-        write_file_atomic(a.out, points_svg(xy, w, a.px, 1.5, 0));
-      else
-        write_image(a.out, points_image(xy, w, a.px, 1.5, 0));
-      j["out"] = a.out;
-    }
-    emit(ctx, j, [&] {
-      fmt::print("{}: {} points in [{}, {}) x [{}, {}) at density {} in {:.3f} s ({:.1f} M points/s){}\n",
-                 src.describe(), count, w.x0, w.x1, w.y0, w.y1, a.density, seconds,
-                 count / std::max(seconds, 1e-9) / 1e6, a.out.empty() ? "" : " -> " + a.out);
-      if (j.contains("radius"))
-        fmt::print("  rho {:.4f} (across tile borders {:.4f}), mean nearest-neighbour distance {:.3f} x 2 r_max\n",
-                   j["radius"]["rho"].get<double>(), j["radius"].value("rho_across", 0.0),
-                   j["radius"]["mean_nn_relative"].get<double>());
-    });
-  });
+  cmd->callback([a, &ctx] { run_generate(*a, ctx); });
 }
 
-}  // namespace pts
+}  // namespace tilekit::cli::pts
+
+namespace tilekit::cli {
 
 void add_points_commands(CLI::App& app, Context& ctx) {
   auto* points = app.add_subcommand(

@@ -24,6 +24,42 @@ nlohmann::json describe(const TileSet& s) {
           {"list", list}};
 }
 
+struct ShowArgs {
+  std::string set_name, out;
+  bool borders = false;
+  int tile_px = 0;
+};
+
+void run_show(const ShowArgs& a, const Context& ctx) {
+  if (!a.out.empty() && !atlas::is_picture_path(a.out))
+    throw InputError(fmt::format("{}: unknown picture format (expected a .svg or .png file name)", a.out));
+  TileSet s = resolve_tile_set(a.set_name);
+  nlohmann::json j = describe(s);
+  if (!a.out.empty()) {
+    atlas::write_picture(atlas::draw_tile_set(s, {a.tile_px, a.borders}), a.out);
+    j["out"] = a.out;
+  }
+  emit(ctx, j, [&] {
+    fmt::print("{}: {} {} tiles, {} colours (horizontal {}, vertical {})\n", s.name(), s.size(), kind_name(s.kind()),
+               s.colours(), s.horizontal_colours(), s.vertical_colours());
+    if (!s.source().empty()) fmt::print("source: {}\n", s.source());
+    fmt::print("{}", format_tile_set_text(s));
+    if (!a.out.empty()) fmt::print("wrote {}\n", a.out);
+  });
+}
+
+void add_show(CLI::App& ts, Context& ctx) {
+  auto* cmd = ts.add_subcommand("show", "Show a tile set: kind, size, colours and tiles");
+  auto a = std::make_shared<ShowArgs>();
+  cmd->add_option("SET", a->set_name, "Built-in name (see `tileset list`) or tile-set file")->required();
+  cmd->add_option("--out", a->out, "Draw the set: F.svg or F.png (Wang tiles as triangles, corner tiles as discs)");
+  cmd->add_flag("--borders", a->borders, "Draw tile borders");
+  cmd->add_option("--tile-size", a->tile_px, "Pixels per tile (default: chosen from the set size)")
+      ->check(CLI::Range(1, 512));
+  add_json_flag(cmd, ctx);
+  cmd->callback([a, &ctx] { run_show(*a, ctx); });
+}
+
 }  // namespace
 
 void add_tileset_commands(CLI::App& app, Context& ctx) {
@@ -40,34 +76,7 @@ void add_tileset_commands(CLI::App& app, Context& ctx) {
       for (auto& b : sets) fmt::print("{:<28} {}\n", b.name, b.description);
     });
   });
-
-  auto* show = ts->add_subcommand("show", "Show a tile set: kind, size, colours and tiles");
-  static std::string set_name, out;
-  static bool borders = false;
-  static int tile_px = 0;
-  show->add_option("SET", set_name, "Built-in name (see `tileset list`) or tile-set file")->required();
-  show->add_option("--out", out, "Draw the set: F.svg or F.png (Wang tiles as triangles, corner tiles as discs)");
-  show->add_flag("--borders", borders, "Draw tile borders");
-  show->add_option("--tile-size", tile_px, "Pixels per tile (default: chosen from the set size)")
-      ->check(CLI::Range(1, 512));
-  add_json_flag(show, ctx);
-  show->callback([&ctx] {
-    if (!out.empty() && !atlas::is_picture_path(out))
-      throw InputError(fmt::format("{}: unknown picture format (expected a .svg or .png file name)", out));
-    TileSet s = resolve_tile_set(set_name);
-    nlohmann::json j = describe(s);
-    if (!out.empty()) {
-      atlas::write_picture(atlas::draw_tile_set(s, {tile_px, borders}), out);
-      j["out"] = out;
-    }
-    emit(ctx, j, [&] {
-      fmt::print("{}: {} {} tiles, {} colours (horizontal {}, vertical {})\n", s.name(), s.size(),
-                 kind_name(s.kind()), s.colours(), s.horizontal_colours(), s.vertical_colours());
-      if (!s.source().empty()) fmt::print("source: {}\n", s.source());
-      fmt::print("{}", format_tile_set_text(s));
-      if (!out.empty()) fmt::print("wrote {}\n", out);
-    });
-  });
+  add_show(*ts, ctx);
 }
 
 }  // namespace tilekit::cli

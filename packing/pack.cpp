@@ -4,20 +4,22 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 
 #include "base/error.hpp"
 #include "base/parse.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
-#include "results/results_db.hpp"
 #include "packing/find_packing.hpp"
 #include "packing/solution_sink.hpp"
+#include "results/results_db.hpp"
 #include "solver/impose_domain.hpp"
 #include "solver/portfolio.hpp"
+#include "solver/solve.hpp"
 #include "solver/symmetry.hpp"
 #include "tilesets/constructions.hpp"
-#include "tilesets/tile_set_io.hpp"
 #include "tilesets/tile_grid.hpp"
+#include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -28,11 +30,6 @@ SearchMode parse_mode(const std::string& m) {
   if (m == "count") return SearchMode::Count;
   if (m == "all") return SearchMode::All;
   throw InputError(fmt::format("unknown mode '{}' (first, count or all)", m));
-}
-
-void parse_shard(const std::string& s, SearchOptions& o) {
-  const ShardSpec shard = tilekit::parse_shard(s);  // strict: 4294967296/1 is refused, not shard 0
-  o.shard_index = shard.index, o.shard_count = shard.count;
 }
 
 TilingProblem make_problem(const PackRequest& a) {
@@ -80,22 +77,16 @@ SearchOptions search_options(const PackRequest& a) {
     throw InputError("--lift searches its own subspace: drop --impose and --method construct");
   if (!a.candidates.empty() && (a.plain || !a.impose.empty() || !a.lift.empty()))
     throw InputError("--candidate names a portfolio candidate: not with --plain, --impose or --lift");
-  o.threads = a.threads;
-  o.seed = a.seed;
-  o.time_limit = a.time_limit;
   o.formulation = a.formulation;
   o.ordering = a.ordering;
   o.impose = a.impose;
   o.lift = a.lift;
-  parse_shard(a.shard, o);
-  o.resume_path = a.resume;
-  o.checkpoint_path = !a.checkpoint.empty() ? a.checkpoint : a.resume;
-  if (a.checkpoint_every < 0 && a.checkpoint_every != -1)
-    throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.checkpoint_every));
-  o.checkpoint_every = a.checkpoint_every >= 0 ? a.checkpoint_every : (o.checkpoint_path.empty() ? 0 : 300);
-  o.progress = a.progress;
-  o.catch_signals = a.catch_signals;
-  o.estimate_probes = o.progress && o.mode != SearchMode::First ? 200 : 0;
+  o.run = a.run;
+  if (o.run.checkpoint_path.empty()) o.run.checkpoint_path = a.run.resume_path;  // keep checkpointing to it
+  if (a.run.checkpoint_every < 0 && a.run.checkpoint_every != -1)
+    throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.run.checkpoint_every));
+  if (!(o.run.checkpoint_every >= 0)) o.run.checkpoint_every = o.run.checkpoint_path.empty() ? 0 : 300;  // -1 (or NaN)
+  o.estimate_probes = o.run.progress && o.mode != SearchMode::First ? 200 : 0;
   return o;
 }
 
@@ -109,14 +100,160 @@ nlohmann::json group_json(const TilingProblem& p, const std::string& spec) {
   return spec.empty() ? nlohmann::json(nullptr) : build_group(p, spec).to_json();
 }
 
+// The portfolio answers first-mode searches of complete sets unless the engine is pinned by a
+// group, a lift, --plain, a formulation or an ordering.
+bool uses_portfolio(const PackRequest& a, SearchMode mode, bool complete_set) {
+  return a.impose.empty() && a.lift.empty() && !a.plain && mode == SearchMode::First && a.method != "construct" &&
+         complete_set && a.formulation == "auto" && a.ordering == "auto";
+}
+
+// Bad options, and searches that cannot fit in memory, are exit 2 before the database is touched.
+void check_runnable(const PackRequest& a, const TilingProblem& problem, const SearchOptions& o,
+                    const PortfolioOptions& po, bool use_portfolio) {
+  if (!a.candidates.empty() && !use_portfolio)
+    throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
+  const std::uint32_t colours = problem.set.colours();
+  const std::vector<std::uint32_t> constructible =
+      a.set.empty() ? constructible_colours(problem.set.kind(), colours) : std::vector<std::uint32_t>{};
+  const bool may_construct = a.method != "search" && o.mode == SearchMode::First && a.impose.empty() &&
+                             std::find(constructible.begin(), constructible.end(), colours) != constructible.end();
+  if (a.method != "construct" && !may_construct) check_searchable(problem);
+  SearchOptions check = o;
+  check.run.checkpoint_path.clear(), check.run.resume_path.clear();
+  if (use_portfolio) {
+    portfolio_fingerprint(problem, check, po);
+    for (const auto& c : po.candidates.empty() ? default_candidates(problem.set.kind(), colours) : po.candidates)
+      make_candidate(problem, c);
+  } else {
+    search_fingerprint(problem, check);
+  }
+}
+
+// The run's row in the results database, "running" until finish_record().
+RunRecord begin_record(ResultsDb& db, const PackRequest& a, const TilingProblem& problem, const SearchOptions& o,
+                       const nlohmann::json& identity) {
+  RunRecord record;
+  record.command = "pack";
+  record.params = identity;
+  record.params["rows"] = problem.rows;
+  record.params["cols"] = problem.cols;
+  record.params["time_limit"] = a.run.time_limit;
+  record.params["checkpoint"] = o.run.checkpoint_path;
+  record.params["resume"] = o.run.resume_path;
+  record.status = "running";
+  record.threads = o.run.threads;
+  record.id = db.begin_run(record);
+  return record;
+}
+
+// The portfolio's answer as the outcome's SearchResult, with the winner and every candidate's
+// runs; the packing found goes into `sink` under the winner's group.
+void portfolio_search(PackOutcome& out, SearchOptions o, const PortfolioOptions& po, const nlohmann::json& identity,
+                      SolutionSink& sink) {
+  o.on_solution = nullptr;  // stored below with the winner's group
+  o.flush = nullptr;
+  PortfolioResult pr = run_portfolio_checkpointed(out.problem, o, po, identity);
+  SearchResult& r = out.result;
+  r = pr.result;
+  r.nodes = pr.nodes;
+  r.seconds = pr.seconds;
+  r.total_seconds = pr.total_seconds;
+  r.threads = o.run.threads;
+  r.complete = pr.complete;
+  r.interrupted = pr.interrupted;
+  r.signal = pr.signal;
+  r.timed_out = pr.timed_out;
+  r.checkpoints = pr.checkpoints;
+  r.formulation = "portfolio";
+  out.portfolio = {{"winner", pr.found ? nlohmann::json(pr.winner) : nlohmann::json(nullptr)}, {"runs", pr.runs}};
+  sink.group = out.group = group_json(out.problem, r.group);
+  if (pr.found) sink.add(pr.result.found.front());
+  // No candidate found one and the plain search (the whole space) was exhausted.
+  if (pr.complete) {
+    bool plain_ran = false;
+    for (const auto& row : pr.runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
+    if (!plain_ran) r.complete = false;  // only subspaces were exhausted
+  }
+}
+
+// First mode on a complete set without a group or lift: the database, a construction, then
+// `search` (find_packing.hpp), as --method allows.
+void find_first(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int threads, const std::function<void()>& search) {
+  const PackRequest& a = out.request;
+  SearchResult& r = out.result;
+  const TileKind kind = out.problem.set.kind();
+  const std::uint32_t colours = out.problem.set.colours();
+  PackingSources src;
+  src.db = a.method == "auto" ? &db : nullptr;
+  src.construct = a.method != "search";
+  if (a.method != "construct")
+    src.search = [&]() -> std::optional<FoundPacking> {
+      search();
+      if (r.found.empty()) return std::nullopt;
+      return FoundPacking{r.found.front(), "search", r.group, false, 0};
+    };
+  std::optional<FoundPacking> found = find_packing(kind, colours, src);
+  out.method = found ? found->source : "search";
+  if (found && found->source != "search") {
+    r.found = {found->tiling};
+    r.solutions = 1;
+    r.threads = threads;
+    r.complete = false;
+    if (found->source == "construct") {
+      out.construction = found->how;
+      sink.method = "construct";
+      sink.add(found->tiling);
+      sink.flush();
+    }
+  }
+  if (!found && a.method == "construct")
+    throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
+                               kind_name(kind), colours));
+}
+
+// Why first mode found no packing (exit 1).
+std::string not_found_reason(const PackOutcome& out) {
+  const PackRequest& a = out.request;
+  const SearchResult& r = out.result;
+  if (r.complete)
+    return !a.impose.empty() ? "no packing is invariant under the imposed group (its subspace was exhausted)"
+           : !a.lift.empty() ? "no packing is a lift of the base packing (its subspace was exhausted)"
+                             : "no packing exists (the search space was exhausted)";
+  return out.portfolio.is_object() && !out.interrupted && !r.timed_out
+             ? "no packing in the portfolio's subspaces (each candidate was exhausted)"
+             : "no packing found within the time limit";
+}
+
+// The outcome's closing fields from the search result, and the run's row closed.
+void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSink& sink, const SearchOptions& o) {
+  const SearchResult& r = out.result;
+  out.signal = r.signal ? r.signal : SignalCatcher::caught();
+  out.interrupted = r.interrupted || SignalCatcher::caught() != 0;
+  record.status = out.interrupted ? "interrupted" : r.complete ? "complete" : "incomplete";
+  record.solutions = r.solutions;
+  record.orbits = r.orbits;
+  record.nodes = r.nodes;
+  record.seconds = r.seconds;
+  db.finish_run(record);
+  out.stored = sink.added();
+  if (out.method == "search" && !o.run.checkpoint_path.empty()) out.checkpoint = o.run.checkpoint_path;
+  if (!r.found.empty())
+    if (auto sym = PackingSymmetry::for_problem(out.problem)) {
+      std::uint64_t orbit = 0;
+      sym->canonical(r.found.front(), &orbit);
+      out.orbit_size = orbit;
+    }
+  if (o.mode == SearchMode::First && r.found.empty()) out.not_found = not_found_reason(out);
+}
+
 }  // namespace
 
 PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   std::optional<SignalCatcher> signals;  // from here to the outcome: a signal always ends in `interrupted`
-  if (request.catch_signals) signals.emplace();
-  if (!request.resume.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
-    CheckpointFile f = read_checkpoint_file(request.resume);
-    request = resume_request(request, given, f.request, request.resume);
+  if (request.run.catch_signals) signals.emplace();
+  if (!request.run.resume_path.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
+    CheckpointFile f = read_checkpoint_file(request.run.resume_path);
+    request = resume_request(request, given, f.request, request.run.resume_path);
   }
   PackOutcome out;
   out.request = request;
@@ -125,154 +262,45 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
   const TilingProblem& problem = out.problem;
   SearchOptions o = search_options(a);
   const bool complete_set = is_complete_set_problem(problem);
-  const SearchMode mode = o.mode;
-  // The portfolio answers first-mode searches of complete sets unless the engine is pinned by
-  // a group, a lift, --plain, a formulation or an ordering.
-  const bool use_portfolio = a.impose.empty() && a.lift.empty() && !a.plain && mode == SearchMode::First &&
-                             a.method != "construct" && complete_set && a.formulation == "auto" && a.ordering == "auto";
-  if (!a.candidates.empty() && !use_portfolio)
-    throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
-  const std::string kind(kind_name(problem.set.kind()));
-  const std::uint32_t colours = problem.set.colours();
-  o.title = fmt::format("pack {} C={} {}", kind, colours, a.mode);
+  const bool use_portfolio = uses_portfolio(a, o.mode, complete_set);
+  o.title = fmt::format("pack {} C={} {}", kind_name(problem.set.kind()), problem.set.colours(), a.mode);
   PortfolioOptions po;
   po.stats_path = a.portfolio_stats;
   po.candidates = a.candidates;
-  {  // bad options, and searches that cannot fit in memory, are exit 2 before the database is touched
-    const std::vector<std::uint32_t> constructible =
-        a.set.empty() ? constructible_colours(problem.set.kind(), colours) : std::vector<std::uint32_t>{};
-    const bool may_construct = a.method != "search" && mode == SearchMode::First && a.impose.empty() &&
-                               std::find(constructible.begin(), constructible.end(), colours) != constructible.end();
-    if (a.method != "construct" && !may_construct) check_searchable(problem);
-    SearchOptions check = o;
-    check.checkpoint_path.clear(), check.resume_path.clear();
-    if (use_portfolio) {
-      portfolio_fingerprint(problem, check, po);
-      for (const auto& c : po.candidates.empty() ? default_candidates(problem.set.kind(), colours) : po.candidates)
-        make_candidate(problem, c);
-    } else {
-      search_fingerprint(problem, check);
-    }
-  }
-  nlohmann::json identity = request_identity(a);
+  check_runnable(a, problem, o, po, use_portfolio);
+  const nlohmann::json identity = request_identity(a);
 
   ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
   out.db_path = db.path();
-  RunRecord run;
-  run.command = "pack";
-  run.params = identity;
-  run.params["rows"] = problem.rows;
-  run.params["cols"] = problem.cols;
-  run.params["time_limit"] = a.time_limit;
-  run.params["checkpoint"] = o.checkpoint_path;
-  run.params["resume"] = o.resume_path;
-  run.status = "running";
-  run.threads = o.threads;
-  run.id = db.begin_run(run);
-  out.run_id = run.id;
-  SolutionSink sink(db, run.id, problem);
-  if (mode != SearchMode::Count) {
+  RunRecord record = begin_record(db, a, problem, o, identity);
+  out.run_id = record.id;
+  SolutionSink sink(db, record.id, problem);
+  if (o.mode != SearchMode::Count) {
     o.on_solution = [&sink](const Tiling& t) { sink.add(t); };
     o.flush = [&sink] { sink.flush(); };
   }
   sink.group = out.group = group_json(problem, a.impose);
-  SearchResult& r = out.result;
-
   // One search: the portfolio, or solve() (under the group with --impose).
   auto search = [&] {
-    if (use_portfolio) {
-      SearchOptions po_opts = o;
-      po_opts.on_solution = nullptr;  // stored below with the winner's group
-      po_opts.flush = nullptr;
-      PortfolioResult pr = run_portfolio_checkpointed(problem, po_opts, po, identity);
-      r = pr.result;
-      r.nodes = pr.nodes;
-      r.seconds = pr.seconds;
-      r.total_seconds = pr.total_seconds;
-      r.threads = o.threads;
-      r.complete = pr.complete;
-      r.interrupted = pr.interrupted;
-      r.signal = pr.signal;
-      r.timed_out = pr.timed_out;
-      r.checkpoints = pr.checkpoints;
-      r.formulation = "portfolio";
-      out.portfolio = {{"winner", pr.found ? nlohmann::json(pr.winner) : nlohmann::json(nullptr)}, {"runs", pr.runs}};
-      sink.group = out.group = group_json(problem, r.group);
-      if (pr.found) sink.add(pr.result.found.front());
-      // No candidate found one and the plain search (the whole space) was exhausted.
-      if (pr.complete) {
-        bool plain_ran = false;
-        for (const auto& row : pr.runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
-        if (!plain_ran) r.complete = false;  // only subspaces were exhausted
-      }
-    } else {
-      r = solve_checkpointed(problem, o, identity);
-    }
+    if (use_portfolio)
+      portfolio_search(out, o, po, identity, sink);
+    else
+      out.result = solve_checkpointed(problem, o, identity);
     sink.flush();
   };
-
   try {
-    if (mode == SearchMode::First && complete_set && a.impose.empty() && a.lift.empty() && a.set.empty()) {
-      PackingSources src;
-      src.db = a.method == "auto" ? &db : nullptr;
-      src.construct = a.method != "search";
-      if (a.method != "construct")
-        src.search = [&]() -> std::optional<FoundPacking> {
-          search();
-          if (r.found.empty()) return std::nullopt;
-          return FoundPacking{r.found.front(), "search", r.group, false, 0};
-        };
-      std::optional<FoundPacking> found = find_packing(problem.set.kind(), colours, src);
-      out.method = found ? found->source : "search";
-      if (found && found->source != "search") {
-        r.found = {found->tiling};
-        r.solutions = 1;
-        r.threads = o.threads;
-        r.complete = false;
-        if (found->source == "construct") {
-          out.construction = found->how;
-          sink.method = "construct";
-          sink.add(found->tiling);
-          sink.flush();
-        }
-      }
-      if (!found && a.method == "construct")
-        throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
-                                   kind, colours));
+    if (o.mode == SearchMode::First && complete_set && a.impose.empty() && a.lift.empty() && a.set.empty()) {
+      find_first(out, db, sink, o.run.threads, search);
     } else {
       out.method = "search";
       search();
     }
   } catch (...) {
-    run.status = "failed";
-    db.finish_run(run);
+    record.status = "failed";
+    db.finish_run(record);
     throw;
   }
-  out.signal = r.signal ? r.signal : SignalCatcher::caught();
-  out.interrupted = r.interrupted || SignalCatcher::caught() != 0;
-  run.status = out.interrupted ? "interrupted" : r.complete ? "complete" : "incomplete";
-  run.solutions = r.solutions;
-  run.orbits = r.orbits;
-  run.nodes = r.nodes;
-  run.seconds = r.seconds;
-  db.finish_run(run);
-  out.stored = sink.added();
-  if (out.method == "search" && !o.checkpoint_path.empty()) out.checkpoint = o.checkpoint_path;
-  if (!r.found.empty())
-    if (auto sym = PackingSymmetry::for_problem(problem)) {
-      std::uint64_t orbit = 0;
-      sym->canonical(r.found.front(), &orbit);
-      out.orbit_size = orbit;
-    }
-  if (mode == SearchMode::First && r.found.empty())
-    out.not_found = r.complete
-                        ? (!a.impose.empty() ? "no packing is invariant under the imposed group (its subspace was "
-                                               "exhausted)"
-                           : !a.lift.empty() ? "no packing is a lift of the base packing (its subspace was exhausted)"
-                                             : "no packing exists (the search space was exhausted)")
-                    : out.portfolio.is_object() && !out.interrupted && !r.timed_out
-                        ? "no packing in the portfolio's subspaces (each candidate was exhausted)"
-                        : "no packing found within the time limit";
+  finish(out, db, record, sink, o);
   return out;
 }
 

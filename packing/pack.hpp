@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "packing/request.hpp"
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 
 namespace tilekit {
 

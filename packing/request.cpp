@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "base/error.hpp"
+#include "base/parse.hpp"
 
 namespace tilekit {
 namespace {
@@ -37,8 +38,10 @@ const Field kFields[] = {
     TILEKIT_FIELD("--lift", "lift", lift, std::string),
     TILEKIT_FIELD("--plain", "plain", plain, bool),
     TILEKIT_FIELD("--candidate", "candidates", candidates, std::vector<std::string>),
-    TILEKIT_FIELD("--seed", "seed", seed, std::uint64_t),
-    TILEKIT_FIELD("--shard", "shard", shard, std::string),
+    TILEKIT_FIELD("--seed", "seed", run.seed, std::uint64_t),
+    // Stored as the flag's text "I/N", as every checkpoint has it.
+    Field{"--shard", "shard", [](const PackRequest& r) { return nlohmann::json(shard_text(r.run.shard)); },
+          [](PackRequest& r, const nlohmann::json& j) { r.run.shard = parse_shard(j.get<std::string>()); }},
 };
 
 #undef TILEKIT_FIELD
@@ -79,6 +82,8 @@ PackRequest resume_request(const PackRequest& here, const std::set<std::string>&
     try {
       f.set(r, theirs);
     } catch (const nlohmann::json::exception&) {
+      throw InputError(fmt::format("checkpoint {}: the request's {} is malformed", checkpoint, f.key));
+    } catch (const InputError&) {
       throw InputError(fmt::format("checkpoint {}: the request's {} is malformed", checkpoint, f.key));
     }
   }

@@ -9,10 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "solver/run_settings.hpp"
+
 namespace tilekit {
 
 struct PackRequest {
-  // ---- identity: fixed by a checkpoint ----
+  // ---- identity: fixed by a checkpoint (with run.seed and run.shard) ----
   std::string kind;  // "corner" | "wang" (the complete set over `colours`)
   std::int64_t colours = 0;
   std::string set, size;        // or: a tile set (built-in name or file) and ROWSxCOLS
@@ -23,17 +25,17 @@ struct PackRequest {
   std::string lift;                     // search only colour-quotient lifts (solver/colour_lift_model.hpp SPEC)
   bool plain = false;                   // first mode: no portfolio, the plain search alone
   std::vector<std::string> candidates;  // portfolio candidates (empty = the default list)
-  std::uint64_t seed = 0;
-  std::string shard = "0/1";  // I/N
-  // ---- run settings: free to change on resume ----
-  int threads = 1;
-  double time_limit = 0;
-  double checkpoint_every = -1;    // -1 = 300 s with a checkpoint file, else none
-  std::string checkpoint, resume;  // files
-  std::string db;                  // results database ("" = the default one)
-  std::string portfolio_stats;     // "" = the default statistics file
-  bool progress = true;
-  bool catch_signals = true;  // SIGTERM/SIGINT/SIGUSR1 -> checkpoint, interrupted
+  // ---- run settings: free to change on resume, except run.seed and run.shard ----
+  // run.checkpoint_every < 0: 300 s with a checkpoint file (run.checkpoint_path, else
+  // run.resume_path, which a resumed run keeps checkpointing to), else none.
+  RunSettings run = [] {
+    RunSettings r;
+    r.checkpoint_every = -1;
+    r.progress = r.catch_signals = true;
+    return r;
+  }();
+  std::string db;               // results database ("" = the default one)
+  std::string portfolio_stats;  // "" = the default statistics file
 };
 
 // The identity fields as JSON (what a checkpoint stores, with the database path).

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "results/results_db.hpp"
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 #include "solver/symmetry.hpp"
 
 namespace tilekit {

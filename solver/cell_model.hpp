@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "solver/model.hpp"
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 
 namespace tilekit {
 

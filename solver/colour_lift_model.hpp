@@ -20,8 +20,8 @@
 
 #include "solver/cell_model.hpp"
 #include "solver/lattice_model.hpp"
+#include "solver/problem.hpp"
 #include "tilesets/constructions.hpp"
-#include "solver/solve.hpp"
 
 namespace tilekit {
 

@@ -105,7 +105,7 @@ std::string lift_cnf(const LiftProblem& lift, std::uint64_t* variables, std::uin
 SearchResult solve_lift_sat(const LiftProblem& lift, const TilingProblem& problem, const SearchOptions& o,
                             const std::string& fingerprint) {
   if (o.mode != SearchMode::First) throw InputError("--formulation sat finds one packing: use it with --mode first");
-  if (o.shard_count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
+  if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
   if (o.resume_state && o.resume_state->fingerprint != fingerprint)
     throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");
   const double prior = o.resume_state ? o.resume_state->seconds : 0;
@@ -118,10 +118,11 @@ SearchResult solve_lift_sat(const LiftProblem& lift, const TilingProblem& proble
   res.fingerprint = fingerprint;
   LiftCnf e = build_lift_cnf(lift);
   auto stop = [&] {
-    if (o.catch_signals && SignalCatcher::caught()) return true;
-    return o.time_limit > 0 && elapsed() >= o.time_limit;
+    if (o.run.catch_signals && SignalCatcher::caught()) return true;
+    return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;
   };
-  SatRun run = run_cadical(e.cnf, o.time_limit > 0 ? std::max(1.0, o.time_limit - elapsed()) : 0, o.seed, stop);
+  SatRun run =
+      run_cadical(e.cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);
   if (run.status == SatRun::Status::Satisfiable) {
     Tiling a = colour_lift(lift.base, decode_quotient(e, run.value));
     ValidationReport rep = validate(a, &problem.set);
@@ -133,7 +134,7 @@ SearchResult solve_lift_sat(const LiftProblem& lift, const TilingProblem& proble
     res.solutions = 1;
   }
   res.complete = run.status == SatRun::Status::Unsatisfiable;  // the lift subspace holds no packing
-  res.signal = o.catch_signals ? SignalCatcher::caught() : 0;
+  res.signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
   res.interrupted = run.stopped && res.signal != 0;
   res.timed_out = run.status == SatRun::Status::Unknown && !res.interrupted;
   res.seconds = elapsed();

@@ -6,7 +6,7 @@
 #include <cassert>
 
 #include "base/error.hpp"
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 
 namespace tilekit {
 namespace {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "solver/model.hpp"
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 
 namespace tilekit {
 

@@ -43,26 +43,23 @@
 #include "solver/knuth_estimate.hpp"
 #include "solver/luby.hpp"
 #include "solver/model.hpp"
+#include "solver/problem.hpp"
 #include "solver/search_state.hpp"
-#include "solver/solve.hpp"
 #include "solver/subproblems.hpp"
 
 namespace tilekit {
 
 struct ParallelConfig {
   SearchMode mode = SearchMode::Count;
-  int threads = 1;
-  std::uint64_t seed = 0;
-  double time_limit = 0;
-  int shard_index = 0, shard_count = 1;
-  double checkpoint_every = 0;
-  bool progress = false;
+  // Threads, seed, time limit, shard, checkpoint interval, progress and signals (stop on
+  // SignalCatcher::caught() with catch_signals). The checkpoint files are the caller's: `save`
+  // and `resume` below.
+  RunSettings run;
   std::string title = "search";
   bool restarts = false;              // first mode: Luby restarts from the root
   std::uint64_t restart_base = 2000;  // nodes per Luby unit
   std::size_t subproblem_target = 1024;
   std::uint64_t estimate_probes = 0;  // Knuth probes before the search (0 = none)
-  bool poll_signals = false;          // stop on SignalCatcher::caught()
   std::string fingerprint;
   std::function<void(const SearchState&)> save;  // empty: no checkpoints
   const SearchState* resume = nullptr;
@@ -87,13 +84,13 @@ class ParallelSearch {
 
   ParallelSearch(const M& root, ParallelConfig cfg, Leaf leaf)
       : root_(root), cfg_(std::move(cfg)), leaf_(std::move(leaf)) {
-    if (cfg_.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", cfg_.threads));
+    if (cfg_.run.threads < 1) throw InputError(fmt::format("threads must be at least 1, got {}", cfg_.run.threads));
   }
 
   ParallelOutcome run() {
     start_ = std::chrono::steady_clock::now();
     ParallelOutcome out;
-    if (cfg_.estimate_probes) out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.seed);
+    if (cfg_.estimate_probes) out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed);
     estimate_ = out.estimate.nodes;
     prior_seconds_ = cfg_.resume ? cfg_.resume->seconds : 0;
     if (cfg_.mode == SearchMode::First && cfg_.restarts) {
@@ -183,7 +180,7 @@ class ParallelSearch {
         throw InputError(
             "checkpoint does not match this search: its subproblems differ (different problem or options)");
       try {  // a state made in memory gets the same structural checks as one read from a file
-        check_search_state(*r, subs_.size(), cfg_.shard_index, cfg_.shard_count);
+        check_search_state(*r, subs_.size(), cfg_.run.shard.index, cfg_.run.shard.count);
       } catch (const InputError& e) {
         throw InputError(fmt::format("checkpoint is inconsistent: {}", e.what()));
       }
@@ -222,7 +219,9 @@ class ParallelSearch {
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
-  bool mine(std::uint64_t i) const { return i % std::uint64_t(cfg_.shard_count) == std::uint64_t(cfg_.shard_index); }
+  bool mine(std::uint64_t i) const {
+    return i % std::uint64_t(cfg_.run.shard.count) == std::uint64_t(cfg_.run.shard.index);
+  }
 
   std::uint64_t done_in_shard() const {
     std::uint64_t n = 0;
@@ -290,11 +289,11 @@ class ParallelSearch {
       slot.dive.store(next_restart_.load());
       const std::uint64_t k = next_restart_++;
       slot.dive.store(k);
-      const std::uint64_t r = k * std::uint64_t(cfg_.shard_count) + std::uint64_t(cfg_.shard_index);
+      const std::uint64_t r = k * std::uint64_t(cfg_.run.shard.count) + std::uint64_t(cfg_.run.shard.index);
       M m = root_;
       // Seed 0 keeps the natural value order for the first dive (the plain DFS); every other
       // restart, and every restart of a seeded run, shuffles it.
-      m.set_value_seed(cfg_.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.seed * 0x100000001b3ull + r + 1));
+      m.set_value_seed(cfg_.run.seed == 0 && r == 0 ? 0 : mix_seed(cfg_.run.seed * 0x100000001b3ull + r + 1));
       Control ctl{*this, slot, 0, epoch_.load()};
       ctl.node_limit = luby_limit(k + 1, cfg_.restart_base);
       SearchCounters c;
@@ -318,7 +317,7 @@ class ParallelSearch {
   // ---- shared machinery: threads, monitor, checkpoints ----
   template <class Work>
   void run_workers(Work work) {
-    int threads = cfg_.threads;
+    int threads = cfg_.run.threads;
     slots_.clear();
     for (int i = 0; i < threads; ++i) slots_.push_back(std::make_unique<Slot>());
     std::atomic<bool> done{false};
@@ -340,7 +339,7 @@ class ParallelSearch {
   }
 
   void monitor_loop(std::atomic<bool>& done) {
-    ProgressReporter progress(cfg_.title, 0, cfg_.progress, 5.0);
+    ProgressReporter progress(cfg_.title, 0, cfg_.run.progress, 5.0);
     auto last_ckpt = std::chrono::steady_clock::now();
     for (;;) {
       {
@@ -348,20 +347,20 @@ class ParallelSearch {
         monitor_cv_.wait_for(lock, std::chrono::milliseconds(20), [&] { return done.load(); });
         if (done) break;
       }
-      if (cfg_.poll_signals && SignalCatcher::caught()) {
+      if (cfg_.run.catch_signals && SignalCatcher::caught()) {
         signal_ = SignalCatcher::caught();
         stop_.request(StopReason::Signal);
       }
-      if (cfg_.time_limit > 0 && elapsed() >= cfg_.time_limit) stop_.request(StopReason::TimeLimit);
+      if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
       auto now = std::chrono::steady_clock::now();
-      if (cfg_.save && cfg_.checkpoint_every > 0 && !stop_.requested() &&
-          std::chrono::duration<double>(now - last_ckpt).count() >= cfg_.checkpoint_every) {
+      if (cfg_.save && cfg_.run.checkpoint_every > 0 && !stop_.requested() &&
+          std::chrono::duration<double>(now - last_ckpt).count() >= cfg_.run.checkpoint_every) {
         checkpoint(false);
         last_ckpt = std::chrono::steady_clock::now();
       }
-      if (cfg_.progress) report(progress);
+      if (cfg_.run.progress) report(progress);
     }
-    if (cfg_.progress) report(progress);
+    if (cfg_.run.progress) report(progress);
   }
 
   void report(ProgressReporter& p) {
@@ -384,7 +383,7 @@ class ParallelSearch {
     nodes += live;
     std::string est = estimate_ > 0 ? fmt::format(" of ~{:.3g} (Knuth)", estimate_) : "";
     // Before the first subproblem finishes, the Knuth estimate is the only yardstick.
-    bool by_nodes = done == 0 && estimate_ > 0 && cfg_.shard_count == 1;
+    bool by_nodes = done == 0 && estimate_ > 0 && cfg_.run.shard.count == 1;
     p.update(by_nodes ? double(nodes) : double(done), by_nodes ? estimate_ : double(shard_total_),
              fmt::format("{}/{} subproblems, {} nodes{}, {:.3g} nodes/s", done, shard_total_, nodes, est,
                          t > 0 ? double(nodes) / t : 0.0));

@@ -13,9 +13,10 @@
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
-#include "solver/impose_domain.hpp"
 #include "solver/colour_lift_model.hpp"
+#include "solver/impose_domain.hpp"
 #include "solver/sat_cnf.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/constructions.hpp"
 
 namespace tilekit {
@@ -133,7 +134,7 @@ Candidate make_sat(const TilingProblem& problem, const std::string& name, const 
   auto run = [spec](const TilingProblem& p, SearchOptions o) {
     o.impose = spec;
     o.formulation = "sat";
-    o.shard_index = 0, o.shard_count = 1;  // a sat candidate runs in one shard (see run_portfolio)
+    o.run.shard = {};  // a sat candidate runs in one shard (see run_portfolio)
     o.save_checkpoint = nullptr;
     o.resume_state.reset();
     return solve(p, o);
@@ -159,7 +160,7 @@ Candidate make_lift_sat(const TilingProblem& problem, const std::string& name, c
   auto run = [spec](const TilingProblem& p, SearchOptions o) {
     o.lift = spec;
     o.formulation = "sat";
-    o.shard_index = 0, o.shard_count = 1;  // runs in one shard (see run_portfolio)
+    o.run.shard = {};  // runs in one shard (see run_portfolio)
     o.save_checkpoint = nullptr;
     o.resume_state.reset();
     return solve(p, o);
@@ -195,9 +196,8 @@ std::string portfolio_fingerprint(const TilingProblem& problem, const SearchOpti
                                   const PortfolioOptions& portfolio) {
   SearchOptions base;
   base.mode = SearchMode::First;
-  base.seed = options.seed;
-  base.shard_index = options.shard_index;
-  base.shard_count = options.shard_count;
+  base.run.seed = options.run.seed;
+  base.run.shard = options.run.shard;
   std::vector<std::string> names = portfolio.candidates.empty()
                                        ? default_candidates(problem.set.kind(), problem.set.colours())
                                        : portfolio.candidates;
@@ -228,7 +228,7 @@ class Scheduler {
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
   void start();
   bool mine(std::size_t i) const {  // a candidate that cannot be split runs in one shard
-    return candidates_[i].splittable || i % std::size_t(o_.shard_count) == std::size_t(o_.shard_index);
+    return candidates_[i].splittable || i % std::size_t(o_.run.shard.count) == std::size_t(o_.run.shard.index);
   }
   void slice(std::size_t i, double seconds);
 
@@ -271,14 +271,14 @@ void Scheduler::slice(std::size_t i, double seconds) {
   const Candidate& cand = candidates_[i];
   SearchOptions o = o_;
   o.mode = SearchMode::First;
-  o.time_limit = seconds;
+  o.run.time_limit = seconds;
   o.title = fmt::format("portfolio {} round {}", cand.name, state_.round);
   o.estimate_probes = 0;
   o.save_checkpoint = nullptr;
   o.resume_state.reset();
   if (cand.resumable) {
     o.resume_state = cs.engine;
-    o.checkpoint_every = po_.checkpoint_every;
+    o.run.checkpoint_every = po_.save_checkpoint ? o_.run.checkpoint_every : 0;
     o.save_checkpoint = [this, i](const SearchState& st) {
       state_.candidates[i].engine = st;
       save();
@@ -310,7 +310,7 @@ PortfolioResult Scheduler::run() {
   start();
   save();  // the first checkpoint, before any work
   for (;;) {
-    if (o_.catch_signals && SignalCatcher::caught()) {
+    if (o_.run.catch_signals && SignalCatcher::caught()) {
       out_.interrupted = true;
       out_.signal = SignalCatcher::caught();
       break;
@@ -332,8 +332,8 @@ PortfolioResult Scheduler::run() {
       continue;
     }
     double seconds = po_.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(state_.round, 20));
-    if (o_.time_limit > 0) {
-      const double left = o_.time_limit - elapsed();
+    if (o_.run.time_limit > 0) {
+      const double left = o_.run.time_limit - elapsed();
       if (left <= 0) {
         out_.timed_out = true;
         break;
@@ -377,7 +377,7 @@ PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions&
   PortfolioOptions po = portfolio;
   if (po.stats_path.empty()) po.stats_path = PortfolioStats::default_path();
   std::optional<SignalCatcher> signals;
-  if (options.catch_signals) signals.emplace();
+  if (options.run.catch_signals) signals.emplace();
   return Scheduler(problem, options, po).run();
 }
 

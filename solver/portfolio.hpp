@@ -14,7 +14,7 @@
 // solver/colour_lift_model.hpp, searched by the engine or by cadical). How to add a family:
 // solver/README.md.
 //
-// Shards (options.shard_index/count): every resumable candidate's dives are split between the
+// Shards (options.run.shard): every resumable candidate's dives are split between the
 // shards (parallel_search.hpp); a candidate that cannot be split (sat) runs in one shard only,
 // candidate i in shard i mod N. So shards 0..N-1 together run one portfolio.
 #include <cstdint>
@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "solver/portfolio_stats.hpp"
+#include "solver/problem.hpp"
 #include "solver/search_state.hpp"
-#include "solver/solve.hpp"
 
 namespace tilekit {
 
@@ -66,9 +66,8 @@ struct PortfolioOptions {
   double first_slice = 0.25;            // seconds per candidate in round 0; doubles each round
   std::vector<std::string> candidates;  // empty = default_candidates()
   // Checkpoints, as in SearchOptions: called with the whole state at the start, every
-  // checkpoint_every seconds (inside a slice), after each slice and at the end.
+  // options.run.checkpoint_every seconds (inside a slice), after each slice and at the end.
   std::function<void(const PortfolioState&)> save_checkpoint;
-  double checkpoint_every = 0;
   std::optional<PortfolioState> resume_state;
 };
 
@@ -91,7 +90,7 @@ std::string portfolio_fingerprint(const TilingProblem& problem, const SearchOpti
                                   const PortfolioOptions& portfolio);
 
 // Runs the portfolio (options.mode must be First) until a solution is found, every candidate
-// is exhausted, options.time_limit (0 = none) passes or a signal comes (catch_signals).
+// is exhausted, options.run.time_limit (0 = none) passes or a signal comes (run.catch_signals).
 // Throws InputError for bad candidates, options or a checkpoint of another portfolio.
 PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
                               const PortfolioOptions& portfolio = {});

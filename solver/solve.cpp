@@ -28,32 +28,6 @@
 
 namespace tilekit {
 
-TilingProblem complete_packing_problem(TileKind kind, std::int64_t colours) {
-  if (colours < 1 || colours > std::int64_t(kMaxPackingColours))
-    throw InputError(fmt::format("--colors must be between 1 and {} for a packing of the complete set, got {}",
-                                 kMaxPackingColours, colours));
-  TilingProblem p;
-  const auto c = std::uint32_t(colours);
-  p.set = kind == TileKind::Wang ? complete_wang_set(c, c) : complete_corner_set(c);
-  p.rows = p.cols = int(c * c);
-  p.torus = true;
-  p.packing = true;
-  return p;
-}
-
-void check_searchable(const TilingProblem& p) {
-  const TileSet& set = p.set;
-  const std::uint64_t labels = set.kind() == TileKind::Corner
-                                   ? std::uint64_t(set.horizontal_radix()) * set.horizontal_radix()
-                                   : std::max(set.horizontal_radix(), set.vertical_radix());
-  const std::uint64_t words = 4 * labels * ((set.size() + 63) / 64);
-  if (words > kMaxModelTable)
-    throw InputError(fmt::format(
-        "{} is too large to search: {} tiles over {} edge labels need {} mask words (limit "
-        "{}); a construction (--method construct) or fewer colours",
-        set.name().empty() ? std::string("the tile set") : set.name(), set.size(), labels, words, kMaxModelTable));
-}
-
 namespace {
 
 // Luby unit under a group: nodes per site of the fundamental domain, plus a floor.
@@ -92,18 +66,19 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (p.packing && std::size_t(p.rows) * std::size_t(p.cols) != set.size())
     throw InputError(
         fmt::format("a packing of {} tiles needs rows*cols == {}, got {}x{}", set.size(), set.size(), p.rows, p.cols));
-  checked_thread_count(o.threads);
-  if (o.shard_count < 1 || o.shard_count > kMaxShards || o.shard_index < 0 || o.shard_index >= o.shard_count)
+  checked_thread_count(o.run.threads);
+  const ShardSpec& shard = o.run.shard;
+  if (shard.count < 1 || shard.count > kMaxShards || shard.index < 0 || shard.index >= shard.count)
     throw InputError(
-        fmt::format("--shard must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards, o.shard_index, o.shard_count));
-  if (!std::isfinite(o.time_limit) || !std::isfinite(o.checkpoint_every))
+        fmt::format("--shard must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards, shard.index, shard.count));
+  if (!std::isfinite(o.run.time_limit) || !std::isfinite(o.run.checkpoint_every))
     throw InputError("--time-limit and --checkpoint-every must be finite numbers of seconds");
-  if (o.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.time_limit));
-  if (o.checkpoint_every < 0)
-    throw InputError(fmt::format("checkpoint interval must be >= 0 seconds, got {}", o.checkpoint_every));
-  if (!o.checkpoint_path.empty() && !o.save_checkpoint)
+  if (o.run.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.run.time_limit));
+  if (o.run.checkpoint_every < 0)
+    throw InputError(fmt::format("checkpoint interval must be >= 0 seconds, got {}", o.run.checkpoint_every));
+  if (!o.run.checkpoint_path.empty() && !o.save_checkpoint)
     throw InputError("checkpoint_path needs checkpoint I/O: use solve_checkpointed() (checkpoints/checkpoint.hpp)");
-  if (!o.resume_path.empty() && !o.resume_state)
+  if (!o.run.resume_path.empty() && !o.resume_state)
     throw InputError("resume_path needs checkpoint I/O: use solve_checkpointed() (checkpoints/checkpoint.hpp)");
   Plan pl;
   const bool wang = set.kind() == TileKind::Wang;
@@ -121,7 +96,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
     if (pl.formulation == "sat") {
       if (o.mode != SearchMode::First)
         throw InputError("the sat formulation finds one packing: use it with --mode first");
-      if (o.shard_count != 1 || o.save_checkpoint || o.resume_state)
+      if (o.run.shard.count != 1 || o.save_checkpoint || o.resume_state)
         throw InputError("the sat formulation runs cadical once: it keeps no checkpoint and takes no --shard");
     }
     if (!o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
@@ -169,7 +144,7 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   const std::uint64_t auto_base = pl.domain ? kRestartPerSite * std::uint64_t(pl.domain->num_sites) + kRestartFloor
                                             : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.restart_base = o.restart_base ? o.restart_base : auto_base;
-  pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.shard_count));
+  pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count));
   return pl;
 }
 
@@ -188,10 +163,10 @@ std::string fingerprint(const TilingProblem& p, const SearchOptions& o, const Pl
                       {"mode", mode_name(o.mode)},
                       {"formulation", pl.formulation},
                       {"ordering", pl.ordering},
-                      {"seed", o.seed},
+                      {"seed", o.run.seed},
                       {"restarts", pl.restarts},
                       {"subproblems", pl.subproblems},
-                      {"shard", {o.shard_index, o.shard_count}}};
+                      {"shard", {o.run.shard.index, o.run.shard.count}}};
   if (pl.restarts) j["restart_base"] = pl.restart_base;
   if (pl.lift) {
     StableHash base;
@@ -220,7 +195,7 @@ SearchResult new_result(const TilingProblem& p, const SearchOptions& o, const Pl
   SearchResult res;
   res.formulation = pl.formulation;
   res.ordering = pl.ordering;
-  res.threads = o.threads;
+  res.threads = o.run.threads;
   res.fingerprint = fingerprint(p, o, pl);
   if (pl.group) {
     res.group = pl.group->spec_text();
@@ -268,19 +243,12 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   ParallelConfig cfg;
   cfg.mode = o.mode;
-  cfg.threads = o.threads;
-  cfg.seed = o.seed;
-  cfg.time_limit = o.time_limit;
-  cfg.shard_index = o.shard_index;
-  cfg.shard_count = o.shard_count;
-  cfg.checkpoint_every = o.checkpoint_every;
-  cfg.progress = o.progress;
+  cfg.run = o.run;
   cfg.title = o.title.empty() ? std::string("search") : o.title;
   cfg.restarts = pl.restarts;
   cfg.restart_base = pl.restart_base;
   cfg.subproblem_target = pl.subproblems;
   cfg.estimate_probes = o.estimate_probes;
-  cfg.poll_signals = o.catch_signals;
   cfg.fingerprint = res.fingerprint;
   cfg.save = o.save_checkpoint;
   cfg.resume = o.resume_state ? &*o.resume_state : nullptr;
@@ -289,7 +257,7 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
     if (o.flush) o.flush();
   };
   M start = root;
-  if (o.seed && !pl.restarts) start.set_value_seed(o.seed);
+  if (o.run.seed && !pl.restarts) start.set_value_seed(o.run.seed);
   ParallelSearch<M> search(start, cfg, leaf);
   ParallelOutcome out = search.run();
 
@@ -316,9 +284,9 @@ SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan&
   SearchResult res = new_result(p, o, pl);
   res.formulation = "sat-" + std::string(p.set.kind() == TileKind::Wang ? "edges" : "pegs");
   res.threads = 1;
-  const double limit = o.time_limit > 0 ? o.time_limit : 1e6;
-  auto stop = [&] { return o.catch_signals && SignalCatcher::caught() != 0; };
-  SatOutcome sat = solve_symmetric_sat(*pl.domain, limit, o.seed, stop);
+  const double limit = o.run.time_limit > 0 ? o.run.time_limit : 1e6;
+  auto stop = [&] { return o.run.catch_signals && SignalCatcher::caught() != 0; };
+  SatOutcome sat = solve_symmetric_sat(*pl.domain, limit, o.run.seed, stop);
   if (sat.status == SatOutcome::Status::Satisfiable) {
     Tiling t = pl.domain->to_tiling(sat.values);
     check_solution(t, p, pl);
@@ -327,9 +295,9 @@ SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan&
     res.solutions = 1;
   }
   res.complete = sat.status != SatOutcome::Status::Unknown;
-  res.signal = o.catch_signals ? SignalCatcher::caught() : 0;
+  res.signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
   res.interrupted = res.signal != 0 && sat.status == SatOutcome::Status::Unknown;
-  res.timed_out = !res.interrupted && sat.status == SatOutcome::Status::Unknown && o.time_limit > 0;
+  res.timed_out = !res.interrupted && sat.status == SatOutcome::Status::Unknown && o.run.time_limit > 0;
   res.seconds = res.total_seconds = sat.seconds;
   return res;
 }
@@ -343,7 +311,7 @@ std::string search_fingerprint(const TilingProblem& problem, const SearchOptions
 SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
-  if (options.catch_signals) signals.emplace();
+  if (options.run.catch_signals) signals.emplace();
   if (pl.lift && pl.formulation == "sat")
     return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
   if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/solve.hpp"
+#include "solver/problem.hpp"
 #include "tilesets/tile_grid.hpp"
 
 namespace tilekit {

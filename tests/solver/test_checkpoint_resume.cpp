@@ -97,15 +97,15 @@ TEST(Resume, TimeSlicedRunsSumToTheUninterruptedCount) {
   auto p = corner2_tilings(4, 5);
   SearchOptions o;
   o.mode = SearchMode::Count;
-  o.threads = 2;
-  o.checkpoint_path = d / "ckpt";
-  o.time_limit = 0.02;
-  o.checkpoint_every = 0.005;
+  o.run.threads = 2;
+  o.run.checkpoint_path = d / "ckpt";
+  o.run.time_limit = 0.02;
+  o.run.checkpoint_every = 0.005;
   SearchResult r = solve_checkpointed(p, o);
   int slices = 1;
-  o.resume_path = o.checkpoint_path;
+  o.run.resume_path = o.run.checkpoint_path;
   while (!r.complete && slices < 1000) {
-    o.threads = 1 + slices % 2;  // the thread count may change between runs
+    o.run.threads = 1 + slices % 2;  // the thread count may change between runs
     r = solve_checkpointed(p, o);
     ++slices;
   }
@@ -120,13 +120,13 @@ TEST(Resume, AllModeAcrossInterruptionsEmitsEveryPackingAndCountsExactly) {
   std::set<std::vector<TileIndex>> seen;
   SearchOptions o;
   o.mode = SearchMode::All;
-  o.threads = 2;
-  o.checkpoint_path = d / "ckpt";
-  o.time_limit = 0.05;
-  o.checkpoint_every = 0.01;
+  o.run.threads = 2;
+  o.run.checkpoint_path = d / "ckpt";
+  o.run.time_limit = 0.05;
+  o.run.checkpoint_every = 0.01;
   o.on_solution = [&](const Tiling& t) { seen.insert(t.cells); };
   SearchResult r = solve_checkpointed(p, o);
-  o.resume_path = o.checkpoint_path;
+  o.run.resume_path = o.run.checkpoint_path;
   int slices = 1;
   while (!r.complete && slices < 2000) {
     r = solve_checkpointed(p, o);
@@ -149,15 +149,15 @@ TEST(Resume, MismatchedParametersAreRejectedNamingTheDifference) {
   auto p = complete_packing_problem(TileKind::Wang, 2);
   SearchOptions o;
   o.mode = SearchMode::Count;
-  o.checkpoint_path = d / "ckpt";
+  o.run.checkpoint_path = d / "ckpt";
   solve_checkpointed(p, o);
   SearchOptions other = o;
-  other.resume_path = o.checkpoint_path;
+  other.run.resume_path = o.run.checkpoint_path;
   other.mode = SearchMode::All;
   EXPECT_NE(expect_input_error([&] { solve_checkpointed(p, other); }).find("mode"), std::string::npos);
   other = o;
-  other.resume_path = o.checkpoint_path;
-  other.seed = 5;
+  other.run.resume_path = o.run.checkpoint_path;
+  other.run.seed = 5;
   EXPECT_NE(expect_input_error([&] { solve_checkpointed(p, other); }).find("seed"), std::string::npos);
   EXPECT_NE(expect_input_error([&] {
               solve_checkpointed(complete_packing_problem(TileKind::Corner, 2), other);
@@ -172,7 +172,7 @@ TEST(Shards, FourShardsTogetherEqualTheWholeCount) {
   SearchResult whole = solve(p, o);
   std::uint64_t sum = 0, orbits = 0, subs = 0, total_subs = 0;
   for (int i = 0; i < 4; ++i) {
-    o.shard_index = i, o.shard_count = 4;
+    o.run.shard = {i, 4};
     SearchResult s = solve(p, o);
     EXPECT_TRUE(s.complete);
     EXPECT_GT(s.solutions, 0u);

@@ -76,7 +76,7 @@ SearchResult solve_under(const TilingProblem& p, const std::string& spec, Search
 std::uint64_t count_of(TileKind kind, const std::string& spec, int threads = 1) {
   SearchOptions o;
   o.mode = SearchMode::Count;
-  o.threads = threads;
+  o.run.threads = threads;
   return solve_under(complete_packing_problem(kind, 2), spec, o).solutions;
 }
 
@@ -145,9 +145,8 @@ TEST(ImposeCount, CountsDoNotDependOnThreadsAndShardsSumToTheWhole) {
     for (int i = 0; i < 3; ++i) {
       SearchOptions o;
       o.mode = SearchMode::Count;
-      o.threads = 2;
-      o.shard_index = i;
-      o.shard_count = 3;
+      o.run.threads = 2;
+      o.run.shard = {i, 3};
       SearchResult r = solve_under(complete_packing_problem(TileKind::Wang, 2), spec, o);
       EXPECT_TRUE(r.complete);
       EXPECT_GT(r.shard_subproblems, 0u);

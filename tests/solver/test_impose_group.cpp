@@ -84,9 +84,9 @@ TEST(ImposeGroupRules, InconsistentGeneratorsAreRejected) {
 
 void expect_symmetric_packing(TileKind kind, std::uint32_t c, const std::string& spec, int threads) {
   SearchOptions o;
-  o.threads = threads;
-  o.seed = 7;
-  o.time_limit = 60;
+  o.run.threads = threads;
+  o.run.seed = 7;
+  o.run.time_limit = 60;
   TilingProblem p = complete_packing_problem(kind, c);
   ImposedGroup g = build_group(p, spec);
   SearchResult r = solve_under(p, spec, o);
@@ -118,7 +118,7 @@ TEST(ImposeFirst, WangPackingsUnderImposedGroupsValidateAndAreInvariant) {
 
 TEST(ImposeFirst, SameSeedAndOneThreadGiveTheSameSolution) {
   SearchOptions o;
-  o.seed = 3;
+  o.run.seed = 3;
   auto a = solve_under(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
   auto b = solve_under(TileKind::Corner, 4, "t=0,4:pi=1,2,3,0", o);
   ASSERT_EQ(a.found.size(), 1u);
@@ -176,7 +176,7 @@ TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
     TilingProblem p = complete_packing_problem(kind, 3);
     ImposedGroup g = build_group(p, spec);
     SearchOptions o;
-    o.time_limit = 60;
+    o.run.time_limit = 60;
     o.formulation = "sat";
     auto r = solve_under(p, spec, o);
     ASSERT_EQ(r.found.size(), 1u) << spec;

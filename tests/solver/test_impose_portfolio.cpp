@@ -32,9 +32,9 @@ TEST(ImposePortfolio, CandidateGroupsAreValidAndIncludeTheKnownWinners) {
 
 void expect_portfolio_finds(TileKind kind, const std::string& stats) {
   SearchOptions o;
-  o.threads = 2;
-  o.seed = 1;
-  o.time_limit = 120;
+  o.run.threads = 2;
+  o.run.seed = 1;
+  o.run.time_limit = 120;
   PortfolioOptions p;
   p.stats_path = stats;
   PortfolioResult r = run_portfolio(complete_packing_problem(kind, 4), o, p);
@@ -64,8 +64,8 @@ TEST(ImposePortfolio, EmptySubspacesAreDroppedAndAnEmptyPortfolioEndsAtOnce) {
   // No C=2 corner packing is invariant under t=(0,2) or t=(2,0) with the colours swapped (the
   // brute-force filter in test_impose_counts.cpp); all 32 are invariant under t=(2,2).
   SearchOptions o;
-  o.threads = 2;
-  o.time_limit = 30;
+  o.run.threads = 2;
+  o.run.time_limit = 30;
   PortfolioOptions p;
   p.stats_path = "-";
   p.candidates = {"t=0,2:pi=1,0", "t=2,0:pi=1,0"};
@@ -131,9 +131,9 @@ TEST(PortfolioCandidates, NamesMapToFamiliesAndBadNamesAreInputErrors) {
 PortfolioResult portfolio_slice(const TilingProblem& p, const std::vector<std::string>& cands, double seconds,
                                 std::optional<PortfolioState>& state, std::uint64_t seed = 3) {
   SearchOptions o;
-  o.threads = 2;
-  o.seed = seed;
-  o.time_limit = seconds;
+  o.run.threads = 2;
+  o.run.seed = seed;
+  o.run.time_limit = seconds;
   PortfolioOptions po;
   po.stats_path = "-";
   po.candidates = cands;
@@ -199,11 +199,10 @@ TEST(PortfolioShards, ShardsSplitTheDivesAndEachFindsAValidPacking) {
   // seeds per dive), and each answer validates.
   for (int shard = 0; shard < 2; ++shard) {
     SearchOptions o;
-    o.threads = 2;
-    o.seed = 1;
-    o.time_limit = 60;
-    o.shard_index = shard;
-    o.shard_count = 2;
+    o.run.threads = 2;
+    o.run.seed = 1;
+    o.run.time_limit = 60;
+    o.run.shard = {shard, 2};
     PortfolioOptions po;
     po.stats_path = "-";
     PortfolioResult r = run_portfolio(complete_packing_problem(TileKind::Wang, 4), o, po);

@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "solver/portfolio.hpp"
 #include "solver/sat_cnf.hpp"
+#include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
 
 namespace tilekit {
@@ -45,8 +46,8 @@ TEST(LiftPortfolio, RejectsALiftThatDoesNotDivideTheColours) {
 
 TEST(LiftPortfolio, TheLiftCandidateFindsAValidatedSixteenColourPacking) {
   SearchOptions o;
-  o.threads = 2;
-  o.time_limit = 120;
+  o.run.threads = 2;
+  o.run.time_limit = 120;
   PortfolioOptions po;
   po.stats_path = "-";
   po.candidates = {"lift:8"};
@@ -64,10 +65,10 @@ TEST(LiftPortfolio, TheLiftCandidateFindsAValidatedSixteenColourPacking) {
 // every long dive would be lost at a slice's end).
 TEST(LiftPortfolio, ADiveCutShortByTheTimeLimitIsRunAgainOnResume) {
   SearchOptions o;
-  o.threads = 2;
+  o.run.threads = 2;
   o.restarts = 1;
   o.restart_base = std::uint64_t(1) << 40;  // no dive ends by its node limit
-  o.time_limit = 0.2;
+  o.run.time_limit = 0.2;
   std::optional<SearchState> last;
   o.save_checkpoint = [&](const SearchState& st) { last = st; };
   SearchResult r = solve(complete_packing_problem(TileKind::Corner, 5), o);  // far from solved in 0.2 s

@@ -105,7 +105,7 @@ TEST(SearchStateCheck, TheEngineRefusesABadStateGivenInMemory) {
   TilingProblem p = complete_packing_problem(TileKind::Corner, 2);
   SearchOptions o;
   o.mode = SearchMode::Count;
-  o.threads = 1;
+  o.run.threads = 1;
   SearchState saved;
   o.save_checkpoint = [&](const SearchState& s) { saved = s; };
   solve(p, o);

@@ -16,7 +16,7 @@ namespace {
 SearchResult run(const TilingProblem& p, SearchMode mode, int threads = 1, std::string formulation = "auto") {
   SearchOptions o;
   o.mode = mode;
-  o.threads = threads;
+  o.run.threads = threads;
   o.formulation = std::move(formulation);
   return solve(p, o);
 }
@@ -72,7 +72,7 @@ TEST(AllMode, StoresEveryCornerPackingOnceAndEachValidates) {
     std::size_t calls = 0;
     SearchOptions o;
     o.mode = SearchMode::All;
-    o.threads = threads;
+    o.run.threads = threads;
     o.on_solution = [&](const Tiling& t) {
       ++calls;
       EXPECT_TRUE(validate(t, &p.set).packing);
@@ -90,7 +90,7 @@ TEST(AllMode, StoresAll203520WangPackingsDistinct) {
   std::set<std::vector<TileIndex>> seen;
   SearchOptions o;
   o.mode = SearchMode::All;
-  o.threads = 2;
+  o.run.threads = 2;
   o.on_solution = [&](const Tiling& t) { seen.insert(t.cells); };
   SearchResult r = solve(p, o);
   EXPECT_EQ(r.solutions, 203520u);
@@ -144,12 +144,12 @@ TEST(Tilings, PeriodicTilingOfARepeatingSetIsFoundAndValid) {
 TEST(SolveErrors, ImpossibleProblemsAndOptionsThrowInputError) {
   auto p = complete_packing_problem(TileKind::Corner, 2);
   SearchOptions o;
-  o.threads = 0;
+  o.run.threads = 0;
   EXPECT_THROW(solve(p, o), InputError);
-  o.threads = 1;
-  o.shard_index = 4, o.shard_count = 4;
+  o.run.threads = 1;
+  o.run.shard = {4, 4};
   EXPECT_THROW(solve(p, o), InputError);
-  o.shard_index = 0, o.shard_count = 1;
+  o.run.shard = {0, 1};
   o.formulation = "edges";
   EXPECT_THROW(solve(p, o), InputError);
   o.formulation = "auto";

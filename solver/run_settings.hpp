@@ -1,0 +1,28 @@
+#pragma once
+// RunSettings: how a search runs, as opposed to what it searches (solver/problem.hpp).
+#include <cstdint>
+#include <string>
+
+#include "base/parse.hpp"
+
+namespace tilekit {
+
+// How a search runs, as opposed to what it searches. One value goes from the command line
+// (PackRequest::run, packing/request.hpp) through SearchOptions::run to the parallel driver
+// (ParallelConfig::run, solver/parallel_search.hpp) and is never copied field by field: a new
+// run setting is a field here, its flag and the code that uses it.
+struct RunSettings {
+  int threads = 1;
+  std::uint64_t seed = 0;  // value orders and restart dives (part of a search's identity)
+  double time_limit = 0;   // seconds; 0 = none. Hitting it leaves `complete` false.
+  ShardSpec shard;         // run shard `index` of `count` (part of a search's identity)
+  // ---- checkpoints ----
+  std::string checkpoint_path;  // write checkpoints here ("" = none)
+  double checkpoint_every = 0;  // seconds between checkpoints (0 = only on signals and at the end)
+  std::string resume_path;      // resume from this checkpoint ("" = fresh start)
+  // ---- reporting and signals ----
+  bool progress = false;       // progress bar / log lines on stderr
+  bool catch_signals = false;  // SIGTERM/SIGINT/SIGUSR1 stop the search (result.interrupted)
+};
+
+}  // namespace tilekit
