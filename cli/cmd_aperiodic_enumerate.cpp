@@ -58,18 +58,19 @@ nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g)
   return {{"source", c.source}, {"links", links}};
 }
 
-void run_enumerate(const Context& ctx, EnumerateArgs& a) {
+void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
   if (a.max_tiles < 1) throw InputError(fmt::format("--max-tiles must be >= 1, got {}", a.max_tiles));
   if (a.batch < 1 || a.batch > 1000000) throw InputError(fmt::format("--batch must be between 1 and 1000000, got {}", a.batch));
-  a.o.max_tiles = std::size_t(a.max_tiles);
-  a.o.batch = std::size_t(a.batch);
+  EnumerateOptions o = a.o;
+  o.max_tiles = std::size_t(a.max_tiles);
+  o.batch = std::size_t(a.batch);
   const ShardSpec sh = parse_shard(a.shard);
-  a.o.shard = sh.index;
-  a.o.shards = sh.count;
-  a.o.progress = !a.quiet;
-  a.o.catch_signals = true;
+  o.shard = sh.index;
+  o.shards = sh.count;
+  o.progress = !a.quiet;
+  o.catch_signals = true;
   const double cpu0 = cpu_seconds();
-  EnumerateResult r = enumerate_conversions(a.o);
+  EnumerateResult r = enumerate_conversions(o);
   const ConversionGraph g = conversion_graph(r);
 
   // Sets by depth and by source; the least sound corner set overall.
@@ -101,9 +102,9 @@ void run_enumerate(const Context& ctx, EnumerateArgs& a) {
                       {"interrupted", r.interrupted},
                       {"timed_out", r.timed_out},
                       {"resumed", r.resumed},
-                      {"sources", a.o.sources.empty() ? published_enumeration_sources() : a.o.sources},
-                      {"max_depth", a.o.max_depth},
-                      {"max_tiles", a.o.max_tiles},
+                      {"sources", o.sources.empty() ? published_enumeration_sources() : o.sources},
+                      {"max_depth", o.max_depth},
+                      {"max_tiles", o.max_tiles},
                       {"shard", a.shard},
                       {"batches", r.batches},
                       {"expanded", r.expanded},
@@ -135,8 +136,8 @@ void run_enumerate(const Context& ctx, EnumerateArgs& a) {
                      {"source", best->root}, {"chain", links},                {"format", "nw ne sw se"},
                      {"list", list},         {"verify", verdict_text(*check)}};
   }
-  if (!a.o.checkpoint_path.empty()) j["checkpoint"] = a.o.checkpoint_path;
-  if (!a.o.db.empty()) j["db"] = a.o.db;
+  if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
+  if (!o.db.empty()) j["db"] = o.db;
   emit(ctx, j, [&] {
     fmt::print("enumerate: {} sets ({} expanded) and {} edges in {} batches, {}, {:.1f} s (digest {})\n",
                r.nodes.size(), r.expanded, r.edges.size(), r.batches,
@@ -146,7 +147,7 @@ void run_enumerate(const Context& ctx, EnumerateArgs& a) {
     for (const auto& s : per_source)
       fmt::print("  {}: {} sets reachable, smallest corner set {} tiles\n", s["source"].get<std::string>(),
                  s["reachable"].get<std::size_t>(), s["smallest_corner"]["tiles"].get<std::size_t>());
-    for (const auto& [op, n] : r.over_limit) fmt::print("  {} results over --max-tiles {}: {}\n", op, a.o.max_tiles, n);
+    for (const auto& [op, n] : r.over_limit) fmt::print("  {} results over --max-tiles {}: {}\n", op, o.max_tiles, n);
     if (best) {
       fmt::print("smallest corner set with a sound chain: {} tiles, {} colours ({}), verify: {}\n", best->tiles,
                  best->colours, best->hash, verdict_text(*check));
@@ -154,21 +155,21 @@ void run_enumerate(const Context& ctx, EnumerateArgs& a) {
         fmt::print("  {} -> {} {} tiles [{}]: {}\n", l["step"].get<std::string>(), l["kind"].get<std::string>(),
                    l["tiles"].get<std::size_t>(), l["label"].get<std::string>(), l["check"].get<std::string>());
     }
-    if (!leads.empty()) fmt::print("{} leads (unverified, not periodic or finite at k={})\n", leads.size(), a.o.lead_max_k);
+    if (!leads.empty()) fmt::print("{} leads (unverified, not periodic or finite at k={})\n", leads.size(), o.lead_max_k);
   });
   if (r.interrupted)
     throw Interrupted(fmt::format("interrupted by signal {}; {}", r.signal,
-                                  a.o.checkpoint_path.empty()
+                                  o.checkpoint_path.empty()
                                       ? std::string("no checkpoint (use --checkpoint F to resume later)")
-                                      : "checkpoint written to " + a.o.checkpoint_path + " (continue with --resume " +
-                                            a.o.checkpoint_path + ")"));
+                                      : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " +
+                                            o.checkpoint_path + ")"));
 }
 
 struct LinkArgs {
   std::string source, steps;
 };
 
-void run_link(const Context& ctx, const LinkArgs& a) {
+void run_link(const LinkArgs& a, const Context& ctx) {
   std::vector<std::string> steps;
   for (std::size_t p = 0; p <= a.steps.size() && !a.steps.empty();) {
     const auto q = a.steps.find(',', p);
@@ -204,31 +205,31 @@ void run_link(const Context& ctx, const LinkArgs& a) {
 }  // namespace
 
 void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
-  auto args = std::make_shared<EnumerateArgs>();
+  auto a = std::make_shared<EnumerateArgs>();
   auto* cmd = ap->add_subcommand(
       "enumerate",
       "Search chains of conversions from the published aperiodic Wang sets for small corner sets with a sound chain");
-  cmd->add_option("--source", args->o.sources,
+  cmd->add_option("--source", a->o.sources,
                   "A published set to start from (repeatable; default: all of " +
                       fmt::format("{}", fmt::join(published_enumeration_sources(), ", ")) + ")");
-  cmd->add_option("--max-depth", args->o.max_depth, "Longest chain expanded, in steps (default 3)");
-  cmd->add_option("--max-tiles", args->max_tiles, "Sets with more tiles are counted, not kept (default 60)");
-  cmd->add_option("--batch", args->batch, "Sets expanded per batch (default 8; part of the run's identity)");
-  cmd->add_option("--threads", args->o.threads, "Threads (default: all; results never depend on it)")
+  cmd->add_option("--max-depth", a->o.max_depth, "Longest chain expanded, in steps (default 3)");
+  cmd->add_option("--max-tiles", a->max_tiles, "Sets with more tiles are counted, not kept (default 60)");
+  cmd->add_option("--batch", a->batch, "Sets expanded per batch (default 8; part of the run's identity)");
+  cmd->add_option("--threads", a->o.threads, "Threads (default: all; results never depend on it)")
       ->check(CLI::Range(1, kMaxThreads));
-  cmd->add_option("--shard", args->shard, "I/N: continue only from the first steps whose hash is I mod N");
-  cmd->add_option("--lead-max-k", args->o.lead_max_k, "Decision of unverified results: strips up to k (default 6)");
-  cmd->add_option("--time-limit", args->o.time_limit, "Seconds for this run; it stops between batches (0 = none)");
-  cmd->add_option("--checkpoint", args->o.checkpoint_path, "Write checkpoints here (atomically)");
-  cmd->add_option("--checkpoint-every", args->o.checkpoint_every, "Seconds between checkpoints (default 60; 0: every batch)");
-  cmd->add_option("--resume", args->o.resume_path, "Continue the run this checkpoint holds");
-  cmd->add_option("--db", args->o.db, "Store every set and conversion in this results database");
-  cmd->add_option("--verify-period", args->verify_period, "Torus periods searched on the smallest set (default 6)")
+  cmd->add_option("--shard", a->shard, "I/N: continue only from the first steps whose hash is I mod N");
+  cmd->add_option("--lead-max-k", a->o.lead_max_k, "Decision of unverified results: strips up to k (default 6)");
+  cmd->add_option("--time-limit", a->o.time_limit, "Seconds for this run; it stops between batches (0 = none)");
+  cmd->add_option("--checkpoint", a->o.checkpoint_path, "Write checkpoints here (atomically)");
+  cmd->add_option("--checkpoint-every", a->o.checkpoint_every, "Seconds between checkpoints (default 60; 0: every batch)");
+  cmd->add_option("--resume", a->o.resume_path, "Continue the run this checkpoint holds");
+  cmd->add_option("--db", a->o.db, "Store every set and conversion in this results database");
+  cmd->add_option("--verify-period", a->verify_period, "Torus periods searched on the smallest set (default 6)")
       ->check(CLI::Range(1, 16));
-  cmd->add_flag("--quiet", args->quiet, "No progress output on stderr");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer("Exit codes: 0 done (complete or time limit), 2 bad input or checkpoint, 3 interrupted after a checkpoint.");
-  cmd->callback([&ctx, args] { run_enumerate(ctx, *args); });
+  cmd->callback([a, &ctx] { run_enumerate(*a, ctx); });
 
   auto link = std::make_shared<LinkArgs>();
   auto* lc = ap->add_subcommand("link", "Re-derive a chain from a published set, step by step, with each step's label");
@@ -236,7 +237,7 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   lc->add_option("--steps", link->steps, "Steps separated by commas, e.g. prune,rot90:horizontal,to-wang (see enumerate)")
       ->required();
   add_json_flag(lc, ctx);
-  lc->callback([&ctx, link] { run_link(ctx, *link); });
+  lc->callback([link, &ctx] { run_link(*link, ctx); });
 }
 
 }  // namespace tilekit::cli

@@ -40,46 +40,51 @@ void print_chain(const StoredChain& c, const ConversionGraph& g) {
   fmt::print("\n");
 }
 
+void run_db_smallest(const ChainArgs& a, const Context& ctx) {
+  ConversionGraph g = load_conversion_graph(open_db(a.db));
+  nlohmann::json list = nlohmann::json::array();
+  std::vector<SourceBest> best = smallest_per_source(g);
+  for (const SourceBest& b : best)
+    list.push_back({{"source", b.source}, {"set", b.best.hash}, {"tiles", b.best.tiles}, {"colors", b.best.colours},
+                    {"reachable", b.reachable}, {"chain", chain_json(b.chain, g)}});
+  emit(ctx, {{"sources", list}}, [&] {
+    if (best.empty()) fmt::print("no corner set with a sound chain from a published source in this database\n");
+    for (const SourceBest& b : best) {
+      fmt::print("{}: {} tiles, {} colours ({}), {} sets reachable\n", b.source, b.best.tiles, b.best.colours,
+                 b.best.hash, b.reachable);
+      print_chain(b.chain, g);
+    }
+  });
+}
+
+void run_db_chains(const ChainArgs& a, const Context& ctx) {
+  ConversionGraph g = load_conversion_graph(open_db(a.db));
+  std::vector<StoredChain> chains = sound_chains_to(g, a.hash, a.limit);
+  nlohmann::json list = nlohmann::json::array();
+  for (const StoredChain& x : chains) list.push_back(chain_json(x, g));
+  emit(ctx, {{"set", a.hash}, {"chains", list}}, [&] {
+    fmt::print("{} sound chain{} to {}\n", chains.size(), chains.size() == 1 ? "" : "s", a.hash);
+    for (const StoredChain& x : chains) print_chain(x, g);
+  });
+}
+
 }  // namespace
 
 void add_db_chain_commands(CLI::App& db, Context& ctx) {
-  auto sm = std::make_shared<ChainArgs>();
-  auto* s = db.add_subcommand("smallest", "Per published source, the least corner set reached by sound conversions");
-  s->add_option("--db", sm->db, "Results database file (default: $TILEKIT_DB, else the per-user data directory)");
-  add_json_flag(s, ctx);
-  s->callback([&ctx, sm] {
-    ConversionGraph g = load_conversion_graph(open_db(sm->db));
-    nlohmann::json list = nlohmann::json::array();
-    std::vector<SourceBest> best = smallest_per_source(g);
-    for (const SourceBest& b : best)
-      list.push_back({{"source", b.source}, {"set", b.best.hash}, {"tiles", b.best.tiles}, {"colors", b.best.colours},
-                      {"reachable", b.reachable}, {"chain", chain_json(b.chain, g)}});
-    emit(ctx, {{"sources", list}}, [&] {
-      if (best.empty()) fmt::print("no corner set with a sound chain from a published source in this database\n");
-      for (const SourceBest& b : best) {
-        fmt::print("{}: {} tiles, {} colours ({}), {} sets reachable\n", b.source, b.best.tiles, b.best.colours,
-                   b.best.hash, b.reachable);
-        print_chain(b.chain, g);
-      }
-    });
-  });
-
-  auto ch = std::make_shared<ChainArgs>();
+  {
+    auto a = std::make_shared<ChainArgs>();
+    auto* s = db.add_subcommand("smallest", "Per published source, the least corner set reached by sound conversions");
+    s->add_option("--db", a->db, "Results database file (default: $TILEKIT_DB, else the per-user data directory)");
+    add_json_flag(s, ctx);
+    s->callback([a, &ctx] { run_db_smallest(*a, ctx); });
+  }
+  auto a = std::make_shared<ChainArgs>();
   auto* c = db.add_subcommand("chains", "Every sound chain of stored conversions from a published source to one set");
-  c->add_option("HASH", ch->hash, "The set's content hash (tilesets.content_hash)")->required();
-  c->add_option("--db", ch->db, "Results database file (default: $TILEKIT_DB, else the per-user data directory)");
-  c->add_option("--limit", ch->limit, "At most this many chains, shortest first (default 20)")->check(CLI::Range(1, 100000));
+  c->add_option("HASH", a->hash, "The set's content hash (tilesets.content_hash)")->required();
+  c->add_option("--db", a->db, "Results database file (default: $TILEKIT_DB, else the per-user data directory)");
+  c->add_option("--limit", a->limit, "At most this many chains, shortest first (default 20)")->check(CLI::Range(1, 100000));
   add_json_flag(c, ctx);
-  c->callback([&ctx, ch] {
-    ConversionGraph g = load_conversion_graph(open_db(ch->db));
-    std::vector<StoredChain> chains = sound_chains_to(g, ch->hash, ch->limit);
-    nlohmann::json list = nlohmann::json::array();
-    for (const StoredChain& x : chains) list.push_back(chain_json(x, g));
-    emit(ctx, {{"set", ch->hash}, {"chains", list}}, [&] {
-      fmt::print("{} sound chain{} to {}\n", chains.size(), chains.size() == 1 ? "" : "s", ch->hash);
-      for (const StoredChain& x : chains) print_chain(x, g);
-    });
-  });
+  c->callback([a, &ctx] { run_db_chains(*a, ctx); });
 }
 
 }  // namespace tilekit::cli

@@ -74,7 +74,7 @@ TEST(Canonical, FourQuarterTurnsAreTheIdentityAndAMirrorIsItsOwnInverse) {
 // steps.hpp applies most operations to one image only: this checks the claims it rests on.
 TEST(Steps, OperationsCommuteWithTheSymmetriesTheSearchLeavesOut) {
   TileSet jr = resolve_tile_set("jeandel-rao-11-variant-2");
-  for (const std::string& op : {"prune", "prune-strips", "rotation", "subdivision", "diagonal", "horizontal", "fuse"}) {
+  for (const char* op : {"prune", "prune-strips", "rotation", "subdivision", "diagonal", "horizontal", "fuse"}) {
     const std::vector<std::string> tried = symmetries_for(op);
     auto hash_of = [&](const std::string& step) {
       auto r = apply_step(jr, step);

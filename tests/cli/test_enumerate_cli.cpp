@@ -107,14 +107,18 @@ TEST(EnumerateKill, SigtermCheckpointsAndExits3ThenTheResumeEndsTheSame) {
   TempDir d;
   std::string ck = d / "ck", db = d / "db.sqlite";
   int terms = 0;
-  for (int round = 0; round < 100; ++round) {
+  bool complete = false;
+  // A SIGTERM in the middle of a batch drops the batch, so each round waits a little longer than
+  // the last: on a loaded machine a fixed wait could end every run before its first batch.
+  for (int round = 0; round < 100 && !complete; ++round) {
     pid_t pid = spawn_tilekit(run_args(ck, db), d / "out", d / "err");
-    std::this_thread::sleep_for(std::chrono::milliseconds(150));
+    std::this_thread::sleep_for(std::chrono::milliseconds(150 + 100 * round));
     kill(pid, SIGTERM);
     const int code = wait_exit(pid);
     auto j = nlohmann::json::parse(slurp(d / "out"));
     if (code == 0 && j["complete"] == true) {
       EXPECT_EQ(j["digest"], base.digest);
+      complete = true;
       break;
     }
     ASSERT_EQ(code, 3) << slurp(d / "err");
@@ -122,6 +126,7 @@ TEST(EnumerateKill, SigtermCheckpointsAndExits3ThenTheResumeEndsTheSame) {
     EXPECT_TRUE(fs::exists(ck));
     ++terms;
   }
+  EXPECT_TRUE(complete);
   EXPECT_GE(terms, 1);
   EXPECT_EQ(stored_rows(db), base.rows);
 }

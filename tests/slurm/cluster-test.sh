@@ -24,6 +24,8 @@
 #  5. An imposed-group count as an array (issue 11): the C=3 Wang packings invariant under a
 #     group of order 9, 3 shards, one task requeued mid-search (SIGTERM -> checkpoint -> exit 3
 #     -> Slurm requeues -> resume); the shards' counts add up to an unsharded count.
+#  6. aperiodic enumerate as a 3-shard array (issue 22), one shard requeued mid-run; the merged
+#     shard databases hold exactly the sets and conversions of an unsharded run.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -298,7 +300,8 @@ for i in 0 1 2; do
 done
 log "case 5 took $((SECONDS - t5)) s"
 
-# ---- 6. aperiodic enumerate as a 3-shard array: the merged database is the unsharded run's ----
+# ---- 6. aperiodic enumerate as a 3-shard array, one shard requeued mid-run: the merged database is
+#      the unsharded run's ----
 log "case 6: aperiodic enumerate, 3 shards, merged against an unsharded run"
 t6=$SECONDS
 ENUM_ARGS=(--max-depth 2 --max-tiles 40)
@@ -307,10 +310,30 @@ ENUM_ARGS=(--max-depth 2 --max-tiles 40)
 run6=$work/enumerate
 out6=$("$TK" cluster submit --command enumerate --shards 3 --cpus-per-task 1 --time 10 --checkpoint-every 1 \
   --run-dir "$run6" --pack-arg=--max-depth=2 --pack-arg=--max-tiles=40 --json) || fatal "cluster submit (enumerate) failed"
+array6=$(submitted_id array_job "$out6")
 merge6=$(submitted_id merge_job "$out6")
-[ -n "$merge6" ] || fatal "no merge job id in: $out6"
+[ -n "$array6" ] && [ -n "$merge6" ] || fatal "no job ids in: $out6"
+# One shard is stopped once it catches signals and requeued (SIGTERM -> checkpoint -> exit 3 ->
+# Slurm requeues -> resume), as in case 1.
+requeued6=""
+while [ -z "$requeued6" ] && (($(time_left) > 0)) && [ "$(field "$merge6" Reason)" = Dependency ]; do
+  read -r pid shard < <(searching_tilekits "$run6") || { sleep 0.01; continue; }
+  kill -STOP "$pid"
+  requeued6=$shard
+  jid=$(field "${array6}_$shard" JobId)
+  log "enumerate shard $shard's tilekit (pid $pid) stopped; scontrol requeue $jid (${array6}_$shard)"
+  scontrol requeue "$jid" || fatal "scontrol requeue $jid failed"
+  continue_with_pending "$pid" $TERM_BIT
+done
+[ -n "$requeued6" ] || fatal "could not catch an enumerate shard running"
 state=$(wait_final "$merge6")
 check "the enumerate run's merge job completed ($state)" test "$state" = COMPLETED
+exits=$(attempt_exits "$run6/shards/shard-$requeued6.attempts")
+check "enumerate shard $requeued6 checkpointed and exited 3, then resumed and exited 0 (exits: $exits)" \
+  test "$exits" = "3 0"
+check "enumerate shard $requeued6's last attempt resumed from its checkpoint" \
+  last_attempt_resumed "$run6/shards/shard-$requeued6.attempts"
+check "the merge job counted the sets and conversions" grep -q "tile sets and .* conversions" "$run6"/logs/merge-*.out
 rows() {
   sqlite3 "$1" "SELECT 'set ' || content_hash FROM tilesets UNION ALL SELECT 'conv ' || s.content_hash || ' ' ||
     c.method || ' ' || r.content_hash || ' ' || c.soundness FROM conversions c JOIN tilesets s ON s.id = c.source_set
