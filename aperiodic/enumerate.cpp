@@ -52,8 +52,9 @@ std::string operation_of(const std::string& step) {
 std::vector<std::string> steps_of(TileKind kind) {
   std::vector<std::string> steps;
   for (const std::string& op : step_operations()) {
-    const bool wang_only = op != "to-wang" && op != "prune" && op != "prune-strips";
-    if ((op == "to-wang" && kind == TileKind::Wang) || (wang_only && kind == TileKind::Corner)) continue;
+    const bool corner_only = op == "to-wang" || op.rfind("merge-colours", 0) == 0;
+    const bool wang_only = !corner_only && op != "prune" && op != "prune-strips";
+    if ((corner_only && kind == TileKind::Wang) || (wang_only && kind == TileKind::Corner)) continue;
     for (const std::string& g : symmetries_for(op)) steps.push_back(g == "id" ? op : g + ":" + op);
   }
   return steps;
@@ -100,18 +101,16 @@ std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const s
 }
 
 std::string fingerprint(const EnumerateOptions& o, const std::vector<std::string>& sources) {
-  return nlohmann::json{{"format", "tilekit-enumerate"},
-                        {"sources", sources},
-                        {"max_depth", o.max_depth},
-                        {"max_tiles", o.max_tiles},
-                        {"batch", o.batch},
-                        {"shard", fmt::format("{}/{}", o.shard, o.shards)},
-                        {"lead_max_k", o.lead_max_k},
-                        {"steps", step_operations()}}
+  return nlohmann::json{
+      {"format", "tilekit-enumerate"}, {"sources", sources},        {"max_depth", o.max_depth},
+      {"max_tiles", o.max_tiles},      {"batch", o.batch},          {"shard", fmt::format("{}/{}", o.shard, o.shards)},
+      {"lead_max_k", o.lead_max_k},    {"steps", step_operations()}}
       .dump();
 }
 
-std::uint64_t hash_value(const std::string& hex) { return std::stoull(hex, nullptr, 16); }
+std::uint64_t hash_value(const std::string& hex) {
+  return std::stoull(hex, nullptr, 16);
+}
 
 // The search state between batches: what the checkpoint holds.
 struct State {
@@ -125,9 +124,8 @@ nlohmann::json encode_state(const State& s) {
   for (const auto& [h, n] : s.r.nodes)
     nodes.push_back({n.hash, n.text, n.depth, n.owned_depth, n.expanded, n.parent, n.step, n.label, n.root, n.lead});
   for (const auto& [k, e] : s.r.edges) edges.push_back({e.from, e.step, e.to, e.label, e.argument});
-  return {{"fingerprint", s.fingerprint}, {"seconds", s.seconds},
-          {"batches", s.r.batches},       {"expanded", s.r.expanded}, {"over_limit", s.r.over_limit},
-          {"nodes", nodes},               {"edges", edges}};
+  return {{"fingerprint", s.fingerprint}, {"seconds", s.seconds}, {"batches", s.r.batches}, {"expanded", s.r.expanded},
+          {"over_limit", s.r.over_limit}, {"nodes", nodes},       {"edges", edges}};
 }
 
 State decode_state(std::string_view text, const std::string& origin) {
@@ -174,7 +172,8 @@ State decode_state(std::string_view text, const std::string& origin) {
       s.r.edges[{e.from, e.step}] = e;
     }
     for (const auto& [h, n] : s.r.nodes)
-      if (!n.parent.empty() && !s.r.nodes.count(n.parent)) throw InputError(fmt::format("{}: a set's parent is unknown", origin));
+      if (!n.parent.empty() && !s.r.nodes.count(n.parent))
+        throw InputError(fmt::format("{}: a set's parent is unknown", origin));
   } catch (const InputError& e) {
     throw InputError(fmt::format("checkpoint {}: {}", origin, e.what()));
   }
@@ -218,9 +217,9 @@ void store_batch(ResultsDb& db, const EnumerateResult& r, const std::vector<std:
 }  // namespace
 
 const std::vector<std::string>& published_enumeration_sources() {
-  static const std::vector<std::string> s = {"jeandel-rao-11", "jeandel-rao-11-variant-2", "jeandel-rao-11-variant-3",
-                                             "kari-14",        "culik-13",                 "ammann-gs-16",
-                                             "labbe-19"};
+  static const std::vector<std::string> s = {
+      "jeandel-rao-11", "jeandel-rao-11-variant-2", "jeandel-rao-11-variant-3", "kari-14", "culik-13", "ammann-gs-16",
+      "labbe-19"};
   return s;
 }
 
@@ -240,7 +239,8 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
   const auto& known = published_enumeration_sources();
   for (const std::string& s : sources)
     if (std::find(known.begin(), known.end(), s) == known.end())
-      throw InputError(fmt::format("unknown source '{}' (expected published aperiodic Wang sets: {})", s, fmt::join(known, ", ")));
+      throw InputError(
+          fmt::format("unknown source '{}' (expected published aperiodic Wang sets: {})", s, fmt::join(known, ", ")));
 
   const auto t0 = Clock::now();
   std::optional<SignalCatcher> signals;
@@ -373,7 +373,8 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
           n.colours = f.set.colours();
           new_nodes.push_back(f.hash);
         }
-        EnumEdge e{parent.hash, c.step, f.hash, c.label, c.lead.empty() ? c.argument : c.argument + "; decision: " + c.lead};
+        EnumEdge e{parent.hash, c.step, f.hash, c.label,
+                   c.lead.empty() ? c.argument : c.argument + "; decision: " + c.lead};
         auto [eit, eadded] = r.edges.emplace(std::pair{e.from, e.step}, e);
         if (eadded) new_edges.push_back(e);
         if (!sound_label(c.label)) {
@@ -436,17 +437,20 @@ std::string link_check_command(const std::string& source, const std::vector<std:
   return fmt::format("tilekit aperiodic link {} --steps {} --json", source, fmt::join(steps, ","));
 }
 
-std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps, TileSet* last) {
+std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps,
+                                       TileSet* last) {
   const auto& known = published_enumeration_sources();
   if (std::find(known.begin(), known.end(), source) == known.end())
     throw InputError(fmt::format("unknown source '{}' (expected one of: {})", source, fmt::join(known, ", ")));
   CanonicalForm f = canonical_form(resolve_tile_set(source));
   std::vector<ReplayedLink> out;
-  out.push_back({source, "published", resolve_tile_set(source).source(), f.hash, f.set.size(), f.set.colours(), f.set.kind()});
+  out.push_back(
+      {source, "published", resolve_tile_set(source).source(), f.hash, f.set.size(), f.set.colours(), f.set.kind()});
   for (const std::string& step : steps) {
     std::optional<StepResult> r = apply_step(f.set, step);
-    if (!r) throw InputError(fmt::format("step '{}' does not apply to set {} ({} {} tiles)", step, f.hash, f.set.size(),
-                                         kind_name(f.set.kind())));
+    if (!r)
+      throw InputError(fmt::format("step '{}' does not apply to set {} ({} {} tiles)", step, f.hash, f.set.size(),
+                                   kind_name(f.set.kind())));
     f = canonical_form(r->set);
     out.push_back({step, r->label, r->argument, f.hash, f.set.size(), f.set.colours(), f.set.kind()});
   }

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "aperiodic/canonical.hpp"
+#include "aperiodic/colour_merge.hpp"
 #include "aperiodic/conversion.hpp"
 #include "aperiodic/prune.hpp"
 #include "base/error.hpp"
@@ -14,7 +15,9 @@ namespace tilekit {
 
 namespace {
 
-std::string label_of(Soundness s) { return soundness_name(s); }
+std::string label_of(Soundness s) {
+  return soundness_name(s);
+}
 
 // Horizontal dominoes (a b, a.e == b.w) as tiles: north colour the pair (a.n, b.n), south
 // (a.s, b.s), west a.w, east b.e, pairs numbered densely. Why `lifts`: a tiling by dominoes is
@@ -67,6 +70,13 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
     return StepResult{fuse(set.wang_tiles()), "lifts",
                       "dominoes as tiles: a tiling by them cuts into one of the source, periodic into periodic"};
   }
+  if (op == "merge-colours" || op == "merge-colours-lifts") {
+    if (wang) return std::nullopt;
+    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", 2);
+    if (m.merges.empty()) return std::nullopt;
+    return StepResult{TileSet::corner(m.tiles, set.name(), set.source()), m.conjugate ? "conjugate" : "lifts",
+                      m.argument()};
+  }
   if (op == "prune" || op == "prune-strips") {
     PruneReport rep;
     TileSet out = op == "prune" ? prune(set, 3, &rep) : prune_strips(set, 3, &rep);
@@ -77,15 +87,17 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
                                   rep.before, rep.after, rep.removed_by_surround, rep.removed_by_scc,
                                   op == "prune" ? "the row/column transducers" : "the strip transducers, k <= 3")};
   }
-  throw InputError(fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(step_operations(), ", ")));
+  throw InputError(
+      fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(step_operations(), ", ")));
 }
 
 }  // namespace
 
 const std::vector<std::string>& step_operations() {
-  static const std::vector<std::string> ops = {"prune",    "prune-strips", "to-wang",    "horizontal",
-                                               "horizontal+prune", "rotation", "diagonal", "subdivision",
-                                               "subdivision+merge-centres", "fuse"};
+  static const std::vector<std::string> ops = {"prune",      "prune-strips",     "to-wang",
+                                               "horizontal", "horizontal+prune", "rotation",
+                                               "diagonal",   "subdivision",      "subdivision+merge-centres",
+                                               "fuse",       "merge-colours",    "merge-colours-lifts"};
   return ops;
 }
 
