@@ -53,7 +53,7 @@ struct Windows {
   bool has(Colour a, Colour b, Colour c, Colour d) const { return all.count(key4(a, b, c, d)) > 0; }
 };
 
-constexpr int kMaxSide = 2 * kMaxMergeRadius + 2;
+constexpr int kMaxSide = 2 * kMaxMergeRadius + 2 + 2 * kMaxMergeMargin;
 using Patch = std::array<std::array<Colour, kMaxSide>, kMaxSide>;
 
 // Calls f(patch) for every h x w patch of pegs (h, w in 2..kMaxSide) whose every window is a tile;
@@ -85,18 +85,20 @@ bool for_each_patch(const Windows& win, int h, int w, F&& f) {
 using Neighbourhood = std::vector<Colour>;  // (2 radius + 1)^2 pegs, row-major
 
 // V of every neighbourhood of the merged set whose centre is the merged colour: bit 1 when a
-// patch of the source with centre `kept` maps onto it, bit 2 for centre `merged`.
+// patch of the source with centre `kept` (the middle of a valid patch `margin` pegs wider on each
+// side) maps onto it, bit 2 for centre `merged`.
 std::map<Neighbourhood, unsigned> centre_colours(const std::vector<CornerTile>& source, Colour kept, Colour merged,
-                                                 int radius) {
+                                                 int radius, int margin) {
   std::map<Neighbourhood, unsigned> v;
   auto pi = [&](Colour c) { return c == merged ? kept : c; };
-  const int n = 2 * radius + 1;
-  for_each_patch(Windows(source), n, n, [&](const Patch& p) {
-    if (p[radius][radius] != kept && p[radius][radius] != merged) return true;
+  const int n = 2 * radius + 1, m = margin;
+  const std::size_t mid = std::size_t(m + radius);
+  for_each_patch(Windows(source), n + 2 * m, n + 2 * m, [&](const Patch& p) {
+    if (p[mid][mid] != kept && p[mid][mid] != merged) return true;
     Neighbourhood q;
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) q.push_back(pi(p[r][c]));
-    v[q] |= p[radius][radius] == kept ? 1u : 2u;
+    for (int r = m; r < m + n; ++r)
+      for (int c = m; c < m + n; ++c) q.push_back(pi(p[std::size_t(r)][std::size_t(c)]));
+    v[q] |= p[mid][mid] == kept ? 1u : 2u;
     return true;
   });
   return v;
@@ -133,9 +135,10 @@ std::vector<Colour> colours_of(const std::vector<CornerTile>& tiles) {
 }  // namespace
 
 std::optional<std::vector<CornerTile>> merge_colours(const std::vector<CornerTile>& tiles, Colour kept, Colour merged,
-                                                     bool allow_lifts, int radius, bool* conjugate,
+                                                     bool allow_lifts, int radius, int margin, bool* conjugate,
                                                      std::size_t max_patches) {
-  if (kept == merged || radius < 1 || radius > kMaxMergeRadius) return std::nullopt;
+  if (kept == merged || radius < 1 || radius > kMaxMergeRadius || margin < 0 || margin > kMaxMergeMargin)
+    return std::nullopt;
   for (const CornerTile& t : tiles)
     if (std::max({t.nw, t.ne, t.sw, t.se}) > kMaxColour) return std::nullopt;
   auto pi = [&](Colour c) { return c == merged ? kept : c; };
@@ -145,12 +148,19 @@ std::optional<std::vector<CornerTile>> merge_colours(const std::vector<CornerTil
   out.erase(std::unique(out.begin(), out.end()), out.end());
 
   const Windows source(tiles);
-  const std::map<Neighbourhood, unsigned> v = centre_colours(tiles, kept, merged, radius);
+  const std::map<Neighbourhood, unsigned> v = centre_colours(tiles, kept, merged, radius, margin);
   bool unique = true;
   std::size_t patches = 0;
-  const int side = 2 * radius + 2;
-  const bool ok = for_each_patch(Windows(out), side, side, [&](const Patch& p) {
+  const int side = 2 * radius + 2 + 2 * margin;
+  std::set<Neighbourhood> checked;
+  const bool ok = for_each_patch(Windows(out), side, side, [&](const Patch& big) {
     if (++patches > max_patches) return false;
+    Patch p{};
+    Neighbourhood centre;
+    for (int r = 0; r < 2 * radius + 2; ++r)
+      for (int c = 0; c < 2 * radius + 2; ++c)
+        centre.push_back(p[std::size_t(r)][std::size_t(c)] = big[std::size_t(r + margin)][std::size_t(c + margin)]);
+    if (margin > 0 && !checked.insert(centre).second) return true;
     std::array<std::array<Colour, 2>, 2> w{};
     for (int r = 0; r < 2; ++r)
       for (int c = 0; c < 2; ++c) {
@@ -173,15 +183,16 @@ std::string MergeSearch::argument() const {
   if (merges.empty()) return "no colour merge applies";
   std::vector<std::string> m;
   for (const ColourMerge& x : merges)
-    m.push_back(fmt::format("{}+{} (r={}{})", x.kept, x.merged, x.radius, x.conjugate ? "" : ", lifts"));
+    m.push_back(
+        fmt::format("{}+{} (r={}, m={}{})", x.kept, x.merged, x.radius, x.margin, x.conjugate ? "" : ", lifts"));
   return fmt::format(
       "colours merged {}: the pegs within radius r of each peg give back its colour, checked on "
-      "every (2r+2)^2 patch of the merged set{}",
+      "every (2r+2)^2 patch of the merged set in the middle of a valid patch m pegs wider on each side{}",
       fmt::join(m, ", "),
       conjugate ? " (a unique colour: a conjugacy)" : " (a choice where two fit: the tilings lift)");
 }
 
-MergeSearch least_colour_merge(const std::vector<CornerTile>& tiles, bool allow_lifts, int max_radius,
+MergeSearch least_colour_merge(const std::vector<CornerTile>& tiles, bool allow_lifts, int max_radius, int max_margin,
                                std::size_t max_expansions) {
   struct Node {
     std::vector<CornerTile> tiles;
@@ -209,15 +220,22 @@ MergeSearch least_colour_merge(const std::vector<CornerTile>& tiles, bool allow_
       for (std::size_t b = a + 1; b < cs.size(); ++b) {
         bool conj = false;
         std::optional<std::vector<CornerTile>> r;
-        int radius = 1;
-        for (; radius <= max_radius; ++radius) {
-          if ((r = merge_colours(nodes[i].tiles, cs[a], cs[b], allow_lifts, radius, &conj))) break;
-          if (radius == 1 && merged_size(nodes[i].tiles, cs[a], cs[b]) == nodes[i].tiles.size()) break;
-        }
+        // (radius, margin) pairs, cheapest check first; past the first only for merges that save tiles.
+        const bool saves = merged_size(nodes[i].tiles, cs[a], cs[b]) < nodes[i].tiles.size();
+        ColourMerge how{cs[a], cs[b], 1, 0, false};
+        for (int sum = 1; !r && (sum == 1 || saves) && sum <= max_radius + max_margin; ++sum)
+          for (int radius = std::min(sum, max_radius); radius >= 1 && sum - radius <= max_margin; --radius) {
+            if ((r = merge_colours(nodes[i].tiles, cs[a], cs[b], allow_lifts, radius, sum - radius, &conj))) {
+              how.radius = radius;
+              how.margin = sum - radius;
+              break;
+            }
+          }
         if (!r || !seen.insert(*r).second) continue;
+        how.conjugate = conj;
         const std::size_t colours = colours_of(*r).size();
         open.push({r->size(), colours, nodes.size()});
-        nodes.push_back({std::move(*r), i, {cs[a], cs[b], radius, conj}, nodes[i].conjugate && conj, colours});
+        nodes.push_back({std::move(*r), i, how, nodes[i].conjugate && conj, colours});
       }
   }
   std::size_t best = 0;
@@ -234,9 +252,9 @@ MergeSearch least_colour_merge(const std::vector<CornerTile>& tiles, bool allow_
 }
 
 std::vector<std::vector<Colour>> recover_pegs(const std::vector<CornerTile>& source, Colour kept, Colour merged,
-                                              int radius, const std::vector<std::vector<Colour>>& pegs) {
-  const std::map<Neighbourhood, unsigned> v = centre_colours(source, kept, merged, radius);
-  const std::size_t rad = std::size_t(radius);
+                                              int radius, int margin, const std::vector<std::vector<Colour>>& pegs) {
+  const std::map<Neighbourhood, unsigned> v = centre_colours(source, kept, merged, radius, margin);
+  const std::size_t rad = std::size_t(radius + margin);
   std::vector<std::vector<Colour>> out;
   for (std::size_t r = rad; r + rad < pegs.size(); ++r) {
     out.emplace_back();

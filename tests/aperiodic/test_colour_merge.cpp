@@ -63,33 +63,37 @@ std::vector<CornerTile> jeandel_rao_corner() {
 TEST(ColourMerge, RecoveryMapPutsEveryMergedColourBack) {
   const std::vector<CornerTile> source = jeandel_rao_corner();
   ASSERT_EQ(source.size(), 34u);
-  const MergeSearch m = least_colour_merge(source, false, 1);
+  const MergeSearch m = least_colour_merge(source, false, 1, 0, 8);
   ASSERT_FALSE(m.merges.empty());
   EXPECT_TRUE(m.conjugate);
   EXPECT_LT(m.tiles.size(), source.size());
   // Replay the merges one at a time; each round trip pi then phi gives back a random patch of the
-  // set before the merge (all but its border of `radius` pegs).
+  // set before the merge (all but its border of radius + margin pegs).
   std::vector<CornerTile> before = source;
   int patches = 0;
   for (const ColourMerge& x : m.merges) {
     bool conjugate = false;
-    const auto after = merge_colours(before, x.kept, x.merged, false, x.radius, &conjugate);
+    const auto after = merge_colours(before, x.kept, x.merged, false, x.radius, x.margin, &conjugate);
     ASSERT_TRUE(after.has_value());
     EXPECT_TRUE(conjugate);
-    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-      const auto patch = random_corner_patch(before, 7, 7, seed);
-      if (!patch) continue;
-      ++patches;
-      Pegs image = *patch;
-      for (auto& row : image)
-        for (Colour& c : row)
-          if (c == x.merged) c = x.kept;
-      const Pegs back = recover_pegs(before, x.kept, x.merged, x.radius, image);
-      const std::size_t r = std::size_t(x.radius);
-      ASSERT_EQ(back.size(), patch->size() - 2 * r);
-      for (std::size_t i = 0; i < back.size(); ++i)
-        for (std::size_t j = 0; j < back[i].size(); ++j)
-          ASSERT_EQ(back[i][j], (*patch)[i + r][j + r]) << "merge " << x.kept << "+" << x.merged << " seed " << seed;
+    // The merge's own check, and the same radius with a margin of 1 where that check passes too.
+    for (int margin : {x.margin, 1}) {
+      if (margin != x.margin && !merge_colours(before, x.kept, x.merged, false, x.radius, margin)) continue;
+      const std::size_t r = std::size_t(x.radius + margin);
+      for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        const auto patch = random_corner_patch(before, 3 + 2 * int(r), 3 + 2 * int(r), seed);
+        if (!patch) continue;
+        ++patches;
+        Pegs image = *patch;
+        for (auto& row : image)
+          for (Colour& c : row)
+            if (c == x.merged) c = x.kept;
+        const Pegs back = recover_pegs(before, x.kept, x.merged, x.radius, margin, image);
+        ASSERT_EQ(back.size(), patch->size() - 2 * r);
+        for (std::size_t i = 0; i < back.size(); ++i)
+          for (std::size_t j = 0; j < back[i].size(); ++j)
+            ASSERT_EQ(back[i][j], (*patch)[i + r][j + r]) << x.kept << "+" << x.merged << " m=" << margin;
+      }
     }
     before = sorted(*after);
   }
@@ -111,7 +115,7 @@ TEST(ColourMerge, MergeThatLosesInformationIsRefused) {
   // Two constant tilings: after the merge one tiling is the image of both, so its tilings only lift.
   const std::vector<CornerTile> two = {{0, 0, 0, 0}, {1, 1, 1, 1}};
   bool conjugate = true;
-  const auto lifted = merge_colours(two, 0, 1, true, 1, &conjugate);
+  const auto lifted = merge_colours(two, 0, 1, true, 1, 0, &conjugate);
   ASSERT_TRUE(lifted.has_value());
   EXPECT_EQ(lifted->size(), 1u);
   EXPECT_FALSE(conjugate);
