@@ -1,8 +1,8 @@
 #pragma once
-// The one way to build a conversion result (issue 10): a thesis ch. 8 construction
-// (aperiodic/convert.hpp), optionally pruned (aperiodic/prune.hpp), and labelled with the
-// soundness of the whole chain source -> result. `aperiodic convert`, the table checks and the
-// smallest-set search all call build_conversion(); label_by_decision() adds what a decision run
+// The one way to build a conversion result, so that every caller labels soundness alike: a thesis
+// ch. 8 construction (aperiodic/convert.hpp), optionally pruned (aperiodic/prune.hpp), and labelled
+// with the soundness of the whole chain source -> result. `aperiodic convert`, the table checks and
+// the smallest-set search all call build_conversion(); label_by_decision() adds what a decision run
 // (aperiodic/verify.hpp) found about the result.
 #include <optional>
 #include <string>
@@ -36,8 +36,9 @@ std::string spec_name(const ConversionSpec& spec);
 // Converts, prunes and labels. InputError for an empty source or one of the wrong kind.
 LabelledConversion build_conversion(const TileSet& source, const ConversionSpec& spec);
 
-// A periodic tiling of the result overrides any label (DESIGN.md: translations can turn an
-// aperiodic set into a periodic one; a conjugate result of a periodic source is periodic too).
+// A periodic tiling of the result overrides any label: a translation construction that is not a
+// bijection between tilings can turn an aperiodic set into a periodic one, and a conjugate
+// result of a periodic source is periodic too.
 void label_by_decision(LabelledConversion& c, const VerifyResult& v);
 
 }  // namespace tilekit

@@ -6,7 +6,7 @@
 // (i,j) = i*q + j) tile the p x q torus and so the plane periodically; d further "decoy" tiles,
 // drawn at random (seeded, base/random.hpp) over the same colours and distinct from the rest,
 // may add tilings of their own but cannot take that one away. So every such set is periodic,
-// whatever the decoys do (issue 12: "sets that tile a P x Q torus with decoy tiles").
+// whatever the decoys do: test sets with a known answer for the deciders.
 #include <cstdint>
 
 #include "tilesets/tile_set.hpp"

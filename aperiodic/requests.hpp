@@ -1,6 +1,6 @@
 #pragma once
-// `tilekit aperiodic verify` and `convert` as library calls (issue 10: the CLI keeps only flags
-// and printing). Each resolves the set (repeated tiles accepted and reported, the distinct set
+// `tilekit aperiodic verify` and `convert` as library calls, so the CLI keeps only flags and
+// printing. Each resolves the set (repeated tiles accepted and reported, the distinct set
 // used), runs the engine, and stores what it found when a database is named.
 #include <cstdint>
 #include <optional>

@@ -55,46 +55,44 @@ Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_p
   return out;
 }
 
-}  // namespace
-
-VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::time_point deadline) {
+// The options' bounds: no cap on the sizes (the deadline bounds the work), only on the memory
+// the shapes need.
+void check_torus_options(const TileSet& set, const VerifyOptions& opts) {
   if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
   if (opts.max_period < 1) throw InputError(fmt::format("--max-period must be at least 1, got {}", opts.max_period));
   if (opts.max_square < 0) throw InputError(fmt::format("--max-square must be at least 0, got {}", opts.max_square));
-  // No cap on the sizes: the deadline bounds the work, and the memory they need is checked.
   if (std::uint64_t(opts.max_period) * std::uint64_t(opts.max_period) > (std::uint64_t(1) << 26) ||
       std::uint64_t(opts.max_square) * std::uint64_t(opts.max_square) > (std::uint64_t(1) << 28))
     throw InputError(fmt::format("--max-period {} / --max-square {}: the shapes would not fit in memory",
                                  opts.max_period, opts.max_square));
-  auto t0 = Clock::now();
-  VerifyResult res;
-  res.threads = opts.threads > 0 ? checked_thread_count(opts.threads) : default_thread_count();
+}
+
+using Shapes = std::vector<std::pair<int, int>>;  // (rows, cols) of torus shapes
+
+// One torus-route run: the set, the deadline and the shared stop token, and the searches of
+// one phase (the shapes, their outcomes and the earliest witness).
+struct TorusRun {
+  const TileSet& set;
+  const VerifyOptions& opts;
+  Clock::time_point deadline;
+  VerifyResult& res;
   StopToken stop;
-  auto out_of_time = [&] {
-    if (deadline != Clock::time_point::max() && Clock::now() >= deadline) stop.request(StopReason::TimeLimit);
-    return stop.requested();
-  };
-
-  // Torus shapes, smallest area first (ties: fewer rows first), so the first witness found
-  // in this order is one of least area. Phase A sends the small shapes (area <= 16) straight
-  // to the solver: periodic sets usually show a small period, and these searches are cheap.
-  // Phase B runs the row/column transducer filter (aperiodic/rows.hpp: a
-  // horizontal period q needs q-periodic rows that stack forever, a vertical period p the
-  // same for columns) and sends only the surviving larger shapes to the solver.
-  const int P = opts.max_period;
-  constexpr int kSmallArea = 16;
-  auto by_area = [](auto x, auto y) { return x.first * x.second < y.first * y.second; };
-  std::vector<std::pair<int, int>> small, large;
-  for (int p = 1; p <= P; ++p)
-    for (int q = 1; q <= P; ++q) (p * q <= kSmallArea ? small : large).emplace_back(p, q);
-  std::stable_sort(small.begin(), small.end(), by_area);
-  std::stable_sort(large.begin(), large.end(), by_area);
-
   std::atomic<std::uint64_t> nodes{0};
-  std::vector<std::pair<int, int>> shapes;  // the searched shapes of the deciding phase
+  Shapes shapes;  // the searched shapes of the deciding phase
   std::vector<Outcome> outcomes;
   std::size_t best_index = 0;
-  auto search_shapes = [&](const std::vector<std::pair<int, int>>& list) {
+
+  TorusRun(const TileSet& s, const VerifyOptions& o, Clock::time_point d, VerifyResult& r)
+      : set(s), opts(o), deadline(d), res(r) {}
+
+  bool out_of_time() {
+    if (deadline != Clock::time_point::max() && Clock::now() >= deadline) stop.request(StopReason::TimeLimit);
+    return stop.requested();
+  }
+
+  // Searches `list` in parallel, in order; true when some shape has a witness (the earliest
+  // in `list` is shapes[best_index]). Shapes after a known witness are skipped.
+  bool search_shapes(const Shapes& list) {
     shapes = list;
     outcomes.assign(list.size(), Outcome{});
     std::atomic<std::size_t> best{list.size()};  // index of the earliest shape with a witness
@@ -130,58 +128,50 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
     }
     if (stop.reason() == StopReason::TimeLimit && best_index == list.size()) ++res.shapes_incomplete;
     return best_index < list.size();
-  };
+  }
 
-  bool found = search_shapes(small);
-  if (!found && !large.empty()) {
+  // The periodic-row filter (aperiodic/rows.hpp: a horizontal period q needs q-periodic rows
+  // that stack forever, a vertical period p the same for columns): the shapes of `large` it
+  // cannot rule out, with what it found in `res`.
+  Shapes filter(const Shapes& large) {
+    const int P = opts.max_period;
     const std::vector<WangTile> as_wang =
         set.kind() == TileKind::Wang ? set.wang_tiles() : corner_to_wang(set).wang_tiles();
     std::vector<PeriodicRows> row_info(std::size_t(P) + 1), col_info(std::size_t(P) + 1);
     auto excluded = [](const PeriodicRows& r) { return r.enumerated && r.recurrent == 0; };
-    if (opts.transducer_filter) {
+    auto periods = [&](std::vector<PeriodicRows>& info, bool rows) {
       parallel_for(
           P, res.threads,
           [&](std::int64_t i) {  // longest period first
             const int q = P - int(i);
-            if (!out_of_time()) row_info[std::size_t(q)] = periodic_rows(as_wang, q, true, 2'000'000, deadline);
+            if (!out_of_time()) info[std::size_t(q)] = periodic_rows(as_wang, q, rows, 2'000'000, deadline);
           },
           &stop);
-    }
+    };
+    if (opts.transducer_filter) periods(row_info, true);
     // Columns matter only when some horizontal period survived.
     bool any_row = false;
     for (int q = 1; q <= P; ++q) any_row = any_row || !excluded(row_info[std::size_t(q)]);
-    if (any_row && opts.transducer_filter) {
-      parallel_for(
-          P, res.threads,
-          [&](std::int64_t i) {
-            const int p = P - int(i);
-            if (!out_of_time()) col_info[std::size_t(p)] = periodic_rows(as_wang, p, false, 2'000'000, deadline);
-          },
-          &stop);
-    }
+    if (any_row && opts.transducer_filter) periods(col_info, false);
     for (int q = 1; q <= P; ++q) {
       res.periodic_rows.push_back(row_info[std::size_t(q)].enumerated ? row_info[std::size_t(q)].rows : 0);
       res.periodic_cols.push_back(col_info[std::size_t(q)].enumerated ? col_info[std::size_t(q)].rows : 0);
       if (excluded(row_info[std::size_t(q)])) res.excluded_cols.push_back(q);
       if (excluded(col_info[std::size_t(q)])) res.excluded_rows.push_back(q);
     }
-    std::vector<std::pair<int, int>> rest;
+    Shapes rest;
     for (auto [p, q] : large) {
       if (excluded(col_info[std::size_t(p)]) || excluded(row_info[std::size_t(q)]))
         ++res.shapes_excluded;
       else
         rest.emplace_back(p, q);
     }
-    if (!out_of_time())
-      found = search_shapes(rest);
-    else
-      res.shapes_incomplete += rest.size();
+    return rest;
   }
-  res.nodes = nodes.load();
 
-  if (found) {
+  // The witness of shapes[best_index], checked by the independent validator, into `res`.
+  void report_witness() {
     const Outcome& o = outcomes[best_index];
-    // Independent check of the witness before it is reported.
     ValidationReport rep = validate(*o.tiling, &set);
     if (!rep.valid) throw std::runtime_error("solver returned an invalid periodic tiling: " + rep.errors.front());
     res.witness_validated = true;
@@ -197,10 +187,9 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
     }
   }
 
-  // Square search: the largest n <= max_square with an n x n tiling (downwards from N, so
-  // one success settles it).
-  bool square_incomplete = false;
-  if (opts.max_square > 0 && res.verdict.empty()) {
+  // The largest n <= max_square with an n x n tiling (downwards from N, so one success settles
+  // it); true when a search was cut short.
+  bool search_squares() {
     for (int n = opts.max_square; n >= 1; --n) {
       Outcome o = search(set, n, n, false, deadline);
       res.nodes += o.nodes;
@@ -208,14 +197,55 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
         ValidationReport rep = validate(*o.tiling, &set);
         if (!rep.valid) throw std::runtime_error("solver returned an invalid square tiling: " + rep.errors.front());
         res.largest_square = n;
-        break;
+        return false;
       }
-      if (!o.complete) {
-        square_incomplete = true;
-        break;
-      }
+      if (!o.complete) return true;
       res.largest_square = n - 1;
     }
+    return false;
+  }
+};
+
+// Torus shapes up to P x P, smallest area first (ties: fewer rows first), so the first witness
+// found in this order is one of least area: the small ones (area <= 16) and the rest.
+std::pair<Shapes, Shapes> torus_shapes(int P) {
+  constexpr int kSmallArea = 16;
+  auto by_area = [](auto x, auto y) { return x.first * x.second < y.first * y.second; };
+  Shapes small, large;
+  for (int p = 1; p <= P; ++p)
+    for (int q = 1; q <= P; ++q) (p * q <= kSmallArea ? small : large).emplace_back(p, q);
+  std::stable_sort(small.begin(), small.end(), by_area);
+  std::stable_sort(large.begin(), large.end(), by_area);
+  return {small, large};
+}
+
+}  // namespace
+
+VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::time_point deadline) {
+  check_torus_options(set, opts);
+  auto t0 = Clock::now();
+  VerifyResult res;
+  res.threads = opts.threads > 0 ? checked_thread_count(opts.threads) : default_thread_count();
+  TorusRun run(set, opts, deadline, res);
+
+  // Phase A sends the small shapes straight to the solver: periodic sets usually show a small
+  // period, and these searches are cheap. Phase B runs the periodic-row filter and sends only
+  // the surviving larger shapes to the solver.
+  auto [small, large] = torus_shapes(opts.max_period);
+  bool found = run.search_shapes(small);
+  if (!found && !large.empty()) {
+    Shapes rest = run.filter(large);
+    if (!run.out_of_time())
+      found = run.search_shapes(rest);
+    else
+      res.shapes_incomplete += rest.size();
+  }
+  res.nodes = run.nodes.load();
+  if (found) run.report_witness();
+
+  bool square_incomplete = false;
+  if (opts.max_square > 0 && res.verdict.empty()) {
+    square_incomplete = run.search_squares();
     res.square_tileable = res.largest_square == opts.max_square;
   }
 

@@ -10,11 +10,10 @@
 #include <memory>
 
 #include "base/error.hpp"
-#include "results/results_db.hpp"
 #include "packing/find_packing.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
-#include "tiling/lattice_hash.hpp"
 
 namespace tilekit {
 
@@ -96,51 +95,17 @@ AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptio
   return a;
 }
 
-// The project's permutation table (thesis 3.4.1, tiling/lattice_hash.hpp) of size 256, so the
-// shader's `& 255` is the table's modulo.
-std::vector<int> hash_permutation(std::uint64_t seed) {
-  const PermutationHash h(256, seed);
-  return std::vector<int>(h.table().begin(), h.table().end());
+void check_same_set(const AtlasLookup& a, const DirectTiling& tiling) {
+  if (a.kind != tiling.kind() || a.colours != tiling.colours())
+    throw InputError(fmt::format("a tiling of the {} set over {} colours does not index an atlas of the {} set over {}",
+                                 kind_name(tiling.kind()), tiling.colours(), kind_name(a.kind), a.colours));
 }
 
-namespace {
-
-int hash2(const std::vector<int>& P, std::int64_t x, std::int64_t y) {  // thesis eq. (3.3), N = 256
-  return P[std::size_t((P[std::size_t(x & 255)] + y) & 255)];
-}
-int hash3(const std::vector<int>& P, std::int64_t x, std::int64_t y, std::int64_t z) {  // thesis eq. (3.4)
-  return P[std::size_t((hash2(P, x, y) + z) & 255)];
-}
-
-}  // namespace
-
-TileIndex virtual_tile(const AtlasLookup& a, const std::vector<int>& P, std::int64_t x, std::int64_t y) {
-  const std::uint32_t C = a.colours;
-  if (a.kind == TileKind::Corner) {
-    // thesis 3.3.1: NE = h(x+1,y+1), SE = h(x+1,y), SW = h(x,y), NW = h(x,y+1)
-    auto h = [&](std::int64_t px, std::int64_t py) { return Colour(hash2(P, px, py)) % C; };
-    CornerTile t{h(x + 1, y + 1), h(x + 1, y), h(x, y), h(x, y + 1)};
-    return corner_index(t, C);  // thesis eq. (2.5)
-  }
-  // thesis 3.3.2.1: two hashes (here h(x,y,0) and h(x,y,1)); each edge is the sum mod C of
-  // the colours at its two end points.
-  auto hh = [&](std::int64_t px, std::int64_t py) { return Colour(hash3(P, px, py, 0)) % C; };
-  auto hv = [&](std::int64_t px, std::int64_t py) { return Colour(hash3(P, px, py, 1)) % C; };
-  WangTile t;
-  t.n = (hh(x, y + 1) + hh(x + 1, y + 1)) % C;
-  t.e = (hv(x + 1, y + 1) + hv(x + 1, y)) % C;
-  t.s = (hh(x + 1, y) + hh(x, y)) % C;
-  t.w = (hv(x, y) + hv(x, y + 1)) % C;
-  return wang_index(t, C);  // thesis eq. (2.2)
-}
-
-std::pair<double, double> virtual_to_atlas(const AtlasLookup& a, const std::vector<int>& perm, double u, double v) {
+std::pair<double, double> virtual_to_atlas(const AtlasLookup& a, const DirectTiling& tiling, double u, double v) {
+  check_same_set(a, tiling);
   const double fx = std::floor(u), fy = std::floor(v);
-  const TileIndex t = virtual_tile(a, perm, std::int64_t(fx), std::int64_t(fy));
-  const auto [row, col] = a.positions[t];
-  // thesis 5.4: the tile's place in the packing plus the position inside the tile; atlas
-  // rows run downwards, the virtual texture's y upwards.
-  return {(col + (u - fx)) / a.cols, (row + (1.0 - (v - fy))) / a.rows};
+  const auto [row, col] = a.positions[tiling.tile(std::int64_t(fx), std::int64_t(fy))];
+  return {(col + (u - fx)) / a.cols, (row + (v - fy)) / a.rows};  // thesis 5.4
 }
 
 }  // namespace tilekit

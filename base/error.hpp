@@ -1,6 +1,7 @@
 #pragma once
 // Errors a user can act on. The CLI maps each to one line on stderr and an exit code
-// (DESIGN.md, CLI contract): InputError -> 2, NotFound -> 1, Interrupted -> 3.
+// (the same for every command, docs/ARCHITECTURE.md): InputError -> 2, NotFound -> 1,
+// Interrupted -> 3.
 #include <stdexcept>
 #include <string>
 

@@ -1,4 +1,4 @@
-// Atlas benchmarks (issue 4): `tilekit atlas lookup` wall time per available C, process start
+// Atlas benchmarks: `tilekit atlas lookup` wall time per available C, process start
 // included, against `tilekit --version` (bare process start) in the same run; and the C=11
 // corner construction in-process against validating the same packing.
 // Usage: build/bench_atlas [path/to/tilekit] [runs]. One JSON line per case; times are medians.

@@ -1,4 +1,4 @@
-// Benchmarks of `aperiodic verify` by the transducer method (issue 12; BENCHMARKS.md), one JSON
+// Benchmarks of `aperiodic verify` by the transducer method (BENCHMARKS.md), one JSON
 // line per case, the torus route measured in the same run as the baseline:
 //   bench_decide collection [DIR] [LIMIT]  every set of DIR (default aperiodic/data) and the
 //                                          published aperiodic sets: transducer route (median

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Two tilekit binaries on the same imposed-group search, seed by seed (issue 11: the one engine
-# against the old impose engine). For every seed both binaries run `pack --mode first --impose
-# SPEC --threads T --seed S`, alternating, each with a fresh database, so they see the same
-# load on average. CPU seconds (user + sys of the whole process, /usr/bin/time), wall seconds,
-# nodes and whether a packing was found, per seed; one JSON line per binary with the medians,
-# then one line with the per-seed CPU ratio (new / old) and the load average before and after.
+# Two tilekit binaries on the same imposed-group search, seed by seed (written to compare the one
+# engine against the separate impose engine it replaced). For every seed both binaries run `pack
+# --mode first --impose SPEC --threads T --seed S`, alternating, each with a fresh database, so they
+# see the same load on average. CPU seconds (user + sys of the whole process, /usr/bin/time), wall
+# seconds, nodes and whether a packing was found, per seed; one JSON line per binary with the
+# medians, then one line with the per-seed CPU ratio (new / old) and the load average before and
+# after.
 #
 #   bash bench/bench_engines.sh OLD_TILEKIT NEW_TILEKIT KIND C SPEC [SEEDS] [THREADS] [TIME_LIMIT]
 #   bash bench/bench_engines.sh /work/wt/old-engine/build/tilekit build/tilekit corner 5 \

@@ -1,4 +1,4 @@
-// Search under imposed automorphisms (issues 7 and 11): time to the first packing per (kind, C,
+// Search under imposed automorphisms: time to the first packing per (kind, C,
 // group), median over seeds, against the plain search (trivial group, same engine, same time
 // limit) run in the same process. CPU seconds (getrusage, the whole process) next to wall
 // seconds. One JSON line per case on stdout.

@@ -1,4 +1,4 @@
-// Parallel efficiency of the one engine (issue 11): a count under an imposed group (or the plain
+// Parallel efficiency of the one engine: a count under an imposed group (or the plain
 // search) on 1 and on 2 threads, alternating, several times. A count's node count does not
 // depend on the thread count, so CPU seconds per run compare the same work: the goal is
 // cpu(2 threads) <= 1.10 x cpu(1 thread). Also the wall-clock speed-up and the machine's load

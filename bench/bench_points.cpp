@@ -1,4 +1,4 @@
-// Point sets (issue 14): speed of window generation through the direct stochastic tiling against
+// Point sets: speed of window generation through the direct stochastic tiling against
 // Bridson's dart throwing and a plain memory write timed in the same run, tile-set build time,
 // the relative radius across tile borders of a large window, and the anisotropy of the power
 // spectrum (K = 10 sets). One JSON line per case; medians of --reps runs; the core count and the

@@ -1,6 +1,6 @@
-// Solver benchmarks (issue 3 targets). One JSON line per case on stdout; every case that has a
-// baseline times it in the same run. Machines are shared: medians of several repetitions, wall
-// and CPU seconds, and the core count are reported.
+// Solver benchmarks (the targets in BENCHMARKS.md, "Solver"). One JSON line per case on stdout;
+// every case that has a baseline times it in the same run. Machines are shared: medians of
+// several repetitions, wall and CPU seconds, and the core count are reported.
 //
 //   build/bench_solver            all cases except the long ones
 //   build/bench_solver --speedup  also the 2-thread speed-up on a count of >= 10 s

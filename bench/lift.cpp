@@ -1,4 +1,4 @@
-// Colour-quotient lifts (issue 11): time to the first packing by lift search (the engine's
+// Colour-quotient lifts: time to the first packing by lift search (the engine's
 // lattice or cell model, or the CNF with cadical), median over seeds, against the plain search of
 // the same problem (no lift, same time limit) run in the same process; and the binary lift
 // construction with the independent validator for the large powers of two. One JSON line per case.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Corner packings by search with colour-quotient lifts among the portfolio's candidates (issue 11),
+# Corner packings by search with colour-quotient lifts among the portfolio's candidates,
 # through the CLI (process start included). One JSON line per case: wall and CPU seconds (CPU
 # includes cadical, a waited-for child), the winner, whether the packing validates; the load first
 # and last. Results: BENCHMARKS.md, "Colour-quotient lifts".

@@ -1,13 +1,14 @@
-// Texture tiles, atlases and renderers (issue 13), one JSON line per case, with a baseline timed
-// in the same run. Usage: build/bench_texture [--reps R] [--quick]
+// Texture tiles, atlases and renderers, one JSON line per case, with a baseline timed
+// in the same run. Usage: build/bench_texture [--reps R] [--quick] [--only PREFIX]
 //   synthesis/*  complete corner / Wang sets from grass, one thread (goal: C=2 < 1 s, C=3 < 5 s);
 //                baseline: naive tiles (copying the same pixels)
 //   seams/*      seam ratio of a rendered 32x32-tile window, per texture and tile kind, for the
 //                searched tiles, the first random draw (no search) and naive abutment
-//   cpu-render/* Mpixel/s of the CPU reference renderer, 1 and 2 threads; baseline: plain
-//                trilinear sampling of one texture (no tiling) over the same pixels
-//   glsl-render/* fragments/s through EGL + llvmpipe (LP_NUM_THREADS=2); baseline: one textureLod
-//                per fragment, no tiling
+//   cpu-render/* Mpixel/s of the CPU renderer (tiles, hex, hpn; trilinear and 16x anisotropic), one
+//                thread; baseline: plain trilinear sampling of one texture (no tiling), same pixels
+//   glsl-render/* fragments/s through EGL + llvmpipe (LP_NUM_THREADS=2), the same cases; baseline:
+//                one textureLod per fragment, no tiling
+// --only PREFIX runs the cases whose name starts with PREFIX (e.g. glsl-render/flat).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -22,7 +24,9 @@
 #include "base/parallel.hpp"
 #include "bench/bench_common.hpp"
 #include "texture/cpu_renderer.hpp"
+#include "texture/exemplar_surface.hpp"
 #include "texture/gl_renderer.hpp"
+#include "texture/sampling.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -108,7 +112,7 @@ void seams(int threads, bool quick) {
         if (std::strcmp(method, "naive")) {  // the seam ratio of the rendered tiling (atlas + CPU renderer)
           const TextureAtlas atlas = build_texture_atlas(lookup, s.tiles);
           const Image img = render_cpu(atlas, View{32 * o.tile_px, 32 * o.tile_px, 1, 0, 0, 0},
-                                           {HashKind::LongPeriod, 1, threads, false});
+                                       {HashKind::LongPeriod, 1, threads, false});
           ratio = seam_statistics(img, o.tile_px).seam_ratio;
         }
         print({{"case", fmt::format("seams/{}/{}/{}", name, kind_name(kind), method)},
@@ -134,61 +138,89 @@ Image plain_render(const TextureAtlas& a, const View& v, int threads) {
     const ViewRow& r = vr.rows[std::size_t(j)];
     for (int x = 0; x < v.width; ++x) {
       const float u = float(x) / float(v.width), t = float(j) / float(v.height);
-      const auto c = sample_trilinear(a, u, t, view_lod(r, vr.dudy_step, x, a.tile_px));
+      const auto c = sample_trilinear(a.levels, u, t, view_lod(r, vr.dudy_step, x, a.tile_px));
       for (int k = 0; k < 4; ++k) out.at(x, int(j))[k] = std::uint8_t(std::lround(c[std::size_t(k)]));
     }
   });
   return out;
 }
 
-void renderers(const TextureAtlas& atlas, int reps) {
+// CPU and GLSL renders of every method, trilinear (aniso 1) and anisotropic (16), flat and tilted.
+// CPU baseline: plain trilinear sampling of the atlas (no tiling); GLSL baseline: one textureLod
+// per fragment. "aniso_cost" is the anisotropic case's time over the trilinear case's, same view.
+void renderers(const TextureAtlas& atlas, const ExemplarSurface& ex, int reps, const std::string& only) {
   const View flat{2048, 2048, 1.5, 100, 100, 0}, tilted{2048, 2048, 0.5, 0, 0, 8};
-  for (const auto& [vname, view] : {std::pair{"flat", flat}, std::pair{"tilted", tilted}})
-    for (int threads : {1, 2}) {
-      std::vector<double> t, base;
-      for (int r = 0; r < reps; ++r) {
-        t.push_back(seconds_of([&] { render_cpu(atlas, view, {HashKind::LongPeriod, 1, threads, false}); }));
-        base.push_back(seconds_of([&] { plain_render(atlas, view, threads); }));
+  const View cpu_flat{1024, 1024, 1.5, 100, 100, 0}, cpu_tilted{1024, 1024, 0.5, 0, 0, 8};
+  const std::vector<RenderSource> sources = {
+      {RenderMethod::Tiles, &atlas, nullptr}, {RenderMethod::Hex, nullptr, &ex}, {RenderMethod::Hpn, nullptr, &ex}};
+  auto wanted = [&](const std::string& name) { return name.rfind(only, 0) == 0; };
+  for (const auto& [vname, view] : {std::pair{"flat", cpu_flat}, std::pair{"tilted", cpu_tilted}})
+    for (const RenderSource& src : sources) {
+      std::map<int, double> seconds;
+      for (int aniso : {1, 16}) {
+        const std::string name = fmt::format("cpu-render/{}/{}/aniso-{}", vname, render_method_name(src.method), aniso);
+        if (!wanted(name)) continue;
+        std::vector<double> t, base;
+        for (int r = 0; r < reps; ++r) {
+          t.push_back(seconds_of([&] { render_cpu(src, view, {HashKind::LongPeriod, 1, 1, false, aniso}); }));
+          base.push_back(seconds_of([&] { plain_render(atlas, view, 1); }));
+        }
+        seconds[aniso] = median_midpoint(t);
+        const double px = double(view.width) * view.height;
+        nlohmann::json j = {{"case", name},
+                            {"threads", 1},
+                            {"reps", reps},
+                            {"pixels", px},
+                            {"fetches_per_pixel", mean_fetches(src, view, aniso)},
+                            {"median_seconds", seconds[aniso]},
+                            {"mpixels_per_second", px / seconds[aniso] / 1e6},
+                            {"baseline_plain_trilinear_mpixels_per_second", px / median_midpoint(base) / 1e6},
+                            {"ratio_to_baseline", seconds[aniso] / median_midpoint(base)}};
+        if (aniso > 1 && seconds.count(1)) j["aniso_cost"] = seconds[aniso] / seconds[1];
+        print(j);
       }
-      const double px = double(view.width) * view.height;
-      print({{"case", fmt::format("cpu-render/{}/long-period", vname)},
-             {"threads", threads},
-             {"reps", reps},
-             {"pixels", px},
-             {"median_seconds", median_midpoint(t)},
-             {"mpixels_per_second", px / median_midpoint(t) / 1e6},
-             {"baseline_plain_trilinear_mpixels_per_second", px / median_midpoint(base) / 1e6},
-             {"ratio_to_baseline", median_midpoint(t) / median_midpoint(base)}});
     }
   const char* lp = std::getenv("LP_NUM_THREADS");
   for (const auto& [vname, view] : {std::pair{"flat", flat}, std::pair{"tilted", tilted}})
-    for (HashKind h : {HashKind::LongPeriod, HashKind::Permutation}) {
-      try {
-        const RenderOptions o{h, 1, 1, false};
-        GlRenderer r(atlas, view, o), plain(atlas, view, o, GlslMode::PlainTexture);
-        r.draw(1);
-        plain.draw(1);  // compile and warm up
-        const int frames = 5;
-        std::vector<double> t, base;
-        for (int k = 0; k < reps; ++k) {
-          t.push_back(r.draw(frames));
-          base.push_back(plain.draw(frames));
+    for (const RenderSource& src : sources)
+      for (HashKind h : {HashKind::LongPeriod, HashKind::Permutation}) {
+        std::map<int, double> seconds;
+        for (int aniso : {1, 16}) {
+          const std::string name = fmt::format("glsl-render/{}/{}/{}/aniso-{}", vname, render_method_name(src.method),
+                                               hash_kind_name(h), aniso);
+          if (!wanted(name)) continue;
+          try {
+            const RenderOptions o{h, 1, 1, false, aniso};
+            GlRenderer r(src, view, o), plain(atlas, view, o, GlslMode::PlainTexture);
+            r.draw(1);
+            plain.draw(1);  // compile and warm up
+            const int frames = 3;
+            std::vector<double> t, base;
+            for (int k = 0; k < reps; ++k) {
+              t.push_back(r.draw(frames));
+              base.push_back(plain.draw(frames));
+            }
+            seconds[aniso] = median_midpoint(t);
+            const double frags = double(view.width) * view.height * frames;
+            nlohmann::json j = {{"case", name},
+                                {"renderer", r.renderer()},
+                                {"lp_num_threads", lp ? lp : "unset"},
+                                {"reps", reps},
+                                {"frames", frames},
+                                {"fetches_per_pixel", mean_fetches(src, view, aniso)},
+                                {"mfragments_per_second", frags / seconds[aniso] / 1e6},
+                                {"baseline_plain_texture_mfragments_per_second", frags / median_midpoint(base) / 1e6},
+                                {"ratio_to_baseline", seconds[aniso] / median_midpoint(base)},
+                                {"memory_bytes", src.memory_bytes()},
+                                {"goal", ">= 150 M fragments/s flat on 2 cores"}};
+            if (aniso > 1 && seconds.count(1)) j["aniso_cost"] = seconds[aniso] / seconds[1];
+            print(j);
+          } catch (const GlUnavailable& e) {
+            print({{"case", "glsl-render"}, {"skipped", e.what()}});
+            return;
+          }
         }
-        const double frags = double(view.width) * view.height * frames;
-        print({{"case", fmt::format("glsl-render/{}/{}", vname, hash_kind_name(h))},
-               {"renderer", r.renderer()},
-               {"lp_num_threads", lp ? lp : "unset"},
-               {"reps", reps},
-               {"frames", frames},
-               {"mfragments_per_second", frags / median_midpoint(t) / 1e6},
-               {"baseline_plain_texture_mfragments_per_second", frags / median_midpoint(base) / 1e6},
-               {"ratio_to_baseline", median_midpoint(t) / median_midpoint(base)},
-               {"goal", ">= 150 M fragments/s on 2 cores"}});
-      } catch (const GlUnavailable& e) {
-        print({{"case", "glsl-render"}, {"skipped", e.what()}});
-        return;
       }
-    }
 }
 
 }  // namespace
@@ -196,17 +228,23 @@ void renderers(const TextureAtlas& atlas, int reps) {
 int main(int argc, char** argv) {
   int reps = 3;
   bool quick = false;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
+    if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
     if (!std::strcmp(argv[i], "--quick")) quick = true;
   }
   setenv("LP_NUM_THREADS", "2", 0);  // llvmpipe on 2 cores (the goal's setting) unless set
   const Exemplar grass = texture("grass");
-  synthesis(grass, reps, quick);
-  seams(2, quick);
+  // A group runs when --only names a prefix of it or a case inside it.
+  auto runs = [&](const std::string& group) { return group.rfind(only, 0) == 0 || only.rfind(group, 0) == 0; };
+  if (runs("synthesis")) synthesis(grass, reps, quick);
+  if (runs("seams")) seams(2, quick);
+  if (!runs("cpu-render") && !runs("glsl-render")) return 0;
   SynthesisOptions o = options(TileKind::Corner, 3, 128, 2);
   const TextureAtlas atlas =
       build_texture_atlas(atlas_lookup(TileKind::Corner, 3, {}), synthesize_tiles(grass, o).tiles);
-  renderers(atlas, reps);
+  const ExemplarSurface ex = make_exemplar_surface(grass.image, grass.name);
+  renderers(atlas, ex, reps, only);
   return 0;
 }

@@ -1,12 +1,15 @@
 #include "cli/cluster_scripts.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <regex>
 #include <utility>
 
 #include "base/error.hpp"
+#include "base/version.hpp"
 
 namespace tilekit::cli {
 namespace {
@@ -33,6 +36,16 @@ std::string bash_array(const std::string& name, const std::vector<std::string>& 
   for (std::size_t i = 0; i < values.size(); ++i) out += (i ? " " : "") + shell_quote(values[i]);
   return out + ")\n";
 }
+
+}  // namespace
+
+std::string_view slurm_script_body(std::string_view name) {
+  for (const EmbeddedFile& f : slurm_script_bodies())
+    if (f.name == name) return f.text;
+  return {};
+}
+
+namespace {
 
 std::string body(std::string_view name) {
   std::string_view b = slurm_script_body(name);
@@ -93,6 +106,22 @@ std::string shell_quote(std::string_view text) {
   return out + "'";
 }
 
+std::string default_job_binary(std::string_view path_env, const std::string& self) {
+  namespace fs = std::filesystem;
+  for (std::size_t begin = 0; begin <= path_env.size();) {
+    std::size_t end = std::min(path_env.find(':', begin), path_env.size());
+    // An empty PATH entry means the current directory to a shell; a job must not depend on it.
+    if (end > begin) {
+      const fs::path candidate = fs::path(path_env.substr(begin, end - begin)) / "tilekit";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0)
+        return fs::canonical(fs::absolute(candidate)).string();
+    }
+    begin = end + 1;
+  }
+  return fs::canonical(self).string();
+}
+
 void check_plan(const ClusterPlan& p) {
   if (p.shards < 1) throw InputError("--shards must be at least 1");
   if (p.cpus_per_task < 1) throw InputError("--cpus-per-task must be at least 1");
@@ -133,7 +162,7 @@ std::string pack_array_script(const ClusterPlan& p) {
   };
   std::string s = script_head(
       p, std::move(ds),
-      fmt::format("# Tilekit shard array, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION) +
+      fmt::format("# Tilekit shard array, written by `tilekit cluster submit` (tilekit {}).\n", version_line()) +
           "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n");
   s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
   s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
@@ -154,7 +183,7 @@ std::string merge_script(const ClusterPlan& p) {
   };
   std::string s = script_head(
       p, std::move(ds),
-      fmt::format("# Tilekit merge job, written by `tilekit cluster submit` (tilekit {}).\n", TILEKIT_VERSION) +
+      fmt::format("# Tilekit merge job, written by `tilekit cluster submit` (tilekit {}).\n", version_line()) +
           "# Queued after the shard array: sbatch --dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +
           "# (afterok: it starts only when every shard task ended with exit code 0).\n");
   s += "\n" + body("merge");

@@ -1,5 +1,5 @@
 #pragma once
-// The Slurm job scripts of `tilekit cluster submit` (issue 6): a job array with one task per
+// The Slurm job scripts of `tilekit cluster submit`: a job array with one task per
 // shard of `tilekit pack`, a merge job that runs after it (afterok), and submit.sh that queues
 // both. Each script is a header of commented #SBATCH directives and variables written here,
 // followed by a body kept in scripts/slurm/*.body.sh and embedded in the binary at build time.
@@ -7,10 +7,12 @@
 #include <string_view>
 #include <vector>
 
+#include "tilesets/reference_data.hpp"
+
 namespace tilekit::cli {
 
 struct ClusterPlan {
-  std::string tilekit;                 // absolute path of the binary the jobs run
+  std::string tilekit;                 // absolute path of the binary the jobs run (default_job_binary)
   std::string run_dir;                 // absolute; on the filesystem shared by the nodes
   std::string job_name;                // squeue's name; the merge job adds "-merge"
   std::vector<std::string> command{"pack"};  // the shard command: pack, or aperiodic enumerate
@@ -36,6 +38,12 @@ int default_signal_seconds(long seconds);
 // `text` quoted for bash (single quotes), unchanged when it needs no quoting.
 std::string shell_quote(std::string_view text);
 
+// The binary the jobs run when `cluster submit` has no --tilekit: the first executable file named
+// tilekit in the directories of `path_env` (PATH: an installed binary, which a rebuild of a
+// checkout does not replace under a running array), else `self` (the binary running submit, e.g.
+// a build tree's build/tilekit). The result is absolute, with links resolved.
+std::string default_job_binary(std::string_view path_env, const std::string& self);
+
 // Throws InputError when the plan cannot make working scripts (bad counts, odd paths).
 void check_plan(const ClusterPlan& plan);
 
@@ -43,8 +51,11 @@ std::string pack_array_script(const ClusterPlan& plan);
 std::string merge_script(const ClusterPlan& plan);
 std::string submit_script(const ClusterPlan& plan);
 
-// The embedded body scripts/slurm/NAME.body.sh ("pack-array", "merge"); empty if unknown.
-// Defined in the build's generated slurm_script_bodies.cpp (scripts/slurm/embed.cmake).
+// The embedded bodies scripts/slurm/NAME.body.sh, named NAME ("pack-array", "merge"). Defined in
+// the build's generated slurm_script_bodies.cpp (cmake/embed_files.cmake).
+const std::vector<EmbeddedFile>& slurm_script_bodies();
+
+// The body named `name`; empty if unknown.
 std::string_view slurm_script_body(std::string_view name);
 
 }  // namespace tilekit::cli

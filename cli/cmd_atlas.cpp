@@ -37,15 +37,16 @@ AtlasLookup lookup(const PackingArgs& a) {
 
 struct LookupArgs {
   PackingArgs packing;
-  std::string format = "json", out;
+  std::string format = "json", out, hash = "long-period";
   std::uint64_t seed = 1;
 };
 
 void run_lookup(const LookupArgs& a, const Context& ctx) {
+  const HashKind hash = parse_hash_kind(a.hash);
   AtlasLookup l = lookup(a.packing);
   std::string text = a.format == "json" ? lookup_json_text(l) + "\n"
                      : a.format == "c"  ? lookup_c_header(l)
-                                        : lookup_glsl(l, a.seed);
+                                        : lookup_glsl(l, DirectTiling(l.kind, l.colours, hash, a.seed));
   if (!a.out.empty()) {
     write_file_atomic(a.out, text);
     nlohmann::json s = {{"kind", a.packing.kind},
@@ -81,7 +82,9 @@ void add_lookup(CLI::App& atlas, Context& ctx) {
   cmd->add_option("--format", a->format, "json, c (header) or glsl (virtual texture -> atlas coordinate)")
       ->check(CLI::IsMember({"json", "c", "glsl"}))
       ->capture_default_str();
-  cmd->add_option("--seed", a->seed, "Seed of the hash permutation table in the GLSL snippet")->capture_default_str();
+  cmd->add_option("--hash", a->hash, "Lattice hash of the direct stochastic tiling in the GLSL: perm or long-period")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Seed of that hash")->capture_default_str();
   cmd->add_option("--out", a->out, "Write the lookup to this file (atomically) instead of stdout");
   add_json_flag(cmd, ctx);
   cmd->callback([a, &ctx] { run_lookup(*a, ctx); });

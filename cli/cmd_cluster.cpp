@@ -1,13 +1,15 @@
-// tilekit cluster submit|status: a sharded `tilekit pack` as a Slurm job array (issue 6).
+// tilekit cluster submit|status: a sharded `tilekit pack` as a Slurm job array.
 // submit writes pack-array.sbatch, merge.sbatch and submit.sh into the run directory and
 // queues them (sbatch); status reads the run directory (no Slurm needed) and shows each
 // shard's attempts, checkpoint and result, and the merged count.
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -83,7 +85,14 @@ ClusterPlan make_plan(const SubmitArgs& o) {
                                                  : fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
   p.run_dir = fs::absolute(run_dir).lexically_normal().string();
   if (p.run_dir.size() > 1 && p.run_dir.back() == '/') p.run_dir.pop_back();
-  p.tilekit = o.tilekit.empty() ? fs::canonical("/proc/self/exe").string() : fs::absolute(o.tilekit).string();
+  if (o.tilekit.empty()) {
+    const char* path = std::getenv("PATH");
+    p.tilekit = default_job_binary(path ? path : "", "/proc/self/exe");
+  } else {
+    p.tilekit = fs::absolute(o.tilekit).string();
+    if (!fs::is_regular_file(p.tilekit) || ::access(p.tilekit.c_str(), X_OK) != 0)
+      throw InputError(fmt::format("--tilekit {}: not an executable file", o.tilekit));
+  }
   p.job_name = !o.job_name.empty() ? o.job_name
                : enumerate           ? std::string("tk-enumerate")
                                      : fmt::format("tk-{}{}", o.kind, o.colors);
@@ -140,10 +149,12 @@ void run_submit(const SubmitArgs& o, const Context& ctx) {
   if (o.dry_run) {
     nlohmann::json js = nlohmann::json::object();
     for (const auto& [name, text] : scripts) js[(dir / name).string()] = text;
-    emit(ctx, {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"scripts", js}}, [&] {
-      for (const auto& [name, text] : scripts) fmt::print("==> {} <==\n{}\n", (dir / name).string(), text);
-      fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
-    });
+    emit(ctx,
+         {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"scripts", js}},
+         [&] {
+           for (const auto& [name, text] : scripts) fmt::print("==> {} <==\n{}\n", (dir / name).string(), text);
+           fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
+         });
     return;
   }
 
@@ -170,13 +181,18 @@ void run_submit(const SubmitArgs& o, const Context& ctx) {
   std::strftime(when, sizeof when, "%FT%TZ", std::gmtime(&now));
   record["submissions"].push_back({{"array_job", array}, {"merge_job", merge}, {"time", when}});
   write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
-  emit(ctx, {{"run_dir", p.run_dir}, {"shards", p.shards}, {"array_job", array}, {"merge_job", merge},
-             {"submissions", record["submissions"].size()}},
+  emit(ctx,
+       {{"run_dir", p.run_dir},
+        {"shards", p.shards},
+        {"tilekit", p.tilekit},
+        {"array_job", array},
+        {"merge_job", merge},
+        {"submissions", record["submissions"].size()}},
        [&] {
          fmt::print("submitted {} shards to Slurm: array job {}, merge job {} (afterok:{})\n", p.shards,
                     array, merge, array);
-         fmt::print("run directory: {}\nprogress: tilekit cluster status --run-dir {}\n", p.run_dir,
-                    shell_quote(p.run_dir));
+         fmt::print("the jobs run {}\nrun directory: {}\nprogress: tilekit cluster status --run-dir {}\n", p.tilekit,
+                    p.run_dir, shell_quote(p.run_dir));
        });
 }
 
@@ -334,7 +350,8 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--run-dir", a->run_dir,
                   "Run directory on the shared filesystem (default: ./tilekit-run-KINDC-MODE)");
   cmd->add_option("--job-name", a->job_name, "Slurm job name (default: tk-KINDC)");
-  cmd->add_option("--tilekit", a->tilekit, "The tilekit binary the jobs run (default: this one)");
+  cmd->add_option("--tilekit", a->tilekit,
+                  "The tilekit binary the jobs run (default: `tilekit` on PATH, else this one)");
   cmd->add_option("--sbatch-arg", a->plan.sbatch_args, "Another #SBATCH directive, e.g. --account=NAME (repeatable)");
   cmd->add_option("--sbatch", a->sbatch, "The sbatch command")->capture_default_str();
   cmd->add_flag("--dry-run", a->dry_run, "Print the scripts; write and queue nothing");

@@ -3,19 +3,15 @@
 // the CPU or through GLSL (headless EGL, Mesa llvmpipe).
 #include <fmt/format.h>
 
-#include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
-#include <regex>
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "results/results_db.hpp"
+#include "cli/cmd_texture.hpp"
 #include "cli/command.hpp"
-#include "texture/gl_renderer.hpp"
 #include "texture/glsl_sampler.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -147,139 +143,6 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   cmd->callback([a, &ctx] { run_atlas(*a, ctx); });
 }
 
-View parse_view(const std::string& size, double scale, const std::string& origin, double tilt) {
-  View v;
-  std::smatch m;
-  static const std::regex wh(R"((\d{1,5})x(\d{1,5}))"), uv(R"((-?[0-9.eE+-]+),(-?[0-9.eE+-]+))");
-  if (!std::regex_match(size, m, wh))
-    throw InputError(fmt::format("--size must be WxH (e.g. 1024x768), got '{}'", size));
-  v.width = std::stoi(m[1]);
-  v.height = std::stoi(m[2]);
-  if (!origin.empty()) {
-    if (!std::regex_match(origin, m, uv))
-      throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
-    try {
-      v.origin_u = std::stod(m[1]);
-      v.origin_v = std::stod(m[2]);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("--origin must be U,V in texels, got '{}'", origin));
-    }
-  }
-  v.scale = scale;
-  v.tilt = tilt;
-  return v;
-}
-
-struct Difference {
-  int max = 0;
-  double mean = 0;
-};
-Difference difference(const Image& a, const Image& b) {
-  Difference d;
-  double sum = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-    const int v = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
-    d.max = std::max(d.max, v);
-    sum += v;
-  }
-  d.mean = a.pixels.empty() ? 0 : sum / double(a.pixels.size());
-  return d;
-}
-
-struct RenderArgs {
-  std::string atlas_path, size = "1024x1024", origin, out, hash = "long-period";
-  double scale = 1, tilt = 0;
-  std::uint64_t seed = 1;
-  int threads = 0;
-  bool glsl = false, compare = false, quiet = false;
-};
-
-void run_render(const RenderArgs& a, const Context& ctx) {
-  const TextureAtlas atlas = read_texture_atlas(a.atlas_path);
-  const View view = parse_view(a.size, a.scale, a.origin, a.tilt);
-  RenderOptions o{hash_option(a.hash), a.seed, threads_or_default(a.threads), !a.quiet};
-  view_rows(view, atlas.tile_px);  // bad views are exit 2 before anything runs
-  if ((a.glsl || a.compare) && !std::getenv("LP_NUM_THREADS"))
-    setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);  // llvmpipe reads it when the context is made
-  nlohmann::json j = {{"out", a.out},
-                      {"width", view.width},
-                      {"height", view.height},
-                      {"scale", view.scale},
-                      {"tilt", view.tilt},
-                      {"hash", a.hash},
-                      {"seed", a.seed},
-                      {"threads", o.threads},
-                      {"kind", std::string(kind_name(atlas.lookup.kind))},
-                      {"colors", atlas.lookup.colours}};
-  Image img;
-  auto timed = [](auto&& f) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  Image cpu;
-  if (!a.glsl || a.compare) {
-    const double s = timed([&] { cpu = render_cpu(atlas, view, o); });
-    j["cpu_seconds"] = s;
-    j["cpu_mpixels_per_second"] = double(view.width) * view.height / s / 1e6;
-    img = cpu;
-  }
-  if (a.glsl || a.compare) {
-    try {
-      GlRenderer r(atlas, view, o);
-      const double s = r.draw(1);
-      img = r.read();
-      j["gl_renderer"] = r.renderer();
-      j["glsl_seconds"] = s;
-    } catch (const GlUnavailable& e) {
-      std::cerr << "tilekit: texture render --glsl skipped: " << e.what() << std::endl;
-      throw Exit{2};
-    }
-    if (a.compare) {
-      const Difference d = difference(cpu, img);
-      j["max_difference"] = d.max;
-      j["mean_difference"] = d.mean;
-    }
-  }
-  j["renderer"] = a.glsl || a.compare ? "glsl" : "cpu";
-  write_png(a.out, img);
-  emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} window of the virtual texture (scale {}, tilt {}), {} renderer{}\n", a.out, view.width,
-               view.height, view.scale, view.tilt, j["renderer"].get<std::string>(),
-               j.contains("gl_renderer") ? " on " + j["gl_renderer"].get<std::string>() : "");
-    if (j.contains("cpu_seconds"))
-      fmt::print("CPU reference: {:.3f} s, {:.1f} Mpixel/s on {} threads\n", j["cpu_seconds"].get<double>(),
-                 j["cpu_mpixels_per_second"].get<double>(), o.threads);
-    if (a.compare)
-      fmt::print("GLSL vs CPU: largest difference {}/255, mean {:.4f}/255\n", j["max_difference"].get<int>(),
-                 j["mean_difference"].get<double>());
-  });
-}
-
-void add_render(CLI::App& texture, Context& ctx) {
-  auto* cmd =
-      texture.add_subcommand("render", "Render a window of the infinite virtual texture (CPU, or GLSL with --glsl)");
-  auto a = std::make_shared<RenderArgs>();
-  cmd->add_option("--atlas", a->atlas_path, "Atlas PNG (or its .json) written by `tilekit texture atlas`")->required();
-  cmd->add_option("--size", a->size, "Window in pixels, WxH")->capture_default_str();
-  cmd->add_option("--scale", a->scale, "Texels of the virtual texture per pixel (at the bottom, when tilted)")
-      ->capture_default_str();
-  cmd->add_option("--origin", a->origin, "Texel of the virtual texture at the window's top-left, U,V (default 0,0)");
-  cmd->add_option("--tilt", a->tilt, "Perspective: rows at the top are (1+T)^2 times farther (0: flat)")
-      ->capture_default_str();
-  cmd->add_option("--hash", a->hash, "Lattice hash of the direct stochastic tiling: perm or long-period")
-      ->capture_default_str();
-  cmd->add_option("--seed", a->seed, "Seed of that hash")->capture_default_str();
-  cmd->add_option("--threads", a->threads,
-                  "CPU renderer threads, and llvmpipe's unless LP_NUM_THREADS is set (default: every core)");
-  cmd->add_option("--out", a->out, "Image to write (PNG)")->required();
-  cmd->add_flag("--glsl", a->glsl, "Render with the GLSL sampler through EGL (surfaceless Mesa, llvmpipe)");
-  cmd->add_flag("--compare", a->compare, "Render both ways, write the GLSL image, report the largest difference");
-  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
-  add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { run_render(*a, ctx); });
-}
-
 }  // namespace
 
 void add_texture_commands(CLI::App& app, Context& ctx) {
@@ -287,7 +150,8 @@ void add_texture_commands(CLI::App& app, Context& ctx) {
   texture->require_subcommand(1);
   add_tiles(*texture, ctx);
   add_atlas(*texture, ctx);
-  add_render(*texture, ctx);
+  add_texture_render(*texture, ctx);
+  add_texture_preview(*texture, ctx);
 }
 
 }  // namespace tilekit::cli

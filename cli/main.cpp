@@ -1,5 +1,6 @@
 // tilekit: Wang tiles and corner tiles, tile packings, aperiodic sets.
-// Exit codes (DESIGN.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.
+// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a
+// checkpoint.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,7 @@
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
+#include "base/version.hpp"
 #include "cli/command.hpp"
 
 int main(int argc, char** argv) {
@@ -23,7 +25,7 @@ int main(int argc, char** argv) {
     }
   cli::Context ctx;
   CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
-  app.set_version_flag("--version", TILEKIT_VERSION);
+  app.set_version_flag("--version", "tilekit " + version_line());
   app.require_subcommand(1);
   app.footer("Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.\n"
              "Run `tilekit COMMAND --help` for a command's options.");

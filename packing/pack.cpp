@@ -153,27 +153,10 @@ void portfolio_search(PackOutcome& out, SearchOptions o, const PortfolioOptions&
   o.on_solution = nullptr;  // stored below with the winner's group
   o.flush = nullptr;
   PortfolioResult pr = run_portfolio_checkpointed(out.problem, o, po, identity);
-  SearchResult& r = out.result;
-  r = pr.result;
-  r.nodes = pr.nodes;
-  r.seconds = pr.seconds;
-  r.total_seconds = pr.total_seconds;
-  r.threads = o.run.threads;
-  r.complete = pr.complete;
-  r.interrupted = pr.interrupted;
-  r.signal = pr.signal;
-  r.timed_out = pr.timed_out;
-  r.checkpoints = pr.checkpoints;
-  r.formulation = "portfolio";
+  out.result = pr.as_search_result(o.run.threads);
   out.portfolio = {{"winner", pr.found ? nlohmann::json(pr.winner) : nlohmann::json(nullptr)}, {"runs", pr.runs}};
-  sink.group = out.group = group_json(out.problem, r.group);
+  sink.group = out.group = group_json(out.problem, out.result.group);
   if (pr.found) sink.add(pr.result.found.front());
-  // No candidate found one and the plain search (the whole space) was exhausted.
-  if (pr.complete) {
-    bool plain_ran = false;
-    for (const auto& row : pr.runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
-    if (!plain_ran) r.complete = false;  // only subspaces were exhausted
-  }
 }
 
 // First mode on a complete set without a group or lift: the database, a construction, then

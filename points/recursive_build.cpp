@@ -81,36 +81,25 @@ std::vector<Point2> subdivision_set(const RecursiveWangTiles& t, const std::vect
   return out;
 }
 
-}  // namespace
+// The seed of step `step`, item i, of a build with seed `seed`.
+std::uint64_t step_seed(std::uint64_t seed, std::uint64_t step, std::uint64_t i) {
+  return derive_seed(derive_seed(seed, step), i);
+}
 
-RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
-  if (p.points < 8 || p.points > 65536) throw InputError(fmt::format("--points must be 8..65536, got {}", p.points));
-  if (p.subdivision < 2 || p.subdivision > 8)
-    throw InputError(fmt::format("--subdivision must be 2..8, got {}", p.subdivision));
-  const auto start = std::chrono::steady_clock::now();
-  RecursiveWangTiles t;
-  t.points = p.points;
-  t.n = p.subdivision;
-  t.seed = p.seed;
-  for (std::uint32_t i = 0; i < kColours * kColours * kColours * kColours; ++i) {
-    const WangTile w = wang_tile(i, kColours, kColours);
-    if ((w.n + w.s) % kColours == (w.e + w.w) % kColours) t.wang.push_back(i);
-  }
+// Steps 1-3: progressive sources ([0, 2) horizontal edge colours, [2, 4) vertical, then one per
+// tile), merged N, E, S, W into each tile's own source and ranked progressively; every tile keeps
+// exactly N points, the first N by rank.
+void build_base_tiles(RecursiveWangTiles& t, const RecursiveTileParams& p, ProgressReporter& progress) {
   const std::size_t types = t.wang.size();
   const std::uint32_t n = p.points;
-  ProgressReporter progress(fmt::format("points recursive build N={} n={}", n, t.n), double(4 + 2 * types), p.progress);
-  const auto seed_of = [&](std::uint64_t step, std::uint64_t i) { return derive_seed(derive_seed(p.seed, step), i); };
-
-  // 1. Progressive sources: [0, 2) horizontal edge colours, [2, 4) vertical, then one per tile.
-  // They hold 6% more than N, so that every merged tile has N to keep (its first N by rank).
+  // The sources hold 6% more than N, so that every merged tile has N to keep.
   std::vector<std::vector<RankedPoint>> source(4 + types);
   const std::uint32_t source_points = n + n / 16 + 8;
   parallel_for(std::int64_t(source.size()), p.threads, [&](std::int64_t s) {
-    const auto pts = recursive::progressive_source(source_points, seed_of(1, std::uint64_t(s)));
+    const auto pts = recursive::progressive_source(source_points, step_seed(p.seed, 1, std::uint64_t(s)));
     for (std::uint32_t r = 0; r < pts.size(); ++r) source[std::size_t(s)].push_back({pts[r], std::uint32_t(s), r});
   });
   progress.add(4);
-  // 2-3. Merge N, E, S, W sources into each tile's own source; rank progressively.
   t.base.resize(types);
   parallel_for(std::int64_t(types), p.threads, [&](std::int64_t type) {
     const WangTile w = wang_tile(t.wang[std::size_t(type)], kColours, kColours);
@@ -119,32 +108,29 @@ RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
     const std::pair<int, std::uint32_t> edges[4] = {{1, w.n}, {0, 2 + w.e}, {3, w.s}, {2, 2 + w.w}};
     for (const auto& [q, src] : edges)
       tile = turned(recursive::merge_east(turned(tile, q), turned(source[src], q)), -q);
-    t.base[std::size_t(type)] = recursive::progressive_order(tile, seed_of(2, std::uint64_t(type)));
+    t.base[std::size_t(type)] = recursive::progressive_order(tile, step_seed(p.seed, 2, std::uint64_t(type)));
     progress.add(1);
   });
-  // Merged tiles hold about N + 6% points; every tile keeps exactly N, the first N by rank.
   for (auto& b : t.base) {
     if (b.size() < n)
       throw InputError(fmt::format("a merged tile holds only {} of {} points; try another --seed", b.size(), n));
     b.resize(n);
   }
-  // 4. Subdivision rules.
-  SplitMix64 rng(seed_of(3, 0));
-  t.rule = subdivision_rules(t, rng);
-  // 5. Relaxation (Fig. 8, alpha = 0.1, epsilon = 1e-6): base points towards their nearest
-  // subdivision points, all tiles at once.
+}
+
+// Step 5, first part (Fig. 8, alpha = 0.1, epsilon = 1e-6): base points move towards their
+// nearest subdivision points, all tiles at once. `cell`: the neighbour grid's cell size.
+void relax_towards_subdivision(RecursiveWangTiles& t, double cell) {
   constexpr double kAlpha = 0.1, kEpsilon = 1e-6;
   constexpr int kMaxIterations = 400;
-  const double cell = 1.5 / std::sqrt(double(n) * t.n * t.n);
-  std::vector<std::vector<std::size_t>> match(types, std::vector<std::size_t>(n));
   for (int it = 0; it < kMaxIterations; ++it) {
     double moved = 0;
     std::vector<std::vector<Point2>> next = t.base;
-    for (std::size_t type = 0; type < types; ++type) {
+    for (std::size_t type = 0; type < t.types(); ++type) {
       const auto sub = subdivision_set(t, t.base, type);
       PointGrid grid(0, 0, 1, 1, cell, false);
       for (std::size_t i = 0; i < sub.size(); ++i) grid.insert(int(i), sub[i]);
-      for (std::uint32_t k = 0; k < n; ++k) {
+      for (std::uint32_t k = 0; k < t.points; ++k) {
         const Point2 q = t.base[type][k], s = sub[std::size_t(grid.nearest(q, sub))];
         next[type][k] = {q.x + kAlpha * (s.x - q.x), q.y + kAlpha * (s.y - q.y)};
         moved += std::sqrt(squared_distance(q, s));
@@ -154,10 +140,14 @@ RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
     t.relax_iterations = it + 1;
     if (moved < kEpsilon) break;
   }
-  progress.add(1);
-  // Unique matches (closest pairs first), then snap every base point onto its match: a
-  // contraction by 1/n, iterated to double precision.
-  for (std::size_t type = 0; type < types; ++type) {
+}
+
+// Step 5, second part: unique matches between base points and subdivision points, closest pairs
+// first; match[type][k] is the subdivision point of base point k.
+std::vector<std::vector<std::size_t>> match_subdivision(const RecursiveWangTiles& t, double cell) {
+  const std::uint32_t n = t.points;
+  std::vector<std::vector<std::size_t>> match(t.types(), std::vector<std::size_t>(n));
+  for (std::size_t type = 0; type < t.types(); ++type) {
     const auto sub = subdivision_set(t, t.base, type);
     std::vector<std::tuple<double, std::uint32_t, std::size_t>> pairs;
     PointGrid grid(0, 0, 1, 1, cell, false);
@@ -180,13 +170,19 @@ RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
         sub_used[best] = 1, match[type][k] = best;
       }
   }
+  return match;
+}
+
+// Step 5, last part: every base point snaps onto its match, a contraction by 1/n iterated to
+// double precision; t.relax_residual is how far that moved a point.
+void snap_to_matches(RecursiveWangTiles& t, const std::vector<std::vector<std::size_t>>& match) {
   const auto before = t.base;
   for (int it = 0; it < 200; ++it) {
     double change = 0;
     std::vector<std::vector<Point2>> next = t.base;
-    for (std::size_t type = 0; type < types; ++type) {
+    for (std::size_t type = 0; type < t.types(); ++type) {
       const auto sub = subdivision_set(t, t.base, type);
-      for (std::uint32_t k = 0; k < n; ++k) {
+      for (std::uint32_t k = 0; k < t.points; ++k) {
         next[type][k] = sub[match[type][k]];
         change = std::max(change, squared_distance(next[type][k], t.base[type][k]));
       }
@@ -197,51 +193,86 @@ RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
   // A chain of matches can converge onto a tile border (y = (1 + y) / 2 has its fixed point at 1);
   // tile coordinates stay inside [0, 1), 1e-6 from the borders, so that every point has one tile.
   constexpr double kInset = 1e-6;
-  for (std::size_t type = 0; type < types; ++type)
-    for (std::uint32_t k = 0; k < n; ++k) {
+  for (std::size_t type = 0; type < t.types(); ++type)
+    for (std::uint32_t k = 0; k < t.points; ++k) {
       Point2& q = t.base[type][k];
       q = {std::clamp(q.x, kInset, 1 - kInset), std::clamp(q.y, kInset, 1 - kInset)};
       t.relax_residual = std::max(t.relax_residual, std::sqrt(squared_distance(before[type][k], q)));
     }
+}
+
+// Step 6: the subdivision set's ranking of one type: base points first (their base rank), then
+// dart throwing over the rest with a radius shrinking by 1% after 50 consecutive failures
+// (Fig. 8).
+std::vector<std::uint32_t> subdivision_ranks(const RecursiveWangTiles& t, const std::vector<std::size_t>& match,
+                                             std::size_t type, std::uint64_t seed) {
+  const std::uint32_t n = t.points;
+  const auto sub = subdivision_set(t, t.base, type);
+  std::vector<std::uint32_t> rank(sub.size(), 0);
+  std::vector<char> ranked(sub.size(), 0);
+  PointGrid grid(0, 0, 1, 1, 0.5 / std::sqrt(double(sub.size())), true);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    rank[match[k]] = k, ranked[match[k]] = 1;
+    grid.insert(int(match[k]), sub[match[k]]);
+  }
+  std::vector<std::size_t> left;
+  for (std::size_t i = 0; i < sub.size(); ++i)
+    if (!ranked[i]) left.push_back(i);
+  SplitMix64 r(seed);
+  double radius = 2 * max_poisson_radius(n);
+  std::uint32_t next_rank = n;
+  for (int failures = 0; !left.empty();) {
+    const std::size_t pick = r.below(left.size()), i = left[pick];
+    bool far = true;
+    grid.for_near(sub[i], int(std::ceil(radius / grid.cell())), [&](int id) {
+      const Point2 d = grid.delta(sub[i], sub[std::size_t(id)]);
+      if (d.x * d.x + d.y * d.y < radius * radius) far = false;
+    });
+    if (far) {
+      rank[i] = next_rank++;
+      grid.insert(int(i), sub[i]);
+      left[pick] = left.back();
+      left.pop_back();
+      failures = 0;
+    } else if (++failures >= 50) {
+      radius *= 0.99;
+      failures = 0;
+    }
+  }
+  return rank;
+}
+
+}  // namespace
+
+RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
+  if (p.points < 8 || p.points > 65536) throw InputError(fmt::format("--points must be 8..65536, got {}", p.points));
+  if (p.subdivision < 2 || p.subdivision > 8)
+    throw InputError(fmt::format("--subdivision must be 2..8, got {}", p.subdivision));
+  const auto start = std::chrono::steady_clock::now();
+  RecursiveWangTiles t;
+  t.points = p.points;
+  t.n = p.subdivision;
+  t.seed = p.seed;
+  for (std::uint32_t i = 0; i < kColours * kColours * kColours * kColours; ++i) {
+    const WangTile w = wang_tile(i, kColours, kColours);
+    if ((w.n + w.s) % kColours == (w.e + w.w) % kColours) t.wang.push_back(i);
+  }
+  const std::size_t types = t.wang.size();
+  ProgressReporter progress(fmt::format("points recursive build N={} n={}", p.points, t.n), double(4 + 2 * types),
+                            p.progress);
+  build_base_tiles(t, p, progress);  // 1-3
+  SplitMix64 rng(step_seed(p.seed, 3, 0));
+  t.rule = subdivision_rules(t, rng);  // 4
+  const double cell = 1.5 / std::sqrt(double(p.points) * t.n * t.n);
+  relax_towards_subdivision(t, cell);  // 5
   progress.add(1);
-  // 6. The subdivision set's ranking: base points first (their base rank), then dart throwing
-  // over the rest with a radius shrinking by 1% after 50 consecutive failures (Fig. 8).
-  t.rank.assign(types, {});
+  const std::vector<std::vector<std::size_t>> match = match_subdivision(t, cell);
+  snap_to_matches(t, match);
+  progress.add(1);
+  t.rank.assign(types, {});  // 6
   parallel_for(std::int64_t(types), p.threads, [&](std::int64_t ti) {
     const std::size_t type = std::size_t(ti);
-    const auto sub = subdivision_set(t, t.base, type);
-    auto& rank = t.rank[type];
-    rank.assign(sub.size(), 0);
-    std::vector<char> ranked(sub.size(), 0);
-    PointGrid grid(0, 0, 1, 1, 0.5 / std::sqrt(double(sub.size())), true);
-    for (std::uint32_t k = 0; k < n; ++k) {
-      rank[match[type][k]] = k, ranked[match[type][k]] = 1;
-      grid.insert(int(match[type][k]), sub[match[type][k]]);
-    }
-    std::vector<std::size_t> left;
-    for (std::size_t i = 0; i < sub.size(); ++i)
-      if (!ranked[i]) left.push_back(i);
-    SplitMix64 r(seed_of(4, type));
-    double radius = 2 * max_poisson_radius(n);
-    std::uint32_t next_rank = n;
-    for (int failures = 0; !left.empty();) {
-      const std::size_t pick = r.below(left.size()), i = left[pick];
-      bool far = true;
-      grid.for_near(sub[i], int(std::ceil(radius / grid.cell())), [&](int id) {
-        const Point2 d = grid.delta(sub[i], sub[std::size_t(id)]);
-        if (d.x * d.x + d.y * d.y < radius * radius) far = false;
-      });
-      if (far) {
-        rank[i] = next_rank++;
-        grid.insert(int(i), sub[i]);
-        left[pick] = left.back();
-        left.pop_back();
-        failures = 0;
-      } else if (++failures >= 50) {
-        radius *= 0.99;
-        failures = 0;
-      }
-    }
+    t.rank[type] = subdivision_ranks(t, match[type], type, step_seed(p.seed, 4, type));
     progress.add(1);
   });
   progress.finish();

@@ -160,8 +160,8 @@ nlohmann::json to_json(const RunRecord& r) {
           {"finished_at", r.finished_at.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.finished_at)}};
 }
 
-// The tiling part is the tiling file format (DESIGN.md), so `db show ID --json` output can be
-// given to `tilekit check`.
+// The tiling part is the tiling file format (tilesets/tile_grid.hpp), so `db show ID --json`
+// output can be given to `tilekit check`.
 nlohmann::json to_json(const SolutionRecord& r, bool with_cells) {
   nlohmann::json j;
   if (with_cells) {

@@ -22,6 +22,7 @@
 #include "results/db_sqlite.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/version.hpp"
 
 namespace tilekit {
 
@@ -299,7 +300,7 @@ std::int64_t ResultsDb::begin_run(const RunRecord& run) {
       .bind(8, run.seconds)
       .bind(9, std::int64_t(run.threads))
       .bind(10, run.host.empty() ? host_name() : run.host)
-      .bind(11, run.version.empty() ? std::string(TILEKIT_VERSION) : run.version)
+      .bind(11, run.version.empty() ? version_line() : run.version)
       .bind(12, run.started_at)
       .bind(13, run.finished_at);
   s.run();

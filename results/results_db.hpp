@@ -1,7 +1,8 @@
 #pragma once
-// The SQLite results store every command writes to. INTERFACE CONTRACT shared by the solver
-// front end (`pack`), the aperiodic engine and the `db`/`atlas` commands; the database owner
-// may extend it (new members, new columns with defaults) but not change what is here.
+// The SQLite results store every command writes to. A contract shared by `pack`, the aperiodic
+// engine, points, texture and the `db`/`atlas` commands, and by the databases already written: it
+// may grow (new members, new columns with defaults, through a migration) but what is here keeps
+// its meaning, so old databases still open and merge.
 //
 // Solutions are unique by `solution_hash` (hash of kind, colours, rows, cols, cells), so a
 // merge of the same shard twice changes nothing and the 203,520 C=2 Wang packings stay
@@ -35,7 +36,8 @@ struct RunRecord {
   std::optional<std::uint64_t> orbits;
   double seconds = 0;
   int threads = 1;
-  std::string host, version, started_at, finished_at;
+  std::string host, started_at, finished_at;
+  std::string version;  // the build that ran it; "" = this one (base/version.hpp version_line())
   // Globally unique id of the run (begin_run() makes one when empty); merges use it so that a
   // run merged twice is stored once.
   std::string uid;

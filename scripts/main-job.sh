@@ -4,8 +4,9 @@
 # checks it with the independent validator, stores it in the per-user results database,
 # writes the atlas lookup (JSON, C header, GLSL) and the atlas picture, synthesises texture tiles
 # from a real texture (CC0 grass), lays them out as an atlas and renders a surface with them (CPU,
-# and GLSL through headless EGL where it can), and says where
-# everything went and how to query it.
+# and GLSL through headless EGL where it can), renders the same view with trilinear filtering and
+# with the hex and hpn baselines, writes the live preview page (and captures one view of it in a
+# headless browser where chromium is installed), and says where everything went and how to query it.
 #   TILEKIT_MAIN_COLORS  colours of the corner packing (default 6 = 2 x 3: stored x closed form)
 #   TILEKIT_MAIN_OUT     output folder (default: out/main-job in the repository)
 #   TILEKIT_DB           results database (default: the per-user data directory)
@@ -69,12 +70,27 @@ echo "== 6. texture tiles from a real texture, their atlas and a rendered surfac
 tex=$out/texture-grass
 "$tk" texture tiles --exemplar grass --kind corner --colors 3 --tile-px 128 --out "$tex/tiles" --quiet
 "$tk" texture atlas "$tex/tiles" --out "$tex/atlas.png" --db "$db"
-"$tk" texture render --atlas "$tex/atlas.png" --size 1600x900 --scale 1 --tilt 3 --out "$tex/surface.png" --quiet
-if "$tk" texture render --atlas "$tex/atlas.png" --size 1600x900 --scale 1 --tilt 3 --compare \
-  --out "$tex/surface-glsl.png" --quiet; then
+view=(--size 1600x900 --scale 1 --tilt 3 --quiet)
+"$tk" texture render --atlas "$tex/atlas.png" "${view[@]}" --out "$tex/surface.png"
+if "$tk" texture render --atlas "$tex/atlas.png" "${view[@]}" --compare --out "$tex/surface-glsl.png"; then
   glsl="$tex/surface-glsl.png (GLSL sampler, headless EGL)"
 else
   glsl="skipped (no EGL context here; see the message above)"
+fi
+echo
+echo "== 7. the same view: trilinear instead of 16x anisotropic, and the baselines hex and hpn"
+"$tk" texture render --atlas "$tex/atlas.png" "${view[@]}" --aniso 1 --out "$tex/surface-trilinear.png"
+for m in hex hpn; do
+  "$tk" texture render --method "$m" --exemplar grass "${view[@]}" --out "$tex/surface-$m.png"
+done
+echo
+echo "== 8. the live preview page (WebGL2, the same GLSL), and one view of it in a headless browser"
+"$tk" texture preview --atlas "$tex/atlas.png" --exemplar grass --out "$tex/preview.html"
+if "$root/scripts/capture-preview.sh" "$tex/preview.html" 'u=0&v=0&scale=1&seed=1&tilt=3' 800x450 \
+  "$tex/preview-capture.png"; then
+  capture="$tex/preview-capture.png (chromium headless, SwiftShader WebGL2)"
+else
+  capture="skipped (no chromium here; scripts/setup.sh installs it)"
 fi
 cat <<EOF
 
@@ -85,8 +101,13 @@ Where everything went:
   results database        $db (solution $id)
   texture tiles (grass)   $tex/tiles/tileset.png (81 corner tiles, thesis 5.3)
   texture atlas + mips    $tex/atlas.png, $tex/atlas.mip1.png ..., $tex/atlas.glsl (sampler)
-  rendered surface        $tex/surface.png (CPU reference)
+  rendered surface        $tex/surface.png (CPU reference, 16x anisotropic filtering)
   the same through GLSL   $glsl
+  comparison, same view   $tex/surface-trilinear.png (tiles, trilinear filtering)
+                          $tex/surface-hex.png (hex tiling, Mikkelsen 2022, from the exemplar)
+                          $tex/surface-hpn.png (histogram-preserving blending, Heitz & Neyret 2018)
+  live preview page       $tex/preview.html (open it in a browser: drag, wheel, tilt, methods)
+  a view of the page      $capture
 How to query it:
   $tk db list --db '$db'
   $tk db show $id --db '$db' --json

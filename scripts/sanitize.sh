@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sanitizer builds and their test runs (issue 15; docs/TESTING.md).
+# Sanitizer builds and their test runs (docs/TESTING.md).
 #   scripts/sanitize.sh asan [CTEST_ARGS...]  AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1) in
 #                                           build-asan/, then the whole ctest suite
 #   scripts/sanitize.sh tsan [CTEST_ARGS...]  ThreadSanitizer (clang, libomp with its Archer tool) in

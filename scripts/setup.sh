@@ -2,11 +2,14 @@
 # Idempotent set-up: installs the Debian packages Tilekit builds and tests with, if missing, and
 # fetches the real textures (scripts/fetch-textures.sh).
 # EGL/GLES + Mesa (libegl-dev, libgles-dev, libegl-mesa0, libgl1-mesa-dri): the headless GLSL renderer.
+# chromium: the browser test of `texture preview` (headless, WebGL2 on SwiftShader; scripts/capture-preview.sh).
 set -euo pipefail
 PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt-dev libgtest-dev
       libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
       glslang-tools cadical libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-      clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev)  # fuzzing and the sanitizer builds (issue 15)
+      clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev  # fuzzing and the sanitizer builds
+      jq dpkg-dev  # the install and Debian package tests (tests/install/install-test.sh)
+      chromium)    # the browser test of `texture preview`
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -16,9 +19,12 @@ if ((${#missing[@]})); then
   SUDO=""
   [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get install -y -q "${missing[@]}" >/dev/null 2>&1 || {
-    $SUDO apt-get update -q >/dev/null
-    $SUDO apt-get install -y -q "${missing[@]}" >/dev/null
+  # One apt at a time on a shared machine: flock waits for another session's install.
+  apt=(apt-get)
+  command -v flock >/dev/null && apt=(flock /tmp/tilekit-apt.lock apt-get)
+  $SUDO "${apt[@]}" install -y -q "${missing[@]}" >/dev/null 2>&1 || {
+    $SUDO "${apt[@]}" update -q >/dev/null
+    $SUDO "${apt[@]}" install -y -q "${missing[@]}" >/dev/null
   }
 fi
 # Real textures for the texture tests, benchmarks and main job (cached, never committed).

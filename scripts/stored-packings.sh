@@ -3,7 +3,8 @@
 # solver, and writes the command into each file. Needs a build (scripts/build.sh).
 # Usage: scripts/stored-packings.sh [C...]   (default: 2)
 #   C=4: TILEKIT_PACK_EXTRA="--impose t=0,8:pi=1,0,3,2" scripts/stored-packings.sh 4
-#        (DESIGN.md's imposed automorphism; 474 s on one thread of this 2-core machine under load)
+#        (an imposed automorphism, solver/impose_group.hpp; 474 s on one thread of this 2-core
+#        machine under load)
 #   C=8: TILEKIT_PACK_EXTRA="--lift 4 --formulation sat" scripts/stored-packings.sh 8
 #        (binary colour-quotient lift of the stored C=4 packing, CNF solved by cadical; seconds)
 #   C=16: TILEKIT_PACK_SEED=0 TILEKIT_PACK_EXTRA="--lift 8 --formulation cell" scripts/stored-packings.sh 16

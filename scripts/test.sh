@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs the whole test suite (docs/TESTING.md):
+#   0. the layer check (scripts/check-layers.sh: includes against each folder README's
+#      "May include" line, no cycles), before anything is built;
 #   1. ctest on the Release build (build/);
 #   2. ctest again on the AddressSanitizer + UndefinedBehaviorSanitizer build (build-asan/,
 #      LeakSanitizer on): the whole suite;
@@ -22,12 +24,15 @@ for a in "$@"; do
   esac
 done
 "$root/scripts/setup.sh"
+bash "$root/scripts/check-layers.sh"
 if [ "$mode" = sanitize ]; then
   exec "$root/scripts/sanitize.sh" asan "${args[@]}"
 fi
 "$root/scripts/build.sh"
-# setup.sh installed Mesa's EGL: the GLSL-vs-CPU tests must run (fail, not skip, without a context).
+# setup.sh installed Mesa's EGL and chromium: the GLSL-vs-CPU tests and the browser test of the
+# preview page must run (fail, not skip, without a context or a browser).
 export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
+export TILEKIT_REQUIRE_BROWSER=${TILEKIT_REQUIRE_BROWSER:-1}
 (cd "$root/build" && ctest --output-on-failure -j "$(nproc)" "${args[@]}")
 if [ "${TILEKIT_SKIP_SANITIZE:-0}" = 1 ]; then
   echo "test.sh: the sanitizer and fuzz runs were SKIPPED (TILEKIT_SKIP_SANITIZE=1)" >&2

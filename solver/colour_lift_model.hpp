@@ -1,5 +1,5 @@
 #pragma once
-// Colour-quotient lifts (issue 11) as a subspace the one engine searches.
+// Colour-quotient lifts as a subspace the one engine searches.
 //
 // A packing over C = k*m colours is sought in the form A = B + m*E (every corner or edge colour):
 // B is a known packing over m colours on the m^2 x m^2 torus (period P = m^2), E a k-colour

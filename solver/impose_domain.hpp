@@ -1,6 +1,6 @@
 #pragma once
-// The fundamental domain of a packing or periodic tiling under an imposed group G (DESIGN.md,
-// "impose an automorphism"): what the search model (impose_model.hpp) and the CNF encoding
+// The fundamental domain of a packing or periodic tiling under an imposed group G
+// (impose_group.hpp): what the search model (impose_model.hpp) and the CNF encoding
 // (impose_sat.hpp) are built from. Variables ("sites") are one representative per
 // G-orbit of lattice points (corner tiles: pegs, thesis sec. 5.5 / the de Bruijn torus view) or
 // of edges (Wang tiles: the horizontal and the vertical edge grid). Every other peg or edge is

@@ -2,7 +2,8 @@
 // The same fundamental-domain subspace as ImposeModel, encoded as CNF and solved by the
 // external SAT solver CaDiCaL (Debian package `cadical`, installed by scripts/setup.sh). The
 // portfolio runs it as candidate "sat:SPEC" beside "SPEC" and its statistics keep whichever
-// wins per problem (issue 7, "Beyond DFS").
+// wins per problem: the CNF with clause learning beats plain DFS on some subspaces, DFS on
+// others.
 //
 // Encoding (direct encoding of a CSP): x[s][v] "site s has colour v", exactly one per site;
 // for every representative cell and every tile t whose orbit o is usable, the conjunction of

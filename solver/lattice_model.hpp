@@ -2,7 +2,7 @@
 // The lattice formulations: the variables are colours on the lattice, not tiles.
 //  - pegs (corner tiles): one colour per lattice point; cell (r,c) holds the tile whose
 //    corners are the pegs (r,c),(r,c+1),(r+1,c),(r+1,c+1). A corner packing is thus a
-//    (C^2,C^2;2,2)_C de Bruijn torus (DESIGN.md, facts).
+//    (C^2,C^2;2,2)_C de Bruijn torus: every 2x2 window of pegs occurs exactly once.
 //  - edges (Wang tiles): one colour per edge; cell (r,c) holds the tile with N = h(r,c),
 //    E = v(r,c+1), S = h(r+1,c), W = v(r,c).
 // Matching is then automatic; the constraints are "each cell's four colours form a tile of the

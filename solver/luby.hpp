@@ -8,7 +8,7 @@ namespace tilekit {
 
 // luby(i) for every i >= 1 (luby(0) is taken as luby(1)). The largest term is 2^63, at
 // i = 2^64 - 1; no shift ever reaches 64 bits, so a huge restart count from a checkpoint
-// cannot make the loop run forever (issue 15).
+// cannot make the loop run forever.
 constexpr std::uint64_t luby(std::uint64_t i) {
   if (i == 0) i = 1;
   for (;;) {

@@ -370,6 +370,23 @@ PortfolioResult Scheduler::run() {
 
 }  // namespace
 
+SearchResult PortfolioResult::as_search_result(int threads) const {
+  SearchResult r = result;
+  r.nodes = nodes;
+  r.seconds = seconds;
+  r.total_seconds = total_seconds;
+  r.threads = threads;
+  r.interrupted = interrupted;
+  r.signal = signal;
+  r.timed_out = timed_out;
+  r.checkpoints = checkpoints;
+  r.formulation = "portfolio";
+  bool plain_ran = false;
+  for (const auto& row : runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
+  r.complete = complete && plain_ran;
+  return r;
+}
+
 PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
                               const PortfolioOptions& portfolio) {
   if (options.mode != SearchMode::First) throw InputError("the portfolio finds one packing: use it with --mode first");

@@ -1,5 +1,5 @@
 #pragma once
-// The search portfolio of `tilekit pack --method auto|search` (issues 7 and 11): a scheduler
+// The search portfolio of `tilekit pack --method auto|search`: a scheduler
 // over solve(). Candidates are subspace searches (the plain search, imposed groups, the SAT
 // encoding of a group, ...); they run in rounds of time slices that double each round (Luby
 // and Zuckerman's doubling idea: the total work is within a constant of the best candidate's
@@ -82,6 +82,11 @@ struct PortfolioResult {
   double seconds = 0, total_seconds = 0;
   std::size_t checkpoints = 0;
   nlohmann::json runs = nlohmann::json::array();  // per candidate: slices, nodes, seconds, found, empty
+
+  // The run as one search of the whole problem: the winning slice's result (its packing and
+  // group) with the totals of every slice, formulation "portfolio", and complete only when the
+  // plain search, the whole space, was exhausted (exhausted subspaces prove nothing about it).
+  SearchResult as_search_result(int threads) const;
 };
 
 // The fingerprint a portfolio checkpoint must match: the problem, seed and shard (as

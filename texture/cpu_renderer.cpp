@@ -4,91 +4,119 @@
 
 #include <cmath>
 
+#include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "texture/anisotropic.hpp"
+#include "texture/baseline_samplers.hpp"
+#include "texture/sampling.hpp"
 
 namespace tilekit {
 
-VirtualTiling::VirtualTiling(TileKind kind, std::uint32_t colours, HashKind hash, std::uint64_t seed) : kind_(kind) {
-  if (kind == TileKind::Corner)
-    corner_ = std::make_unique<DirectCornerTiling>(colours, hash, seed);
-  else
-    wang_ = std::make_unique<DirectWangTiling>(colours, colours, hash, seed);
+RenderMethod parse_render_method(const std::string& name) {
+  if (name == "tiles") return RenderMethod::Tiles;
+  if (name == "hex") return RenderMethod::Hex;
+  if (name == "hpn") return RenderMethod::Hpn;
+  throw InputError(fmt::format("--method must be tiles, hex or hpn, got '{}'", name));
 }
 
-TileIndex VirtualTiling::tile(std::int64_t x, std::int64_t y) const {
-  return corner_ ? corner_->tile(x, y) : wang_->tile(x, y);
+const char* render_method_name(RenderMethod m) {
+  return m == RenderMethod::Tiles ? "tiles" : m == RenderMethod::Hex ? "hex" : "hpn";
 }
 
-void VirtualTiling::fill_row(std::int64_t x0, std::int64_t y, int cols, TileIndex* out) const {
-  if (corner_)
-    corner_->fill(x0, y, 1, cols, out);
-  else
-    wang_->fill(x0, y, 1, cols, out);
-}
-
-std::vector<const ColourHash*> VirtualTiling::hashes() const {
-  if (corner_) return {&corner_->hash()};
-  return {&wang_->horizontal_hash(), &wang_->vertical_hash()};
+std::size_t RenderSource::memory_bytes() const {
+  if (method != RenderMethod::Tiles) return exemplar->memory_bytes(method == RenderMethod::Hpn);
+  std::size_t bytes = 0;
+  for (const Image& l : atlas->levels) bytes += l.pixels.size();
+  return bytes;
 }
 
 namespace {
 
-// Bilinear filtering of one level (GL_LINEAR, GL_REPEAT), accumulated into acc with weight w.
-void bilinear(const Image& img, float s, float t, float w, float* acc) {
-  const float u = s * float(img.width) - 0.5f, v = t * float(img.height) - 0.5f;
-  const float fu = std::floor(u), fv = std::floor(v), a = u - fu, b = v - fv;
-  auto wrap = [](long i, int n) { return int(((i % n) + n) % n); };
-  const int i0 = wrap(long(fu), img.width), i1 = wrap(long(fu) + 1, img.width);
-  const int j0 = wrap(long(fv), img.height), j1 = wrap(long(fv) + 1, img.height);
-  const std::uint8_t *p00 = img.at(i0, j0), *p10 = img.at(i1, j0), *p01 = img.at(i0, j1), *p11 = img.at(i1, j1);
-  const float w00 = (1 - a) * (1 - b) * w, w10 = a * (1 - b) * w, w01 = (1 - a) * b * w, w11 = a * b * w;
-  for (int c = 0; c < 4; ++c) acc[c] += w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
-}
+// Tilekit's method (thesis sec. 5.4) at one pixel: every anisotropic tap through the tiling to
+// its tile, the tile's place in the packing plus the position inside the tile, one trilinear
+// fetch. With one tap the tile comes from the row's tiles, filled once per row.
+struct TileSampler {
+  const TextureAtlas& a;
+  const DirectTiling tiling;
+  const float inv_cols, inv_rows;
+
+  std::array<float, 4> tap(TileIndex tile, std::uint32_t fu, std::uint32_t fv, float lod) const {
+    const auto [row, col] = a.lookup.positions[tile];
+    const float s = (float(col) + float(fu) / float(kFracOne)) * inv_cols;
+    const float t = (float(row) + float(fv) / float(kFracOne)) * inv_rows;
+    return sample_trilinear(a.levels, s, t, lod);
+  }
+
+  std::array<float, 4> sample(const PixelPosition& p, TileIndex tile_here, const Footprint& f) const {
+    if (f.taps == 1) return tap(tile_here, p.frac_u, p.frac_v, f.lod);
+    std::array<float, 4> sum{0, 0, 0, 0};
+    for (int i = 0; i < f.taps; ++i) {
+      const std::int32_t u = std::int32_t(p.frac_u) + tap_offset(f.axis_u, i, f.taps);
+      const std::int32_t v = std::int32_t(p.frac_v) + tap_offset(f.axis_v, i, f.taps);
+      const TileIndex tile = tiling.tile(p.tile_u + (u >> kFracBits), p.tile_v + (v >> kFracBits));
+      const auto c = tap(tile, std::uint32_t(u) & (kFracOne - 1), std::uint32_t(v) & (kFracOne - 1), f.lod);
+      for (int k = 0; k < 4; ++k) sum[std::size_t(k)] += c[std::size_t(k)];
+    }
+    for (float& c : sum) c /= float(f.taps);
+    return sum;
+  }
+};
 
 }  // namespace
 
-std::array<float, 4> sample_trilinear(const TextureAtlas& a, float s, float t, float lambda) {
-  std::array<float, 4> acc{0, 0, 0, 0};
-  const int q = int(a.levels.size()) - 1;
-  if (!(lambda > 0)) {  // magnification (c = 0 for LINEAR with LINEAR_MIPMAP_LINEAR)
-    bilinear(a.levels[0], s, t, 1, acc.data());
-  } else if (lambda >= float(q)) {
-    bilinear(a.levels[std::size_t(q)], s, t, 1, acc.data());
-  } else {
-    const int d1 = int(std::floor(lambda));
-    const float f = lambda - float(d1);
-    bilinear(a.levels[std::size_t(d1)], s, t, 1 - f, acc.data());
-    bilinear(a.levels[std::size_t(d1 + 1)], s, t, f, acc.data());
-  }
-  return acc;
+double mean_fetches(const RenderSource& src, const View& view, int max_aniso) {
+  const int unit = src.unit_px();
+  const ViewRows vr = view_rows(view, unit);
+  double sum = 0;
+  for (const ViewRow& r : vr.rows)
+    for (int x = 0; x < view.width; ++x)
+      sum += src.fetches(
+          anisotropic_footprint(r.dudx, 0.0f, r.dudy0 + float(x) * vr.dudy_step, r.dvdy, unit, max_aniso).taps);
+  return sum / (double(view.width) * double(view.height));
 }
 
-Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o) {
-  const ViewRows vr = view_rows(view, a.tile_px);
-  const VirtualTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
-  Image out{view.width, view.height,
-                std::vector<std::uint8_t>(std::size_t(view.width) * std::size_t(view.height) * 4)};
-  const float inv_cols = 1.0f / float(a.lookup.cols), inv_rows = 1.0f / float(a.lookup.rows);
+Image render_cpu(const RenderSource& src, const View& view, const RenderOptions& o) {
+  if (src.method == RenderMethod::Tiles ? !src.atlas : !src.exemplar)
+    throw InputError(
+        fmt::format("--method {} needs {}", render_method_name(src.method),
+                    src.method == RenderMethod::Tiles ? "an atlas (--atlas)" : "an exemplar (--exemplar)"));
+  if (o.max_aniso < 1 || o.max_aniso > kMaxAnisotropy)
+    throw InputError(fmt::format("--aniso must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
+  const int unit = src.unit_px();
+  const ViewRows vr = view_rows(view, unit);
+  std::unique_ptr<TileSampler> tiles;
+  std::unique_ptr<PatchHashes> patches;
+  if (src.method == RenderMethod::Tiles) {
+    const TextureAtlas& a = *src.atlas;
+    tiles.reset(new TileSampler{a, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
+                                1.0f / float(a.lookup.cols), 1.0f / float(a.lookup.rows)});
+  } else {
+    patches = std::make_unique<PatchHashes>(o.hash, o.seed);
+  }
+  Image out{view.width, view.height, std::vector<std::uint8_t>(std::size_t(view.width) * std::size_t(view.height) * 4)};
   ProgressReporter progress(fmt::format("render {}x{}", view.width, view.height), view.height, o.progress);
   parallel_for(view.height, o.threads, [&](std::int64_t j) {
     const ViewRow& r = vr.rows[std::size_t(j)];
     const std::int32_t first = r.tile_u0 + std::int32_t(r.frac_u0 >> kFracBits);
     const std::int32_t last =
         r.tile_u0 + std::int32_t((r.frac_u0 + std::uint32_t(view.width - 1) * r.step_u) >> kFracBits);
-    std::vector<TileIndex> tiles(std::size_t(last - first + 1));
-    tiling.fill_row(first, r.tile_v, int(tiles.size()), tiles.data());
-    const float fv = float(r.frac_v) / float(kFracOne);
+    std::vector<TileIndex> row_tiles;
+    if (tiles) {
+      row_tiles.resize(std::size_t(last - first + 1));
+      tiles->tiling.fill(first, r.tile_v, 1, int(row_tiles.size()), row_tiles.data());
+    }
     for (int x = 0; x < view.width; ++x) {
       const std::uint32_t fixed = r.frac_u0 + std::uint32_t(x) * r.step_u;
-      const std::int32_t tu = r.tile_u0 + std::int32_t(fixed >> kFracBits);
-      const float fu = float(fixed & (kFracOne - 1)) / float(kFracOne);
-      const auto [row, col] = a.lookup.positions[tiles[std::size_t(tu - first)]];
-      // thesis sec. 5.4: the tile's place in the packing plus the position inside the tile
-      const float s = (float(col) + fu) * inv_cols, t = (float(row) + fv) * inv_rows;
-      const std::array<float, 4> c = sample_trilinear(a, s, t, view_lod(r, vr.dudy_step, x, a.tile_px));
-      std::uint8_t* p = out.at(x, int(j));
-      for (int k = 0; k < 4; ++k) p[k] = std::uint8_t(std::clamp(std::lround(c[std::size_t(k)]), 0l, 255l));
+      const PixelPosition p{r.tile_u0 + std::int32_t(fixed >> kFracBits), r.tile_v, fixed & (kFracOne - 1), r.frac_v};
+      const float dudy = r.dudy0 + float(x) * vr.dudy_step;
+      const Footprint f = anisotropic_footprint(r.dudx, 0.0f, dudy, r.dvdy, unit, o.max_aniso);
+      const std::array<float, 4> c = tiles ? tiles->sample(p, row_tiles[std::size_t(p.tile_u - first)], f)
+                                     : src.method == RenderMethod::Hex
+                                         ? sample_hex(*src.exemplar, *patches, p, f, unit)
+                                         : sample_hpn(*src.exemplar, *patches, p, f, unit);
+      std::uint8_t* px = out.at(x, int(j));
+      for (int k = 0; k < 4; ++k) px[k] = std::uint8_t(std::clamp(std::lround(c[std::size_t(k)]), 0l, 255l));
     }
     progress.add(1);
   });

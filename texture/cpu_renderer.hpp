@@ -1,14 +1,16 @@
 #pragma once
-// The CPU reference renderer of tile-based texture mapping (thesis sec. 5.4): every pixel of a
-// window of the infinite virtual texture goes through the direct stochastic tiling (thesis
-// 3.3.1 for corner tiles, 3.3.2.1 for Wang tiles; tiling/direct_tiling.hpp) to a tile, through
-// the packing to the tile's place in the atlas, and is sampled trilinearly from the atlas's mip
-// chain at the level of detail its derivatives give, with OpenGL's rules (LINEAR_MIPMAP_LINEAR,
-// REPEAT). The GLSL sampler (glsl_sampler.hpp) does the same on the GPU; tests compare them.
-#include <array>
+// The CPU reference renderer of a window of an infinite textured plane, by one of three methods:
+//  - tiles (thesis sec. 5.4, Tilekit's method): every pixel goes through the direct stochastic
+//    tiling (tiling/direct_tiling.hpp) to a tile, through the packing to the tile's place in the
+//    atlas, and is sampled from the atlas's mip chain;
+//  - hex and hpn, the baselines that sample the exemplar directly (texture/baseline_samplers.hpp).
+// Filtering follows OpenGL's rules (texture/sampling.hpp) with anisotropic taps along the
+// footprint's major axis (texture/anisotropic.hpp; max_aniso 1 is trilinear). The GLSL renderer
+// (glsl_sampler.hpp, gl_renderer.hpp) does the same on the GPU; tests compare the two.
 #include <cstdint>
-#include <memory>
+#include <string>
 
+#include "texture/exemplar_surface.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/view.hpp"
 #include "tiling/direct_tiling.hpp"
@@ -16,33 +18,37 @@
 namespace tilekit {
 
 struct RenderOptions {
-  HashKind hash = HashKind::LongPeriod;  // the lattice hash of the direct stochastic tiling (thesis 3.4)
+  HashKind hash = HashKind::LongPeriod;  // the lattice hash of the tiling or of the patch centres (thesis 3.4)
   std::uint64_t seed = 1;
   int threads = 1;
   bool progress = false;
+  int max_aniso = 1;  // 1: trilinear; up to kMaxAnisotropy taps along the footprint
 };
 
-// The direct stochastic tiling of the virtual texture: tile (x, y) is in column x and row y,
-// rows growing to the south (tiling/lattice_tiling.hpp).
-class VirtualTiling {
- public:
-  VirtualTiling(TileKind kind, std::uint32_t colours, HashKind hash, std::uint64_t seed);
-  TileKind kind() const { return kind_; }
-  TileIndex tile(std::int64_t x, std::int64_t y) const;
-  void fill_row(std::int64_t x0, std::int64_t y, int cols, TileIndex* out) const;
-  // The lattice hashes: corner tiles one, Wang tiles the horizontal-edge and the vertical-edge one.
-  std::vector<const ColourHash*> hashes() const;
+enum class RenderMethod { Tiles, Hex, Hpn };
+// "tiles", "hex" or "hpn"; InputError otherwise.
+RenderMethod parse_render_method(const std::string& name);
+const char* render_method_name(RenderMethod m);
 
- private:
-  TileKind kind_;
-  std::unique_ptr<DirectCornerTiling> corner_;
-  std::unique_ptr<DirectWangTiling> wang_;
+// What a render samples: the atlas (tiles) or the exemplar surface (hex, hpn).
+struct RenderSource {
+  RenderMethod method = RenderMethod::Tiles;
+  const TextureAtlas* atlas = nullptr;
+  const ExemplarSurface* exemplar = nullptr;
+  // Texels per unit of the view's fixed point: the atlas's tile size; 64 for the baselines.
+  int unit_px() const { return method == RenderMethod::Tiles ? atlas->tile_px : 64; }
+  // Texture fetches (trilinear taps and look-ups) of one pixel with `taps` anisotropic taps.
+  int fetches(int taps) const {
+    return method == RenderMethod::Tiles ? taps : method == RenderMethod::Hex ? 3 * taps : 3 * taps + 3;
+  }
+  std::size_t memory_bytes() const;  // texture memory: the atlas's or the exemplar surface's mip chain (and LUT)
 };
 
-// GL_LINEAR_MIPMAP_LINEAR sampling with GL_REPEAT at atlas coordinate (s, t) in [0, 1)^2 and
-// level of detail lambda (OpenGL ES 3.0 sec. 3.8.10-3.8.11): components in 0..255.
-std::array<float, 4> sample_trilinear(const TextureAtlas& a, float s, float t, float lambda);
-
-Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o);
+Image render_cpu(const RenderSource& source, const View& view, const RenderOptions& o);
+// The mean texture fetches per pixel of a view (RenderSource::fetches of every pixel's taps).
+double mean_fetches(const RenderSource& source, const View& view, int max_aniso);
+inline Image render_cpu(const TextureAtlas& a, const View& view, const RenderOptions& o) {
+  return render_cpu(RenderSource{RenderMethod::Tiles, &a, nullptr}, view, o);
+}
 
 }  // namespace tilekit

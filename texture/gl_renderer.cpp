@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #if TILEKIT_HAVE_EGL
 #include <EGL/egl.h>
@@ -74,6 +75,9 @@ struct Context {
     eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display, context);
   }
+  // Every call of a renderer makes its own context current: with two renderers alive (a
+  // benchmark and its baseline), GL calls would otherwise go to the context made last.
+  void make_current() const { eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context); }
 };
 
 }  // namespace
@@ -81,59 +85,119 @@ struct Context {
 struct GlRenderer::State {
   Context ctx;
   int width = 0, height = 0;
-  GLuint program = 0, fbo = 0, colour = 0, atlas = 0, rows = 0, vao = 0;
+  GLuint program = 0, fbo = 0, colour = 0, vao = 0;
+  GLuint textures[3] = {0, 0, 0};  // the atlas or the exemplar, the row table, hpn's look-up table
   ~State() {
     glDeleteProgram(program);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &colour);
-    glDeleteTextures(1, &atlas);
-    glDeleteTextures(1, &rows);
+    glDeleteTextures(3, textures);
     glDeleteVertexArrays(1, &vao);
   }
 };
 
-GlRenderer::GlRenderer(const TextureAtlas& a, const View& view, const RenderOptions& o, GlslMode mode)
-    : s_(std::make_unique<State>()) {
-  const ViewRows vr = view_rows(view, a.tile_px);
-  State& s = *s_;
-  s.width = view.width;
-  s.height = view.height;
-  GLint max_size = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-  if (a.levels[0].width > max_size || view.width > max_size || view.height > max_size)
-    throw InputError(fmt::format("the atlas ({}x{}) or the window ({}x{}) exceeds GL_MAX_TEXTURE_SIZE {}",
-                                 a.levels[0].width, a.levels[0].height, view.width, view.height, max_size));
-  const VirtualTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
+namespace {
+
+GLuint link(const std::string& fragment_shader) {
   GLuint vs = compile(GL_VERTEX_SHADER, glsl_vertex_shader());
-  GLuint fs = compile(GL_FRAGMENT_SHADER, glsl_fragment_shader(a.lookup, a.tile_px, tiling, mode));
-  s.program = glCreateProgram();
-  glAttachShader(s.program, vs);
-  glAttachShader(s.program, fs);
-  glLinkProgram(s.program);
+  GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader);
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
   glDeleteShader(vs);
   glDeleteShader(fs);
   GLint linked = 0;
-  glGetProgramiv(s.program, GL_LINK_STATUS, &linked);
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
   if (!linked) {
     char log[4096] = {0};
-    glGetProgramInfoLog(s.program, sizeof log, nullptr, log);
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
     throw std::logic_error(fmt::format("GLSL link error: {}", log));
   }
-  glUseProgram(s.program);
-  // The atlas and its mip chain exactly as the CPU renderer samples them.
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glGenTextures(1, &s.atlas);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, s.atlas);
-  for (std::size_t k = 0; k < a.levels.size(); ++k)
-    glTexImage2D(GL_TEXTURE_2D, GLint(k), GL_RGBA8, a.levels[k].width, a.levels[k].height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 a.levels[k].pixels.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(a.levels.size() - 1));
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glUseProgram(program);
+  return program;
+}
+
+// An offscreen RGBA8 framebuffer of the given size, bound, with the viewport on it.
+void offscreen(GLuint& colour, GLuint& fbo, GLuint& vao, int width, int height) {
+  glGenRenderbuffers(1, &colour);
+  glBindRenderbuffer(GL_RENDERBUFFER, colour);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glGenFramebuffers(1, &fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw GlUnavailable("OpenGL ES: the offscreen framebuffer is incomplete");
+  glGenVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glViewport(0, 0, width, height);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR)
+    throw std::logic_error(fmt::format("OpenGL ES error 0x{:04x} in set-up", e));
+}
+
+template <class Level>
+void upload_chain(GLuint& texture, int unit, const std::vector<Level>& levels, GLenum internal, GLenum type) {
+  glGenTextures(1, &texture);
+  glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+  glBindTexture(GL_TEXTURE_2D, texture);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if constexpr (std::is_same_v<Level, Image>) {
+      glTexImage2D(GL_TEXTURE_2D, GLint(k), GLint(internal), levels[k].width, levels[k].height, 0, GL_RGBA, type,
+                   levels[k].pixels.data());
+    } else {  // float texels as the half floats they already are (exemplar_surface.hpp)
+      std::vector<std::uint16_t> half(levels[k].texels.size());
+      for (std::size_t i = 0; i < half.size(); ++i) half[i] = float_to_half(levels[k].texels[i]);
+      glTexImage2D(GL_TEXTURE_2D, GLint(k), GLint(internal), levels[k].width, levels[k].height, 0, GL_RGBA, type,
+                   half.data());
+    }
+  }
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, GLint(levels.size() - 1));
+  const bool mipmapped = levels.size() > 1;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, mipmapped ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  glUniform1i(glGetUniformLocation(s.program, "tk_atlas"), 0);
+  const GLint wrap = mipmapped ? GL_REPEAT : GL_CLAMP_TO_EDGE;  // the look-up table clamps
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
+}
+
+}  // namespace
+
+GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOptions& o, GlslMode mode)
+    : s_(std::make_unique<State>()) {
+  const ViewRows vr = view_rows(view, src.unit_px());
+  State& s = *s_;
+  s.width = view.width;
+  s.height = view.height;
+  GLint max_size = 0, max_vectors = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_VECTORS, &max_vectors);
+  const int texture_width = src.method == RenderMethod::Tiles ? src.atlas->levels[0].width : src.exemplar->width;
+  if (texture_width > max_size || view.width > max_size || view.height > max_size)
+    throw InputError(fmt::format("the texture ({} wide) or the window ({}x{}) exceeds GL_MAX_TEXTURE_SIZE {}",
+                                 texture_width, view.width, view.height, max_size));
+  const auto tables = glsl_table_uniforms(src, o);
+  std::size_t vectors = 0;
+  for (const auto& t : tables) vectors += t.second.size() / 4;
+  if (vectors + 16 > std::size_t(max_vectors))
+    throw InputError(
+        fmt::format("the hash tables need {} uniform vectors, more than this GPU's {}", vectors, max_vectors));
+  s.program = link(glsl_fragment_shader(src, o, mode));
+  // The textures exactly as the CPU renderer samples them.
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const char* main_sampler = "tk_exemplar";
+  if (src.method == RenderMethod::Tiles) {
+    upload_chain(s.textures[0], 0, src.atlas->levels, GL_RGBA8, GL_UNSIGNED_BYTE);
+    main_sampler = "tk_atlas";
+  } else if (src.method == RenderMethod::Hex) {
+    upload_chain(s.textures[0], 0, src.exemplar->levels, GL_RGBA8, GL_UNSIGNED_BYTE);
+  } else {
+    upload_chain(s.textures[0], 0, src.exemplar->gaussian, GL_RGBA16F, GL_HALF_FLOAT);
+    upload_chain(s.textures[2], 2, std::vector<FloatImage>{src.exemplar->lut}, GL_RGBA16F, GL_HALF_FLOAT);
+    glUniform1i(glGetUniformLocation(s.program, "tk_lut"), 2);
+  }
+  glUniform1i(glGetUniformLocation(s.program, main_sampler), 0);
+  for (const auto& [name, values] : tables)
+    glUniform4iv(glGetUniformLocation(s.program, name.c_str()), GLsizei(values.size() / 4), values.data());
   // The view's row table (texture/view.hpp), two RGBA32I texels per row.
   std::vector<GLint> table;
   for (const ViewRow& r : vr.rows) {
@@ -144,39 +208,36 @@ GlRenderer::GlRenderer(const TextureAtlas& a, const View& view, const RenderOpti
     table.insert(table.end(),
                  {r.tile_u0, GLint(r.frac_u0), GLint(r.step_u), r.tile_v, GLint(r.frac_v), bits[0], bits[1], bits[2]});
   }
-  glGenTextures(1, &s.rows);
+  glGenTextures(1, &s.textures[1]);
   glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, s.rows);
+  glBindTexture(GL_TEXTURE_2D, s.textures[1]);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32I, 2, view.height, 0, GL_RGBA_INTEGER, GL_INT, table.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glUniform1i(glGetUniformLocation(s.program, "tk_rows"), 1);
   glUniform1f(glGetUniformLocation(s.program, "tk_dudy_step"), vr.dudy_step);
   glUniform1i(glGetUniformLocation(s.program, "tk_height"), view.height);
+  glUniform1i(glGetUniformLocation(s.program, "tk_max_aniso"), o.max_aniso);
   glUniform2i(glGetUniformLocation(s.program, "tk_origin"), 0, 0);
-  // Offscreen RGBA8 framebuffer.
-  glGenRenderbuffers(1, &s.colour);
-  glBindRenderbuffer(GL_RENDERBUFFER, s.colour);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, view.width, view.height);
-  glGenFramebuffers(1, &s.fbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, s.fbo);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s.colour);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw GlUnavailable("OpenGL ES: the offscreen framebuffer is incomplete");
-  glGenVertexArrays(1, &s.vao);
-  glBindVertexArray(s.vao);
-  glViewport(0, 0, view.width, view.height);
-  if (GLenum e = glGetError(); e != GL_NO_ERROR)
-    throw std::logic_error(fmt::format("OpenGL ES error 0x{:04x} in set-up", e));
+  offscreen(s.colour, s.fbo, s.vao, view.width, view.height);
+}
+
+GlRenderer::GlRenderer(const std::string& fragment_shader, int width, int height) : s_(std::make_unique<State>()) {
+  s_->width = width;
+  s_->height = height;
+  s_->program = link(fragment_shader);
+  offscreen(s_->colour, s_->fbo, s_->vao, width, height);
 }
 
 GlRenderer::~GlRenderer() = default;
 
 void GlRenderer::set_origin(int x, int y) {
+  s_->ctx.make_current();
   glUniform2i(glGetUniformLocation(s_->program, "tk_origin"), x, y);
 }
 
 double GlRenderer::draw(int frames) {
+  s_->ctx.make_current();
   const auto t0 = std::chrono::steady_clock::now();
   for (int f = 0; f < frames; ++f) glDrawArrays(GL_TRIANGLES, 0, 3);
   glFinish();
@@ -184,6 +245,7 @@ double GlRenderer::draw(int frames) {
 }
 
 Image GlRenderer::read() {
+  s_->ctx.make_current();
   Image img{s_->width, s_->height, std::vector<std::uint8_t>(std::size_t(s_->width) * std::size_t(s_->height) * 4)};
   std::vector<std::uint8_t> flipped(img.pixels.size());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -195,6 +257,7 @@ Image GlRenderer::read() {
 }
 
 std::string GlRenderer::renderer() const {
+  s_->ctx.make_current();
   return fmt::format("{} ({})", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
                      reinterpret_cast<const char*>(glGetString(GL_VERSION)));
 }
@@ -213,7 +276,10 @@ namespace {
   throw GlUnavailable("tilekit was built without EGL/OpenGL ES (libegl-dev, libgles-dev); the GLSL render is skipped");
 }
 }  // namespace
-GlRenderer::GlRenderer(const TextureAtlas&, const View&, const RenderOptions&, GlslMode) {
+GlRenderer::GlRenderer(const RenderSource&, const View&, const RenderOptions&, GlslMode) {
+  unavailable();
+}
+GlRenderer::GlRenderer(const std::string&, int, int) {
   unavailable();
 }
 GlRenderer::~GlRenderer() = default;
@@ -235,8 +301,14 @@ std::string gl_renderer_name() {
 
 #endif
 
-Image render_glsl(const TextureAtlas& a, const View& view, const RenderOptions& o) {
-  GlRenderer r(a, view, o);
+Image render_glsl(const RenderSource& source, const View& view, const RenderOptions& o) {
+  GlRenderer r(source, view, o);
+  r.draw(1);
+  return r.read();
+}
+
+Image run_fragment_shader(const std::string& fragment_shader, int width, int height) {
+  GlRenderer r(fragment_shader, width, height);
   r.draw(1);
   return r.read();
 }

@@ -22,11 +22,17 @@ std::string gl_renderer_name();
 
 class GlRenderer {
  public:
-  // Compiles the shader for `mode` and uploads the atlas (all levels) and the view's row table.
-  GlRenderer(const TextureAtlas& atlas, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture);
+  // Compiles the shader for `mode` and uploads the textures (the atlas or the exemplar surface,
+  // all levels, and hpn's look-up table), the hash tables and the view's row table.
+  GlRenderer(const RenderSource& source, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture);
+  GlRenderer(const TextureAtlas& atlas, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture)
+      : GlRenderer(RenderSource{RenderMethod::Tiles, &atlas, nullptr}, view, o, mode) {}
   ~GlRenderer();
   GlRenderer(const GlRenderer&) = delete;
   GlRenderer& operator=(const GlRenderer&) = delete;
+
+  // A bare program: `fragment_shader` over a width x height framebuffer (run_fragment_shader).
+  GlRenderer(const std::string& fragment_shader, int width, int height);
 
   void set_origin(int x, int y);  // tk_origin of the test modes
   // Draws `frames` times and waits for the GPU (glFinish); returns the seconds that took.
@@ -39,6 +45,13 @@ class GlRenderer {
   std::unique_ptr<State> s_;
 };
 
-Image render_glsl(const TextureAtlas& atlas, const View& view, const RenderOptions& o);
+Image render_glsl(const RenderSource& source, const View& view, const RenderOptions& o);
+inline Image render_glsl(const TextureAtlas& atlas, const View& view, const RenderOptions& o) {
+  return render_glsl(RenderSource{RenderMethod::Tiles, &atlas, nullptr}, view, o);
+}
+
+// Compiles `fragment_shader` (with glsl_vertex_shader) and draws it once into a width x height
+// framebuffer: for tests of generated GLSL that is not a renderer's (the atlas lookup snippet).
+Image run_fragment_shader(const std::string& fragment_shader, int width, int height);
 
 }  // namespace tilekit

@@ -2,87 +2,52 @@
 
 #include <fmt/format.h>
 
+#include "texture/anisotropic.hpp"
+#include "texture/baseline_samplers.hpp"
+
 namespace tilekit {
 
-namespace {
-
-std::string joined(const std::vector<std::uint32_t>& v) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? (i % 24 ? ", " : ",\n  ") : "") + std::to_string(v[i]);
-  return s;
-}
-
-// ivec4 tk_lattice<k>(ivec2 p): hash k's colours at (x, y), (x+1, y), (x, y+1), (x+1, y+1)
-// (thesis eq. 3.3 for one table, eq. 3.6 for the long-period hash), floored modulo for negative
-// coordinates, the same reduction (sum % N_j) % C as ColourHash.
-std::string lattice_function(const ColourHash& h, int k) {
-  std::vector<std::uint32_t> all;
-  std::string body;
-  for (const ColourHash::Component& c : h.components()) {
-    const std::uint32_t n = c.n, off = std::uint32_t(all.size()), wrap = std::uint32_t((std::uint64_t(1) << 32) % n);
-    all.insert(all.end(), c.p.begin(), c.p.end());
-    body += fmt::format(
-        "  a = tk_mod(p.x, {n}, {w}); b = a + 1 == {n} ? 0 : a + 1;\n"
-        "  ya = tk_mod(p.y, {n}, {w}); yb = ya + 1 == {n} ? 0 : ya + 1;\n"
-        "  a = TK_P{k}[{o} + a]; b = TK_P{k}[{o} + b];\n"
-        "  s += ivec4(TK_P{k}[{o} + (a + ya) % {n}], TK_P{k}[{o} + (b + ya) % {n}], TK_P{k}[{o} + (a + yb) % {n}],\n"
-        "             TK_P{k}[{o} + (b + yb) % {n}]);\n",
-        fmt::arg("n", n), fmt::arg("w", wrap), fmt::arg("k", k), fmt::arg("o", off));
-  }
-  std::string g = fmt::format("const int TK_P{}[{}] = int[{}](\n  {});\n", k, all.size(), all.size(), joined(all));
-  g += fmt::format("ivec4 tk_lattice{}(ivec2 p) {{  // colours at (x,y), (x+1,y), (x,y+1), (x+1,y+1)\n", k);
-  g += "  ivec4 s = ivec4(0);\n  int a, b, ya, yb;\n" + body;
-  g += fmt::format("  return (s % {}) % {};\n}}\n", h.range(), h.colours());
-  return g;
-}
-
-}  // namespace
-
-std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const VirtualTiling& tiling) {
+std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const DirectTiling& tiling, GlslTables tables) {
+  check_same_set(l, tiling);
   std::string g;
   g += fmt::format("#define TK_COLORS {}\n#define TK_ROWS {}\n#define TK_COLS {}\n#define TK_TILE_PX {}\n", l.colours,
                    l.rows, l.cols, tile_px);
+  g += "#ifndef TK_MAX_ANISO\n#define TK_MAX_ANISO 16\n#endif\n";
   g += fmt::format("const float TK_INV_ROWS = {:.9g}, TK_INV_COLS = {:.9g};\n", 1.0f / float(l.rows),
                    1.0f / float(l.cols));
   g += "uniform highp sampler2D tk_atlas;\n";
-  g += "// floored v mod n; wrap = 2^32 mod n (uint(v) keeps the bit pattern of a negative v)\n"
-       "int tk_mod(int v, int n, int wrap) {\n"
-       "  uint r = uint(v) % uint(n);\n"
-       "  return v < 0 ? int((r + uint(n - wrap)) % uint(n)) : int(r);\n"
-       "}\n";
-  const auto hashes = tiling.hashes();
-  for (std::size_t k = 0; k < hashes.size(); ++k) g += lattice_function(*hashes[k], int(k));
+  g += direct_tiling_glsl(tiling, tables);
   g += lookup_glsl_position(l);
-  if (l.kind == TileKind::Corner) {
-    g += "int tk_virtual_tile(ivec2 p) {  // direct stochastic tiling, corner tiles (thesis 3.3.1)\n"
-         "  ivec4 h = tk_lattice0(p);  // NW, NE, SW, SE\n"
-         "  return ((h.y * TK_COLORS + h.w) * TK_COLORS + h.z) * TK_COLORS + h.x;  // thesis eq. (2.5)\n"
-         "}\n";
-  } else {
-    g += "int tk_virtual_tile(ivec2 p) {  // direct stochastic tiling, Wang tiles, two hashes (thesis 3.3.2.1)\n"
-         "  ivec4 hh = tk_lattice0(p), hv = tk_lattice1(p);  // NW, NE, SW, SE\n"
-         "  int n = (hh.x + hh.y) % TK_COLORS, e = (hv.y + hv.w) % TK_COLORS;\n"
-         "  int s = (hh.w + hh.z) % TK_COLORS, w = (hv.z + hv.x) % TK_COLORS;\n"
-         "  return ((n * TK_COLORS + e) * TK_COLORS + s) * TK_COLORS + w;  // thesis eq. (2.2)\n"
-         "}\n";
-  }
+  g += anisotropic_glsl();
   g += "// thesis 5.4: the tile's place in the packing plus the position f in [0,1)^2 inside the tile\n"
        "vec4 tk_sample_tile(ivec2 tile, vec2 f, float lod) {\n"
        "  ivec2 rc = tk_tile_position(tk_virtual_tile(tile));\n"
        "  vec2 st = (vec2(float(rc.y), float(rc.x)) + f) * vec2(TK_INV_COLS, TK_INV_ROWS);\n"
        "  return textureLod(tk_atlas, st, lod);\n"
        "}\n"
+       "// the taps of a footprint (tk_footprint), each through the tiling to its own tile\n"
+       "vec4 tk_sample(ivec2 tile, ivec2 frac, int taps, float lod, ivec2 axis) {\n"
+       "  vec4 sum = vec4(0.0);\n"
+       "  for (int i = 0; i < taps; ++i) {\n"
+       "    ivec2 q = frac + ivec2(tk_tap_offset(axis.x, i, taps), tk_tap_offset(axis.y, i, taps));\n"
+       "    sum += tk_sample_tile(tile + (q >> 16), vec2(q & 65535) / 65536.0, lod);\n"
+       "  }\n"
+       "  return sum / float(taps);\n"
+       "}\n"
        "// uv in tiles of the virtual texture (u east, v south), with its screen derivatives\n"
        "vec4 tk_texture(vec2 uv, vec2 duvdx, vec2 duvdy) {\n"
        "  vec2 cell = floor(uv);\n"
-       "  float lod = log2(float(TK_TILE_PX) * max(length(duvdx), length(duvdy)));\n"
-       "  return tk_sample_tile(ivec2(cell), uv - cell, lod);\n"
+       "  int taps;\n"
+       "  float lod;\n"
+       "  ivec2 axis;\n"
+       "  tk_footprint(duvdx, duvdy, TK_MAX_ANISO, taps, lod, axis);\n"
+       "  return tk_sample(ivec2(cell), ivec2((uv - cell) * 65536.0), taps, lod, axis);\n"
        "}\n";
   return g;
 }
 
 std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o) {
-  const VirtualTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
+  const DirectTiling tiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed);
   std::string g = fmt::format(
       "// Generated by `tilekit texture atlas` (hash {}, seed {}): GLSL ES 3.0 sampler for tile-based texture\n"
       "// mapping (thesis sec. 5.4) with a {}x{} atlas of the complete {} set over {} colours, {}-pixel tiles;\n"
@@ -90,10 +55,42 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o) {
       "// Bind the atlas (all mip levels, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT) to tk_atlas and call\n"
       "//   vec4 tk_texture(vec2 uv, vec2 duvdx, vec2 duvdy)\n"
       "// with uv in tiles of the infinite virtual texture (u east, v south) and its derivatives\n"
-      "// (dFdx(uv), dFdy(uv)). The hash is bit-identical to tilekit's C++ direct tiling.\n",
+      "// (dFdx(uv), dFdy(uv)); it filters anisotropically with up to TK_MAX_ANISO taps (define it\n"
+      "// before this text to change it; 1 is trilinear). The tiling is bit-identical to tilekit's C++.\n",
       hash_kind_name(o.hash), o.seed, a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours,
       a.tile_px, a.lookup.source, a.lookup.how);
-  return g + glsl_sampler_library(a.lookup, a.tile_px, tiling);
+  return g + glsl_sampler_library(a.lookup, a.tile_px, tiling, GlslTables::Inline);
+}
+
+std::string glsl_method_library(const RenderSource& s, const RenderOptions& o) {
+  switch (s.method) {
+    case RenderMethod::Tiles: {
+      const TextureAtlas& a = *s.atlas;
+      return glsl_sampler_library(a.lookup, a.tile_px, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
+                                  GlslTables::Uniform);
+    }
+    case RenderMethod::Hex:
+      return hex_glsl(*s.exemplar, PatchHashes(o.hash, o.seed), s.unit_px(), true);
+    case RenderMethod::Hpn:
+      return hpn_glsl(*s.exemplar, PatchHashes(o.hash, o.seed), s.unit_px(), true);
+  }
+  return {};
+}
+
+std::vector<std::pair<std::string, std::vector<std::int32_t>>> glsl_table_uniforms(const RenderSource& s,
+                                                                                   const RenderOptions& o) {
+  std::vector<std::pair<std::string, std::vector<std::int32_t>>> u;
+  if (s.method == RenderMethod::Tiles) {
+    const DirectTiling tiling(s.atlas->lookup.kind, s.atlas->lookup.colours, o.hash, o.seed);
+    const auto hashes = tiling.hashes();
+    for (std::size_t k = 0; k < hashes.size(); ++k)
+      u.push_back({fmt::format("tk_lattice{}_P", k), glsl_hash_uniforms(*hashes[k])});
+  } else {
+    const PatchHashes h(o.hash, o.seed);
+    u.push_back({"tk_patch_x_P", glsl_hash_uniforms(h.x)});
+    u.push_back({"tk_patch_y_P", glsl_hash_uniforms(h.y)});
+  }
+  return u;
 }
 
 std::string glsl_vertex_shader() {
@@ -104,13 +101,14 @@ std::string glsl_vertex_shader() {
          "}\n";
 }
 
-std::string glsl_fragment_shader(const AtlasLookup& l, int tile_px, const VirtualTiling& tiling, GlslMode mode) {
+std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, GlslMode mode) {
   std::string g = "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp isampler2D;\n";
-  g += glsl_sampler_library(l, tile_px, tiling);
+  g += glsl_method_library(s, o);
   g += "uniform highp isampler2D tk_rows;  // per pixel row: (tile_u0, frac_u0, step_u, tile_v), (frac_v, dudx, dvdy, "
        "dudy0)\n"
        "uniform float tk_dudy_step;\n"
        "uniform int tk_height;\n"
+       "uniform int tk_max_aniso;\n"
        "uniform ivec2 tk_origin;\n"
        "out vec4 tk_colour;\n"
        "void main() {\n"
@@ -121,14 +119,17 @@ std::string glsl_fragment_shader(const AtlasLookup& l, int tile_px, const Virtua
       g += "  ivec4 r0 = texelFetch(tk_rows, ivec2(0, j), 0), r1 = texelFetch(tk_rows, ivec2(1, j), 0);\n"
            "  uint fu = uint(r0.y) + uint(px.x) * uint(r0.z);  // fixed point, texture/view.hpp\n"
            "  ivec2 tile = ivec2(r0.x + int(fu >> 16u), r0.w);\n"
-           "  vec2 f = vec2(float(fu & 65535u), float(r1.x)) / 65536.0;\n"
+           "  ivec2 frac = ivec2(int(fu & 65535u), r1.x);\n"
            "  float dudx = intBitsToFloat(r1.y), dvdy = intBitsToFloat(r1.z);\n"
            "  float dudy = intBitsToFloat(r1.w) + float(px.x) * tk_dudy_step;\n"
-           "  float lod = log2(float(TK_TILE_PX) * max(abs(dudx), sqrt(dudy * dudy + dvdy * dvdy)));\n"
-           "  tk_colour = tk_sample_tile(tile, f, lod);\n";
+           "  int taps;\n"
+           "  float lod;\n"
+           "  ivec2 axis;\n"
+           "  tk_footprint(vec2(dudx, 0.0), vec2(dudy, dvdy), tk_max_aniso, taps, lod, axis);\n"
+           "  tk_colour = tk_sample(tile, frac, taps, lod, axis);\n";
       break;
     case GlslMode::LatticeColour:
-      g += "  tk_colour = vec4(float(tk_lattice0(ivec2(px.x, j) + tk_origin).x) / 255.0, 0.0, 0.0, 1.0);\n";
+      g += "  tk_colour = vec4(float(tk_lattice0(ivec2(px.x, j) + tk_origin)) / 255.0, 0.0, 0.0, 1.0);\n";
       break;
     case GlslMode::PlainTexture:
       g += "  tk_colour = textureLod(tk_atlas, gl_FragCoord.xy * (1.0 / 1024.0), 0.0);\n";

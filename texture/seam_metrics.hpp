@@ -1,5 +1,5 @@
 #pragma once
-// How visible the seams of a texture tiling are. The seam ratio (issue 13) is the mean colour
+// How visible the seams of a texture tiling are. The seam ratio is the mean colour
 // step across tile borders divided by the mean step between neighbouring pixels inside tiles: 1
 // means a border is as smooth as the texture itself; abutting random squares gives 2-4. The cut
 // ratio does the same for every pair of neighbours copied from different samples (tile borders

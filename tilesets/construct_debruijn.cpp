@@ -1,7 +1,7 @@
 // Corner packings for odd C without search. A corner packing over C colours is a
-// (C^2, C^2; 2, 2)_C de Bruijn torus (DESIGN.md): every 2x2 window of pegs occurs once.
+// (C^2, C^2; 2, 2)_C de Bruijn torus: every 2x2 window of pegs occurs once.
 // Row r of the pegs is a de Bruijn sequence s of order 2 shifted by the triangular number
-// T(r) = r(r-1)/2 (DESIGN.md): P(r, c) = s[(c + T(r)) mod N], N = C^2.
+// T(r) = r(r-1)/2: P(r, c) = s[(c + T(r)) mod N], N = C^2.
 //   - The window at (r, c) has top pair at position p = c + T(r) of s and bottom pair at
 //     p + r, since T(r+1) - T(r) = r. Over the N rows the offsets r = 0..N-1 are distinct
 //     mod N, so (top pair, bottom pair) runs over every pair of pairs exactly once.
@@ -15,7 +15,7 @@
 namespace tilekit {
 
 namespace {
-std::uint64_t triangular(std::uint64_t r) { return r * (r - 1) / 2; }  // T(r) = r(r-1)/2, DESIGN.md
+std::uint64_t triangular(std::uint64_t r) { return r * (r - 1) / 2; }  // T(r) = r(r-1)/2
 }  // namespace
 
 std::vector<Colour> corner_triangular_pegs(std::uint32_t colours) {
@@ -25,7 +25,7 @@ std::vector<Colour> corner_triangular_pegs(std::uint32_t colours) {
   std::vector<Colour> pegs(n * n);
   for (std::uint64_t r = 0; r < n; ++r) {
     const std::uint64_t shift = r == 0 ? 0 : triangular(r) % n;
-    for (std::uint64_t c = 0; c < n; ++c) pegs[r * n + c] = s[(c + shift) % n];  // DESIGN.md closed form
+    for (std::uint64_t c = 0; c < n; ++c) pegs[r * n + c] = s[(c + shift) % n];  // P(r, c)
   }
   return pegs;
 }

@@ -11,11 +11,11 @@ namespace tilekit {
 Tiling wang_euler_packing(std::uint32_t colours);
 std::pair<int, int> wang_euler_position(std::uint32_t colours, TileIndex tile);
 
-// construct_debruijn.cpp: corner, odd C (DESIGN.md closed form).
+// construct_debruijn.cpp: corner, odd C (de Bruijn rows shifted by triangular numbers).
 std::vector<Colour> corner_triangular_pegs(std::uint32_t colours);  // C^2 x C^2, row-major
 std::pair<int, int> corner_triangular_position(std::uint32_t colours, TileIndex tile);
 
-// construct_product.cpp: corner, C = a*b with gcd(a, b) = 1 (DESIGN.md, Chinese remainder).
+// construct_product.cpp: corner, C = a*b with gcd(a, b) = 1 (Chinese remainder theorem).
 std::vector<Colour> corner_product_pegs(const std::vector<Colour>& pegs_a, std::uint32_t a,
                                         const std::vector<Colour>& pegs_b, std::uint32_t b);
 

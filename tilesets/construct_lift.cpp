@@ -1,4 +1,4 @@
-// Colour-quotient lifts (issue 11) and the binary lift construction that gives a corner packing
+// Colour-quotient lifts and the binary lift construction that gives a corner packing
 // for every power of two (and with the products, for every C) without search.
 //
 // The lift. Let B be a packing over m colours (period M = m^2) and E a k-colour tiling of the

@@ -155,7 +155,7 @@ std::optional<std::pair<int, int>> corner_position(std::uint32_t colours, TileIn
     return binary_lift_position(std::uint64_t(m) * m, *pb, corner_index({t.ne / m, t.se / m, t.sw / m, t.nw / m}, 2));
   }
   auto [a, b] = *split;
-  // Split every corner colour k = kA + a * kB into the factors' tiles (DESIGN.md product).
+  // Split every corner colour k = kA + a * kB into the factors' tiles (construct_product.cpp).
   const CornerTile t = corner_tile(tile, colours);
   const CornerTile ta{t.ne % a, t.se % a, t.sw % a, t.nw % a}, tb{t.ne / a, t.se / a, t.sw / a, t.nw / a};
   auto pa = corner_position(a, corner_index(ta, a)), pb = corner_position(b, corner_index(tb, b));

@@ -1,9 +1,9 @@
 #pragma once
-// Tile packings without search (issue "closed-form packings"). INTERFACE CONTRACT used by
-// `tilekit pack --method construct|auto` and the atlas lookup; the owner may extend it.
+// Tile packings without search, used by `tilekit pack --method construct|auto` and the atlas
+// lookup (packing/find_packing.hpp).
 //   - Wang, any C: outer product of two Eulerian circuits (thesis 5.5.1-5.5.2, Wei 2004).
-//   - corner, odd C: de Bruijn sequence shifted by triangular numbers (DESIGN.md).
-//   - corner, C = a*b with gcd(a,b) = 1: product of an a- and a b-packing (DESIGN.md).
+//   - corner, odd C: de Bruijn sequence shifted by triangular numbers (construct_debruijn.cpp).
+//   - corner, C = a*b with gcd(a,b) = 1: product of an a- and a b-packing (construct_product.cpp).
 //   - corner, C = 2m with m even: binary colour-quotient lift of the m-packing
 //     (construct_lift.cpp), so every power of two from 4 up, and with the products every C.
 //   - corner C = 2, 4, 8: packings found by the solver, stored as data (used before the lift).
@@ -50,7 +50,7 @@ std::optional<Tiling> stored_packing(TileKind kind, std::uint32_t colours);
 // The colour counts in 1..max_colours for which construct_packing() succeeds.
 std::vector<std::uint32_t> constructible_colours(TileKind kind, std::uint32_t max_colours);
 
-// Colour-quotient lift (issue 11, construct_lift.cpp): the tiling over (base colours) x
+// Colour-quotient lift (construct_lift.cpp): the tiling over (base colours) x
 // (quotient colours) whose every corner or edge colour is b + m*e, b from `base` (a square torus,
 // m colours, repeated with its period) and e from `quotient` (a k-colour torus whose side is a
 // multiple of the base's). It is a packing exactly when `base` is one and `quotient` holds every

@@ -1,5 +1,5 @@
 #pragma once
-// The files of tilesets/data/, embedded at build time (cmake/embed_data.cmake).
+// The files of tilesets/data/, embedded at build time (cmake/embed_files.cmake).
 #include <string_view>
 #include <vector>
 

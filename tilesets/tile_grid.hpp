@@ -1,7 +1,7 @@
 #pragma once
-// A tiling or packing: a grid of tile indices (DESIGN.md conventions: row-major, row 0 at
-// the top/north, column 0 at the left/west; a torus wraps row/column n-1 to 0), and its
-// JSON file format {"kind","colors","rows","cols","torus","cells":[[i,...],...]}.
+// A tiling or packing: a grid of tile indices (row-major, row 0 at the top/north, column 0 at
+// the left/west; a torus wraps row/column n-1 to 0), and its JSON file format
+// {"kind","colors","rows","cols","torus","cells":[[i,...],...]}.
 #include <cstdint>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -44,7 +44,7 @@ Tiling tiling_from_json(const JsonIn& j);  // a tiling inside a larger document 
 
 // Pegs <-> corner tiles on a rows x cols torus: cell (r,c) holds the tile with nw = P(r,c),
 // ne = P(r,c+1), sw = P(r+1,c), se = P(r+1,c+1) (indices wrap). A corner packing is thus a
-// (C^2,C^2;2,2)_C de Bruijn torus of pegs (DESIGN.md, facts).
+// (C^2,C^2;2,2)_C de Bruijn torus of pegs: every 2x2 window of pegs occurs exactly once.
 Tiling corner_torus_from_pegs(const std::vector<Colour>& pegs, int rows, int cols, std::uint32_t colours);
 std::vector<Colour> pegs_of_corner_torus(const Tiling& t);  // the nw corner of every cell
 // The compact file form of a corner torus: "pegs" holds one string per row with one digit per

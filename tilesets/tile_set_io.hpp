@@ -1,5 +1,5 @@
 #pragma once
-// Tile-set files (DESIGN.md): text, one tile per line, `n s w e` (Wang) or `nw ne sw se`
+// Tile-set files: text, one tile per line, `n s w e` (Wang) or `nw ne sw se`
 // (corner, marked by a first line `# kind: corner`), `#` comments; or JSON
 // {"kind":"wang"|"corner","tiles":[[...],...]}. Also the built-in set names.
 #include <nlohmann/json_fwd.hpp>

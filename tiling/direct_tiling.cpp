@@ -155,4 +155,34 @@ Tiling DirectEdgeWangTiling::generate(int rows, int cols, std::int64_t x0, std::
   return t;
 }
 
+// ---- the tiling of texture mapping ----------------------------------------------------------
+
+DirectTiling::DirectTiling(TileKind kind, std::uint32_t colours, HashKind hash, std::uint64_t seed)
+    : kind_(kind), hash_(hash), seed_(seed) {
+  if (kind == TileKind::Corner)
+    corner_ = std::make_unique<DirectCornerTiling>(colours, hash, seed);
+  else
+    wang_ = std::make_unique<DirectWangTiling>(colours, colours, hash, seed);
+}
+
+std::uint32_t DirectTiling::colours() const {
+  return corner_ ? corner_->colours() : wang_->ch();
+}
+
+TileIndex DirectTiling::tile(std::int64_t x, std::int64_t y) const {
+  return corner_ ? corner_->tile(x, y) : wang_->tile(x, y);
+}
+
+void DirectTiling::fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) const {
+  if (corner_)
+    corner_->fill(x0, y0, rows, cols, out);
+  else
+    wang_->fill(x0, y0, rows, cols, out);
+}
+
+std::vector<const ColourHash*> DirectTiling::hashes() const {
+  if (corner_) return {&corner_->hash()};
+  return {&wang_->horizontal_hash(), &wang_->vertical_hash()};
+}
+
 }  // namespace tilekit

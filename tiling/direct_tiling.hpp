@@ -4,12 +4,13 @@
 // offers tile(x, y) (random access) and fill() (a whole window, each hash evaluated once);
 // both give the same tiles. Coordinates as in lattice_tiling.hpp (rows grow to the south).
 #include <cstdint>
+#include <memory>
 #include <vector>
 
-#include "tiling/lattice_hash.hpp"
-#include "tiling/lattice_tiling.hpp"
 #include "tilesets/tile.hpp"
 #include "tilesets/tile_grid.hpp"
+#include "tiling/lattice_hash.hpp"
+#include "tiling/lattice_tiling.hpp"
 
 namespace tilekit {
 
@@ -78,6 +79,30 @@ class DirectEdgeWangTiling {
   std::uint32_t ch_, cv_;
   ColourHash h_;
   std::vector<std::uint16_t> mod_h_, mod_v_;  // v -> v % C_h, v % C_v for v < lcm(C_h, C_v)
+};
+
+// The direct stochastic tiling of the complete corner set (thesis 3.3.1) or the complete Wang set
+// with two hashes (3.3.2.1) over C colours: the one that tile-based texture mapping (thesis 5.4)
+// evaluates. The atlas lookup, the CPU renderer and the GLSL text (direct_tiling_glsl.hpp) all
+// use this class, so they agree tile for tile. Axes as above: x east, y south.
+class DirectTiling {
+ public:
+  DirectTiling(TileKind kind, std::uint32_t colours, HashKind hash, std::uint64_t seed);
+  TileKind kind() const { return kind_; }
+  std::uint32_t colours() const;
+  HashKind hash_kind() const { return hash_; }
+  std::uint64_t seed() const { return seed_; }
+  TileIndex tile(std::int64_t x, std::int64_t y) const;
+  void fill(std::int64_t x0, std::int64_t y0, int rows, int cols, TileIndex* out) const;
+  // The lattice hashes: corner tiles one, Wang tiles the horizontal-edge and the vertical-edge one.
+  std::vector<const ColourHash*> hashes() const;
+
+ private:
+  TileKind kind_;
+  HashKind hash_;
+  std::uint64_t seed_;
+  std::unique_ptr<DirectCornerTiling> corner_;
+  std::unique_ptr<DirectWangTiling> wang_;
 };
 
 }  // namespace tilekit

@@ -4,9 +4,10 @@
 // of its four corners. Shared by the direct stochastic, Halton and controlled algorithms.
 //
 // Coordinates: tile (x, y) is the tile in column x and row y, and rows grow to the south
-// (DESIGN.md: row 0 at the top). Its corners are the lattice points NW = (x, y),
-// NE = (x+1, y), SW = (x, y+1), SE = (x+1, y+1). The thesis puts y to the north and names a
-// tile by its SW corner; flipping the y axis maps one convention onto the other.
+// (row 0 at the top, as every grid in Tilekit: tilesets/tile_grid.hpp). Its corners are the
+// lattice points NW = (x, y), NE = (x+1, y), SW = (x, y+1), SE = (x+1, y+1). The thesis puts y
+// to the north and names a tile by its SW corner; flipping the y axis maps one convention onto
+// the other.
 //
 // A Lattice is any type with
 //   std::uint32_t colours() const;  std::uint32_t colour(int64 x, int64 y) const;

@@ -1,6 +1,7 @@
 #pragma once
-// One entry point for every tiling algorithm (DESIGN.md ALGO names): checks that the algorithm
-// fits the tile set (it can only produce tiles of the set) and generates the tiling.
+// One entry point for every tiling algorithm (the names `tilekit tile --algo` takes): checks
+// that the algorithm fits the tile set (it can only produce tiles of the set) and generates the
+// tiling.
 //   scanline        Wang (Cohen et al. 2003; thesis 3.2.1) or corner (thesis 3.2.2)
 //   direct          corner (thesis 3.3.1) or Wang with two hashes (thesis 3.3.2.1)
 //   direct-edge     Wang, one hash at the tile edges (thesis 3.3.2.3)

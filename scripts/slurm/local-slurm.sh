@@ -8,7 +8,7 @@
 #
 # DIR holds everything: the munge key and socket, slurm.conf, StateSaveLocation, the spool,
 # pid files and logs (DIR/log/*.log). Nothing under /etc or /var is used or changed, so a
-# stale or system-wide Slurm is left alone. The configuration is the minimal one of issue 6:
+# stale or system-wide Slurm is left alone. The configuration is the smallest that runs jobs:
 # SlurmctldHost = short hostname, auth/munge, proctrack/linuxproc, task/none, SlurmUser=root,
 # select/cons_tres with CR_Core, one node with CPUs=$(nproc) and RealMemory = memory - 1 GiB,
 # one default partition. `start` exits non-zero, with the daemon's log, if any daemon does not
@@ -125,7 +125,7 @@ start_cluster() {
   slurmd_port=$(free_port "${TILEKIT_SLURMD_PORT:-6818}" "$ctld_port")
 
   cat >"$dir/slurm.conf" <<EOF
-# Minimal single-node Slurm written by scripts/slurm/local-slurm.sh (issue 6).
+# Minimal single-node Slurm written by scripts/slurm/local-slurm.sh.
 ClusterName=tilekit
 SlurmctldHost=$host$ctld_addr
 SlurmctldPort=$ctld_port

@@ -4,10 +4,10 @@
 #include <regex>
 
 #include "atlas/lookup.hpp"
+#include "base/error.hpp"
 #include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/constructions.hpp"
-#include "base/error.hpp"
 #include "tilesets/validator.hpp"
 
 using namespace tilekit;
@@ -15,7 +15,9 @@ using namespace tilekit::test;
 
 namespace {
 
-AtlasLookup no_db(TileKind k, std::uint32_t c) { return atlas_lookup(k, c, LookupOptions{}); }
+AtlasLookup no_db(TileKind k, std::uint32_t c) {
+  return atlas_lookup(k, c, LookupOptions{});
+}
 
 void expect_lookup_consistent(const AtlasLookup& a) {
   ASSERT_EQ(a.cells.size(), std::size_t(a.rows) * std::size_t(a.cols));
@@ -25,7 +27,8 @@ void expect_lookup_consistent(const AtlasLookup& a) {
     ASSERT_EQ(std::size_t(r) * std::size_t(a.cols) + std::size_t(c), i) << "tile " << a.cells[i];
   }
   if (a.closed_form) {
-    for (TileIndex t = 0; t < a.positions.size(); ++t) ASSERT_EQ(packing_position(a.kind, a.colours, t), a.positions[t]);
+    for (TileIndex t = 0; t < a.positions.size(); ++t)
+      ASSERT_EQ(packing_position(a.kind, a.colours, t), a.positions[t]);
   }
 }
 
@@ -38,7 +41,8 @@ int sh(const std::string& cmd) {
 }  // namespace
 
 TEST(AtlasLookup, LookupAndInverseAgreeForEveryTile) {
-  for (std::uint32_t c : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 10u, 11u, 12u}) expect_lookup_consistent(no_db(TileKind::Corner, c));
+  for (std::uint32_t c : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 10u, 11u, 12u})
+    expect_lookup_consistent(no_db(TileKind::Corner, c));
   for (std::uint32_t c : {2u, 3u, 4u, 6u}) expect_lookup_consistent(no_db(TileKind::Wang, c));
 }
 
@@ -75,7 +79,7 @@ TEST(AtlasLookup, AStoredPackingInTheDatabaseComesFirst) {
 }
 
 TEST(AtlasLookup, EveryCornerColourCountFromTwoToThirtyTwoAnswersAValidatedPacking) {
-  // Issue 11: the odd closed form, coprime products, the stored packings and the binary lift.
+  // The odd closed form, coprime products, the stored packings and the binary lift.
   for (std::uint32_t c = 2; c <= 32; ++c) {
     AtlasLookup a = no_db(TileKind::Corner, c);
     EXPECT_EQ(a.source, "construct") << c;
@@ -90,37 +94,33 @@ TEST(AtlasLookup, EveryCornerColourCountFromTwoToThirtyTwoAnswersAValidatedPacki
 TEST(AtlasLookup, DirectStochasticTilingIsValidAndMapsIntoTheAtlas) {
   for (auto [kind, c] : {std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 4u}}) {
     AtlasLookup a = no_db(kind, c);
-    const auto perm = hash_permutation(7);
-    // A 12x12 window of the virtual texture (across negative coordinates) is a valid tiling;
-    // virtual y grows upwards, grid rows downwards.
-    Tiling t(kind, c, 12, 12, false);
-    for (int r = 0; r < 12; ++r)
-      for (int x = -6; x < 6; ++x) t.at(r, x + 6) = virtual_tile(a, perm, x, 5 - r);
-    ValidationReport rep = validate(t);
-    EXPECT_TRUE(rep.valid) << kind_name(kind) << ": " << (rep.errors.empty() ? "" : rep.errors[0]);
-    std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> U(-300, 300);
-    for (int i = 0; i < 500; ++i) {
-      const double u = U(rng), v = U(rng);
-      auto [au, av] = virtual_to_atlas(a, perm, u, v);
-      ASSERT_GE(au, 0.0);
-      ASSERT_LT(au, 1.0);
-      ASSERT_GE(av, 0.0);
-      ASSERT_LE(av, 1.0);
-      const int col = int(au * a.cols), row = std::min(int(av * a.rows), a.rows - 1);
-      EXPECT_EQ(a.cells[std::size_t(row * a.cols + col)], virtual_tile(a, perm, std::int64_t(std::floor(u)),
-                                                                       std::int64_t(std::floor(v))));
+    for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod}) {
+      const DirectTiling tiling(kind, c, h, 7);
+      // A 12x12 window of the virtual texture (across negative coordinates) is a valid tiling;
+      // y grows to the south, as grid rows do.
+      Tiling t(kind, c, 12, 12, false);
+      for (int r = 0; r < 12; ++r)
+        for (int x = -6; x < 6; ++x) t.at(r, x + 6) = tiling.tile(x, r - 6);
+      ValidationReport rep = validate(t);
+      EXPECT_TRUE(rep.valid) << kind_name(kind) << ": " << (rep.errors.empty() ? "" : rep.errors[0]);
+      std::mt19937_64 rng(3);
+      std::uniform_real_distribution<double> U(-300, 300);
+      for (int i = 0; i < 500; ++i) {
+        const double u = U(rng), v = U(rng);
+        auto [au, av] = virtual_to_atlas(a, tiling, u, v);
+        ASSERT_GE(au, 0.0);
+        ASSERT_LT(au, 1.0);
+        ASSERT_GE(av, 0.0);
+        ASSERT_LT(av, 1.0);
+        const int col = int(au * a.cols), row = int(av * a.rows);
+        EXPECT_EQ(a.cells[std::size_t(row * a.cols + col)],
+                  tiling.tile(std::int64_t(std::floor(u)), std::int64_t(std::floor(v))));
+      }
     }
   }
-}
-
-TEST(AtlasLookup, HashPermutationIsASeededPermutation) {
-  auto p = hash_permutation(42), q = hash_permutation(42), r = hash_permutation(43);
-  EXPECT_EQ(p, q);
-  EXPECT_NE(p, r);
-  std::vector<int> sorted = p;
-  std::sort(sorted.begin(), sorted.end());
-  for (int i = 0; i < 256; ++i) ASSERT_EQ(sorted[std::size_t(i)], i);
+  EXPECT_THROW(virtual_to_atlas(no_db(TileKind::Corner, 3), DirectTiling(TileKind::Corner, 2, HashKind::Permutation, 1),
+                                0.5, 0.5),
+               InputError);
 }
 
 TEST(AtlasLookup, CHeaderCompilesAndItsTablesAreInverse) {
@@ -147,17 +147,19 @@ TEST(AtlasLookup, GlslClosedFormRunsAndAgreesWithTheTable) {
     TempDir d;
     AtlasLookup a = no_db(kind, c);
     ASSERT_TRUE(a.closed_form);
-    const std::string glsl = lookup_glsl(a, 1);
+    const std::string glsl = lookup_glsl(a, DirectTiling(kind, c, HashKind::LongPeriod, 1));
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(glsl, m, std::regex("// BEGIN tk_tile_position\n([\\s\\S]*)// END tk_tile_position")));
+    ASSERT_TRUE(
+        std::regex_search(glsl, m, std::regex("// BEGIN tk_tile_position\n([\\s\\S]*)// END tk_tile_position")));
     std::string expected;
     for (const auto& [r, col] : a.positions) expected += std::to_string(r) + " " + std::to_string(col) + "\n";
     write_text(d / "expected.txt", expected);
-    write_text(d / "main.cpp", "#include <cstdio>\nstruct ivec2 { int x, y; ivec2(int a, int b) : x(a), y(b) {} };\n"
-                               "#define TK_COLORS " + std::to_string(c) + "\n#define TK_COLS " + std::to_string(a.cols) +
-                                   "\n" + m[1].str() +
-                                   "int main() { for (int t = 0; t < " + std::to_string(a.cells.size()) +
-                                   "; ++t) { ivec2 p = tk_tile_position(t); std::printf(\"%d %d\\n\", p.x, p.y); } }\n");
+    write_text(d / "main.cpp",
+               "#include <cstdio>\nstruct ivec2 { int x, y; ivec2(int a, int b) : x(a), y(b) {} };\n"
+               "#define TK_COLORS " +
+                   std::to_string(c) + "\n#define TK_COLS " + std::to_string(a.cols) + "\n" + m[1].str() +
+                   "int main() { for (int t = 0; t < " + std::to_string(a.cells.size()) +
+                   "; ++t) { ivec2 p = tk_tile_position(t); std::printf(\"%d %d\\n\", p.x, p.y); } }\n");
     ASSERT_EQ(sh("c++ -std=c++17 -o " + (d / "run") + " " + (d / "main.cpp")), 0);
     ASSERT_EQ(sh(d / "run" + " > " + (d / "got.txt")), 0);
     EXPECT_TRUE(slurp(d / "got.txt") == expected) << kind_name(kind);
@@ -170,10 +172,10 @@ TEST(AtlasLookup, GlslSnippetCompilesAsAFragmentShader) {
   Tiling shifted = construct_packing(TileKind::Corner, 3)->tiling;  // table variant via a db-like packing
   AtlasLookup table = lookup_from_packing(shifted, "db", "test", false);
   for (const AtlasLookup& a : {no_db(TileKind::Corner, 5), no_db(TileKind::Wang, 3), table}) {
-    write_text(d / "t.frag", "#version 330 core\nin vec2 uv;\nout vec4 color;\n" + lookup_glsl(a, 9) +
+    write_text(d / "t.frag", "#version 330 core\nin vec2 uv;\nout vec4 color;\n" +
+                                 lookup_glsl(a, DirectTiling(a.kind, a.colours, HashKind::Permutation, 9)) +
                                  "void main() { color = vec4(tk_atlas_coord(uv * 64.0), 0.0, 1.0); }\n");
-    EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
-        << slurp(d / "log.txt");
+    EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0) << slurp(d / "log.txt");
   }
 }
 

@@ -1,4 +1,4 @@
-// The shared input layer (issue 15): files with a size bound, the UTF-8 policy, depth-limited
+// The shared input layer: files with a size bound, the UTF-8 policy, depth-limited
 // JSON with one checked accessor, and the flag parsers every command uses.
 #include <gtest/gtest.h>
 #include <unistd.h>

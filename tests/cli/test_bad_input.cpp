@@ -1,6 +1,7 @@
-// Every case of issue 15 ("Why"): hostile or careless input is exit 2 with one line naming the
-// file (and line or JSON path) and the problem, creates no file, and never crashes, hangs or
-// leaks an internal error. Valid inputs that used to crash (a 30 KB comment) now succeed.
+// Hostile or careless input, case by case (README.md, "Bad input and limits"), is exit 2 with
+// one line naming the file (and line or JSON path) and the problem, creates no file, and never
+// crashes, hangs or leaks an internal error. Valid inputs that used to crash (a 30 KB comment)
+// now succeed.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 

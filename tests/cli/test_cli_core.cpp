@@ -1,8 +1,38 @@
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit::test;
+
+// `--version` names the version and the commit; every JSON result (through emit, and atlas
+// lookup's own JSON text) and every run stored in a results database carry the same text, so a
+// result says which build made it.
+TEST(Cli, VersionNamesTheCommitAndEveryJsonResultAndStoredRunCarriesIt) {
+  CliResult v = run_cli("--version");
+  ASSERT_EQ(v.code, 0) << v.err;
+  std::smatch m;
+  ASSERT_TRUE(
+      std::regex_match(v.out, m, std::regex(R"(tilekit (\d+\.\d+\.\d+ \(commit ([0-9a-f]{12}(-dirty)?|unknown)\))\n)")))
+      << v.out;
+  const std::string line = m[1];
+  TempDir d;
+  const std::string db = d / "r.sqlite";
+  for (const std::string& cmd :
+       {std::string("tileset show kari-14 --json"), std::string("atlas lookup --kind corner --colors 3 --no-db"),
+        std::string("atlas lookup --kind corner --colors 3 --no-db --format c --json"),
+        std::string("tile --set complete-corner-3 --algo direct --size 4x4 --json"),
+        "pack --kind corner --colors 2 --method search --quiet --json --db " + db}) {
+    CliResult r = run_cli(cmd);
+    ASSERT_EQ(r.code, 0) << cmd << ": " << r.err;
+    EXPECT_EQ(r.json()["tilekit_version"], line) << cmd;
+  }
+  CliResult runs = run_cli("db list --table runs --json --db " + db);
+  ASSERT_EQ(runs.code, 0) << runs.err;
+  ASSERT_EQ(runs.json()["rows"].size(), 1u);
+  EXPECT_EQ(runs.json()["rows"][0]["version"], line);
+}
 
 TEST(Cli, HelpWorksForEveryCommand) {
   for (const char* cmd : {"", "tileset", "tileset list", "tileset show", "check"}) {

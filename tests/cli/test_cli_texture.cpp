@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 
 #include "../cli_runner.hpp"
 #include "../texture/texture_fixtures.hpp"
+#include "texture/exemplar_surface.hpp"
+#include "texture/glsl_sampler.hpp"
 
 namespace tilekit {
 namespace {
@@ -96,6 +99,119 @@ TEST(CliTexture, CompareRendersBothWaysAndReportsTheDifference) {
   if (r.code == 2 && r.err.find("skipped") != std::string::npos) GTEST_SKIP() << r.err;
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_LE(r.json()["max_difference"].get<int>(), 2);
+}
+
+TEST(CliTexture, EveryMethodRendersAndReportsItsFetchesAndMemoryAndNeedsWhatItSamples) {
+  TempDir d;
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
+  const std::string view = " --size 96x64 --tilt 3 --scale 0.5 --quiet --json --threads 2";
+  std::map<std::string, double> fetches;
+  for (const std::string m : {"tiles", "hex", "hpn"}) {
+    auto r = run_cli("texture render --method " + m + " --atlas " + (d / "a.png") + " --exemplar " + (d / "ex.png") +
+                     view + " --out " + (d / (m + ".png")));
+    ASSERT_EQ(r.code, 0) << m << ": " << r.err;
+    EXPECT_EQ(r.json()["method"], m);
+    EXPECT_EQ(r.json()["aniso"], 16);
+    EXPECT_GT(r.json()["memory_bytes"].get<double>(), 0);
+    fetches[m] = r.json()["fetches_per_pixel"].get<double>();
+    EXPECT_EQ(read_image(d / (m + ".png")).width, 96);
+  }
+  // One trilinear fetch per anisotropic tap for tiles, three for hex, three and three look-ups for hpn.
+  EXPECT_GT(fetches["tiles"], 1.0);
+  EXPECT_NEAR(fetches["hex"], 3 * fetches["tiles"], 1e-9);
+  EXPECT_NEAR(fetches["hpn"], 3 * fetches["tiles"] + 3, 1e-9);
+  auto trilinear = run_cli("texture render --atlas " + (d / "a.png") + view + " --aniso 1 --out " + (d / "t.png"));
+  ASSERT_EQ(trilinear.code, 0) << trilinear.err;
+  EXPECT_EQ(trilinear.json()["fetches_per_pixel"], 1.0);
+  for (const auto& [args, what] : std::vector<std::pair<std::string, std::string>>{
+           {"--method hex --atlas " + (d / "a.png"), "--exemplar"},
+           {"--method hpn", "--exemplar"},
+           {"--method tiles --exemplar " + (d / "ex.png"), "--atlas"},
+           {"--method bilinear --atlas " + (d / "a.png"), "--method"},
+           {"--method hex --exemplar " + (d / "missing.png"), "missing.png"},
+           {"--atlas " + (d / "a.png") + " --aniso 17", "--aniso"},
+           {"--atlas " + (d / "a.png") + " --origin 1,2,3", "--origin"},
+           {"--method hex --exemplar " + (d / "ex.png") + " --cell-px 100", "too small"}}) {
+    auto r = run_cli("texture render " + args + " --size 8x8 --out " + (d / "bad.png"));
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(d / "bad.png")) << args;
+  }
+}
+
+// The JSON block of a preview page (the data the script reads).
+nlohmann::json preview_data(const std::string& html) {
+  const std::string tag = "<script type=\"application/json\" id=\"tk-data\">";
+  const std::size_t a = html.find(tag) + tag.size(), b = html.find("</script>", a);
+  return nlohmann::json::parse(html.substr(a, b - a));
+}
+
+TEST(CliTexture, PreviewIsOneSelfContainedPageWithTheRenderersShaderText) {
+  TempDir d;
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
+  auto r = run_cli("texture preview --atlas " + (d / "a.png") + " --exemplar " + (d / "ex.png") + " --seed 9 --out " +
+                   (d / "p.html") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.json()["methods"], nlohmann::json({"tiles", "hex", "hpn"}));
+  const std::string html = test::slurp(d / "p.html");
+  EXPECT_EQ(html.find("http"), std::string::npos) << "the page must not load anything";
+  EXPECT_EQ(std::count(html.begin(), html.end(), '\n') > 0, true);
+  const nlohmann::json data = preview_data(html);
+  // The same fragment shaders as the headless renderer, byte for byte, and the tables of seed 9.
+  const TextureAtlas atlas = read_texture_atlas(d / "a.png");
+  const ExemplarSurface ex = make_exemplar_surface(read_image(d / "ex.png"), d / "ex.png");
+  const RenderOptions o{HashKind::LongPeriod, 9, 1, false, 16};
+  for (const RenderSource& s :
+       {RenderSource{RenderMethod::Tiles, &atlas, nullptr}, RenderSource{RenderMethod::Hex, nullptr, &ex},
+        RenderSource{RenderMethod::Hpn, nullptr, &ex}}) {
+    const nlohmann::json& m = data["methods"][render_method_name(s.method)];
+    EXPECT_EQ(m["shader"].get<std::string>(), glsl_fragment_shader(s, o, GlslMode::Texture))
+        << render_method_name(s.method);
+    for (const auto& [name, values] : glsl_table_uniforms(s, o)) EXPECT_EQ(m["check"][name], values) << name;
+  }
+  // Every level of the atlas is embedded (the tiles method's texture: one image per level).
+  EXPECT_EQ(data["methods"]["tiles"]["textures"][0]["levels"].size(), atlas.levels.size());
+  auto tiles_only = run_cli("texture preview --atlas " + (d / "a.png") + " --out " + (d / "t.html") + " --json");
+  ASSERT_EQ(tiles_only.code, 0) << tiles_only.err;
+  EXPECT_EQ(tiles_only.json()["methods"], nlohmann::json({"tiles"}));
+}
+
+TEST(CliTexture, PreviewOfABadAtlasOrToAnUnwritableFileIsExitTwoAndWritesNothing) {
+  TempDir d;
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
+  for (const char* f : {"a.png", "a.json"}) std::filesystem::copy_file(d / f, d / (std::string("nomip-") + f));
+  // An atlas whose manifest lists level 0 only, one whose level 3 is not a PNG, one without level 2.
+  nlohmann::json manifest = nlohmann::json::parse(test::slurp(d / "a.json"));
+  nlohmann::json levels = manifest["levels"];
+  manifest["levels"] = nlohmann::json::array({levels[0]});
+  test::write_text(d / "nomip-a.json", manifest.dump());
+  std::filesystem::create_directory(d / "corrupt");
+  std::filesystem::create_directory(d / "gap");
+  for (const auto& entry : std::filesystem::directory_iterator(d.path))
+    if (entry.path().filename().string().rfind("a.", 0) == 0) {
+      std::filesystem::copy_file(entry.path(), d / ("corrupt/" + entry.path().filename().string()));
+      std::filesystem::copy_file(entry.path(), d / ("gap/" + entry.path().filename().string()));
+    }
+  test::write_text(d / "corrupt/a.mip3.png", "not a png");
+  std::filesystem::remove(d / "gap/a.mip2.png");
+  for (const auto& [args, what] : std::vector<std::pair<std::string, std::string>>{
+           {"--atlas " + (d / "none.png"), "none.json"},
+           {"--atlas " + (d / "nomip-a.png"), "mip chain"},
+           {"--atlas " + (d / "corrupt/a.png"), "a.mip3.png"},
+           {"--atlas " + (d / "gap/a.png"), "a.mip2.png"},
+           {"--atlas " + (d / "a.png") + " --exemplar " + (d / "missing.png"), "missing.png"},
+           {"", "--atlas"}}) {
+    auto r = run_cli("texture preview " + args + " --out " + (d / "p.html"));
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(d / "p.html")) << args;
+  }
+  auto r = run_cli("texture preview --atlas " + (d / "a.png") + " --out " + (d / "no/such/dir/p.html"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("no/such/dir/p.html"), std::string::npos) << r.err;
 }
 
 }  // namespace

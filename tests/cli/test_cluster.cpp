@@ -77,6 +77,36 @@ TEST(ClusterSubmit, DryRunPrintsScriptsWithACommentOnEveryDirectiveAndWritesNoth
   EXPECT_FALSE(std::filesystem::exists(d / "run"));
 }
 
+TEST(ClusterSubmit, JobsRunTheTilekitOnPathElseThisOneAndTilekitFlagOverridesBoth) {
+  namespace fs = std::filesystem;
+  TempDir d;
+  fs::create_directories(d / "bin");
+  fs::create_directories(d / "plain/tilekit");  // a directory named tilekit is no binary
+  write_text(d / "bin/tilekit", "#!/bin/sh\n");
+  fs::create_directories(d / "noexec");
+  write_text(d / "noexec/tilekit", "#!/bin/sh\n");
+  fs::permissions(d / "bin/tilekit", fs::perms::owner_all);
+  const std::string self = fs::canonical(TILEKIT_BINARY).string();
+  const std::string installed = fs::canonical(d / "bin/tilekit").string();
+  EXPECT_EQ(cli::default_job_binary(d / "plain:" + d / "noexec:" + d / "bin:/usr/bin", TILEKIT_BINARY), installed);
+  EXPECT_EQ(cli::default_job_binary(d / "plain:" + d / "noexec", TILEKIT_BINARY), self);
+  EXPECT_EQ(cli::default_job_binary("", TILEKIT_BINARY), self);
+
+  const std::string submit = "cluster submit --kind corner --colors 3 --shards 2 --dry-run --json --run-dir " + d / "r";
+  auto on_path = test::run_cli_prefixed("env PATH=" + d / "bin" + ":/usr/bin:/bin ", submit);
+  ASSERT_EQ(on_path.code, 0) << on_path.err;
+  EXPECT_EQ(on_path.json()["tilekit"], installed);
+  const std::string array = on_path.json()["scripts"][d / "r/pack-array.sbatch"];
+  EXPECT_NE(array.find("TILEKIT=" + installed + "\n"), std::string::npos) << array;
+  auto not_on_path = test::run_cli_prefixed("env PATH=/usr/bin:/bin ", submit);
+  EXPECT_EQ(not_on_path.json()["tilekit"], self);
+  auto flag = test::run_cli_prefixed("env PATH=" + d / "bin" + ":/usr/bin:/bin ", submit + " --tilekit " + self);
+  EXPECT_EQ(flag.json()["tilekit"], self);
+  auto bad = run_cli(submit + " --tilekit " + d / "noexec/tilekit");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("not an executable file"), std::string::npos) << bad.err;
+}
+
 TEST(ClusterSubmit, HumanDryRunNamesEachScript) {
   TempDir d;
   auto r = run_cli("cluster submit --kind corner --colors 3 --shards 2 --run-dir " + d / "r" + " --dry-run");

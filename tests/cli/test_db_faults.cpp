@@ -1,4 +1,4 @@
-// The results database under faults (issue 15): SIGKILL in the middle of `db merge`, `db add`
+// The results database under faults: SIGKILL in the middle of `db merge`, `db add`
 // and a storing `pack`; two writers on one file; a full disk; a read-only file. Each time the
 // database passes PRAGMA integrity_check and holds all or nothing of the interrupted
 // transaction, and a refused write is exit 2 with one line naming the file.

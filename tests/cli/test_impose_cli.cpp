@@ -1,5 +1,5 @@
 // `tilekit pack --impose SPEC`, `--method search` (the imposed-group portfolio; `auto` tries the database and constructions first) and
-// `--portfolio-report` end to end (issue 7).
+// `--portfolio-report` end to end.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 

@@ -1,4 +1,4 @@
-// Kill safety under an imposed group (issue 11): a `pack --impose` enumeration, SIGKILLed at
+// Kill safety under an imposed group: a `pack --impose` enumeration, SIGKILLed at
 // random moments and continued each time by `pack --resume FILE` alone, ends with the same count
 // and exactly the same stored solutions as an uninterrupted run; SIGTERM ends a run with exit 3
 // after a checkpoint. The subspace: shard 3/128 of the C=3 Wang packings invariant under a group

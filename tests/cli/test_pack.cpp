@@ -103,7 +103,7 @@ TEST(PackCli, CorruptOrMismatchedCheckpointsAreExit2) {
   EXPECT_EQ(again.json()["solutions"], 203520);  // a finished checkpoint resumes to the same result
   CliResult mism = pack("--kind wang --colors 2 --mode count --seed 7 --quiet --resume " + ck);
   EXPECT_EQ(mism.code, 2);
-  // Issue 11: the checkpoint holds the run's request; a flag that contradicts it is named.
+  // The checkpoint holds the run's request; a flag that contradicts it is named.
   EXPECT_NE(mism.err.find("--seed is 7 here but 0 in the checkpoint"), std::string::npos) << mism.err;
   CliResult other = pack("--kind corner --colors 2 --mode count --quiet --resume " + ck);
   EXPECT_EQ(other.code, 2);
@@ -172,7 +172,7 @@ TEST(PackCli, ImposedGroupFindsAFourColourWangPackingThatValidates) {
   EXPECT_EQ(c.json()["packing"], true);
   CliResult bad = pack("--kind wang --colors 4 --impose t=banana --quiet");
   EXPECT_EQ(bad.code, 2);
-  // Issue 11: imposed groups run in the one engine, so they take checkpoints (exit 2 before).
+  // Imposed groups run in the one engine, so they take checkpoints.
   CliResult mixed = pack("--kind wang --colors 2 --impose t=0,2:pi=1,0 --checkpoint " + (d / "ck") + " --quiet --json");
   EXPECT_EQ(mixed.code, 0) << mixed.err;
   EXPECT_EQ(mixed.json()["checkpoint"], d / "ck");

@@ -1,4 +1,4 @@
-// The kill test (issue 3): the stored enumeration of the 203,520 two-colour Wang packings,
+// The kill test: the stored enumeration of the 203,520 two-colour Wang packings,
 // killed at random moments and resumed each time, ends with exactly 203,520 distinct
 // solutions in the database; SIGTERM ends each run with exit code 3 and a checkpoint.
 #include <fcntl.h>

@@ -1,4 +1,4 @@
-// tilekit pack --lift (issue 11): colour-quotient lift searches end to end, by the engine and by
+// tilekit pack --lift: colour-quotient lift searches end to end, by the engine and by
 // cadical, with checkpoints, shards and signals like every other search, and bad specs.
 #include <gtest/gtest.h>
 #include <signal.h>

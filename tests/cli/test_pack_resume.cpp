@@ -1,4 +1,4 @@
-// One engine for every search (issue 11), end to end: `pack --resume FILE` alone continues the
+// One engine for every search, end to end: `pack --resume FILE` alone continues the
 // run the checkpoint describes, a contradicting flag is exit 2 naming it, imposed-group counts
 // shard and thread like every other search, and the portfolio keeps checkpoints too.
 #include <gtest/gtest.h>

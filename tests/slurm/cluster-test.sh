@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end test of `tilekit cluster` on a real Slurm (issue 6). Needs root and a built
+# End-to-end test of `tilekit cluster` on a real Slurm. Needs root and a built
 # build/tilekit; installs slurm-wlm and munge if missing and starts a single-node Slurm
 # (scripts/slurm/local-slurm.sh) in a temporary directory, stopped by PID when the test ends.
 #
@@ -21,15 +21,18 @@
 #     first); at the requeue bound (1) the task ends with exit 3.
 #  4. Resuming the whole run: the same `cluster submit` again resumes from the checkpoint; a
 #     scancel then ends it for good (checkpoint, exit 3, no requeue).
-#  5. An imposed-group count as an array (issue 11): the C=3 Wang packings invariant under a
+#  5. An imposed-group count as an array: the C=3 Wang packings invariant under a
 #     group of order 9, 3 shards, one task requeued mid-search (SIGTERM -> checkpoint -> exit 3
 #     -> Slurm requeues -> resume); the shards' counts add up to an unsharded count.
-#  6. aperiodic enumerate as a 3-shard array (issue 22), one shard requeued mid-run; the merged
+#  6. aperiodic enumerate as a 3-shard array, one shard requeued mid-run; the merged
 #     shard databases hold exactly the sets and conversions of an unsharded run.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 TK=${TILEKIT_BINARY:-$root/build/tilekit}
+# `cluster submit` gives the jobs the tilekit on PATH (an installed one) unless --tilekit says
+# otherwise: this build's goes first, so that the jobs run the binary under test.
+PATH="$(dirname "$(readlink -f "$TK")"):$PATH"
 SLURM=$root/scripts/slurm/local-slurm.sh
 DEADLINE=$((SECONDS + ${TILEKIT_SLURM_TEST_BUDGET:-280}))  # whole test < 5 minutes
 passed=0
@@ -168,6 +171,7 @@ out=$("$TK" cluster submit --kind wang --colors 2 --mode all --method search --s
 array=$(submitted_id array_job "$out")
 merge=$(submitted_id merge_job "$out")
 [ -n "$array" ] && [ -n "$merge" ] || fatal "no job ids in: $out"
+check "the jobs run the tilekit on PATH" grep -qF "\"tilekit\":\"$(readlink -f "$TK")\"" <<<"$out"
 check "the merge job waits for the whole array (afterok)" \
   test "$(field "$merge" Dependency)" = "afterok:${array}_*(unfulfilled)"
 

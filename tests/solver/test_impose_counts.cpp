@@ -1,4 +1,4 @@
-// Counting under an imposed group (issue 7): the symmetric counts and solution sets for C=2 must
+// Counting under an imposed group: the symmetric counts and solution sets for C=2 must
 // equal a brute-force filter of all packings (32 corner, 203,520 Wang), enumerated here by code
 // that shares nothing with the symmetric engine.
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ const std::vector<Tiling>& all_wang_packings_c2() {
   return all;
 }
 
-// solve() under the group `spec` (the one engine, issue 11).
+// solve() under the group `spec` (the one engine).
 SearchResult solve_under(const TilingProblem& p, const std::string& spec, SearchOptions o) {
   o.impose = spec;
   return solve(p, o);

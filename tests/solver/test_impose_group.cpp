@@ -1,4 +1,4 @@
-// Imposed automorphism groups (issue 7): spec parsing, the rules a packing group must obey, and
+// Imposed automorphism groups: spec parsing, the rules a packing group must obey, and
 // first solutions that pass the independent validator and are invariant under the group.
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 namespace tilekit {
 namespace {
 
-// solve() under the group `spec` (the one engine, issue 11).
+// solve() under the group `spec` (the one engine).
 SearchResult solve_under(const TilingProblem& p, const std::string& spec, SearchOptions o) {
   o.impose = spec;
   return solve(p, o);

@@ -1,4 +1,4 @@
-// The portfolio (issues 7 and 11): candidate groups, a scheduler over solve() on 2 threads that
+// The portfolio: candidate groups, a scheduler over solve() on 2 threads that
 // is resumable from its state, and statistics that persist, merge and order the next run.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Colour-quotient lifts in the engine (issue 11): the spec, the model against a brute-force
+// Colour-quotient lifts in the engine: the spec, the model against a brute-force
 // filter by the independent validator, counts, first packings by the engine and by cadical.
 #include <gtest/gtest.h>
 

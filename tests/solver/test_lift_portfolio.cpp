@@ -1,4 +1,4 @@
-// Colour-quotient lifts as portfolio candidates (issue 11): which lifts the portfolio offers, and
+// Colour-quotient lifts as portfolio candidates: which lifts the portfolio offers, and
 // a lift candidate run by the scheduler over solve() finding a validated packing.
 #include <gtest/gtest.h>
 

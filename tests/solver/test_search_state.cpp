@@ -1,4 +1,4 @@
-// Structural validation of resumable search states (issue 15): a checkpoint with a valid
+// Structural validation of resumable search states: a checkpoint with a valid
 // checksum but an impossible state (an in-flight subproblem listed twice resumed to 203,904
 // solutions instead of 203,520) is refused, whether it comes from a file or from memory.
 #include <gtest/gtest.h>

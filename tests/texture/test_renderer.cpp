@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../cli_runner.hpp"
+#include "gl_test.hpp"
 #include "texture/cpu_renderer.hpp"
 #include "texture/gl_renderer.hpp"
 #include "texture/glsl_sampler.hpp"
@@ -107,31 +108,26 @@ TEST(CpuRenderer, BadViewsAreInputErrors) {
   EXPECT_THROW(render_cpu(atlas, View{10, 10, 1, 1e12, 0, 0}, {}), InputError);
 }
 
-TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindAndPosition) {
+TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindPositionAndMethod) {
   ASSERT_EQ(sh("command -v glslangValidator >/dev/null"), 0) << "glslangValidator missing: run scripts/setup.sh";
   test::TempDir d;
   for (auto [kind, c] :
        {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
       for (GlslMode mode : {GlslMode::Texture, GlslMode::LatticeColour, GlslMode::TileIndex}) {
-        const AtlasLookup l = atlas_lookup(kind, c, {});
-        test::write_text(d / "t.frag", glsl_fragment_shader(l, 64, VirtualTiling(kind, c, h, 3), mode));
+        const TextureAtlas a{atlas_lookup(kind, c, {}), 64, {}, ""};
+        test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{RenderMethod::Tiles, &a, nullptr},
+                                                            RenderOptions{h, 3, 1, false}, mode));
         EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
             << test::slurp(d / "log.txt");
       }
-}
-
-// The tests below need an EGL display; where none can be made they are skipped with the reason,
-// unless TILEKIT_REQUIRE_EGL=1 (scripts/test.sh sets it after scripts/setup.sh has installed
-// Mesa's EGL, so CI cannot pass by skipping them): then a missing context fails the test.
-#define SKIP_WITHOUT_EGL(statement)                                                                   \
-  try {                                                                                               \
-    statement;                                                                                        \
-  } catch (const GlUnavailable& e) {                                                                  \
-    const char* required = std::getenv("TILEKIT_REQUIRE_EGL");                                        \
-    if (required && std::string(required) == "1") FAIL() << "TILEKIT_REQUIRE_EGL=1 but " << e.what(); \
-    GTEST_SKIP() << "no EGL context: " << e.what();                                                   \
+  const ExemplarSurface ex = make_exemplar_surface(test::synthetic_image(96, 96), "synthetic");
+  for (RenderMethod m : {RenderMethod::Hex, RenderMethod::Hpn}) {
+    test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{m, nullptr, &ex}, {}, GlslMode::Texture));
+    EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
+        << test::slurp(d / "log.txt");
   }
+}
 
 TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
   for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
@@ -140,7 +136,7 @@ TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
       const RenderOptions o{h, 77, 1, false};
       std::unique_ptr<GlRenderer> r;
       SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{300, 80, 1, 0, 0, 0}, o, GlslMode::LatticeColour));
-      const VirtualTiling tiling(kind, 2, h, 77);
+      const DirectTiling tiling(kind, 2, h, 77);
       const ColourHash& hash = *tiling.hashes()[0];
       for (auto [ox, oy] : {std::pair{-150, -40}, std::pair{-1000003, 999979}, std::pair{2147400000, -2147400000}}) {
         r->set_origin(ox, oy);
@@ -155,23 +151,62 @@ TEST(GlslSampler, LatticeHashIsBitIdenticalToTheCpp) {
     }
 }
 
-TEST(GlslSampler, VirtualTilesEqualTheCppDirectTiling) {
-  for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
-    const TextureAtlas& atlas = test::grass_atlas(kind);
-    const RenderOptions o{HashKind::LongPeriod, 5, 1, false};
-    std::unique_ptr<GlRenderer> r;
-    SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{200, 100, 1, 0, 0, 0}, o, GlslMode::TileIndex));
-    r->set_origin(-100, -37);
-    r->draw();
-    const Image img = r->read();
-    const VirtualTiling tiling(kind, 2, HashKind::LongPeriod, 5);
+// The one direct stochastic tiling four ways on a window: the C++ class (random access and row
+// fill), the atlas lookup's CPU reference (virtual_to_atlas), the atlas lookup's GLSL snippet
+// (`atlas lookup --format glsl`, tables inline) and the renderer's GLSL (tables as uniforms), both
+// run through EGL: the same tile at every (x, y), for closed-form and stored packings, corner and
+// Wang, both hashes.
+TEST(DirectTiling, CppAtlasLookupAndGlslAgreeTileForTileOnAWindow) {
+  const int w = 72, h = 40;
+  struct Case {
+    TileKind kind;
+    std::uint32_t c;
+    HashKind hash;
+    int ox, oy;
+  };
+  for (auto [kind, c, hash, ox, oy] : {Case{TileKind::Corner, 3, HashKind::Permutation, -40, -23},
+                                       Case{TileKind::Corner, 3, HashKind::LongPeriod, 5003, -70001},
+                                       Case{TileKind::Corner, 4, HashKind::LongPeriod, -40, -23},
+                                       Case{TileKind::Corner, 4, HashKind::Permutation, 5003, -70001},
+                                       Case{TileKind::Wang, 3, HashKind::LongPeriod, -40, -23},
+                                       Case{TileKind::Wang, 3, HashKind::Permutation, 5003, -70001}}) {
+    const std::string what = fmt::format("{} C={} {} origin {},{}", kind_name(kind), c, hash_kind_name(hash), ox, oy);
+    const AtlasLookup lookup = atlas_lookup(kind, c, {});
+    const DirectTiling tiling(kind, c, hash, 11);
+    std::vector<TileIndex> truth(std::size_t(w) * h);
+    tiling.fill(ox, oy, h, w, truth.data());
+    // The lookup snippet: the atlas cell of each tile's centre, as 4 bytes.
+    const std::string shader =
+        "#version 300 es\nprecision highp float;\nprecision highp int;\nout vec4 tk_out;\n" +
+        lookup_glsl(lookup, tiling) +
+        fmt::format(
+            "void main() {{\n"
+            "  ivec2 p = ivec2(int(gl_FragCoord.x), {} - int(gl_FragCoord.y)) + ivec2({}, {});\n"
+            "  ivec2 cell = ivec2(floor(tk_atlas_coord(vec2(p) + 0.5) * vec2(TK_COLS, TK_ROWS)));\n"
+            "  tk_out = vec4(cell.x & 255, cell.x >> 8, cell.y & 255, cell.y >> 8) / 255.0;\n"
+            "}}\n",
+            h - 1, ox, oy);
+    Image snippet;
+    SKIP_WITHOUT_EGL(snippet = run_fragment_shader(shader, w, h));
+    // The renderer's sampler (tables as uniforms), tile indices.
+    const TextureAtlas atlas{lookup, 4, mip_chain(Image(lookup.cols * 4, lookup.rows * 4), MipEdge::Wrap), ""};
+    GlRenderer r(atlas, View{w, h, 1, 0, 0, 0}, {hash, 11, 1, false}, GlslMode::TileIndex);
+    r.set_origin(ox, oy);
+    r.draw();
+    const Image indices = r.read();
     int wrong = 0;
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) {
-        const std::uint8_t* p = img.at(x, y);
-        wrong += TileIndex(p[0] | p[1] << 8 | p[2] << 16 | p[3] << 24) != tiling.tile(x - 100, y - 37);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const TileIndex t = truth[std::size_t(y) * w + std::size_t(x)];
+        const std::uint8_t *p = snippet.at(x, y), *q = indices.at(x, y);
+        const auto [s, tt] = virtual_to_atlas(lookup, tiling, ox + x + 0.5, oy + y + 0.5);
+        const int col = int(s * lookup.cols), row = int(tt * lookup.rows);
+        wrong += tiling.tile(ox + x, oy + y) != t;
+        wrong += lookup.cells[std::size_t(row) * std::size_t(lookup.cols) + std::size_t(col)] != t;
+        wrong += lookup.cells[std::size_t(p[2] | p[3] << 8) * std::size_t(lookup.cols) + (p[0] | p[1] << 8)] != t;
+        wrong += TileIndex(q[0] | q[1] << 8 | q[2] << 16 | q[3] << 24) != t;
       }
-    EXPECT_EQ(wrong, 0) << kind_name(kind);
+    EXPECT_EQ(wrong, 0) << what;
   }
 }
 

@@ -1,4 +1,4 @@
-// Seams of rendered tilings of real textures (issue 13): the mean step across tile borders of a
+// Seams of rendered tilings of real textures: the mean step across tile borders of a
 // 32x32-tile render over the mean step inside tiles stays within 1.10 for corner and Wang tiles
 // (C = 2, 64 px) of grass, gravel and brick, where abutting random squares of the same textures
 // does not. Below 0.8 would mean borders blander than the texture (seams hidden, not matched).

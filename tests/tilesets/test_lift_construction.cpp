@@ -1,4 +1,4 @@
-// Colour-quotient lifts (issue 11): the lift theorem against the independent validator, the
+// Colour-quotient lifts: the lift theorem against the independent validator, the
 // binary lift construction, and corner packings for every C from 2 to 32 without search.
 #include <gtest/gtest.h>
 

@@ -1,0 +1,59 @@
+#pragma once
+// Anisotropic filtering, the footprint rule of EXT_texture_filter_anisotropic as GPUs implement
+// it: a pixel's footprint in the texture is spanned by its two screen derivatives; its longer
+// axis (major) is covered by N trilinear taps, N = ceil(major / minor) up to the maximum
+// anisotropy (16 on GPUs), evenly spaced along that axis, each at the level of detail of
+// major / N instead of major. A surface seen at a grazing angle is then filtered over its short
+// axis only as much as needed, instead of being blurred to the long axis' level.
+//
+// Both renderers evaluate exactly this: the CPU one through anisotropic_footprint and tap_offset
+// below, the shaders through the text of anisotropic_glsl(), with the same float operations (no
+// division, no transcendental function except the log2 of the level of detail, which only
+// moves the trilinear weights) and the tap offsets in the fixed point of texture/view.hpp, in
+// integers, so that every tap of a pixel lands in the same tile in both.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "texture/view.hpp"
+
+namespace tilekit {
+
+inline constexpr int kMaxAnisotropy = 16;
+
+struct Footprint {
+  int taps = 1;                         // N
+  float lod = 0;                        // lambda of every tap: log2(tile_px * major / N)
+  std::int32_t axis_u = 0, axis_v = 0;  // the major axis in tiles, fixed point (kFracBits)
+};
+
+// The footprint of a pixel with derivatives (dudx, dvdx) and (dudy, dvdy) in tiles per pixel.
+// max_aniso 1 is trilinear filtering (one tap at log2(tile_px * major), OpenGL's lambda).
+inline Footprint anisotropic_footprint(float dudx, float dvdx, float dudy, float dvdy, int tile_px, int max_aniso) {
+  const float lx = std::sqrt(dudx * dudx + dvdx * dvdx), ly = std::sqrt(dudy * dudy + dvdy * dvdy);
+  const float major = std::max(lx, ly), minor = std::min(lx, ly);
+  Footprint f;
+  while (f.taps < max_aniso && float(f.taps) * minor < major) ++f.taps;
+  f.lod = std::log2(float(tile_px) * major / float(f.taps));
+  if (f.taps > 1) {  // the axis in fixed point, bounded so that tap_offset stays within 32 bits
+    auto fixed = [](float a) { return std::int32_t(std::floor(std::clamp(a, -256.0f, 256.0f) * 65536.0f + 0.5f)); };
+    f.axis_u = fixed(lx >= ly ? dudx : dudy);
+    f.axis_v = fixed(lx >= ly ? dvdx : dvdy);
+  }
+  return f;
+}
+
+// Offset of tap i of n along one fixed-point axis component a: round(a (2i + 1 - n) / (2n)),
+// computed on magnitudes (GLSL leaves the integer division of negative numbers undefined).
+inline std::int32_t tap_offset(std::int32_t a, int i, int n) {
+  const std::int32_t m = 2 * i + 1 - n, q = ((a < 0 ? -a : a) * (m < 0 ? -m : m) + n) / (2 * n);
+  return (a < 0) != (m < 0) ? -q : q;
+}
+
+// The same two functions in GLSL ES 3.0 (TK_TILE_PX must be defined):
+//   void tk_footprint(vec2 dx, vec2 dy, int max_aniso, out int taps, out float lod, out ivec2 axis);
+//   int tk_tap_offset(int a, int i, int n);
+std::string anisotropic_glsl();
+
+}  // namespace tilekit
