@@ -44,6 +44,28 @@ TileSet fuse(const std::vector<WangTile>& w) {
   return TileSet::wang(std::move(out));
 }
 
+// The Wang tiles as pegs: corner tile (a, b / c, d) for every 2x2 block of tiles whose four inner
+// edges match. Why `conjugate`: a colouring of the pegs all of whose 2x2 windows are such blocks
+// is a Wang tiling (each pair of neighbours lies in some window), a Wang tiling gives such a
+// colouring, cell for peg, and both maps commute with translations. Nullopt past max_tiles.
+std::optional<TileSet> blocks(const std::vector<WangTile>& w, std::size_t max_tiles = 100000) {
+  std::vector<CornerTile> out;
+  for (Colour a = 0; a < w.size(); ++a)
+    for (Colour b = 0; b < w.size(); ++b) {
+      if (w[a].e != w[b].w) continue;
+      for (Colour c = 0; c < w.size(); ++c) {
+        if (w[a].s != w[c].n) continue;
+        for (Colour d = 0; d < w.size(); ++d)
+          if (w[c].e == w[d].w && w[b].s == w[d].n) {
+            if (out.size() == max_tiles) return std::nullopt;
+            out.push_back({b, d, c, a});
+          }
+      }
+    }
+  if (out.empty()) return std::nullopt;
+  return TileSet::corner(std::move(out));
+}
+
 std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
   const bool wang = set.kind() == TileKind::Wang;
   auto convert_with = [&](ConversionSpec spec) -> std::optional<StepResult> {
@@ -60,6 +82,14 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
   if (op == "rotation") return convert_with({ConversionMethod::Rotation, {}, -1});
   if (op == "subdivision") return convert_with({ConversionMethod::Subdivision, {}, -1});
   if (op == "subdivision+merge-centres") return convert_with({ConversionMethod::Subdivision, {true, false}, -1});
+  if (op == "blocks") {
+    if (!wang) return std::nullopt;
+    std::optional<TileSet> b = blocks(set.wang_tiles());
+    if (!b) return std::nullopt;
+    return StepResult{*b, "conjugate",
+                      "pegs are the Wang tiles, corner tiles the 2x2 blocks whose inner edges match: a colouring "
+                      "by such blocks is a Wang tiling, cell for peg"};
+  }
   if (op == "to-wang") {
     if (wang) return std::nullopt;
     LabelledConversion c = build_conversion(set, {ConversionMethod::ToWang, {}, -1});
@@ -94,10 +124,19 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
 }  // namespace
 
 const std::vector<std::string>& step_operations() {
-  static const std::vector<std::string> ops = {"prune",      "prune-strips",     "to-wang",
-                                               "horizontal", "horizontal+prune", "rotation",
-                                               "diagonal",   "subdivision",      "subdivision+merge-centres",
-                                               "fuse",       "merge-colours",    "merge-colours-lifts"};
+  static const std::vector<std::string> ops = {"prune",
+                                               "prune-strips",
+                                               "to-wang",
+                                               "horizontal",
+                                               "horizontal+prune",
+                                               "rotation",
+                                               "blocks",
+                                               "diagonal",
+                                               "subdivision",
+                                               "subdivision+merge-centres",
+                                               "fuse",
+                                               "merge-colours",
+                                               "merge-colours-lifts"};
   return ops;
 }
 

@@ -16,6 +16,7 @@
 //   thesis 8.3; `horizontal` of a set turned a quarter is the thesis' vertical translation),
 //   horizontal+prune (the translation pruned, labelled by the lift check of the pruned rows),
 //   to-wang (corner -> Wang, thesis 8.4), fuse (Wang: horizontal dominoes as tiles),
+//   blocks (Wang -> corner: the Wang tiles as pegs, the matching 2x2 blocks as corner tiles),
 //   prune (surround radius 3 and transducer SCCs), prune-strips (aperiodic/prune.hpp, k <= 3),
 //   merge-colours and merge-colours-lifts (corner: the least set reached by colour merges checked
 //   by a recovery map, aperiodic/colour_merge.hpp; the first keeps only merges that prove a

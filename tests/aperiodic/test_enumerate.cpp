@@ -74,7 +74,8 @@ TEST(Canonical, FourQuarterTurnsAreTheIdentityAndAMirrorIsItsOwnInverse) {
 // steps.hpp applies most operations to one image only: this checks the claims it rests on.
 TEST(Steps, OperationsCommuteWithTheSymmetriesTheSearchLeavesOut) {
   TileSet jr = resolve_tile_set("jeandel-rao-11-variant-2");
-  for (const char* op : {"prune", "prune-strips", "rotation", "subdivision", "diagonal", "horizontal", "fuse"}) {
+  for (const char* op :
+       {"prune", "prune-strips", "rotation", "blocks", "subdivision", "diagonal", "horizontal", "fuse"}) {
     const std::vector<std::string> tried = symmetries_for(op);
     auto hash_of = [&](const std::string& step) {
       auto r = apply_step(jr, step);
@@ -82,7 +83,8 @@ TEST(Steps, OperationsCommuteWithTheSymmetriesTheSearchLeavesOut) {
     };
     std::set<std::string> covered;
     for (const std::string& g : tried) covered.insert(hash_of(g == "id" ? op : g + ":" + op));
-    for (const Dihedral& g : Dihedral::all()) EXPECT_TRUE(covered.count(hash_of(g.name() + ":" + op))) << op << " " << g.name();
+    for (const Dihedral& g : Dihedral::all())
+      EXPECT_TRUE(covered.count(hash_of(g.name() + ":" + op))) << op << " " << g.name();
   }
 }
 
@@ -99,6 +101,18 @@ TEST(Steps, LabelsAndBadSteps) {
   auto fused = apply_step(jr, "fuse");
   ASSERT_TRUE(fused);
   EXPECT_EQ(fused->label, "lifts");
+  // blocks: one corner tile per 2x2 block of Wang tiles whose inner edges match (85 for this set),
+  // and back to Wang tiles one for one.
+  auto blocks = apply_step(jr, "blocks");
+  ASSERT_TRUE(blocks);
+  EXPECT_EQ(blocks->label, "conjugate");
+  EXPECT_EQ(blocks->set.size(), 85u);
+  EXPECT_FALSE(apply_step(blocks->set, "blocks"));
+  // Two tiles that sit beside themselves only and above each other freely: a row of one over a
+  // row of either, 4 blocks.
+  const TileSet two = TileSet::wang({{0, 1, 0, 1}, {0, 0, 0, 0}});
+  ASSERT_TRUE(apply_step(two, "blocks"));
+  EXPECT_EQ(apply_step(two, "blocks")->set.size(), 4u);
   EXPECT_THROW(apply_step(jr, "squash"), InputError);
   EXPECT_THROW(apply_step(jr, "rot45:rotation"), InputError);
   EXPECT_TRUE(sound_label("prune"));
