@@ -102,7 +102,7 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
   }
   if (op == "merge-colours" || op == "merge-colours-lifts") {
     if (wang) return std::nullopt;
-    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", 2);
+    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", 1, 1);
     if (m.merges.empty()) return std::nullopt;
     return StepResult{TileSet::corner(m.tiles, set.name(), set.source()), m.conjugate ? "conjugate" : "lifts",
                       m.argument()};

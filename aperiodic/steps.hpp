@@ -19,8 +19,8 @@
 //   blocks (Wang -> corner: the Wang tiles as pegs, the matching 2x2 blocks as corner tiles),
 //   prune (surround radius 3 and transducer SCCs), prune-strips (aperiodic/prune.hpp, k <= 3),
 //   merge-colours and merge-colours-lifts (corner: the least set reached by colour merges checked
-//   by a recovery map, aperiodic/colour_merge.hpp; the first keeps only merges that prove a
-//   conjugacy, the second also those whose tilings only lift).
+//   by a recovery map of radius 1 on patches with a margin of at most 1, aperiodic/colour_merge.hpp;
+//   the first keeps only merges that prove a conjugacy, the second also those whose tilings only lift).
 #include <optional>
 #include <string>
 #include <vector>
