@@ -132,3 +132,16 @@ TEST(ColourMerge, MergeThatLosesInformationIsRefused) {
   EXPECT_FALSE(merge_colours(sorted(diag), 0, 2, true, 1).has_value());
   EXPECT_FALSE(merge_colours(sorted(diag), 0, 2, true, 2).has_value());
 }
+
+TEST(ColourMerge, BlocksPruneMergeGivesTheSmallestSoundSet) {
+  // The chain the enumeration's best set comes from: every link sound, 26 tiles over 4 colours.
+  TileSet s = resolve_tile_set("jeandel-rao-11-variant-2");
+  for (const char* step : {"blocks", "prune", "merge-colours"}) {
+    auto r = apply_step(s, step);
+    ASSERT_TRUE(r) << step;
+    EXPECT_TRUE(sound_label(r->label)) << step;
+    s = r->set;
+  }
+  EXPECT_EQ(s.kind(), TileKind::Corner);
+  EXPECT_EQ(s.size(), 26u);
+}
