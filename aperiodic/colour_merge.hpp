@@ -18,7 +18,8 @@
 //   - pi(phi(c)) = c for every tiling c of R' (phi only puts x or y where c has x), so pi maps the
 //     tilings of R onto those of R', and a periodic tiling c of R' gives the periodic tiling phi(c)
 //     of R (phi commutes with translations): label `lifts`; R' is aperiodic when R is;
-//   - if moreover every V(Q) has one member, then phi(pi(t)) = t for every tiling t of R (the
+//   - if moreover every V(Q) met in the check has one member, then phi(pi(t)) = t for every
+//     tiling t of R (pi(t) is a tiling of R', so its neighbourhoods are met in the check; the
 //     patch of t around a peg is one of the middles V(Q) was computed from, so t's colour is the
 //     only member), and pi is a bijection whose inverse phi is a sliding block code: label
 //     `conjugate`.
