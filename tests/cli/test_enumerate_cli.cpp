@@ -20,9 +20,31 @@ namespace fs = std::filesystem;
 namespace {
 
 std::vector<std::string> run_args(const std::string& ck, const std::string& db, const std::string& shard = "0/1") {
-  std::vector<std::string> a{"aperiodic", "enumerate", "--max-depth", "3",          "--max-tiles", "60",
-                             "--threads", "2",         "--shard",     shard,        "--checkpoint-every", "0",
-                             "--checkpoint", ck,       "--db",        db,           "--quiet",     "--json"};
+  // Two sources, depth 2: a run of seconds (the colour merges make deeper runs minutes long).
+  std::vector<std::string> a{"aperiodic",
+                             "enumerate",
+                             "--source",
+                             "jeandel-rao-11-variant-2",
+                             "--source",
+                             "labbe-19",
+                             "--max-depth",
+                             "2",
+                             "--max-tiles",
+                             "40",
+                             "--batch",
+                             "2",
+                             "--threads",
+                             "2",
+                             "--shard",
+                             shard,
+                             "--checkpoint-every",
+                             "0",
+                             "--checkpoint",
+                             ck,
+                             "--db",
+                             db,
+                             "--quiet",
+                             "--json"};
   if (fs::exists(ck)) a.insert(a.end(), {"--resume", ck});
   return a;
 }
@@ -137,7 +159,8 @@ TEST(EnumerateShards, ShardDatabasesMergeToTheWholeRun) {
   std::vector<std::string> inputs;
   for (int i = 0; i < 3; ++i) {
     const std::string db = d / ("shard" + std::to_string(i) + ".sqlite");
-    pid_t pid = spawn_tilekit(run_args(d / ("ck" + std::to_string(i)), db, std::to_string(i) + "/3"), d / "out", d / "err");
+    pid_t pid =
+        spawn_tilekit(run_args(d / ("ck" + std::to_string(i)), db, std::to_string(i) + "/3"), d / "out", d / "err");
     ASSERT_EQ(wait_exit(pid), 0) << slurp(d / "err");
     inputs.push_back(db);
   }
@@ -169,7 +192,8 @@ TEST(EnumerateCli, BadInputIsExit2) {
 }
 
 TEST(EnumerateCli, TheSmallestSetsChainLinksReplayWithTheirCheckCommands) {
-  CliResult r = run_cli("aperiodic enumerate --source jeandel-rao-11-variant-2 --max-depth 2 --max-tiles 40 --quiet --json");
+  CliResult r =
+      run_cli("aperiodic enumerate --source jeandel-rao-11-variant-2 --max-depth 2 --max-tiles 40 --quiet --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.contains("smallest"));
