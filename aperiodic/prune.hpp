@@ -44,6 +44,20 @@ std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& tiles, b
 Soundness after_pruning(Soundness s, const PruneReport& r);
 
 PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius);
+
+// Strip pruning (aperiodic/strip_prune.cpp), the transducer-SCC filter for strips of k rows: a
+// tile survives when it lies in the top row (bottom row, leftmost or rightmost column) of a
+// periodic strip of k rows (columns), i.e. on a cycle of T_{k-1} composed with the row transducer
+// (aperiodic/chain.hpp). A periodic tiling is made of periodic strips, so it keeps every periodic
+// tiling; and a strip of an arbitrary tiling is a path that leaves a strongly connected component
+// of that product at most c - 1 times (c components), so each row holds at most c - 1 removed
+// tiles and the compactness argument above keeps tileability. k = 1 is the SCC filter. Levels are
+// built while their product has at most max_transitions transitions.
+std::vector<std::size_t> in_periodic_strips(const std::vector<WangTile>& tiles, int k, bool columns, bool top,
+                                            std::size_t max_transitions = 2000000);
+// Repeats the strip filter for k = 1..max_k in all four directions until nothing changes.
+PruneReport prune_strips_wang(const std::vector<WangTile>& tiles, int max_k, std::size_t max_transitions = 2000000);
+TileSet prune_strips(const TileSet& set, int max_k, PruneReport* report = nullptr);
 // Prunes a Wang or corner set; the result keeps the surviving tiles in their order.
 TileSet prune(const TileSet& set, int radius, PruneReport* report = nullptr);
 

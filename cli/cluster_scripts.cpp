@@ -166,6 +166,7 @@ std::string pack_array_script(const ClusterPlan& p) {
           "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n");
   s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
   s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
+  s += bash_array("COMMAND", p.command);
   s += bash_array("PACK_ARGS", p.pack_args);
   s += "\n" + body("pack-array");
   return s;

@@ -15,7 +15,8 @@ struct ClusterPlan {
   std::string tilekit;                 // absolute path of the binary the jobs run (default_job_binary)
   std::string run_dir;                 // absolute; on the filesystem shared by the nodes
   std::string job_name;                // squeue's name; the merge job adds "-merge"
-  std::vector<std::string> pack_args;  // `tilekit pack` arguments common to every shard
+  std::vector<std::string> command{"pack"};  // the shard command: pack, or aperiodic enumerate
+  std::vector<std::string> pack_args;  // the shard command's arguments common to every shard
   int shards = 1;
   int cpus_per_task = 1;
   std::string time = "1:00:00";        // Slurm time of one attempt, as the user wrote it

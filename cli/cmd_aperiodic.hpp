@@ -16,5 +16,6 @@ std::string repeated_text(const std::vector<RepeatedTile>& r);
 
 void add_aperiodic_table_command(CLI::App* aperiodic, Context& ctx);
 void add_aperiodic_verify_command(CLI::App* aperiodic, Context& ctx);
+void add_aperiodic_enumerate_commands(CLI::App* aperiodic, Context& ctx);
 
 }  // namespace tilekit::cli

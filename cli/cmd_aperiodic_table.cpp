@@ -3,10 +3,16 @@
 // whose aperiodicity follows from a sound chain. tilekit aperiodic smallest: that set alone.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <stdexcept>
+#include <tuple>
+
+#include "aperiodic/conversion_graph.hpp"
 #include "aperiodic/json.hpp"
 #include "aperiodic/smallest.hpp"
 #include "aperiodic/table_checks.hpp"
 #include "base/atomic_file.hpp"
+#include "base/error.hpp"
 #include "cli/cmd_aperiodic.hpp"
 #include "tilesets/tile_set_io.hpp"
 
@@ -137,13 +143,56 @@ void run_table_command(const TableArgs& a, const Context& ctx) {
   });
 }
 
+// The least corner set over every published source's sound chains in a database.
+void print_stored_smallest(const Context& ctx, const std::string& path, const VerifyOptions& vo, const std::string& out) {
+  ResultsDb rdb(path, DbOpenOptions{.create = false, .read_only = true});
+  const ConversionGraph g = load_conversion_graph(rdb);
+  std::vector<SourceBest> all = smallest_per_source(g);
+  if (all.empty()) throw NotFound(fmt::format("{} holds no corner set with a sound chain from a published source", path));
+  const SourceBest& b = *std::min_element(all.begin(), all.end(), [](const SourceBest& x, const SourceBest& y) {
+    return std::tie(x.best.tiles, x.best.colours, x.best.hash) < std::tie(y.best.tiles, y.best.colours, y.best.hash);
+  });
+  TileSet last;
+  std::vector<ReplayedLink> links = replay_chain(b.source, b.chain.steps(), &last);  // re-derived, not trusted
+  if (links.back().hash != b.best.hash) throw std::logic_error("the stored chain does not re-derive its set");
+  nlohmann::json chain = nlohmann::json::array();
+  std::vector<std::string> steps;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (i > 0) steps.push_back(links[i].step);
+    chain.push_back({{"step", links[i].step}, {"label", links[i].label}, {"set", links[i].hash}, {"tiles", links[i].tiles},
+                     {"colors", links[i].colours}, {"kind", std::string(kind_name(links[i].kind))},
+                     {"argument", links[i].argument},
+                     {"check", i == 0 ? fmt::format("tilekit tileset show {} --json", b.source)
+                                      : link_check_command(b.source, steps)}});
+  }
+  VerifyResult v = verify_for_table(last, vo, false);
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t k = 0; k < last.size(); ++k) list.push_back(last.file_colours(k));
+  nlohmann::json j = {{"name", last.name()}, {"tiles", last.size()}, {"colors", last.colours()}, {"source", b.source},
+                      {"chain", chain}, {"verify", verify_json(v)}, {"format", "nw ne sw se"}, {"list", list},
+                      {"db", path}};
+  if (!out.empty()) write_file_atomic(out, format_tile_set_text(last)), j["out"] = out;
+  emit(ctx, j, [&] {
+    fmt::print("The smallest corner set with a sound chain in {}: {} tiles, {} colours (from {})\n", path, last.size(),
+               last.colours(), b.source);
+    for (const auto& l : chain)
+      fmt::print("  {} -> {} tiles [{}]: {}\n", l["step"].get<std::string>(), l["tiles"].get<std::size_t>(),
+                 l["label"].get<std::string>(), l["check"].get<std::string>());
+    fmt::print("Check: `aperiodic verify` finds {}.\n\n{}", verdict_text(v), format_tile_set_text(last));
+  });
+}
+
 struct SmallestArgs {
   int prune_radius = 3;
   VerifyOptions vo;
-  std::string out;
+  std::string out, db;
 };
 
 void run_smallest_command(const SmallestArgs& a, const Context& ctx) {
+  if (!a.db.empty()) {
+    print_stored_smallest(ctx, a.db, a.vo, a.out);
+    return;
+  }
   CornerSetCandidate best = smallest_aperiodic_corner_set(a.prune_radius);
   VerifyResult v = verify_for_table(best.set, a.vo, false);
   nlohmann::json j = smallest_json(best, v);
@@ -161,6 +210,9 @@ void add_smallest_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--max-period", a->vo.max_period, "verify: the torus search up to this period (default 8)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", a->out, "Write the set as a tile-set file (atomically)");
+  cmd->add_option("--db", a->db,
+                  "Read the best sound chain from this database (what `aperiodic enumerate --db` stored) instead of "
+                  "the built-in chains");
   add_json_flag(cmd, ctx);
   cmd->callback([a, &ctx] { run_smallest_command(*a, ctx); });
 }

@@ -29,6 +29,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct SubmitArgs {
+  std::string command = "pack";  // or "enumerate": tilekit aperiodic enumerate
   std::string kind, method, mode = "all", run_dir, tilekit, job_name, sbatch = "sbatch";
   int colors = 0;
   std::string seed;
@@ -90,17 +91,29 @@ nlohmann::json member(const std::optional<nlohmann::json>& j, const char* key, b
 
 ClusterPlan make_plan(const SubmitArgs& o) {
   ClusterPlan p = o.plan;
-  if (o.kind != "wang" && o.kind != "corner" && o.kind != "window")
-    throw InputError("--kind must be wang, corner or window");
-  const bool has_window = std::any_of(o.pack_extra.begin(), o.pack_extra.end(),
-                                      [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
-  if (o.kind == "window" && !has_window)
-    throw InputError("--kind window needs --pack-arg=--window=KxL (and --pack-arg=--size=RxS)");
-  if (o.colors < 1) throw InputError("--colors must be at least 1");
-  p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
-  if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
-  p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
-  if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
+  const bool enumerate = o.command == "enumerate";
+  if (enumerate) {
+    // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
+    // with --pack-arg.
+    if (!o.kind.empty() || o.colors != 0 || !o.method.empty() || !o.seed.empty())
+      throw InputError("--command enumerate takes no --kind, --colors, --method or --seed (use --pack-arg)");
+    p.command = {"aperiodic", "enumerate"};
+    p.pack_args.clear();
+  } else if (o.command == "pack") {
+    if (o.kind != "wang" && o.kind != "corner" && o.kind != "window")
+      throw InputError("--kind must be wang, corner or window");
+    const bool has_window = std::any_of(o.pack_extra.begin(), o.pack_extra.end(),
+                                        [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
+    if (o.kind == "window" && !has_window)
+      throw InputError("--kind window needs --pack-arg=--window=KxL (and --pack-arg=--size=RxS)");
+    if (o.colors < 1) throw InputError("--colors must be at least 1");
+    p.pack_args = {"--kind", o.kind, "--colors", std::to_string(o.colors)};
+    if (!o.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", o.method});
+    p.pack_args.insert(p.pack_args.end(), {"--mode", o.mode});
+    if (!o.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", o.seed});
+  } else {
+    throw InputError(fmt::format("--command must be pack or enumerate, got '{}'", o.command));
+  }
   for (const auto& a : o.pack_extra) {
     for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
                             "--portfolio-stats"})
@@ -108,8 +121,9 @@ ClusterPlan make_plan(const SubmitArgs& o) {
         throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);
   }
-  const std::string run_dir =
-      o.run_dir.empty() ? fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode) : o.run_dir;
+  const std::string run_dir = !o.run_dir.empty() ? o.run_dir
+                              : enumerate        ? std::string("tilekit-run-enumerate")
+                                                 : fmt::format("tilekit-run-{}{}-{}", o.kind, o.colors, o.mode);
   p.run_dir = fs::absolute(run_dir).lexically_normal().string();
   if (p.run_dir.size() > 1 && p.run_dir.back() == '/') p.run_dir.pop_back();
   if (o.tilekit.empty()) {
@@ -120,7 +134,9 @@ ClusterPlan make_plan(const SubmitArgs& o) {
     if (!fs::is_regular_file(p.tilekit) || ::access(p.tilekit.c_str(), X_OK) != 0)
       throw InputError(fmt::format("--tilekit {}: not an executable file", o.tilekit));
   }
-  p.job_name = o.job_name.empty() ? fmt::format("tk-{}{}", o.kind, o.colors) : o.job_name;
+  p.job_name = !o.job_name.empty() ? o.job_name
+               : enumerate           ? std::string("tk-enumerate")
+                                     : fmt::format("tk-{}{}", o.kind, o.colors);
   p.merge_time = o.merge_time.empty() ? p.time : o.merge_time;
   p.signal_seconds = o.signal_seconds > 0 ? o.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
   check_plan(p);
@@ -129,7 +145,8 @@ ClusterPlan make_plan(const SubmitArgs& o) {
 
 nlohmann::json run_record(const ClusterPlan& p) {
   return {{"format", "tilekit-cluster-run"}, {"version", 1},         {"tilekit", p.tilekit},
-          {"shards", p.shards},              {"pack_args", p.pack_args}, {"cpus_per_task", p.cpus_per_task},
+          {"shards", p.shards},              {"command", p.command},     {"pack_args", p.pack_args},
+          {"cpus_per_task", p.cpus_per_task},
           {"time", p.time},                  {"signal_seconds", p.signal_seconds},
           {"max_requeues", p.max_requeues},  {"checkpoint_every", p.checkpoint_every},
           {"partition", p.partition},        {"submissions", nlohmann::json::array()}};
@@ -247,7 +264,7 @@ nlohmann::json checkpoint_progress(const fs::path& file, int i, int n) {
 }
 
 // Per-shard state from the files the job script writes (pack-array.body.sh).
-nlohmann::json shard_status(const fs::path& shards, int i, int n) {
+nlohmann::json shard_status(const fs::path& shards, int i, int n, bool pack) {
   auto f = [&](const char* ext) { return shards / fmt::format("shard-{}{}", i, ext); };
   nlohmann::json s = {{"shard", i}};
   int attempts = 0, interrupted = 0;
@@ -275,7 +292,8 @@ nlohmann::json shard_status(const fs::path& shards, int i, int n) {
   if (has_ckpt) {
     auto age = fs::file_time_type::clock::now() - fs::last_write_time(f(".ckpt"));
     s["checkpoint_age_seconds"] = std::chrono::duration_cast<std::chrono::seconds>(age).count();
-    s["progress"] = checkpoint_progress(f(".ckpt"), i, n);
+    s["progress"] = pack ? checkpoint_progress(f(".ckpt"), i, n)
+                         : nlohmann::json{{"error", "an enumerate checkpoint (progress lines: the shard's log)"}};
   } else {
     s["checkpoint_age_seconds"] = nullptr;
     s["progress"] = nullptr;
@@ -292,7 +310,8 @@ void run_status(const StatusArgs& a, const Context& ctx) {
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
   for (int i = 0; i < shards; ++i) {
-    auto s = shard_status(dir / "shards", i, shards);
+    auto s = shard_status(dir / "shards", i, shards,
+                          run->value("command", nlohmann::json::array({"pack"})) == nlohmann::json::array({"pack"}));
     counts[s["state"].get<std::string>()]++;
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);
@@ -350,14 +369,14 @@ void add_submit(CLI::App& cluster, Context& ctx) {
       "submit",
       "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
   auto a = std::make_shared<SubmitArgs>();
-  cmd->add_option("--kind", a->kind,
-                  "Tile kind: wang, corner or window (de Bruijn tori: --pack-arg=--window=KxL --pack-arg=--size=RxS)")
-      ->required();
-  cmd->add_option("--colors", a->colors, "Number of colours C")->required();
+  cmd->add_option("--command", a->command, "The shard command: pack (default) or enumerate (aperiodic enumerate)");
+  cmd->add_option("--kind", a->kind, "pack: tile kind, wang, corner or window (de Bruijn tori: --pack-arg=--window=KxL --pack-arg=--size=RxS; required)");
+  cmd->add_option("--colors", a->colors, "pack: number of colours C (required)");
   cmd->add_option("--method", a->method, "Passed to pack: auto, search or construct");
   cmd->add_option("--mode", a->mode, "Passed to pack: first, count or all")->capture_default_str();
   cmd->add_option("--seed", a->seed, "Passed to pack");
-  cmd->add_option("--pack-arg", a->pack_extra, "Another `tilekit pack` argument for every shard (repeatable)");
+  cmd->add_option("--pack-arg", a->pack_extra,
+                  "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
   cmd->add_option("--shards", a->plan.shards, "Number of shards = array tasks")->required();
   cmd->add_option("--cpus-per-task", a->plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
   cmd->add_option("--time", a->plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")

@@ -337,6 +337,7 @@ void add_db_commands(CLI::App& app, Context& ctx) {
   add_export(*db, ctx);
   add_merge(*db, ctx);
   add_add(*db, ctx);
+  add_db_chain_commands(*db, ctx);
 }
 
 }  // namespace tilekit::cli

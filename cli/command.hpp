@@ -30,6 +30,8 @@ void add_tileset_commands(CLI::App& app, Context& ctx);
 void add_check_command(CLI::App& app, Context& ctx);
 void add_pack_command(CLI::App& app, Context& ctx);
 void add_db_commands(CLI::App& app, Context& ctx);
+// `db smallest` and `db chains` (cmd_db_chains.cpp), added by add_db_commands.
+void add_db_chain_commands(CLI::App& db, Context& ctx);
 void add_atlas_commands(CLI::App& app, Context& ctx);
 void add_tile_command(CLI::App& app, Context& ctx);
 void add_analyze_commands(CLI::App& app, Context& ctx);

@@ -16,11 +16,12 @@
 
 int main(int argc, char** argv) {
   using namespace tilekit;
-  // `pack` checkpoints on SIGTERM/SIGINT/SIGUSR1 and exits 3: catch them before anything else,
-  // so that no signal finds the default handler, however early or late it comes.
+  // `pack` and `aperiodic enumerate` checkpoint on SIGTERM/SIGINT/SIGUSR1 and exit 3: catch them
+  // before anything else, so that no signal finds the default handler, however early or late it comes.
   for (int i = 1; i < argc; ++i)
     if (argv[i][0] != '-') {
-      if (std::string_view(argv[i]) == "pack") SignalCatcher::catch_for_process();
+      const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
+      if (cmd == "pack" || (cmd == "aperiodic" && sub == "enumerate")) SignalCatcher::catch_for_process();
       break;
     }
   cli::Context ctx;

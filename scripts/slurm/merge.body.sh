@@ -15,7 +15,9 @@ sum=0
 for ((i = 0; i < SHARDS; i++)); do
   if [ -s "$dir/shard-$i.done.json" ] && [ -s "$dir/shard-$i.sqlite" ]; then
     inputs+=("$dir/shard-$i.sqlite")
-    n=$(grep -o '"solutions":[0-9]*' "$dir/shard-$i.done.json" | head -n 1 | cut -d: -f2)
+    # (no "solutions" in an `aperiodic enumerate` shard's result: grep finds nothing, which must
+    # not end the job under set -e and pipefail)
+    n=$({ grep -o '"solutions":[0-9]*' "$dir/shard-$i.done.json" || true; } | head -n 1 | cut -d: -f2)
     sum=$((sum + ${n:-0}))
   else
     missing+=("$i")
@@ -48,6 +50,10 @@ number() { { grep -o "\"$1\":[0-9]*" "$RUN_DIR/merged.json" || true; } | head -n
 rows=$(number solutions)             # solutions stored, each once (unique by solution hash)
 orbits=$(number distinct_solutions)  # how many of them differ up to symmetry
 echo "tilekit merge: $SHARDS shards merged into $RUN_DIR/merged.sqlite"
+if grep -q '"digest":' "$dir/shard-0.done.json"; then  # aperiodic enumerate: sets and conversions
+  echo "tilekit merge: $(number tilesets) tile sets and $(number conversions) conversions"
+  exit 0
+fi
 echo "tilekit merge: the shards reported $sum solutions in all"
 if [ "${rows:-0}" != "$sum" ]; then
   echo "tilekit merge: note: the database holds ${rows:-?} (a count-only mode stores none; see the shard logs)"

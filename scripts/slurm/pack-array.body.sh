@@ -1,6 +1,7 @@
 # ---- body of the shard array task (scripts/slurm/pack-array.body.sh) ----
 # Expects, set above by `tilekit cluster submit`: TILEKIT (the binary), RUN_DIR (on the shared
-# filesystem), SHARDS, MAX_REQUEUES, CHECKPOINT_EVERY and the array PACK_ARGS.
+# filesystem), SHARDS, MAX_REQUEUES, CHECKPOINT_EVERY and the arrays COMMAND (`pack` or
+# `aperiodic enumerate`) and PACK_ARGS (its arguments).
 #
 # One array task = one shard I of N (I = SLURM_ARRAY_TASK_ID). Each shard owns its files:
 #   RUN_DIR/shards/shard-I.ckpt       checkpoint (written every CHECKPOINT_EVERY s and on a signal)
@@ -71,13 +72,14 @@ if [ -s "$done_file" ]; then
 fi
 
 args=("${PACK_ARGS[@]}" --threads "$OMP_NUM_THREADS" --shard "$shard/$SHARDS"
-      --checkpoint "$ckpt" --checkpoint-every "$CHECKPOINT_EVERY" --db "$db" --portfolio-stats "$stats" --json)
+      --checkpoint "$ckpt" --checkpoint-every "$CHECKPOINT_EVERY" --db "$db" --json)
+[ "${COMMAND[*]}" != pack ] || args+=(--portfolio-stats "$stats")
 resumed=false
 if [ -s "$ckpt" ]; then
   args+=(--resume "$ckpt")
   resumed=true
 fi
-say "starting (resume: $resumed, OMP_NUM_THREADS=$OMP_NUM_THREADS): $TILEKIT pack ${args[*]}"
+say "starting (resume: $resumed, OMP_NUM_THREADS=$OMP_NUM_THREADS): $TILEKIT ${COMMAND[*]} ${args[*]}"
 
 # True once process $1 has handlers for USR1 and TERM (bits 10 and 15 of SigCgt, Linux).
 catches_signals() {
@@ -92,7 +94,7 @@ catches_signals() {
 }
 
 # tilekit runs in the background so that this shell can take Slurm's signals and pass them on.
-"$TILEKIT" pack "${args[@]}" >"$done_file.tmp" &
+"$TILEKIT" "${COMMAND[@]}" "${args[@]}" >"$done_file.tmp" &
 pid=$!
 for ((tries = 0; tries < 200; tries++)); do
   if catches_signals "$pid" || ! kill -0 "$pid" 2>/dev/null; then break; fi

@@ -24,6 +24,8 @@
 #  5. An imposed-group count as an array: the C=3 Wang packings invariant under a
 #     group of order 9, 3 shards, one task requeued mid-search (SIGTERM -> checkpoint -> exit 3
 #     -> Slurm requeues -> resume); the shards' counts add up to an unsharded count.
+#  6. aperiodic enumerate as a 3-shard array, one shard requeued mid-run; the merged
+#     shard databases hold exactly the sets and conversions of an unsharded run.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -301,6 +303,49 @@ for i in 0 1 2; do
   check "group shard $i reports the group (order 9)" grep -q '"order":9' "$run5/shards/shard-$i.done.json"
 done
 log "case 5 took $((SECONDS - t5)) s"
+
+# ---- 6. aperiodic enumerate as a 3-shard array, one shard requeued mid-run: the merged database is
+#      the unsharded run's ----
+log "case 6: aperiodic enumerate, 3 shards, merged against an unsharded run"
+t6=$SECONDS
+ENUM_ARGS=(--max-depth 2 --max-tiles 40)
+"$TK" aperiodic enumerate "${ENUM_ARGS[@]}" --threads 2 --db "$work/enum-whole.sqlite" --quiet --json >/dev/null ||
+  fatal "the unsharded enumerate failed"
+run6=$work/enumerate
+out6=$("$TK" cluster submit --command enumerate --shards 3 --cpus-per-task 1 --time 10 --checkpoint-every 1 \
+  --run-dir "$run6" --pack-arg=--max-depth=2 --pack-arg=--max-tiles=40 --json) || fatal "cluster submit (enumerate) failed"
+array6=$(submitted_id array_job "$out6")
+merge6=$(submitted_id merge_job "$out6")
+[ -n "$array6" ] && [ -n "$merge6" ] || fatal "no job ids in: $out6"
+# One shard is stopped once it catches signals and requeued (SIGTERM -> checkpoint -> exit 3 ->
+# Slurm requeues -> resume), as in case 1.
+requeued6=""
+while [ -z "$requeued6" ] && (($(time_left) > 0)) && [ "$(field "$merge6" Reason)" = Dependency ]; do
+  read -r pid shard < <(searching_tilekits "$run6") || { sleep 0.01; continue; }
+  kill -STOP "$pid"
+  requeued6=$shard
+  jid=$(field "${array6}_$shard" JobId)
+  log "enumerate shard $shard's tilekit (pid $pid) stopped; scontrol requeue $jid (${array6}_$shard)"
+  scontrol requeue "$jid" || fatal "scontrol requeue $jid failed"
+  continue_with_pending "$pid" $TERM_BIT
+done
+[ -n "$requeued6" ] || fatal "could not catch an enumerate shard running"
+state=$(wait_final "$merge6")
+check "the enumerate run's merge job completed ($state)" test "$state" = COMPLETED
+exits=$(attempt_exits "$run6/shards/shard-$requeued6.attempts")
+check "enumerate shard $requeued6 checkpointed and exited 3, then resumed and exited 0 (exits: $exits)" \
+  test "$exits" = "3 0"
+check "enumerate shard $requeued6's last attempt resumed from its checkpoint" \
+  last_attempt_resumed "$run6/shards/shard-$requeued6.attempts"
+check "the merge job counted the sets and conversions" grep -q "tile sets and .* conversions" "$run6"/logs/merge-*.out
+rows() {
+  sqlite3 "$1" "SELECT 'set ' || content_hash FROM tilesets UNION ALL SELECT 'conv ' || s.content_hash || ' ' ||
+    c.method || ' ' || r.content_hash || ' ' || c.soundness FROM conversions c JOIN tilesets s ON s.id = c.source_set
+    JOIN tilesets r ON r.id = c.result_set" | sort
+}
+check "the merged shard databases hold exactly the unsharded run's sets and conversions" \
+  diff <(rows "$run6/merged.sqlite") <(rows "$work/enum-whole.sqlite")
+log "case 6 took $((SECONDS - t6)) s"
 
 # ---- 3. checked now ---------------------------------------------------------------------------
 log "case 3: waiting for the wall-time run ($(time_left) s left)"
