@@ -228,7 +228,9 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
       ->check(CLI::Range(1, 16));
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
-  cmd->footer("Exit codes: 0 done (complete or time limit), 2 bad input or checkpoint, 3 interrupted after a checkpoint.");
+  cmd->footer(
+      "Exit codes: 0 ok (done: complete or time limit), 2 bad input or checkpoint, 3 interrupted after a "
+      "checkpoint.");
   cmd->callback([a, &ctx] { run_enumerate(*a, ctx); });
 
   auto link = std::make_shared<LinkArgs>();

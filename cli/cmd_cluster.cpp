@@ -65,6 +65,7 @@ struct RunFile {
   int shards = 0;
   std::vector<std::string> pack_args;
   nlohmann::json submissions = nlohmann::json::array();
+  bool pack = true;  // the shards run `tilekit pack` (else `aperiodic enumerate`)
 };
 std::optional<RunFile> read_run_file(const fs::path& p) {
   auto doc = read_json(p, "cluster run file");
@@ -78,6 +79,11 @@ std::optional<RunFile> read_run_file(const fs::path& p) {
   if (auto s = j.find("submissions")) {
     s->array();
     r.submissions = s->raw();
+  }
+  if (auto c = j.find("command")) {
+    std::vector<std::string> words;
+    for (std::size_t i = 0, n = c->array(1, 8); i < n; ++i) words.push_back((*c)[i].string(64));
+    r.pack = words == std::vector<std::string>{"pack"};
   }
   return r;
 }
@@ -310,8 +316,7 @@ void run_status(const StatusArgs& a, const Context& ctx) {
   std::map<std::string, int> counts;
   std::uint64_t sum = 0;
   for (int i = 0; i < shards; ++i) {
-    auto s = shard_status(dir / "shards", i, shards,
-                          run->value("command", nlohmann::json::array({"pack"})) == nlohmann::json::array({"pack"}));
+    auto s = shard_status(dir / "shards", i, shards, run->pack);
     counts[s["state"].get<std::string>()]++;
     if (s["solutions"].is_number()) sum += s["solutions"].get<std::uint64_t>();
     list.push_back(s);

@@ -151,9 +151,11 @@ TileSetManifest read_tile_set_manifest(const std::string& dir) {
   // and method disagree was edited, and its tiles would be laid out by the wrong packing.
   if (auto method = j.find("method")) {
     const std::string name = method->string(64);
-    if ((name == "ng-corner" && m.kind != TileKind::Corner) || (name == "cohen-wang" && m.kind != TileKind::Wang))
-      throw method->error(fmt::format("\"{}\" makes {} tiles, but kind is \"{}\"", name,
-                                      name == "ng-corner" ? "corner" : "wang", k));
+    const bool corner = name == "corner-strips" || name == "ng-corner";  // ng-corner, cohen-wang: older tilekits
+    const bool wang = name == "wang-strips" || name == "cohen-wang";
+    if ((corner && m.kind != TileKind::Corner) || (wang && m.kind != TileKind::Wang))
+      throw method->error(
+          fmt::format("\"{}\" makes {} tiles, but kind is \"{}\"", name, corner ? "corner" : "wang", k));
   }
   if (auto tiles = j.find("tiles")) {
     const std::uint64_t want = std::uint64_t(m.colours) * m.colours * m.colours * m.colours;

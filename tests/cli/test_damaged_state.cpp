@@ -242,12 +242,18 @@ TEST(DamagedCheckpoint, ResumeAloneKeepsTheOriginalTimeLimit) {
   EXPECT_EQ(nlohmann::json::parse(open_checkpoint(slurp(c.original), "TILEKIT-CHECKPOINT", kCheckpointVersion,
                                                   kCheckpointVersion, c.original))["request"]["time_limit"],
             0.05);
-  // The stored limit made a millisecond (whatever the machine's speed, the rest of the count
-  // takes longer): resuming alone stops there, --time-limit 0 given again runs to the end.
-  const std::string short_limit = c.edited("short.ckpt", [](nlohmann::json& j) { j["request"]["time_limit"] = 0.001; });
-  const CliResult r = run_cli("pack --resume " + short_limit + " --quiet --json");
+  // A count far longer than its stored limit (the C=3 corner count runs for minutes): resuming
+  // with the checkpoint alone stops at the stored 0.2 s again; --time-limit 0 given again runs to
+  // the end of the Wang count.
+  const std::string longer = c.d / "long.ckpt";
+  ASSERT_EQ(run_cli("pack --kind corner --colors 3 --mode count --threads 1 --quiet --checkpoint " + longer +
+                    " --time-limit 0.2 --db " + c.db)
+                .code,
+            0);
+  const CliResult r = run_cli("pack --resume " + longer + " --quiet --json --db " + c.db);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_FALSE(r.json()["complete"]) << "the stored limit applies again";
+  EXPECT_LT(r.json()["seconds"].get<double>(), 30.0);
   const CliResult all = run_cli("pack --resume " + c.original + " --time-limit 0 --quiet --json");
   ASSERT_EQ(all.code, 0) << all.err;
   EXPECT_EQ(all.json()["solutions"], 203520);

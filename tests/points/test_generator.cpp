@@ -134,13 +134,13 @@ TEST(PoissonTileGenerator, EdgeColouredSetsPlaceTheTilesTheLatticeAndEdgeHashesN
   // The row-wise fast path against the tile-by-tile index (tile side 1 at density 32).
   const PoissonTileGenerator gen(set, HashKind::LongPeriod, 5);
   const auto pts = gen.generate({-3, 2, 9, 10}, 32.0);
-  std::vector<float> expected;
+  std::vector<double> expected;
   std::set<std::uint64_t> used;
   for (std::int64_t ty = 2; ty < 10; ++ty)
     for (std::int64_t tx = -3; tx < 9; ++tx) {
       used.insert(gen.tile_index(tx, ty));
       for (const Point2& q : set.tiles[gen.tile_index(tx, ty)])
-        expected.insert(expected.end(), {float(double(tx) + q.x), float(double(ty) + q.y)});
+        expected.insert(expected.end(), {double(tx) + q.x, double(ty) + q.y});
     }
   EXPECT_EQ(pts, expected);
   EXPECT_GE(used.size(), 14u);  // of the 16 combinations of four edge colours
