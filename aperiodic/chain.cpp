@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "base/error.hpp"
+#include "base/resources.hpp"
 
 namespace tilekit {
 
@@ -236,6 +237,8 @@ void TransducerChain::check_level(ChainLevel& l, int k) const {
     if (e.from >= l.t.states || e.to >= l.t.states || e.in >= labels_ || e.out >= labels_) throw bad("transition out of range");
     if (i > 0 && !(l.t.transitions[i - 1] < e)) throw bad("transitions not sorted");
   }
+  // A damaged count of states would size the index below: refuse what cannot fit first.
+  require_memory(double(l.t.states) * 8.0, fmt::format("level {} of the transducer chain ({} states)", k, l.t.states));
   l.t.finalize();  // the index of transitions by state
   if (k == 1) return;
   const std::uint64_t range = std::uint64_t(levels_[std::size_t(k) - 2].t.states) * levels_.front().t.states;

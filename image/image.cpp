@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
+#include <string_view>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
@@ -38,6 +40,15 @@ Image read_image(const std::string& path, int channels) {
   if (std::int64_t(w) * std::int64_t(h) > kMaxImagePixels)
     throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
                                  kMaxImagePixels));
+  // stb's 16-bit decoders other than PNG's (PNM with a maxval over 255, PSD) can write past their
+  // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
+  if (stbi_is_16_bit(path.c_str())) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[8] = {};
+    in.read(magic, sizeof magic);
+    if (std::string_view(magic, sizeof magic) != std::string_view("\x89PNG\r\n\x1a\n", 8))
+      throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
+  }
   stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, channels);
   if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
   Image img(w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * std::size_t(channels)),

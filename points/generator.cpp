@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
 #include <regex>
 
 #include "base/error.hpp"
@@ -25,7 +26,9 @@ Window parse_window(const std::string& text, const char* flag) {
     const std::string part = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
     std::smatch m;
     if (!std::regex_match(part, m, num)) break;
-    v.push_back(std::stod(m[1]));
+    const double x = std::strtod(m[1].str().c_str(), nullptr);  // +-HUGE_VAL beyond double's range
+    if (!std::isfinite(x)) break;
+    v.push_back(x);
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }

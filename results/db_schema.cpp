@@ -188,7 +188,9 @@ std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
 std::string table_difference(sqlite3* db, sqlite3* ref, const std::string& table) {
   const auto have = columns(db, table), want = columns(ref, table);
-  for (const auto& [name, col] : want) {
+  for (const auto& w : want) {  // (not a structured binding: clang 14 cannot use one in a lambda)
+    const std::string& name = w.first;
+    const auto& col = w.second;
     auto it = std::find_if(have.begin(), have.end(), [&](const auto& c) { return c.first == name; });
     if (it == have.end()) return fmt::format("table {} has no column {}", quoted(table), quoted(name));
     if (!(it->second == col))
@@ -197,9 +199,9 @@ std::string table_difference(sqlite3* db, sqlite3* ref, const std::string& table
                          it->second.default_value.empty() ? "" : " DEFAULT " + it->second.default_value, col.type,
                          col.not_null ? " NOT NULL" : "", col.default_value.empty() ? "" : " DEFAULT " + col.default_value);
   }
-  for (const auto& [name, col] : have)
-    if (std::none_of(want.begin(), want.end(), [&](const auto& c) { return c.first == name; }))
-      return fmt::format("table {} has a column {} that Tilekit does not make", quoted(table), quoted(name));
+  for (const auto& h : have)
+    if (std::none_of(want.begin(), want.end(), [&](const auto& c) { return c.first == h.first; }))
+      return fmt::format("table {} has a column {} that Tilekit does not make", quoted(table), quoted(h.first));
   if (std::equal(have.begin(), have.end(), want.begin(), want.end())) return {};
   return fmt::format("the columns of table {} are in another order", quoted(table));
 }

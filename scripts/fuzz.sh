@@ -85,6 +85,7 @@ make_seeds() {
   # two-colour atlas with 16-pixel tiles, and the tiles.json beside its tiles
   "$tk" texture tiles --exemplar brick --colors 2 --tile-px 16 --search 0 \
     --quiet --out "$s/ttiles" >/dev/null
+  mkdir -p "$s/atlas"
   "$tk" texture atlas "$s/ttiles" --out "$s/atlas/atlas.png" --no-db --quiet >/dev/null
   { printf '\000'; cat "$s/ttiles/tile-0000.png"; } >"$s/img.png" && seed texture_input "$s/img.png"
   python3 - "$s" <<'PY'
@@ -128,7 +129,7 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$fz/corpus/$h" "$fz/crashes/$h"
   log=$fz/fuzz_$h.log
   rc=0
-  (cd "$fz" && "./fuzz_$h" -max_total_time="$seconds" ${FUZZ_RUNS:+-runs=$FUZZ_RUNS} -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
+  (cd "$fz" && TILEKIT_MEMORY=1G "./fuzz_$h" -max_total_time="$seconds" ${FUZZ_RUNS:+-runs=$FUZZ_RUNS} -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$fz/crashes/$h/" "$fz/corpus/$h" >"$log" 2>&1) || rc=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   took=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)

@@ -278,7 +278,10 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 
   std::optional<PackingSymmetry> sym;
   const bool translations = root.multiplicity() > 1;
-  const auto [step_r, step_c] = translation_steps(root);  // orbits are counted for whole-torus translations only
+  // Orbits are counted for whole-torus translations only. (Plain ints, not a structured binding:
+  // clang 14, the fuzz and sanitizer compiler, cannot capture bindings in the lambdas below.)
+  const std::pair<int, int> steps = translation_steps(root);
+  const int step_r = steps.first, step_c = steps.second;
   if (o.mode != SearchMode::First && o.count_orbits && translations && step_r == 1 && step_c == 1)
     sym = PackingSymmetry::for_problem(p);
   if (sym) res.symmetry_order = sym->full_order();

@@ -292,3 +292,17 @@ TEST(HostileInputs, DamagedVerifyCheckpointsAreRefusedOrResumeToTheSameAnswer) {
   }
   EXPECT_GT(refused, 0);
 }
+
+// Inputs the fuzz harnesses found (fuzz/fuzz_specs.cpp, fuzz_texture_input.cpp): a window
+// coordinate beyond double's range, and a 16-bit PNM whose pixels stb would convert past its
+// buffer.
+TEST(HostileInputs, FuzzFindingsAreRefusedWithExit2) {
+  TempDir d;
+  expect_refused(run_cli("points generate --window=-1.5e362,0.4,100,200 --density 1 --quiet --out " + d / "p.csv"),
+                 "--window must be x0,y0,x1,y1");
+  write_text(d / "e.ppm", std::string("P6\n1 2\n65535\n") + std::string(3, '\x7b'));
+  expect_refused(run_cli("texture tiles --exemplar " + d / "e.ppm" + " --colors 2 --tile-px 16 --quiet --out " +
+                         d / "t"),
+                 "a 16-bit image that is not a PNG");
+  EXPECT_FALSE(fs::exists(d / "t"));
+}
