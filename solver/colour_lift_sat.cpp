@@ -7,16 +7,12 @@
 //     one w(cell, t) over the class (sequential counter, Sinz 2005) and at least one.
 //   - Tile 0 sits at cell (0, 0) (translations by multiples of the period, as in the engine).
 // For a binary lift over a C=4 packing (C=8) that is 4096 site and 65,536 tile variables.
-#include <fmt/format.h>
 
-#include <chrono>
+#include <optional>
 
-#include "base/error.hpp"
-#include "base/signals.hpp"
 #include "solver/colour_lift_model.hpp"
 #include "solver/sat_cnf.hpp"
 #include "tilesets/constructions.hpp"
-#include "tilesets/validator.hpp"
 
 namespace tilekit {
 
@@ -104,51 +100,11 @@ std::string lift_cnf(const LiftProblem& lift, std::uint64_t* variables, std::uin
 
 SearchResult solve_lift_sat(const LiftProblem& lift, const TilingProblem& problem, const SearchOptions& o,
                             const std::string& fingerprint) {
-  if (o.mode != SearchMode::First) throw InputError("--formulation sat finds one packing: use it with --mode first");
-  if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
-  if (o.resume_state && o.resume_state->fingerprint != fingerprint)
-    throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");
-  const double prior = o.resume_state ? o.resume_state->seconds : 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  SearchResult res;
-  res.formulation = "sat";
-  res.ordering = "cadical";
-  res.threads = 1;
-  res.fingerprint = fingerprint;
-  LiftCnf e = build_lift_cnf(lift);
-  auto stop = [&] {
-    if (o.run.catch_signals && SignalCatcher::caught()) return true;
-    return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;
-  };
-  SatRun run =
-      run_cadical(e.cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);
-  if (run.status == SatRun::Status::Satisfiable) {
-    Tiling a = colour_lift(lift.base, decode_quotient(e, run.value));
-    ValidationReport rep = validate(a, &problem.set);
-    if (!rep.packing)
-      throw std::logic_error("the lift CNF produced a tiling the validator rejects: " +
-                             (rep.errors.empty() ? std::string("not a packing") : rep.errors.front()));
-    if (o.on_solution) o.on_solution(a);
-    res.found.push_back(std::move(a));
-    res.solutions = 1;
-  }
-  res.complete = run.status == SatRun::Status::Unsatisfiable;  // the lift subspace holds no packing
-  res.signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
-  res.interrupted = run.stopped && res.signal != 0;
-  res.timed_out = run.status == SatRun::Status::Unknown && !res.interrupted;
-  res.seconds = elapsed();
-  res.total_seconds = prior + res.seconds;
-  if (o.save_checkpoint && res.found.empty() && !res.complete) {
-    // Nothing of a SAT run survives a kill but its identity and time: a resume starts cadical again.
-    SearchState st;
-    st.fingerprint = fingerprint;
-    st.seconds = res.total_seconds;
-    if (o.flush) o.flush();
-    o.save_checkpoint(st);
-    res.checkpoints = 1;
-  }
-  return res;
+  std::optional<LiftCnf> e;
+  return solve_by_sat(
+      problem, o, fingerprint, {"packing", "lift", "tiling", "not a packing"},
+      [&]() -> const CnfBuilder& { return (e = build_lift_cnf(lift))->cnf; },
+      [&](const std::vector<char>& value) { return colour_lift(lift.base, decode_quotient(*e, value)); });
 }
 
 }  // namespace tilekit

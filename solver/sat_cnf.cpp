@@ -15,6 +15,8 @@
 #include <sstream>
 
 #include "base/error.hpp"
+#include "base/signals.hpp"
+#include "tilesets/validator.hpp"
 
 extern char** environ;
 
@@ -146,6 +148,57 @@ SatRun run_cadical(const CnfBuilder& cnf, double time_limit, std::uint64_t seed,
   if (out.status != SatRun::Status::Satisfiable) out.value.clear();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, const std::string& fingerprint,
+                          const SatNames& names, const std::function<const CnfBuilder&()>& build,
+                          const std::function<Tiling(const std::vector<char>&)>& decode) {
+  if (o.mode != SearchMode::First)
+    throw InputError(fmt::format("--formulation sat finds one {}: use it with --mode first", names.finds));
+  if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
+  if (o.resume_state && o.resume_state->fingerprint != fingerprint)
+    throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");
+  const double prior = o.resume_state ? o.resume_state->seconds : 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  SearchResult res;
+  res.formulation = "sat";
+  res.ordering = "cadical";
+  res.threads = 1;
+  res.fingerprint = fingerprint;
+  const CnfBuilder& cnf = build();
+  auto stop = [&] {
+    if (o.run.catch_signals && SignalCatcher::caught()) return true;
+    return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;
+  };
+  SatRun run =
+      run_cadical(cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);
+  if (run.status == SatRun::Status::Satisfiable) {
+    Tiling a = decode(run.value);
+    ValidationReport rep = validate(a, &problem.set);
+    if (!rep.packing)
+      throw std::logic_error(fmt::format("the {} CNF produced a {} the validator rejects: {}", names.cnf,
+                                         names.produced, rep.errors.empty() ? names.invalid : rep.errors.front()));
+    if (o.on_solution) o.on_solution(a);
+    res.found.push_back(std::move(a));
+    res.solutions = 1;
+  }
+  res.complete = run.status == SatRun::Status::Unsatisfiable;  // the CNF's subspace holds no solution
+  res.signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
+  res.interrupted = run.stopped && res.signal != 0;
+  res.timed_out = run.status == SatRun::Status::Unknown && !res.interrupted;
+  res.seconds = elapsed();
+  res.total_seconds = prior + res.seconds;
+  if (o.save_checkpoint && res.found.empty() && !res.complete) {
+    // Nothing of a SAT run survives a kill but its identity and time: a resume starts cadical again.
+    SearchState st;
+    st.fingerprint = fingerprint;
+    st.seconds = res.total_seconds;
+    if (o.flush) o.flush();
+    o.save_checkpoint(st);
+    res.checkpoints = 1;
+  }
+  return res;
 }
 
 }  // namespace tilekit

@@ -1,13 +1,16 @@
 #pragma once
 // CNF plumbing shared by the SAT encodings (imposed groups: impose_sat.*, colour lifts:
-// colour_lift_sat.cpp): a DIMACS clause builder with the cardinality encodings they use, and a runner for
-// the external SAT solver CaDiCaL (Debian package `cadical`, installed by scripts/setup.sh) that
-// a time limit or a stop request (signals) ends by killing the solver process.
+// colour_lift_sat.cpp, window tori: window_sat.cpp): a DIMACS clause builder with the cardinality
+// encodings they use, a runner for the external SAT solver CaDiCaL (Debian package `cadical`,
+// installed by scripts/setup.sh) that a time limit or a stop request (signals) ends by killing the
+// solver process, and one run of it as a search of the engine (solve_by_sat).
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
 #include <string>
 #include <vector>
+
+#include "solver/problem.hpp"
 
 namespace tilekit {
 
@@ -53,5 +56,22 @@ bool sat_solver_available();
 // seconds (0 = none) and `stop` polled every 20 ms (may be empty). Throws InputError when cadical
 // is missing or cannot be started.
 SatRun run_cadical(const CnfBuilder& cnf, double time_limit, std::uint64_t seed, const std::function<bool()>& stop);
+
+// What the messages of solve_by_sat call its results.
+struct SatNames {
+  const char* finds;     // "--formulation sat finds one FINDS" (packing, torus)
+  const char* cnf;       // the encoding: "the CNF CNF produced ..." (lift, window)
+  const char* produced;  // what the decoded assignment is (tiling, torus)
+  const char* invalid;   // the validator's complaint when it names none (not a packing, ...)
+};
+
+// One cadical run as a search of the engine: --mode first, one job, resumable by its identity
+// only (a checkpoint holds the fingerprint and the time spent; a resume starts cadical again).
+// `build` makes the CNF (timed with the run, so within the time limit); `decode` turns a
+// satisfying assignment into the tiling, which the independent validator must accept as a
+// packing of `problem`.
+SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, const std::string& fingerprint,
+                          const SatNames& names, const std::function<const CnfBuilder&()>& build,
+                          const std::function<Tiling(const std::vector<char>&)>& decode);
 
 }  // namespace tilekit

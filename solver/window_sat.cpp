@@ -14,13 +14,11 @@
 // Binary 3x3 windows on 16x32: 512 symbol and 262,144 window variables, 3.6 M clauses.
 #include <fmt/format.h>
 
-#include <chrono>
+#include <optional>
 
 #include "base/error.hpp"
-#include "base/signals.hpp"
 #include "solver/sat_cnf.hpp"
 #include "solver/window_sat.hpp"
-#include "tilesets/validator.hpp"
 #include "tilesets/window_torus.hpp"
 
 namespace tilekit {
@@ -108,62 +106,27 @@ std::string window_cnf(const TilingProblem& quotient, int period_rows, int perio
 
 SearchResult solve_window_sat(const TilingProblem& problem, const WindowLiftProblem* lift, const SymbolTies& ties,
                               const SearchOptions& o, const std::string& fingerprint) {
-  if (o.mode != SearchMode::First) throw InputError("--formulation sat finds one torus: use it with --mode first");
-  if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
-  if (o.resume_state && o.resume_state->fingerprint != fingerprint)
-    throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");
-  const double prior = o.resume_state ? o.resume_state->seconds : 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  SearchResult res;
-  res.formulation = "sat";
-  res.ordering = "cadical";
-  res.threads = 1;
-  res.fingerprint = fingerprint;
-  WindowCnf e = lift ? build_window_cnf(lift->quotient, lift->base.rows, lift->base.cols)
-                     : build_window_cnf(problem, 0, 0, ties.orbits.empty() || ties.break_translations);
-  for (const auto& orbit : ties.orbits)  // tied symbols: x(first, s) <-> x(u, image of s)
-    for (std::size_t k = 1; k < orbit.size(); ++k) {
-      const auto [u, map] = orbit[k];
-      for (int s = e.C == 2 ? 1 : 0; s < int(e.C); ++s) {
-        const int a = e.lit(orbit.front().first, s), b = e.lit(u, ties.images[std::size_t(map) * e.C + std::size_t(s)]);
-        e.cnf.clause({-a, b});
-        e.cnf.clause({a, -b});
+  std::optional<WindowCnf> e;
+  auto build = [&]() -> const CnfBuilder& {
+    e = lift ? build_window_cnf(lift->quotient, lift->base.rows, lift->base.cols)
+             : build_window_cnf(problem, 0, 0, ties.orbits.empty() || ties.break_translations);
+    for (const auto& orbit : ties.orbits)  // tied symbols: x(first, s) <-> x(u, image of s)
+      for (std::size_t k = 1; k < orbit.size(); ++k) {
+        const auto [u, map] = orbit[k];
+        for (int s = e->C == 2 ? 1 : 0; s < int(e->C); ++s) {
+          const int a = e->lit(orbit.front().first, s),
+                    b = e->lit(u, ties.images[std::size_t(map) * e->C + std::size_t(s)]);
+          e->cnf.clause({-a, b});
+          e->cnf.clause({a, -b});
+        }
       }
-    }
-  auto stop = [&] {
-    if (o.run.catch_signals && SignalCatcher::caught()) return true;
-    return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;
+    return e->cnf;
   };
-  SatRun run =
-      run_cadical(e.cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);
-  if (run.status == SatRun::Status::Satisfiable) {
-    Tiling a = decode(e, run.value);
-    if (lift) a = window_colour_lift(lift->base, a);
-    ValidationReport rep = validate(a, &problem.set);
-    if (!rep.packing)
-      throw std::logic_error("the window CNF produced a torus the validator rejects: " +
-                             (rep.errors.empty() ? std::string("not a de Bruijn torus") : rep.errors.front()));
-    if (o.on_solution) o.on_solution(a);
-    res.found.push_back(std::move(a));
-    res.solutions = 1;
-  }
-  res.complete = run.status == SatRun::Status::Unsatisfiable;
-  res.signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
-  res.interrupted = run.stopped && res.signal != 0;
-  res.timed_out = run.status == SatRun::Status::Unknown && !res.interrupted;
-  res.seconds = elapsed();
-  res.total_seconds = prior + res.seconds;
-  if (o.save_checkpoint && res.found.empty() && !res.complete) {
-    // Nothing of a SAT run survives a kill but its identity and time: a resume starts cadical again.
-    SearchState st;
-    st.fingerprint = fingerprint;
-    st.seconds = res.total_seconds;
-    if (o.flush) o.flush();
-    o.save_checkpoint(st);
-    res.checkpoints = 1;
-  }
-  return res;
+  auto decoded = [&](const std::vector<char>& value) {
+    Tiling a = decode(*e, value);
+    return lift ? window_colour_lift(lift->base, a) : a;
+  };
+  return solve_by_sat(problem, o, fingerprint, {"torus", "window", "torus", "not a de Bruijn torus"}, build, decoded);
 }
 
 }  // namespace tilekit
