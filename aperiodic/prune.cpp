@@ -122,19 +122,26 @@ PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius) {
   return rep;
 }
 
-TileSet prune(const TileSet& set, int radius, PruneReport* report) {
+TileSet prune_via_wang(const TileSet& set,
+                       const std::function<PruneReport(const std::vector<WangTile>&)>& prune_wang_tiles,
+                       PruneReport* report) {
   PruneReport rep;
   TileSet out;
   if (set.kind() == TileKind::Wang) {
-    rep = prune_wang(set.wang_tiles(), radius);
+    rep = prune_wang_tiles(set.wang_tiles());
     out = TileSet::wang(pick(set.wang_tiles(), rep.kept), set.name(), set.source());
   } else {
     // thesis 2.9: the equivalent Wang set has the same tilings, tile for tile.
-    rep = prune_wang(corner_to_wang(set).wang_tiles(), radius);
+    rep = prune_wang_tiles(corner_to_wang(set).wang_tiles());
     out = TileSet::corner(pick(set.corner_tiles(), rep.kept), set.name(), set.source());
   }
   if (report) *report = rep;
   return out;
+}
+
+TileSet prune(const TileSet& set, int radius, PruneReport* report) {
+  return prune_via_wang(
+      set, [&](const std::vector<WangTile>& tiles) { return prune_wang(tiles, radius); }, report);
 }
 
 }  // namespace tilekit

@@ -18,6 +18,7 @@
 //        of them; by compactness the pruned set tiles the plane iff the original does.
 // Corner sets are pruned through their equivalent Wang set (thesis 2.9), tile for tile.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "aperiodic/convert.hpp"
@@ -60,5 +61,10 @@ PruneReport prune_strips_wang(const std::vector<WangTile>& tiles, int max_k, std
 TileSet prune_strips(const TileSet& set, int max_k, PruneReport* report = nullptr);
 // Prunes a Wang or corner set; the result keeps the surviving tiles in their order.
 TileSet prune(const TileSet& set, int radius, PruneReport* report = nullptr);
+// Prunes a Wang set with `prune_wang_tiles`, a corner set through its equivalent Wang set (thesis
+// 2.9: the same tilings, tile for tile); the result keeps the surviving tiles in their order.
+TileSet prune_via_wang(const TileSet& set,
+                       const std::function<PruneReport(const std::vector<WangTile>&)>& prune_wang_tiles,
+                       PruneReport* report);
 
 }  // namespace tilekit

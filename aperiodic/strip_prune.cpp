@@ -94,18 +94,8 @@ PruneReport prune_strips_wang(const std::vector<WangTile>& tiles, int max_k, std
 }
 
 TileSet prune_strips(const TileSet& set, int max_k, PruneReport* report) {
-  PruneReport rep;
-  TileSet out;
-  if (set.kind() == TileKind::Wang) {
-    rep = prune_strips_wang(set.wang_tiles(), max_k);
-    out = TileSet::wang(pick(set.wang_tiles(), rep.kept), set.name(), set.source());
-  } else {
-    // thesis 2.9: the equivalent Wang set has the same tilings, tile for tile.
-    rep = prune_strips_wang(corner_to_wang(set).wang_tiles(), max_k);
-    out = TileSet::corner(pick(set.corner_tiles(), rep.kept), set.name(), set.source());
-  }
-  if (report) *report = rep;
-  return out;
+  return prune_via_wang(
+      set, [&](const std::vector<WangTile>& tiles) { return prune_strips_wang(tiles, max_k); }, report);
 }
 
 }  // namespace tilekit
