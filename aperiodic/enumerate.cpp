@@ -214,6 +214,17 @@ void store_batch(ResultsDb& db, const EnumerateResult& r, const std::vector<std:
   }
 }
 
+// A set first reached: what a node knows of it before any chain is attached.
+EnumNode new_node(const CanonicalForm& f) {
+  EnumNode n;
+  n.hash = f.hash;
+  n.text = f.text;
+  n.kind = f.set.kind();
+  n.tiles = f.set.size();
+  n.colours = f.set.colours();
+  return n;
+}
+
 }  // namespace
 
 const std::vector<std::string>& published_enumeration_sources() {
@@ -271,11 +282,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
       EnumNode& n = it->second;
       if (added) {
-        n.hash = f.hash;
-        n.text = f.text;
-        n.kind = f.set.kind();
-        n.tiles = f.set.size();
-        n.colours = f.set.colours();
+        n = new_node(f);
         n.root = name;
         n.label = "published";
         new_nodes.push_back(f.hash);
@@ -366,11 +373,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
         auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
         EnumNode& n = it->second;
         if (added) {
-          n.hash = f.hash;
-          n.text = f.text;
-          n.kind = f.set.kind();
-          n.tiles = f.set.size();
-          n.colours = f.set.colours();
+          n = new_node(f);
           new_nodes.push_back(f.hash);
         }
         EnumEdge e{parent.hash, c.step, f.hash, c.label,
