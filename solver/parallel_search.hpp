@@ -170,23 +170,11 @@ class ParallelSearch {
   // ---- count / all / first-in-order: subproblems ----
   void run_subproblems(ParallelOutcome& out) {
     std::uint64_t split_nodes = 0;
-    // Only a signal stops the split (at most kMaxSplitSubproblems, a fraction of a second): a time
-    // limit is looked at once it is done, so that even slices shorter than the split checkpoint
-    // the run and the next slice gets past it.
-    subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes, [this] {
-      if (cfg_.run.catch_signals && SignalCatcher::caught()) {
-        signal_ = SignalCatcher::caught();
-        stop_.request(StopReason::Signal);
-      }
-      return stop_.requested();
-    });
-    if (stop_.requested()) {  // stopped while splitting: no subproblem list, nothing to checkpoint
-      const StopReason why = stop_.reason();
-      out.interrupted = why == StopReason::Signal;
-      out.timed_out = why == StopReason::TimeLimit;
-      out.counts.nodes = split_nodes;
-      return;
-    }
+    // Nothing stops the split (at most kMaxSplitSubproblems, a fraction of a second): a signal or a
+    // time limit is looked at once it is done and the first checkpoint is written, so that a run
+    // stopped at any moment, even before its search began, leaves a checkpoint to resume from, and
+    // even slices shorter than the split get past it.
+    subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes);
     std::uint64_t hash = hash_subproblems(subs_);
     out.subproblems = subs_.size();
     finished_.assign(subs_.size(), false);

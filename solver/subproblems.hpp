@@ -5,7 +5,6 @@
 // meaningful across runs and machines. Used by ParallelSearch (parallel_search.hpp).
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "base/hash.hpp"
@@ -14,19 +13,17 @@
 
 namespace tilekit {
 
-// A subproblem list is a deterministic function of the model and the target. `stop` (polled
-// every 256 expansions) ends the split early for a time limit or a signal: the list returned
-// then is incomplete and must not be used.
+// A subproblem list is a deterministic function of the model and the target. It always runs to
+// the end (at most kMaxSplitSubproblems entries), so that a stopped run still has a list to
+// checkpoint.
 template <SearchModel M>
-std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t target, std::uint64_t& nodes,
-                                                     const std::function<bool()>& stop = {}) {
+std::vector<std::vector<Decision>> split_subproblems(const M& root, std::size_t target, std::uint64_t& nodes) {
   std::vector<std::vector<Decision>> level{{}};
   std::vector<int> values;
   for (;;) {
     std::vector<std::vector<Decision>> next;
     bool expanded = false;
     for (std::size_t i = 0; i < level.size(); ++i) {
-      if (stop && i % 256 == 0 && stop()) return {};
       if (next.size() + (level.size() - i) >= target) {  // enough: keep the rest unexpanded
         next.insert(next.end(), level.begin() + std::ptrdiff_t(i), level.end());
         break;
