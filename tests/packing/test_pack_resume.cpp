@@ -4,10 +4,13 @@
 // checkpoint is an InputError naming its flag.
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <filesystem>
 #include <set>
 
 #include "base/error.hpp"
 #include "base/parse.hpp"
+#include "base/signals.hpp"
 #include "packing/pack.hpp"
 #include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
@@ -115,4 +118,28 @@ TEST(PackResume, AFieldThatContradictsTheCheckpointIsAnInputErrorNamingItsFlag) 
   // The same value, or a flag not given, is no contradiction.
   again.mode = "count";
   EXPECT_EQ(run_pack(quiet(again), {"--resume", "--mode"}).result.solutions, 203520u);
+}
+
+// A signal that comes before the search has begun (Slurm's requeue right after the task starts)
+// still leaves a checkpoint, and resuming from it gives the whole count: the subproblem split is
+// never cut short, so there is always a list to checkpoint.
+TEST(PackResume, ASignalBeforeTheSearchBeginsStillLeavesACheckpointToResumeFrom) {
+  TempDir dir;
+  PackRequest r = c3_group(dir, "count", "3/8");
+  r.run.checkpoint_path = dir / "ck";
+  r.run.progress = false;
+  PackOutcome stopped;
+  {
+    SignalCatcher outer;  // run_pack's own catcher joins this one, so the flag stays set
+    ASSERT_EQ(std::raise(SIGTERM), 0);
+    ASSERT_EQ(SignalCatcher::caught(), SIGTERM);
+    stopped = run_pack(r);
+  }
+  EXPECT_TRUE(stopped.interrupted);  // (its workers may still have finished before they saw the flag)
+  ASSERT_TRUE(std::filesystem::exists(dir / "ck")) << "no checkpoint after a signal before the search";
+  PackRequest again;
+  again.run.resume_path = dir / "ck";
+  const PackOutcome resumed = run_pack(quiet(again), {"--resume"});
+  EXPECT_TRUE(resumed.result.complete);
+  EXPECT_EQ(resumed.result.solutions, 342720u);  // the uninterrupted count of this shard (above)
 }
