@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 #include <unistd.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <cctype>
@@ -66,6 +69,19 @@ void require_memory(double bytes, std::string_view what) {
                                  what, gib(bytes), gib(double(limit)),
                                  std::getenv("TILEKIT_MEMORY") ? "TILEKIT_MEMORY" : "half of this machine's memory",
                                  std::uint64_t(bytes / double(1ull << 30)) + 1));
+}
+
+void advise_huge_pages(void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::size_t kMin = std::size_t(8) << 20;
+  if (!p || bytes < kMin) return;
+  const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t begin = (std::uintptr_t(p) + page - 1) / page * page;
+  const std::uintptr_t end = (std::uintptr_t(p) + bytes) / page * page;
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice only
+#else
+  (void)p, (void)bytes;
+#endif
 }
 
 }  // namespace tilekit

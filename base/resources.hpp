@@ -12,6 +12,7 @@
 // 31 years): a deadline that far ahead would overflow the clock's 64-bit nanoseconds and
 // fall in the past.
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -22,6 +23,12 @@ std::uint64_t memory_limit();
 // Throws InputError "WHAT needs about X GiB of memory, more than the limit of Y GiB (half of
 // this machine's memory; set TILEKIT_MEMORY=... to raise it)" when `bytes` exceeds it.
 void require_memory(double bytes, std::string_view what);
+
+// Asks the kernel to back [p, p + bytes) with huge pages (Linux transparent huge pages in
+// "madvise" mode): a fresh output buffer of hundreds of megabytes then takes a few hundred page
+// faults instead of one per 4 KiB, which is most of the cost of writing it once. Only advice:
+// does nothing below 8 MiB, on other systems, or where the kernel declines.
+void advise_huge_pages(void* p, std::size_t bytes);
 
 inline constexpr double kMaxTimeLimitSeconds = 1e9;
 

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -107,22 +108,35 @@ Quality quality(const Method& m, int sets) {
   return q;
 }
 
-// Median points per second of one-thread generation of a square window of `count` points at
-// density 1.
-double speed(const Method& m, double count, int reps) {
+// Points per second of one one-thread generation of a square window of `count` points at
+// density 1 (a fresh output buffer, as `points generate` makes one).
+double rate_once(const Method& m, double count) {
   const double side = std::sqrt(count);
   const Window w{0.5, 0.25, 0.5 + side, 0.25 + side};
-  std::vector<double> rate;
-  for (int i = 0; i < reps; ++i) {
-    std::size_t n = 0;
-    const double t = seconds_of([&] {
-      const auto xy = m.make(w, 1.0, 7, 0, false);
-      n = xy.size() / 2;
-      escape(xy.data());
-    });
-    rate.push_back(double(n) / t);
-  }
-  return median(rate);
+  std::size_t n = 0;
+  const double t = seconds_of([&] {
+    const auto xy = m.make(w, 1.0, 7, 0, false);
+    n = xy.size() / 2;
+    escape(xy.data());
+  });
+  return double(n) / t;
+}
+
+// Median speed of every method after one untimed warm-up call each, the repetitions interleaved
+// (rep 1 of every method, then rep 2, ...) so that a change of the machine's load during the run
+// falls on every method alike.
+std::vector<double> speeds(const std::vector<Method>& list, const Options& o) {
+  std::vector<std::vector<double>> rates(list.size());
+  for (const Method& m : list) rate_once(m, m.timed_small ? o.bridson_points : o.points);  // warm-up, untimed
+  for (int rep = 0; rep < o.reps; ++rep)
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Method& m = list[i];
+      if (m.key == "bridson" && rep >= std::max(1, o.reps / 2)) continue;  // slow: half the reps
+      rates[i].push_back(rate_once(m, m.timed_small ? o.bridson_points : o.points));
+    }
+  std::vector<double> out;
+  for (auto& r : rates) out.push_back(median(r));
+  return out;
 }
 
 Method tile_method(std::string name, std::string key, std::shared_ptr<const PoissonTileSet> set) {
@@ -130,8 +144,14 @@ Method tile_method(std::string name, std::string key, std::shared_ptr<const Pois
   m.name = std::move(name);
   m.key = std::move(key);
   m.per_tile = set->points;
-  m.make = [set](const Window& w, double density, std::uint64_t seed, std::int64_t period, bool) {
-    return PoissonTileGenerator(*set, HashKind::LongPeriod, seed, period).generate(w, density, 1);
+  // One generator per (seed, period), made on first use: an application makes its generator
+  // once and then asks it for windows, so the timed calls are the generation alone.
+  auto made = std::make_shared<std::map<std::pair<std::uint64_t, std::int64_t>, PoissonTileGenerator>>();
+  m.make = [set, made](const Window& w, double density, std::uint64_t seed, std::int64_t period, bool) {
+    auto it = made->find({seed, period});
+    if (it == made->end())
+      it = made->emplace(std::pair(seed, period), PoissonTileGenerator(*set, HashKind::LongPeriod, seed, period)).first;
+    return it->second.generate(w, density, 1);
   };
   return m;
 }
@@ -192,14 +212,16 @@ void write_plot(const std::string& dir, const std::string& stem, const std::vect
 
 void compare(const Options& o) {
   const auto list = methods(o);
+  const std::vector<double> rates = speeds(list, o);
   double bridson_rate = 0, before_rate = 0;
-  for (const Method& m : list)
-    if (m.key == "bridson") bridson_rate = speed(m, o.bridson_points, std::max(1, o.reps / 2));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (list[i].key == "bridson") bridson_rate = rates[i];
+    if (list[i].key == "corner-before") before_rate = rates[i];
+  }
   std::vector<PlotSeries> tiled, references;
-  for (const Method& m : list) {
-    const double rate =
-        m.key == "bridson" ? bridson_rate : speed(m, m.timed_small ? o.bridson_points : o.points, o.reps);
-    if (m.key == "corner-before") before_rate = rate;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Method& m = list[i];
+    const double rate = rates[i];
     const Quality q = quality(m, o.sets);
     nlohmann::json j = {{"case", "compare"},
                         {"method", m.name},

@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "base/resources.hpp"
 #include "base/random.hpp"
 #include "points/tile_parts.hpp"
 #include "tiling/lattice_tiling.hpp"
@@ -126,6 +127,10 @@ void PoissonTileGenerator::row_indices(std::int64_t ty, std::int64_t tx0, std::i
     sc.wide[i] += l4 * (((sc.north[i] * ec + sc.west[i + 1]) * ec + sc.south[i]) * ec + sc.west[i]);
 }
 
+namespace {
+constexpr std::uint32_t kChunk = 128;  // points written per resize()
+}  // namespace
+
 void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s,
                                Scratch& sc, std::vector<double>& out) const {
   const std::int64_t cols = tx1 - tx0 + 1;
@@ -141,25 +146,45 @@ void PoissonTileGenerator::row(std::int64_t ty, std::int64_t tx0, std::int64_t t
     const std::uint32_t b = offset_[t], e = offset_[t + 1];
     const double bx = double(tx0 + i) * s;
     if (row_inside && bx >= w.x0 && bx + span < w.x1) {
+      // In chunks of 2 KiB: resize() writes zeros first, and over a whole tile of 1024 points
+      // those zeros would leave the L1 cache before the points overwrite them.
+      for (std::uint32_t c = b; c < e; c += kChunk) {
+        const std::uint32_t n = std::min(kChunk, e - c);
+        const std::size_t at = out.size();
+        out.resize(at + 2 * std::size_t(n));
+        double* o = out.data() + at;
+        const double* q = uv + 2 * std::size_t(c);
+        for (std::uint32_t k = 0; k < 2 * n; k += 2) {
+          o[k] = bx + q[k] * s;
+          o[k + 1] = by + q[k + 1] * s;
+        }
+      }
+    } else {  // a tile across the window's border: every point written, kept when inside
       const std::size_t at = out.size();
       out.resize(at + 2 * std::size_t(e - b));
       double* o = out.data() + at;
       const double* q = uv + 2 * std::size_t(b);
+      std::size_t kept = 0;
       for (std::uint32_t k = 0; k < 2 * (e - b); k += 2) {
-        o[k] = bx + q[k] * s;
-        o[k + 1] = by + q[k + 1] * s;
+        const double x = bx + q[k] * s, y = by + q[k + 1] * s;
+        o[2 * kept] = x;
+        o[2 * kept + 1] = y;
+        kept += (x >= w.x0) & (x < w.x1) & (y >= w.y0) & (y < w.y1);
       }
-    } else {
-      for (std::uint32_t k = b; k < e; ++k) {
-        const double x = bx + uv[2 * std::size_t(k)] * s, y = by + uv[2 * std::size_t(k) + 1] * s;
-        if (x >= w.x0 && x < w.x1 && y >= w.y0 && y < w.y1) out.insert(out.end(), {x, y});
-      }
+      out.resize(at + 2 * kept);
     }
   }
 }
 
 std::vector<double> PoissonTileGenerator::generate(const Window& w, double density, int threads,
                                                   ProgressReporter* progress) const {
+  std::vector<double> out;
+  generate_into(out, w, density, threads, progress);
+  return out;
+}
+
+void PoissonTileGenerator::generate_into(std::vector<double>& out, const Window& w, double density, int threads,
+                                         ProgressReporter* progress) const {
   const double s = tile_size(density);
   const double tiles_x = std::floor(w.x1 / s) - std::floor(w.x0 / s) + 1,
                tiles_y = std::floor(w.y1 / s) - std::floor(w.y0 / s) + 1;
@@ -170,15 +195,21 @@ std::vector<double> PoissonTileGenerator::generate(const Window& w, double densi
   const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / s)), ty1 = std::int64_t(std::floor(w.y1 / s));
   const std::int64_t rows = ty1 - ty0 + 1;
   if (progress) progress->set_total(double(rows));
-  std::vector<double> out;
+  out.clear();
   if (threads <= 1 || rows < 2) {
-    out.reserve(std::size_t(2 * (w.area() * density * 1.02 + double(set_.points) * (tiles_x + tiles_y) * 2)));
+    const std::size_t want =
+        std::size_t(2 * (w.area() * density * 1.02 + double(set_.points) * (tiles_x + tiles_y) * 2));
+    if (want > out.capacity()) {
+      out = std::vector<double>();  // no copy of the old contents
+      out.reserve(want);
+      advise_huge_pages(out.data(), want * sizeof(double));
+    }
     Scratch sc;
     for (std::int64_t ty = ty0; ty <= ty1; ++ty) {
       row(ty, tx0, tx1, w, s, sc, out);
       if (progress) progress->add(1);
     }
-    return out;
+    return;
   }
   std::vector<std::vector<double>> rows_out(static_cast<std::size_t>(rows));
   parallel_for(rows, threads, [&](std::int64_t r) {
@@ -188,6 +219,11 @@ std::vector<double> PoissonTileGenerator::generate(const Window& w, double densi
   });
   std::size_t total = 0;
   for (const auto& p : rows_out) total += p.size();
+  if (total > out.capacity()) {
+    out = std::vector<double>();
+    out.reserve(total);
+    advise_huge_pages(out.data(), total * sizeof(double));
+  }
   out.resize(total);
   std::vector<std::size_t> at(rows_out.size() + 1, 0);
   for (std::size_t i = 0; i < rows_out.size(); ++i) at[i + 1] = at[i] + rows_out[i].size();
@@ -195,7 +231,6 @@ std::vector<double> PoissonTileGenerator::generate(const Window& w, double densi
     std::copy(rows_out[std::size_t(r)].begin(), rows_out[std::size_t(r)].end(),
               out.begin() + std::ptrdiff_t(at[std::size_t(r)]));
   });
-  return out;
 }
 
 }  // namespace tilekit::points

@@ -49,6 +49,10 @@ class PoissonTileGenerator {
   // threads; the output does not depend on the thread count. `progress` counts rows.
   std::vector<double> generate(const Window& w, double density, int threads = 1,
                               ProgressReporter* progress = nullptr) const;
+  // The same into `out`, whose contents are replaced and whose capacity is kept: an application
+  // that asks for window after window reuses one buffer and pays no page faults for it.
+  void generate_into(std::vector<double>& out, const Window& w, double density, int threads = 1,
+                     ProgressReporter* progress = nullptr) const;
 
   // The tile index (into set().tiles) of tile (tx, ty).
   std::uint64_t tile_index(std::int64_t tx, std::int64_t ty) const;

@@ -7,6 +7,7 @@
 
 #include "base/error.hpp"
 #include "base/random.hpp"
+#include "base/resources.hpp"
 
 namespace tilekit::points {
 
@@ -85,6 +86,7 @@ std::vector<double> white_noise_points(const Window& w, std::uint64_t count, std
   SplitMix64 rng(seed);
   std::vector<double> out;
   out.reserve(2 * count);
+  advise_huge_pages(out.data(), 2 * count * sizeof(double));  // as the tile generator's output
   for (std::uint64_t i = 0; i < count; ++i)
     out.insert(out.end(), {w.x0 + rng.uniform() * w.width(), w.y0 + rng.uniform() * w.height()});
   return out;

@@ -92,6 +92,22 @@ TEST(PoissonTileGenerator, ThreadsDoNotChangeTheOutput) {
   EXPECT_EQ(gen.generate(w, 200, 1), gen.generate(w, 200, 2));
 }
 
+// A reused buffer (generate_into) holds exactly what a fresh one would, whatever it held before
+// and whether it must grow, on one thread and on two.
+TEST(PoissonTileGenerator, AReusedBufferHoldsExactlyTheFreshOutput) {
+  const PoissonTileGenerator gen(tiles(), HashKind::LongPeriod, 4);
+  const Window big{-9, -9, 9, 9}, small{2.5, -1, 4, 3};
+  for (int threads : {1, 2}) {
+    std::vector<double> buf{1, 2, 3};
+    gen.generate_into(buf, small, 200, threads);
+    EXPECT_EQ(buf, gen.generate(small, 200, threads));
+    gen.generate_into(buf, big, 200, threads);  // grows
+    EXPECT_EQ(buf, gen.generate(big, 200, threads));
+    gen.generate_into(buf, small, 200, threads);  // shrinks, keeps its capacity
+    EXPECT_EQ(buf, gen.generate(small, 200, threads));
+  }
+}
+
 TEST(PoissonTileGenerator, TileAlignedWindowsHoldExactlyNPerTile) {
   const PoissonTileGenerator gen(tiles(), HashKind::LongPeriod, 1);
   const double s = gen.tile_size(32.0);  // tile side 1
