@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <utility>
 
 #include "base/error.hpp"
 
@@ -18,32 +19,6 @@ namespace {
 std::filesystem::path directory_of(const std::string& path) {
   const std::filesystem::path target(path);
   return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-}
-
-// `text` in a new temp file beside `path`, synced; returns its name. On failure nothing is left.
-std::string write_temp(const std::string& path, std::string_view text) {
-  const std::filesystem::path target(path);
-  std::string tmpl = (directory_of(path) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
-  int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(errno)));
-  std::size_t done = 0;
-  while (done < text.size()) {
-    ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      int err = errno;
-      ::close(fd);
-      ::unlink(tmpl.c_str());
-      throw InputError(fmt::format("{}: cannot write: {}", path, std::strerror(err)));
-    }
-    done += std::size_t(n);
-  }
-  ::fchmod(fd, 0644);
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(tmpl.c_str());
-    throw InputError(fmt::format("{}: cannot sync: {}", path, std::strerror(errno)));
-  }
-  return tmpl;
 }
 
 void rename_into_place(const std::string& tmp, const std::string& path) {
@@ -65,13 +40,57 @@ void sync_directory(const std::string& path) {
 
 }  // namespace
 
+AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
+  const std::filesystem::path target(path_);
+  tmp_ = (directory_of(path_) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  fd_ = ::mkstemp(tmp_.data());
+  if (fd_ < 0) throw InputError(fmt::format("{}: cannot write: {}", path_, std::strerror(errno)));
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!tmp_.empty()) ::unlink(tmp_.c_str());
+}
+
+void AtomicFileWriter::write(std::string_view bytes) {
+  if (fd_ < 0) throw InputError(fmt::format("{}: cannot write: the file is already finished", path_));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(fmt::format("{}: cannot write: {}", path_, std::strerror(errno)));
+    }
+    done += std::size_t(n);
+  }
+}
+
+std::string AtomicFileWriter::finish_temp() {
+  if (fd_ < 0) throw InputError(fmt::format("{}: cannot write: the file is already finished", path_));
+  ::fchmod(fd_, 0644);
+  const int fd = fd_;
+  fd_ = -1;
+  int err = ::fsync(fd) != 0 ? errno : 0;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err != 0) throw InputError(fmt::format("{}: cannot sync: {}", path_, std::strerror(err)));  // the destructor unlinks
+  return std::exchange(tmp_, std::string());
+}
+
+void AtomicFileWriter::commit() {
+  rename_into_place(finish_temp(), path_);
+  sync_directory(path_);
+}
+
 void write_file_atomic(const std::string& path, std::string_view text) {
-  rename_into_place(write_temp(path, text), path);
-  sync_directory(path);
+  AtomicFileWriter out(path);
+  out.write(text);
+  out.commit();
 }
 
 void AtomicFileSet::stage(const std::string& path, std::string_view text) {
-  staged_.emplace_back(write_temp(path, text), path);
+  AtomicFileWriter out(path);
+  out.write(text);
+  staged_.emplace_back(out.finish_temp(), path);
 }
 
 void AtomicFileSet::commit() {

@@ -13,6 +13,26 @@ namespace tilekit {
 // temp file is removed on failure and an existing `path` stays as it was.
 void write_file_atomic(const std::string& path, std::string_view text);
 
+// A file written piece by piece (a point set too large to hold in memory) and then put in
+// place whole: the pieces go to a temp file beside `path`; commit() syncs it and renames it over
+// `path`. Destroyed before commit() (an error, a signal), it removes the temp file and `path`
+// stays as it was. Every failure is an InputError naming the path and the system's reason.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(std::string path);
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  ~AtomicFileWriter();
+  void write(std::string_view bytes);
+  void commit();
+  // Syncs and closes the temp file and returns its name; its removal is then the caller's.
+  std::string finish_temp();
+
+ private:
+  std::string path_, tmp_;
+  int fd_ = -1;
+};
+
 // Files that belong together (an atlas, its mip levels, manifest, header and shader): each is
 // written and synced to a temp file beside its target as it is staged, and only commit()
 // renames them into place, in the order staged (stage the file that marks the set complete

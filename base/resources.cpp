@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -69,6 +70,17 @@ void require_memory(double bytes, std::string_view what) {
                                  what, gib(bytes), gib(double(limit)),
                                  std::getenv("TILEKIT_MEMORY") ? "TILEKIT_MEMORY" : "half of this machine's memory",
                                  std::uint64_t(bytes / double(1ull << 30)) + 1));
+}
+
+void require_disk(const std::string& path, double bytes, std::string_view what) {
+  const std::filesystem::path target(path);
+  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  const std::filesystem::space_info space = std::filesystem::space(dir, ec);
+  if (ec) return;
+  if (!(bytes <= double(space.available)))
+    throw InputError(fmt::format("{} needs about {} on disk, more than the {} free in {}", what, gib(bytes),
+                                 gib(double(space.available)), dir.string()));
 }
 
 void advise_huge_pages(void* p, std::size_t bytes) {

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace tilekit {
@@ -23,6 +24,12 @@ std::uint64_t memory_limit();
 // Throws InputError "WHAT needs about X GiB of memory, more than the limit of Y GiB (half of
 // this machine's memory; set TILEKIT_MEMORY=... to raise it)" when `bytes` exceeds it.
 void require_memory(double bytes, std::string_view what);
+
+// Throws InputError "WHAT needs about X GiB on disk, more than the Y GiB free in DIR" when
+// `bytes` exceed the space free to this user in the folder that will hold `path` (a file
+// streamed to disk, where memory no longer bounds it). Nothing is checked where the folder
+// cannot be asked (it is then the write that fails, with the same exit code).
+void require_disk(const std::string& path, double bytes, std::string_view what);
 
 // Asks the kernel to back [p, p + bytes) with huge pages (Linux transparent huge pages in
 // "madvise" mode): a fresh output buffer of hundreds of megabytes then takes a few hundred page

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -16,12 +17,14 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "base/resources.hpp"
 #include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/point_io.hpp"
 #include "points/tile_set_file.hpp"
 #include "results/results_db.hpp"
 #include "tilesets/tile_set.hpp"
+#include "tiling/lattice_hash.hpp"
 
 namespace tilekit::cli::pts {
 
@@ -136,6 +139,24 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   });
 }
 
+// The points of `w` from a tile set straight into the point file a.out, a row of tiles at a time;
+// returns how many. The file appears whole, or not at all (a full disk, an error).
+std::uint64_t stream_points(const PoissonTileSet& set, const Window& w, const GenerateArgs& a, int threads,
+                            ProgressReporter& progress) {
+  const PoissonTileGenerator gen(set, parse_hash_kind(a.source.hash), a.seed, a.period);
+  const double side = gen.tile_size(a.density);
+  // A batch of rows of tiles in memory at once: 4 per thread, 16 bytes a point, twice.
+  const double row_points = (std::floor(w.x1 / side) - std::floor(w.x0 / side) + 1) * double(set.points);
+  require_memory(row_points * 16 * 2 * 4 * std::max(threads, 1), "a row of tiles of the window");
+  const double largest = std::max({std::abs(w.x0), std::abs(w.x1), std::abs(w.y0), std::abs(w.y1)});
+  PointFileWriter out(a.out, largest, 1 / std::sqrt(a.density));
+  gen.generate_rows(
+      w, a.density, [&](const std::vector<double>& row) { out.append(row.data(), row.size() / 2); }, threads,
+      &progress);
+  out.commit();
+  return out.points();
+}
+
 void run_generate(const GenerateArgs& a, const Context& ctx) {
   const Window w = parse_window(a.window);
   if (!a.out.empty() && !is_point_file_path(a.out)) check_extension(a.out, {".png", ".svg"}, "--out");
@@ -147,25 +168,45 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
     throw InputError("give --density-expr or --density-image, not both");
   if (!a.density_expr.empty()) fn = expression_density(a.density_expr);
   if (!a.density_image.empty()) fn = image_density(a.density_image, w, a.density, a.invert);
-  require_window_memory(w, a.density, fn.get());  // before the tile set is built
+  // Tile sets written to a point file (and not analysed) stream row by row: the window is bounded
+  // by the disk, not the memory.
+  const bool tile_set = a.source.method == "corner" || a.source.method == "wang" || a.source.method == "dual";
+  const bool stream = tile_set && !fn && is_point_file_path(a.out) && !a.analyze;
+  // Before the tile set is built: the points must fit in memory, or (streamed) on the disk.
+  if (stream) {
+    const double expected = w.area() * a.density;
+    const double per_point = a.out.ends_with(".csv") ? 40 : a.out.ends_with(".f64") ? 16 : 8;
+    require_disk(a.out, expected * per_point, fmt::format("a window of about {:.3g} points", expected));
+  } else {
+    require_window_memory(w, a.density, fn.get());
+  }
   const Source src(a.source, threads, !a.quiet);
   const double tile = src.tile_size(a.density);
   ProgressReporter progress("points generate", 0, !a.quiet && w.area() * a.density > 5e7);
   const auto start = std::chrono::steady_clock::now();
-  const auto xy = src.points(w, a.density, a.seed, threads, a.period, a.period > 0, fn.get(), &progress);
+  std::vector<double> xy;
+  std::uint64_t count = 0;
+  if (stream) {
+    count = stream_points(*src.tiles(), w, a, threads, progress);
+  } else {
+    xy = src.points(w, a.density, a.seed, threads, a.period, a.period > 0, fn.get(), &progress);
+    count = xy.size() / 2;
+  }
   const double seconds = seconds_since(start);
   progress.finish();
-  const std::uint64_t count = xy.size() / 2;
   nlohmann::json j = {{"method", src.method()}, {"source", src.describe()},
                       {"points", count},        {"window", {w.x0, w.y0, w.x1, w.y1}},
                       {"density", a.density},   {"seed", a.seed},
                       {"seconds", seconds},     {"points_per_second", seconds > 0 ? double(count) / seconds : 0},
                       {"threads", threads}};
   if (tile > 0) j["tile_size"] = tile;
+  if (stream) j["streamed"] = true;  // written row by row: `seconds` includes the writing
   if (fn) j["density_function"] = fn->describe();
   if (a.analyze && count >= 2) j["radius"] = radius_json(radius_stats(xy, w.area(), tile));
   if (!a.out.empty()) {
-    if (is_point_file_path(a.out))
+    if (stream)
+      ;  // written above
+    else if (is_point_file_path(a.out))
       write_points(a.out, xy);
     else if (is_svg(a.out))
       write_file_atomic(a.out, points_svg(xy, w, a.px, 1.5, 0));
@@ -231,7 +272,9 @@ void add_generate_command(CLI::App* points, Context& ctx) {
   cmd->add_option("--period", a->period, "Repeat the tiling every M tiles (a toroidal set)")
       ->check(CLI::Range(1, 1 << 30));
   cmd->add_option("--threads", a->threads, "Threads, one tile row at a time (default: all cores)");
-  cmd->add_option("--out", a->out, "Points: .f32/.bin (float32 x,y pairs), .f64 (float64), .csv; or a picture: .png, .svg");
+  cmd->add_option("--out", a->out,
+                  "Points: .f32/.bin (float32 x,y pairs), .f64 (float64), .csv (a tile set's points stream to the file "
+                  "row by row: the disk bounds the window, not the memory); or a picture: .png, .svg");
   cmd->add_option("--px", a->px, "Picture size in pixels (default 800)")->check(CLI::Range(16, 8192));
   cmd->add_flag("--analyze", a->analyze, "Add the radius analysis (overall and across tile borders)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");

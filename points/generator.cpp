@@ -183,16 +183,20 @@ std::vector<double> PoissonTileGenerator::generate(const Window& w, double densi
   return out;
 }
 
+PoissonTileGenerator::Rows PoissonTileGenerator::rows_of(const Window& w, double density) const {
+  const double s = tile_size(density);
+  return {s, std::int64_t(std::floor(w.x0 / s)), std::int64_t(std::floor(w.x1 / s)), std::int64_t(std::floor(w.y0 / s)),
+          std::int64_t(std::floor(w.y1 / s))};
+}
+
 void PoissonTileGenerator::generate_into(std::vector<double>& out, const Window& w, double density, int threads,
                                          ProgressReporter* progress) const {
-  const double s = tile_size(density);
-  const double tiles_x = std::floor(w.x1 / s) - std::floor(w.x0 / s) + 1,
-               tiles_y = std::floor(w.y1 / s) - std::floor(w.y0 / s) + 1;
+  const Rows r = rows_of(w, density);
+  const double s = r.side, tiles_x = double(r.tx1 - r.tx0 + 1), tiles_y = double(r.ty1 - r.ty0 + 1);
   if (!(tiles_x * tiles_y * set_.points < 4e9))
     throw InputError(
         fmt::format("the window holds about {:.3g} points: at most 2^31 per call", tiles_x * tiles_y * set_.points));
-  const std::int64_t tx0 = std::int64_t(std::floor(w.x0 / s)), tx1 = std::int64_t(std::floor(w.x1 / s));
-  const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / s)), ty1 = std::int64_t(std::floor(w.y1 / s));
+  const std::int64_t tx0 = r.tx0, tx1 = r.tx1, ty0 = r.ty0, ty1 = r.ty1;
   const std::int64_t rows = ty1 - ty0 + 1;
   if (progress) progress->set_total(double(rows));
   out.clear();
@@ -231,6 +235,33 @@ void PoissonTileGenerator::generate_into(std::vector<double>& out, const Window&
     std::copy(rows_out[std::size_t(r)].begin(), rows_out[std::size_t(r)].end(),
               out.begin() + std::ptrdiff_t(at[std::size_t(r)]));
   });
+}
+
+void PoissonTileGenerator::generate_rows(const Window& w, double density,
+                                         const std::function<void(const std::vector<double>&)>& sink, int threads,
+                                         ProgressReporter* progress) const {
+  const Rows r = rows_of(w, density);
+  const std::int64_t rows = r.ty1 - r.ty0 + 1;
+  if (progress) progress->set_total(double(rows));
+  const std::int64_t batch = threads <= 1 ? 1 : 4 * std::int64_t(threads);
+  std::vector<std::vector<double>> out(static_cast<std::size_t>(batch));
+  Scratch one;
+  for (std::int64_t first = 0; first < rows; first += batch) {
+    const std::int64_t n = std::min(batch, rows - first);
+    for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)].clear();
+    if (n == 1) {
+      row(r.ty0 + first, r.tx0, r.tx1, w, r.side, one, out[0]);
+    } else {
+      parallel_for(n, threads, [&](std::int64_t i) {
+        thread_local Scratch sc;
+        row(r.ty0 + first + i, r.tx0, r.tx1, w, r.side, sc, out[std::size_t(i)]);
+      });
+    }
+    for (std::int64_t i = 0; i < n; ++i) {
+      sink(out[std::size_t(i)]);
+      if (progress) progress->add(1);
+    }
+  }
 }
 
 }  // namespace tilekit::points

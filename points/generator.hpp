@@ -11,6 +11,7 @@
 // to about 1e-16 of their size, so windows far from the origin keep their distances (float32
 // lost the disk radius from about 1e6 on).
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,11 +55,22 @@ class PoissonTileGenerator {
   void generate_into(std::vector<double>& out, const Window& w, double density, int threads = 1,
                      ProgressReporter* progress = nullptr) const;
 
+  // The same points handed to `sink` a row of tiles at a time, north to south, in the order
+  // generate() gives them, on the calling thread; rows are made `threads` at a time. Memory is a
+  // few rows per thread whatever the window's size, so a window can be streamed to a file.
+  void generate_rows(const Window& w, double density, const std::function<void(const std::vector<double>&)>& sink,
+                     int threads = 1, ProgressReporter* progress = nullptr) const;
+
   // The tile index (into set().tiles) of tile (tx, ty).
   std::uint64_t tile_index(std::int64_t tx, std::int64_t ty) const;
 
  private:
   struct Scratch;
+  struct Rows {  // the tiles a window touches, and their side
+    double side;
+    std::int64_t tx0, tx1, ty0, ty1;
+  };
+  Rows rows_of(const Window& w, double density) const;
   void row(std::int64_t ty, std::int64_t tx0, std::int64_t tx1, const Window& w, double s, Scratch& scratch,
            std::vector<double>& out) const;
   void row_indices(std::int64_t ty, std::int64_t tx0, std::int64_t cols, Scratch& scratch) const;

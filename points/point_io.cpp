@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
@@ -36,16 +37,8 @@ namespace {
 
 // float32 keeps 24 bits: far from the origin its rounding reaches the spacing of the points
 // (at 1e6 it is 0.06, near the spacing at density 100) and points collapse onto each other.
-// Refused when the rounding exceeds 1% of the mean spacing over the points' bounding box.
-void check_float32_fits(const std::string& path, const std::vector<double>& xy) {
-  const std::size_t n = xy.size() / 2;
-  if (n < 2) return;
-  double x0 = xy[0], x1 = xy[0], y0 = xy[1], y1 = xy[1], largest = 0;
-  for (std::size_t i = 0; i < xy.size(); i += 2) {
-    x0 = std::min(x0, xy[i]), x1 = std::max(x1, xy[i]), y0 = std::min(y0, xy[i + 1]), y1 = std::max(y1, xy[i + 1]);
-    largest = std::max({largest, std::abs(xy[i]), std::abs(xy[i + 1])});
-  }
-  const double spacing = std::sqrt(std::max(x1 - x0, 1e-300) * std::max(y1 - y0, 1e-300) / double(n));
+// Refused when the rounding exceeds 1% of the mean spacing.
+void check_float32_fits(const std::string& path, double largest, double spacing) {
   const double rounding = largest * 0x1p-24;
   if (rounding > 0.01 * spacing)
     throw InputError(fmt::format("{}: float32 rounds coordinates as large as {:.6g} by up to {:.3g}, more than 1% of "
@@ -53,28 +46,71 @@ void check_float32_fits(const std::string& path, const std::vector<double>& xy) 
                                  path, largest, rounding, spacing));
 }
 
+void check_extension(const std::string& path) {
+  if (!is_point_file_path(path))
+    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin, .f64 or .csv)", path));
+}
+
+constexpr std::size_t kFlushBytes = std::size_t(1) << 20;
+
 }  // namespace
 
-void write_points(const std::string& path, const std::vector<double>& xy) {
-  if (is_raw32(path)) {
-    check_float32_fits(path, xy);
-    const std::vector<float> f(xy.begin(), xy.end());
-    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(f.data()), f.size() * sizeof(float)));
-  } else if (is_raw64(path)) {
-    write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(xy.data()), xy.size() * sizeof(double)));
-  } else if (ends_with(path, ".csv")) {
-    std::string out = "x,y\n";
-    out.reserve(xy.size() * 12 + 8);
-    for (std::size_t i = 0; i + 1 < xy.size(); i += 2) out += fmt::format("{},{}\n", xy[i], xy[i + 1]);
-    write_file_atomic(path, out);
-  } else {
-    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin, .f64 or .csv)", path));
+PointFileWriter::PointFileWriter(const std::string& path, double largest, double spacing)
+    : format_(is_raw32(path) ? Format::F32 : is_raw64(path) ? Format::F64 : Format::Csv),
+      out_((check_extension(path), path)) {
+  if (format_ == Format::F32) check_float32_fits(path, largest, spacing);
+  if (format_ == Format::Csv) buffer_ = "x,y\n";
+}
+
+void PointFileWriter::append(const double* xy, std::size_t points) {
+  for (std::size_t i = 0; i < 2 * points; i += 2) {
+    switch (format_) {
+      case Format::F32: {
+        const float f[2] = {float(xy[i]), float(xy[i + 1])};
+        buffer_.append(reinterpret_cast<const char*>(f), sizeof f);
+        break;
+      }
+      case Format::F64:
+        buffer_.append(reinterpret_cast<const char*>(xy + i), 2 * sizeof(double));
+        break;
+      case Format::Csv:
+        fmt::format_to(std::back_inserter(buffer_), "{},{}\n", xy[i], xy[i + 1]);
+        break;
+    }
+    if (buffer_.size() >= kFlushBytes) flush();
   }
+  points_ += points;
+}
+
+void PointFileWriter::flush() {
+  out_.write(buffer_);
+  buffer_.clear();
+}
+
+void PointFileWriter::commit() {
+  flush();
+  out_.commit();
+}
+
+void write_points(const std::string& path, const std::vector<double>& xy) {
+  check_extension(path);
+  const std::size_t n = xy.size() / 2;
+  double largest = 0, spacing = 1e300;
+  if (n >= 2) {  // the extent and mean spacing of the points themselves
+    double x0 = xy[0], x1 = xy[0], y0 = xy[1], y1 = xy[1];
+    for (std::size_t i = 0; i < xy.size(); i += 2) {
+      x0 = std::min(x0, xy[i]), x1 = std::max(x1, xy[i]), y0 = std::min(y0, xy[i + 1]), y1 = std::max(y1, xy[i + 1]);
+      largest = std::max({largest, std::abs(xy[i]), std::abs(xy[i + 1])});
+    }
+    spacing = std::sqrt(std::max(x1 - x0, 1e-300) * std::max(y1 - y0, 1e-300) / double(n));
+  }
+  PointFileWriter out(path, largest, spacing);
+  out.append(xy.data(), n);
+  out.commit();
 }
 
 std::vector<double> read_points(const std::string& path) {
-  if (!is_point_file_path(path))
-    throw InputError(fmt::format("{}: unknown point file type (expected .f32, .bin, .f64 or .csv)", path));
+  check_extension(path);
   const std::string data = read_input_file(path, "point file");
   std::vector<double> xy;
   if (is_raw32(path) || is_raw64(path)) {

@@ -69,8 +69,11 @@ TEST(HostileInputs, DeeplyNestedDensityExpressionsAreRefusedNotACrash) {
 TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
   TempDir d;
   double s = seconds_of([&] {
-    expect_refused(run_cli("points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.f32 --quiet"),
+    expect_refused(run_cli("points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.png --quiet"),
                    "set TILEKIT_MEMORY");
+    // Streamed to a point file, the disk bounds the window instead.
+    expect_refused(run_cli("points generate --window 0,0,1000000,1000000 --density 1000 --out " + d / "p.f32 --quiet"),
+                   "on disk, more than the");
     expect_refused(run_cli("points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 "
                            "--out " +
                            d / "p.f32 --quiet"),
@@ -79,7 +82,7 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
     expect_refused(run_cli_prefixed("env TILEKIT_MEMORY=1M ",
                                     "points generate --window 0,0,100,100 --density 10 "
                                     "--out " +
-                                        d / "p.f32 --quiet"),
+                                        d / "p.png --quiet"),
                    "more than the limit of 0.000977 GiB (TILEKIT_MEMORY");
     expect_refused(run_cli("points tiles --rho 1e-6 --no-db --quiet --out " + d / "t.ptiles"), "use --rho");
     expect_refused(
@@ -87,6 +90,7 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
         "candidates a round may try");
   });
   EXPECT_FALSE(fs::exists(d / "p.f32"));
+  EXPECT_FALSE(fs::exists(d / "p.png"));
   EXPECT_LT(s, 20) << "refused before any work";
   // An image that decodes to 23000 x 23000 grey pixels (529 MB) is refused from its header.
   std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x59\xd8\0\0\x59\xd8\x08\0\0\0\0\0\0\0\0", 33);

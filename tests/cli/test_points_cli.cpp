@@ -44,6 +44,37 @@ TEST(PointsCli, TilesBuildsChecksStoresAndWritesASetThatGenerateReads) {
   EXPECT_EQ(r.json()["points"], 384);
 }
 
+// A tile set written to a point file streams row by row: the same bytes as the points made in
+// memory (--analyze keeps them there), in every format, and a window far larger than the memory
+// limit still goes to the file with the memory of a few rows.
+TEST(PointsCli, StreamedPointFilesEqualTheInMemoryOnesAndNeedOnlyRowsOfMemory) {
+  TempDir d;
+  const std::string set = d / "c.ptiles";
+  ASSERT_EQ(run_cli("points tiles --colors 2 --points 32 --no-db --quiet --out " + q(set)).code, 0);
+  for (const char* ext : {".f32", ".f64", ".csv"})
+    for (const char* threads : {"1", "2"}) {
+      const std::string streamed = d / (std::string("s") + threads + ext), kept = d / (std::string("m") + threads + ext);
+      const std::string common = "points generate --tiles " + q(set) + " --window=-3.5,2,40.25,31 --density 32 " +
+                                 "--seed 5 --threads " + threads + " --json --quiet --out ";
+      auto r = run_cli(common + q(streamed));
+      ASSERT_EQ(r.code, 0) << r.err;
+      EXPECT_TRUE(r.json().value("streamed", false));
+      r = run_cli(common + q(kept) + " --analyze");
+      ASSERT_EQ(r.code, 0) << r.err;
+      EXPECT_FALSE(r.json().contains("streamed"));
+      EXPECT_EQ(slurp(streamed), slurp(kept)) << ext << " on " << threads << " thread(s)";
+    }
+  // 1e7 points (80 MB of float32) under a 64 MB limit: held in memory they would need 400 MB.
+  const std::string big = d / "big.f32";
+  const std::string cmd = "points generate --tiles " + q(set) + " --window 0,0,1000,1000 --density 10 --threads 1 " +
+                          "--quiet --json --out ";
+  EXPECT_EQ(run_cli_prefixed("env TILEKIT_MEMORY=64M ", cmd + q(d / "big.png")).code, 2);
+  const auto r = run_cli_prefixed("env TILEKIT_MEMORY=64M ", cmd + q(big));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(big).size(), 8 * r.json()["points"].get<std::size_t>());
+  EXPECT_NEAR(r.json()["points"].get<double>(), 1e7, 1e5);
+}
+
 TEST(PointsCli, BadInputIsExitCodeTwoWithOneLine) {
   TempDir d;
   EXPECT_EQ(run_cli("points generate --method corner --colors 2 --points 32 --window 0,0,x,1 --density 4").code, 2);
