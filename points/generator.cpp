@@ -11,8 +11,8 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
-#include "base/resources.hpp"
 #include "base/random.hpp"
+#include "base/resources.hpp"
 #include "points/tile_parts.hpp"
 #include "tiling/lattice_tiling.hpp"
 
