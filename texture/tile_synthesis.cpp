@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -20,8 +21,9 @@
 namespace tilekit {
 
 TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
-  margin = std::max(3, 5 * n / 64);
-  strip = margin + std::max(2, 3 * n / 32);
+  margin = std::max(3, 3 * n / 64);
+  strip = margin + std::max(2, 3 * n / 16);
+  corner_reach = margin + std::max(2, 3 * n / 32);
   extent = strip + 2;
 }
 
@@ -244,6 +246,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (region[i] && !forced[i]) band.push_back(i);
     }
   const SampleDraw draw(e, n, n);
+  const double pull = kCentrePull * e.neighbour_difference;
   const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
   ProgressReporter progress(title, 2.0 * double(count), o.progress);
   // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on
@@ -303,7 +306,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
     for (std::size_t k = 0; k < chosen[t].size(); ++k) {
       const std::array<int, 2> q = chosen[t][k];
       for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
-      GraphCutResult r = graph_cut_merge(img, patch, region, forced);
+      GraphCutResult r = graph_cut_merge(img, patch, region, forced, pull);
       if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch, s.centres[t] = q;
     }
     for (std::size_t i = 0; i < px; ++i)
@@ -315,6 +318,10 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
     progress.add(1);
   });
   progress.finish();
+  std::size_t shared = 0;
+  for (const auto& src : s.sources)
+    shared += std::size_t(std::count_if(src.begin(), src.end(), [&](std::uint32_t id) { return id < s.shared_sources; }));
+  s.shared_fraction = double(shared) / double(count * px);
   return std::accumulate(cost.begin(), cost.end(), 0.0) / double(count);
 }
 
@@ -367,6 +374,7 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"cut_error", s.cut_error},
           {"centre_cost", s.centre_cost},
           {"sample_overlap", s.overlap},
+          {"shared_fraction", s.shared_fraction},
           {"period", {s.period.x, s.period.y}},
           {"exemplar_scale", s.exemplar_scale},
           {"seconds", s.seconds}};
