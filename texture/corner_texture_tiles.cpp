@@ -37,18 +37,20 @@ using Pos = std::array<int, 2>;
 class CornerSynthesis {
  public:
   CornerSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px), c_(o.colours) {
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, x_.periodic()), c_(o.colours) {
     check_synthesis_options(e_, o);
     const int n = g_.n, m = g_.margin, E = g_.extent, side = 2 * E + 2, band = n - 2 * m + 2;
     draws_.emplace_back(e_, side, side);
     draws_.emplace_back(e_, band, 2 * E);
     draws_.emplace_back(e_, 2 * E, band);
     for (std::uint32_t c = 0; c < c_; ++c)
-      slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0, c, c_});
+      slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
-      slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1, k, c_ * c_});
+      slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
-      slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2, k, c_ * c_});
+      slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2});
+    // every shared sample from its own cell of the exemplar, so no two of them overlap
+    for (std::size_t j = 0; j < slots_.size(); ++j) slots_[j].stratum = j, slots_[j].strata = slots_.size();
   }
 
   TextureTileSet run() {

@@ -20,10 +20,10 @@
 
 namespace tilekit {
 
-TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
-  margin = std::max(3, 3 * n / 64);
-  strip = margin + std::max(2, 3 * n / 16);
+TileGeometry::TileGeometry(int tile_px, bool periodic) : n(tile_px), periodic(periodic) {
+  margin = std::max(3, (periodic ? 5 : 3) * n / 64);
   corner_reach = margin + std::max(2, 3 * n / 32);
+  strip = periodic ? corner_reach : margin + std::max(2, 3 * n / 16);
   extent = strip + 2;
 }
 
@@ -230,7 +230,7 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
 double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const SynthesisOptions& o,
                             const std::string& title) {
   const Exemplar& e = x.exemplar();
-  const TileGeometry g(s.tile_px);
+  const TileGeometry g(s.tile_px, x.periodic());
   const int n = g.n;
   const std::size_t count = s.tiles.size(), px = std::size_t(n) * std::size_t(n);
   // The pixels the centre may take (at least `margin` from every border), the ones it must take
@@ -246,7 +246,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (region[i] && !forced[i]) band.push_back(i);
     }
   const SampleDraw draw(e, n, n);
-  const double pull = kCentrePull * e.neighbour_difference;
+  const double pull = g.periodic ? 0.0 : kCentrePull * e.neighbour_difference;
   const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
   ProgressReporter progress(title, 2.0 * double(count), o.progress);
   // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on

@@ -62,7 +62,8 @@ struct TileGeometry {
   int strip = 0;         // h: m + 3n/16; the band each border's samples cover; the centre patch beyond it
   int corner_reach = 0;  // m + 3n/32: how far along a border a corner square may reach (corner tiles)
   int extent = 0;        // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
-  explicit TileGeometry(int tile_px);
+  bool periodic = false;
+  explicit TileGeometry(int tile_px, bool periodic = false);
 };
 
 // The centre patch's graph cut pays this many exemplar neighbour differences for every texel of
