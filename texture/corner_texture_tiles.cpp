@@ -44,13 +44,12 @@ class CornerSynthesis {
     draws_.emplace_back(e_, band, 2 * E);
     draws_.emplace_back(e_, 2 * E, band);
     for (std::uint32_t c = 0; c < c_; ++c)
-      slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0});
+      slots_.push_back({side, side, -E - 1, -E - 1, 1, E + 1, side - 2, true, 0, c, c_});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
-      slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1});
+      slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1, k, c_ * c_});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
-      slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2});
-    // every shared sample from its own cell of the exemplar, so no two of them overlap
-    for (std::size_t j = 0; j < slots_.size(); ++j) slots_[j].stratum = j, slots_[j].strata = slots_.size();
+      slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2, k, c_ * c_});
+    own_strata(slots_, x_);
   }
 
   TextureTileSet run() {

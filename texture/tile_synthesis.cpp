@@ -178,6 +178,11 @@ std::array<int, 2> SampleDraw::operator()(std::uint64_t seed, std::size_t stratu
   return p;
 }
 
+void own_strata(std::vector<SampleSlot>& slots, const SynthesisExemplar& x) {
+  if (x.periodic()) return;
+  for (std::size_t j = 0; j < slots.size(); ++j) slots[j].stratum = j, slots[j].strata = slots.size();
+}
+
 double window_overlap(const Exemplar& e, std::array<int, 2> pa, int w, int h, std::array<int, 2> pb, int wb, int hb) {
   auto along = [](int a, int la, int b, int lb, int wrap) {
     if (!wrap) return std::max(0, std::min(a + la, b + lb) - std::max(a, b));

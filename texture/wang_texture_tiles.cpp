@@ -43,10 +43,9 @@ class WangSynthesis {
     const int n = g_.n, E = g_.extent;
     draws_.emplace_back(e_, n, 2 * E);
     draws_.emplace_back(e_, 2 * E, n);
-    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0});
-    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1});
-    // every shared sample from its own cell of the exemplar, so no two of them overlap
-    for (std::size_t j = 0; j < slots_.size(); ++j) slots_[j].stratum = j, slots_[j].strata = slots_.size();
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0, c, c_});
+    for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1, c, c_});
+    own_strata(slots_, x_);
   }
 
   TextureTileSet run() {
