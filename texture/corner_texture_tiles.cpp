@@ -37,7 +37,7 @@ using Pos = std::array<int, 2>;
 class CornerSynthesis {
  public:
   CornerSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, x_.periodic()), c_(o.colours) {
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, thin_bands(o, x_)), c_(o.colours) {
     check_synthesis_options(e_, o);
     const int n = g_.n, m = g_.margin, E = g_.extent, side = 2 * E + 2, band = n - 2 * m + 2;
     draws_.emplace_back(e_, side, side);
@@ -62,6 +62,7 @@ class CornerSynthesis {
     s.method = "corner-strips";
     s.shared_sources = c_ + 2 * c_ * c_;
     s.period = x_.period();
+    s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
     choose_samples(s);
     compose_tiles(s);

@@ -20,11 +20,15 @@
 
 namespace tilekit {
 
-TileGeometry::TileGeometry(int tile_px, bool periodic) : n(tile_px), periodic(periodic) {
-  margin = std::max(3, (periodic ? 5 : 3) * n / 64);
+TileGeometry::TileGeometry(int tile_px, bool thin) : n(tile_px), thin(thin) {
+  margin = std::max(3, (thin ? 3 : 5) * n / 64);
   corner_reach = margin + std::max(2, 3 * n / 32);
-  strip = periodic ? corner_reach : margin + std::max(2, 3 * n / 16);
+  strip = thin ? margin + std::max(2, 3 * n / 16) : corner_reach;
   extent = strip + 2;
+}
+
+bool thin_bands(const SynthesisOptions& o, const SynthesisExemplar& x) {
+  return o.thin_bands && !x.periodic();
 }
 
 void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
@@ -235,7 +239,7 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
 double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const SynthesisOptions& o,
                             const std::string& title) {
   const Exemplar& e = x.exemplar();
-  const TileGeometry g(s.tile_px, x.periodic());
+  const TileGeometry g(s.tile_px, thin_bands(o, x));
   const int n = g.n;
   const std::size_t count = s.tiles.size(), px = std::size_t(n) * std::size_t(n);
   // The pixels the centre may take (at least `margin` from every border), the ones it must take
@@ -251,7 +255,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (region[i] && !forced[i]) band.push_back(i);
     }
   const SampleDraw draw(e, n, n);
-  const double pull = g.periodic ? 0.0 : kCentrePull * e.neighbour_difference;
+  const double pull = g.thin ? kCentrePull * e.neighbour_difference : 0.0;
   const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
   ProgressReporter progress(title, 2.0 * double(count), o.progress);
   // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on
@@ -380,6 +384,7 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"centre_cost", s.centre_cost},
           {"sample_overlap", s.overlap},
           {"shared_fraction", s.shared_fraction},
+          {"thin_bands", s.thin_bands},
           {"period", {s.period.x, s.period.y}},
           {"exemplar_scale", s.exemplar_scale},
           {"seconds", s.seconds}};

@@ -38,7 +38,7 @@ constexpr Corner kCorners[4] = {{1, -1}, {1, 1}, {-1, 1}, {-1, -1}};  // NE, SE,
 class WangSynthesis {
  public:
   WangSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, x_.periodic()), c_(o.colours) {
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, thin_bands(o, x_)), c_(o.colours) {
     check_synthesis_options(e_, o);
     const int n = g_.n, E = g_.extent;
     draws_.emplace_back(e_, n, 2 * E);
@@ -58,6 +58,7 @@ class WangSynthesis {
     s.method = "wang-strips";
     s.shared_sources = 2 * c_;
     s.period = x_.period();
+    s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
     choose_samples(s);
     compose_tiles(s);
@@ -86,12 +87,13 @@ class WangSynthesis {
   }
 
   // The cut in corner k between horizontal-border sample h and vertical-border sample v, by
-  // anti-diagonals a = dh + dv = 1 .. 2 extent - 3 of the square where the two bands cross: the
+  // anti-diagonals a = dh + dv = 1 .. 2 (corner_reach + 2) - 3 of the square where the two bands
+  // cross (beyond it a texel comes from the nearer border's sample): the
   // boundary P(a) between offsets d = dv - dh (pixels with d > P come from the horizontal
   // border's sample). |P| < a keeps every border pixel on its own side, and the boundary's
   // neighbours stay inside the square.
   CutPath cut(int k, const std::vector<Pos>& pos, Colour h, Colour v) const {
-    const int E = g_.extent, A = 2 * E - 3;
+    const int E = g_.corner_reach + 2, A = 2 * E - 3;  // the crossing square: as far as a corner square reaches
     CutBand band;
     band.rows = A;
     band.width = 2 * A + 1;
@@ -99,7 +101,9 @@ class WangSynthesis {
     band.cost.assign(std::size_t(band.rows) * std::size_t(band.width), 0.0f);
     const float unit = float(e_.neighbour_difference);
     for (int a = 1; a <= A; ++a) {
-      const int reach = std::min(a - 1, 2 * E - 3 - a);
+      // at most corner_reach - margin from the diagonal: a texel within the margin of one border
+      // comes from the other border's sample only within corner_reach of the corner
+      const int reach = std::min({a - 1, 2 * E - 3 - a, g_.corner_reach - g_.margin});
       band.lo.push_back(A - reach);
       band.hi.push_back(A + reach);
       for (int p = -reach; p <= reach; ++p) {
@@ -147,7 +151,7 @@ class WangSynthesis {
   // The bands of every tile, split in the corners by the diagonal cuts; the middle, which no band
   // reaches, is left for the centre patch.
   void compose_tiles(TextureTileSet& s) {
-    const int n = g_.n, E = g_.extent, A = 2 * E - 3;
+    const int n = g_.n, E = g_.extent, A = 2 * (g_.corner_reach + 2) - 3;
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
     s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
