@@ -49,7 +49,7 @@ class CornerSynthesis {
       slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1, k, c_ * c_});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
       slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2, k, c_ * c_});
-    own_strata(slots_, x_);
+    own_strata(slots_, g_);
   }
 
   TextureTileSet run() {

@@ -182,8 +182,8 @@ std::array<int, 2> SampleDraw::operator()(std::uint64_t seed, std::size_t stratu
   return p;
 }
 
-void own_strata(std::vector<SampleSlot>& slots, const SynthesisExemplar& x) {
-  if (x.periodic()) return;
+void own_strata(std::vector<SampleSlot>& slots, const TileGeometry& g) {
+  if (!g.thin) return;
   for (std::size_t j = 0; j < slots.size(); ++j) slots[j].stratum = j, slots[j].strata = slots.size();
 }
 

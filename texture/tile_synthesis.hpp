@@ -196,12 +196,10 @@ struct SampleSlot {
   std::size_t stratum = 0, strata = 1;
 };
 
-// Every shared sample from its own cell of the exemplar (slot j: stratum j of all), so that
-// no two of them overlap, for an exemplar without a period; a periodic one keeps one grid per
-// kind of sample (slot k of a kind: stratum k of that kind's count), whose larger cells leave room
-// for the positions in phase (on the brick walls the small cells put the bands where the phase
-// fits badly: seam ratio 1.69 on skimage's brick, corner C = 4).
-void own_strata(std::vector<SampleSlot>& slots, const SynthesisExemplar& x);
+// With thin bands, every shared sample from its own cell of the exemplar (slot j: stratum j of
+// all), so that no two of their larger windows overlap; otherwise one grid per kind of sample
+// (slot k of a kind: stratum k of that kind's count).
+void own_strata(std::vector<SampleSlot>& slots, const TileGeometry& g);
 
 // The score of a sample in the search: first how far its border line misses the seam goal (0
 // within kBorderTolerance of its own activity, see line_activity), then the cut error it takes
