@@ -2,6 +2,7 @@
 // real texture, tile kind and C, one JSON line per case. Usage:
 //   build/bench_texture_quality [--textures a,b,...] [--kinds corner,wang] [--colors 2,3,4]
 //                               [--tile-px 64] [--size 1024] [--threads 2] [--out DIR] [--speed REPS]
+//                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
 //                visibility, histogram distance, lattice peak. Goals (corner, C = 4, 64 px): grid
@@ -67,8 +68,9 @@ nlohmann::json measures(const TextureAnalysis& a) {
 }
 
 void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uint32_t c, int px, int size, int threads,
-             const std::string& out) {
+             const std::string& out, bool thin) {
   SynthesisOptions o;
+  o.thin_bands = thin;
   o.kind = kind;
   o.colours = c;
   o.tile_px = px;
@@ -94,7 +96,9 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
                       {"threads", threads},
                       {"synthesis_seconds", seconds},
                       {"exemplar_scale", s.exemplar_scale},
-                      {"sample_overlap", s.overlap}};
+                      {"sample_overlap", s.overlap},
+                      {"shared_fraction", s.shared_fraction},
+                      {"bands", s.thin_bands ? "thin" : "default"}};
   j.update(measures(a));
   print(j);
 }
@@ -143,6 +147,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint32_t> colours = {2, 3, 4};
   int px = 64, size = 1024, threads = 2, reps = 0;
   std::string out;
+  bool thin = false;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--textures") textures = split(value);
@@ -156,6 +161,7 @@ int main(int argc, char** argv) {
     if (flag == "--threads") threads = std::stoi(value);
     if (flag == "--out") out = value;
     if (flag == "--speed") reps = std::stoi(value);
+    if (flag == "--bands") thin = value == "thin";
   }
   for (const std::string& name : textures) {
     const Exemplar e = texture(name);
@@ -166,7 +172,7 @@ int main(int argc, char** argv) {
     naive(name, e, px, size, threads);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)
-        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out);
+        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out, thin);
   }
   return 0;
 }

@@ -92,6 +92,9 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--centre-cuts", a->synthesis.centre_cuts, "Of those, how many get the full graph cut")
       ->capture_default_str();
+  cmd->add_flag("--thin-bands", a->synthesis.thin_bands,
+                "Share fewer texels (margin 3n/64, a wide cut zone pulled to the centre): less grid repetition, "
+                "but mip level 2 next to a border is no longer exact (not for a periodic exemplar)");
   cmd->add_option("--period", a->period,
                   "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
                   "phase); off: never")

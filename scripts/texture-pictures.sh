@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # The README's texture pictures (docs/images/texture-*.png), each from a tilekit command:
-#   texture-gravel-{corner-tiles,atlas,surface}.png  the corner tile set (C = 2, 64 px) from the
-#       fetched CC0 gravel texture, its atlas laid out by the packing from `atlas lookup`, and a
-#       tilted render of the infinite virtual texture (16x anisotropic filtering);
+#   texture-gravel-{corner-tiles,atlas}.png  the corner tile set (C = 2, 64 px) from the fetched
+#       CC0 gravel texture and its atlas laid out by the packing from `atlas lookup` (16 tiles, to
+#       be seen one by one);
+#   texture-gravel-surface.png  a tilted render of the infinite virtual texture of the C = 4 corner
+#       tiles with thin bands (256 tiles; 16x anisotropic filtering): C = 2's 16 tiles recur often
+#       enough to show as rows of the same stones toward the horizon;
 #   texture-gravel-surface-{trilinear,hex,hpn}.png  the same view with trilinear filtering, and with
 #       the hex and hpn baselines;
 #   texture-grid-{grass,gravel,oa-dirt,gimp-stone33}.png  flat 256x256 renders of corner tiles
-#       (C = 4, 64 px) of four real textures, the grid hidden;
+#       (C = 4, 64 px, --thin-bands) of four real textures, the grid hidden;
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
 #       the borders, the corner squares, a centre patch per tile);
 #   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
@@ -21,18 +24,18 @@ trap 'rm -rf "$work"' EXIT
 "$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --out "$work/tiles" --quiet
 "$tk" texture atlas "$work/tiles" --out "$work/atlas.png" --no-db
 view=(--size 640x360 --scale 1 --tilt 2 --quiet)
-"$tk" texture render --atlas "$work/atlas.png" "${view[@]}" --out "$img/texture-gravel-surface.png"
-"$tk" texture render --atlas "$work/atlas.png" "${view[@]}" --aniso 1 --out "$img/texture-gravel-surface-trilinear.png"
-for m in hex hpn; do
-  "$tk" texture render --method "$m" --exemplar gravel "${view[@]}" --out "$img/texture-gravel-surface-$m.png"
-done
 cp "$work/tiles/tileset.png" "$img/texture-gravel-corner-tiles.png"
 cp "$work/atlas.png" "$img/texture-gravel-atlas.png"
 for t in grass gravel oa-dirt gimp-stone33; do
   mkdir -p "$work/$t" "$work/$t-labels"
-  "$tk" texture tiles --exemplar "$t" --kind corner --colors 4 --tile-px 64 --seed 1 --out "$work/$t/tiles" --quiet
+  "$tk" texture tiles --exemplar "$t" --kind corner --colors 4 --tile-px 64 --seed 1 --thin-bands --out "$work/$t/tiles" --quiet
   "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
   "$tk" texture render --atlas "$work/$t/atlas.png" --size 256x256 --out "$img/texture-grid-$t.png" --quiet
+done
+"$tk" texture render --atlas "$work/gravel/atlas.png" "${view[@]}" --out "$img/texture-gravel-surface.png"
+"$tk" texture render --atlas "$work/gravel/atlas.png" "${view[@]}" --aniso 1 --out "$img/texture-gravel-surface-trilinear.png"
+for m in hex hpn; do
+  "$tk" texture render --method "$m" --exemplar gravel "${view[@]}" --out "$img/texture-gravel-surface-$m.png"
 done
 "$tk" texture atlas "$work/grass/tiles/labels" --out "$work/grass-labels/atlas.png" --no-db
 "$tk" texture render --atlas "$work/grass-labels/atlas.png" --size 256x256 --out "$img/texture-grid-labels.png" --quiet

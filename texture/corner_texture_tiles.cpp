@@ -14,7 +14,7 @@
 //   - a tile-unique centre patch over the rest, merged by a graph cut between `margin` and
 //     `strip` pixels from the borders (merge_centre_patches).
 // A band sample meets the corner squares at its two ends in minimum-error boundary cuts (Efros &
-// Freeman 2001) that run between `margin` and `strip` along the border, one per band sample and
+// Freeman 2001) that run between `margin` and `corner_reach` along the border, one per band sample and
 // end, so both tiles that share a border use the same cut. The shared samples are searched
 // (search_samples): seam goal first, then cut error plus overlap with the other samples.
 #include <fmt/format.h>
@@ -37,7 +37,7 @@ using Pos = std::array<int, 2>;
 class CornerSynthesis {
  public:
   CornerSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px), c_(o.colours) {
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, thin_bands(o, x_)), c_(o.colours) {
     check_synthesis_options(e_, o);
     const int n = g_.n, m = g_.margin, E = g_.extent, side = 2 * E + 2, band = n - 2 * m + 2;
     draws_.emplace_back(e_, side, side);
@@ -49,6 +49,7 @@ class CornerSynthesis {
       slots_.push_back({band, 2 * E, m - 1, -E, 1, E, n - 2 * m, true, 1, k, c_ * c_});
     for (std::uint32_t k = 0; k < c_ * c_; ++k)
       slots_.push_back({2 * E, band, -E, m - 1, E, 1, n - 2 * m, false, 2, k, c_ * c_});
+    own_strata(slots_, g_);
   }
 
   TextureTileSet run() {
@@ -61,6 +62,7 @@ class CornerSynthesis {
     s.method = "corner-strips";
     s.shared_sources = c_ + 2 * c_ * c_;
     s.period = x_.period();
+    s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
     choose_samples(s);
     compose_tiles(s);
@@ -85,14 +87,14 @@ class CornerSynthesis {
 
   // The cut between band sample `edge` (horizontal: from a west lattice point to an east one) and
   // the corner square at one of its ends: for each of the 2 * extent rows t across the border,
-  // the boundary q in margin..strip measured from that end's lattice point: the q nearest pixels
+  // the boundary q in margin..corner_reach measured from that end's lattice point: the q nearest pixels
   // come from the corner, the rest from the band.
   CutPath end_cut(const std::vector<Pos>& pos, std::size_t edge, std::size_t corner, bool horizontal,
                   bool far_end) const {
     const int n = g_.n, m = g_.margin, E = g_.extent;
     CutBand band;
     band.rows = 2 * E;
-    band.width = g_.strip - m + 1;
+    band.width = g_.corner_reach - m + 1;
     band.lo.assign(std::size_t(band.rows), 0);
     band.hi.assign(std::size_t(band.rows), band.width - 1);
     band.cost.resize(std::size_t(band.rows) * std::size_t(band.width));

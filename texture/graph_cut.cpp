@@ -48,7 +48,8 @@ class Builder {
 }  // namespace
 
 GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
-                               const std::vector<std::uint8_t>& forced) {
+                               const std::vector<std::uint8_t>& forced, double keep_cost) {
+  const std::int64_t keep = std::int64_t(std::llround(keep_cost * kScale));
   const int w = a.width, h = a.height;
   assert(b.width == w && b.height == h && region.size() == std::size_t(w) * std::size_t(h));
   assert(forced.size() == region.size());
@@ -71,7 +72,10 @@ GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector
       if (node[i] < 0) continue;
       assert(x >= 1 && y >= 1 && x + 2 < w && y + 2 < h);
       const std::size_t s = std::size_t(node[i]);
-      if (forced[i]) gb.add(source, s, kInfinite, 0);
+      if (forced[i])
+        gb.add(source, s, kInfinite, 0);
+      else if (keep > 0)
+        gb.add(source, s, keep, 0);
       // Each undirected neighbour pair once (right and down); a neighbour outside the region
       // keeps A, so taking B here cuts that pair: a link to the sink (and from the left/top too).
       for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {

@@ -22,8 +22,11 @@ struct GraphCutResult {
 };
 
 // A and B are the same size; region and forced hold one byte per pixel. Pixels of the region
-// must not lie on the image border (the gradients look one pixel further).
+// must not lie on the image border (the gradients look one pixel further). keep_cost (in the
+// units of colour_distance) is paid for every pixel of the region, not forced, that keeps A: a
+// pull towards B, so the cut leaves a pixel to A only where that makes the seam cheaper by as
+// much. The result's cost includes it.
 GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
-                               const std::vector<std::uint8_t>& forced);
+                               const std::vector<std::uint8_t>& forced, double keep_cost = 0);
 
 }  // namespace tilekit

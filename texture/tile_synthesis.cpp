@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -19,10 +20,15 @@
 
 namespace tilekit {
 
-TileGeometry::TileGeometry(int tile_px) : n(tile_px) {
-  margin = std::max(3, 5 * n / 64);
-  strip = margin + std::max(2, 3 * n / 32);
+TileGeometry::TileGeometry(int tile_px, bool thin) : n(tile_px), thin(thin) {
+  margin = std::max(3, (thin ? 3 : 5) * n / 64);
+  corner_reach = margin + std::max(2, 3 * n / 32);
+  strip = thin ? margin + std::max(2, 3 * n / 16) : corner_reach;
   extent = strip + 2;
+}
+
+bool thin_bands(const SynthesisOptions& o, const SynthesisExemplar& x) {
+  return o.thin_bands && !x.periodic();
 }
 
 void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
@@ -176,6 +182,11 @@ std::array<int, 2> SampleDraw::operator()(std::uint64_t seed, std::size_t stratu
   return p;
 }
 
+void own_strata(std::vector<SampleSlot>& slots, const TileGeometry& g) {
+  if (!g.thin) return;
+  for (std::size_t j = 0; j < slots.size(); ++j) slots[j].stratum = j, slots[j].strata = slots.size();
+}
+
 double window_overlap(const Exemplar& e, std::array<int, 2> pa, int w, int h, std::array<int, 2> pb, int wb, int hb) {
   auto along = [](int a, int la, int b, int lb, int wrap) {
     if (!wrap) return std::max(0, std::min(a + la, b + lb) - std::max(a, b));
@@ -228,7 +239,7 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
 double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const SynthesisOptions& o,
                             const std::string& title) {
   const Exemplar& e = x.exemplar();
-  const TileGeometry g(s.tile_px);
+  const TileGeometry g(s.tile_px, thin_bands(o, x));
   const int n = g.n;
   const std::size_t count = s.tiles.size(), px = std::size_t(n) * std::size_t(n);
   // The pixels the centre may take (at least `margin` from every border), the ones it must take
@@ -244,6 +255,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (region[i] && !forced[i]) band.push_back(i);
     }
   const SampleDraw draw(e, n, n);
+  const double pull = g.thin ? kCentrePull * e.neighbour_difference : 0.0;
   const int candidates = o.search > 0 ? o.centre_candidates : 1, cuts = o.search > 0 ? o.centre_cuts : 1;
   ProgressReporter progress(title, 2.0 * double(count), o.progress);
   // 1. Candidates from the whole exemplar, in phase, ranked by their difference to the tile on
@@ -303,7 +315,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
     for (std::size_t k = 0; k < chosen[t].size(); ++k) {
       const std::array<int, 2> q = chosen[t][k];
       for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
-      GraphCutResult r = graph_cut_merge(img, patch, region, forced);
+      GraphCutResult r = graph_cut_merge(img, patch, region, forced, pull);
       if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch, s.centres[t] = q;
     }
     for (std::size_t i = 0; i < px; ++i)
@@ -315,6 +327,10 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
     progress.add(1);
   });
   progress.finish();
+  std::size_t shared = 0;
+  for (const auto& src : s.sources)
+    shared += std::size_t(std::count_if(src.begin(), src.end(), [&](std::uint32_t id) { return id < s.shared_sources; }));
+  s.shared_fraction = double(shared) / double(count * px);
   return std::accumulate(cost.begin(), cost.end(), 0.0) / double(count);
 }
 
@@ -367,6 +383,8 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"cut_error", s.cut_error},
           {"centre_cost", s.centre_cost},
           {"sample_overlap", s.overlap},
+          {"shared_fraction", s.shared_fraction},
+          {"thin_bands", s.thin_bands},
           {"period", {s.period.x, s.period.y}},
           {"exemplar_scale", s.exemplar_scale},
           {"seconds", s.seconds}};

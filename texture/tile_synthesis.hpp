@@ -36,6 +36,10 @@ struct SynthesisOptions {
   // Structured textures: resample the exemplar so that the tile holds whole periods of it and
   // keep every sample in phase with the lattice (exemplar.hpp's dominant_period); off: never.
   bool keep_period = true;
+  // Thin shared bands (TileGeometry): a margin of 3n/64, a cut zone of 3n/16 and the centre's
+  // pull; fewer texels repeat on the lattice, but mip level 2 is no longer exact next to a border.
+  // Periodic exemplars (keep_period and a period found) keep the default bands.
+  bool thin_bands = false;
   bool progress = false;
 };
 
@@ -49,15 +53,31 @@ struct SynthesisOptions {
 // [1 3 3 1] tent reads 3 texels across a border) and, for 64-pixel tiles (margin 5), at level 2
 // up to the 4/64 weight of its 6th and 7th texel (as Ng et al.'s centre circle came within 5
 // texels of the border too). The shared samples cover only the bands: the centre, different in
-// every tile, covers the middle (n - 2 strip)^2 or more. A margin of 7 would make level 2 exact
-// but share twice the texels near the borders, which shows the grid (texture/README.md).
+// every tile, covers the middle (n - 2 strip)^2 or more.
+//
+// Everything shared repeats on the lattice (a Wang band once in C), so a surface's grid
+// repetition is about the shared fraction of the texels over C. Thin bands (`thin`) share fewer:
+// the least margin that keeps levels 0 and 1 exact (3), a zone 3n/16 wide where the cut may run
+// (room to go round a pebble) and a pull towards the centre (kCentrePull): 0.22-0.30 of the texels
+// of 64-pixel tiles instead of 0.40-0.48. Their price: a level-2 texel next to a border takes 5/16
+// of its weight from texels 3-6 deep, which the atlas' neighbour and the rendered one need not
+// share (renders up to 4/255 off the stitched tiling there; texture/README.md). With margin 5 the
+// same zone and pull gained little (grid repetition 0.035-0.047) and crossed cut visibility 1.5.
 struct TileGeometry {
   int n = 0;
-  int margin = 0;  // m: 5n/64, at least 3; no centre texel nearer a border than this
-  int strip = 0;   // h: m + 3n/32; the band each border's samples cover; the centre patch beyond it
-  int extent = 0;  // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
-  explicit TileGeometry(int tile_px);
+  int margin = 0;        // m: 5n/64 (thin: 3n/64), at least 3; no centre texel nearer a border than this
+  int strip = 0;         // h: m + 3n/32 (thin: m + 3n/16); the band each border's samples cover
+  int corner_reach = 0;  // m + 3n/32: how far along a border a corner square (or a Wang corner cut) reaches
+  int extent = 0;        // the bands as sampled: h + 2 (the graph cut compares a pixel's neighbours beyond h)
+  bool thin = false;
+  explicit TileGeometry(int tile_px, bool thin = false);
 };
+
+// The centre patch's graph cut pays this many exemplar neighbour differences for every texel of
+// the cut zone it leaves to the shared samples (graph_cut_merge's keep_cost), with thin bands.
+// With 0.5 cut visibility stays at or below 1.5 on the irregular textures; 0.75 to 1 pushed it
+// to 1.6-1.85.
+inline constexpr double kCentrePull = 0.5;
 
 inline constexpr int kMaxSynthesisSearch = 1 << 16;
 
@@ -78,6 +98,8 @@ struct TextureTileSet {
   double cut_error = 0;          // the same after the search
   double centre_cost = 0;        // mean graph-cut cost of the centre patches
   double overlap = 0;            // shared samples: mean fraction of a sample's window another one also covers
+  double shared_fraction = 0;    // the fraction of all tile texels copied from a shared sample
+  bool thin_bands = false;       // made with TileGeometry's thin bands
   ExemplarPeriod period;         // of the exemplar as given (0: none found, or keep_period off)
   std::array<double, 2> exemplar_scale{1, 1};  // the resampling that fits whole periods into a tile
   double seconds = 0;
@@ -134,6 +156,9 @@ class SynthesisExemplar {
   std::array<double, 2> lines_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
 };
 
+// Whether a synthesis uses thin bands: asked for, and the exemplar has no period kept.
+bool thin_bands(const SynthesisOptions& o, const SynthesisExemplar& x);
+
 // Draws positions of w x h samples uniformly among the typical ones: those whose activity (mean
 // step per channel between neighbouring pixels inside the sample) lies within [0.85, 1.25] times
 // the median over all positions. Without it, a search for low cut error drifts to bland samples
@@ -170,6 +195,11 @@ struct SampleSlot {
   // exemplar's regions do.
   std::size_t stratum = 0, strata = 1;
 };
+
+// With thin bands, every shared sample from its own cell of the exemplar (slot j: stratum j of
+// all), so that no two of their larger windows overlap; otherwise one grid per kind of sample
+// (slot k of a kind: stratum k of that kind's count).
+void own_strata(std::vector<SampleSlot>& slots, const TileGeometry& g);
 
 // The score of a sample in the search: first how far its border line misses the seam goal (0
 // within kBorderTolerance of its own activity, see line_activity), then the cut error it takes

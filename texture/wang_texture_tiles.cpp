@@ -38,13 +38,14 @@ constexpr Corner kCorners[4] = {{1, -1}, {1, 1}, {-1, 1}, {-1, -1}};  // NE, SE,
 class WangSynthesis {
  public:
   WangSynthesis(const Exemplar& e, const SynthesisOptions& o)
-      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px), c_(o.colours) {
+      : x_(e, o), e_(x_.exemplar()), o_(o), g_(o.tile_px, thin_bands(o, x_)), c_(o.colours) {
     check_synthesis_options(e_, o);
     const int n = g_.n, E = g_.extent;
     draws_.emplace_back(e_, n, 2 * E);
     draws_.emplace_back(e_, 2 * E, n);
     for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({n, 2 * E, 0, -E, 0, E, n, true, 0, c, c_});
     for (std::uint32_t c = 0; c < c_; ++c) slots_.push_back({2 * E, n, -E, 0, E, 0, n, false, 1, c, c_});
+    own_strata(slots_, g_);
   }
 
   TextureTileSet run() {
@@ -57,6 +58,7 @@ class WangSynthesis {
     s.method = "wang-strips";
     s.shared_sources = 2 * c_;
     s.period = x_.period();
+    s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
     choose_samples(s);
     compose_tiles(s);
@@ -84,13 +86,18 @@ class WangSynthesis {
     return {kCorners[k].sx > 0 ? n - 1 - dv : dv, kCorners[k].sy < 0 ? dh : n - 1 - dh};
   }
 
+  // The side of the square where two bands cross in a corner: the bands' extent, or with thin
+  // bands (whose extent is wider) as far as a corner square reaches; beyond it a texel comes from
+  // the nearer border's sample.
+  int crossing() const { return g_.thin ? g_.corner_reach + 2 : g_.extent; }
+
   // The cut in corner k between horizontal-border sample h and vertical-border sample v, by
-  // anti-diagonals a = dh + dv = 1 .. 2 extent - 3 of the square where the two bands cross: the
+  // anti-diagonals a = dh + dv = 1 .. 2 crossing() - 3 of the square where the two bands cross: the
   // boundary P(a) between offsets d = dv - dh (pixels with d > P come from the horizontal
   // border's sample). |P| < a keeps every border pixel on its own side, and the boundary's
   // neighbours stay inside the square.
   CutPath cut(int k, const std::vector<Pos>& pos, Colour h, Colour v) const {
-    const int E = g_.extent, A = 2 * E - 3;
+    const int E = crossing(), A = 2 * E - 3;
     CutBand band;
     band.rows = A;
     band.width = 2 * A + 1;
@@ -98,7 +105,9 @@ class WangSynthesis {
     band.cost.assign(std::size_t(band.rows) * std::size_t(band.width), 0.0f);
     const float unit = float(e_.neighbour_difference);
     for (int a = 1; a <= A; ++a) {
-      const int reach = std::min(a - 1, 2 * E - 3 - a);
+      // thin bands: at most corner_reach - margin from the diagonal, so a texel within the margin
+      // of one border comes from the other border's sample only within corner_reach of the corner
+      const int reach = std::min({a - 1, 2 * E - 3 - a, g_.thin ? g_.corner_reach - g_.margin : E});
       band.lo.push_back(A - reach);
       band.hi.push_back(A + reach);
       for (int p = -reach; p <= reach; ++p) {
@@ -146,7 +155,7 @@ class WangSynthesis {
   // The bands of every tile, split in the corners by the diagonal cuts; the middle, which no band
   // reaches, is left for the centre patch.
   void compose_tiles(TextureTileSet& s) {
-    const int n = g_.n, E = g_.extent, A = 2 * E - 3;
+    const int n = g_.n, E = g_.extent, A = 2 * crossing() - 3;
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
     s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
