@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <mutex>
 
 #include "results/db_sqlite.hpp"
 
@@ -174,20 +175,41 @@ std::vector<std::pair<std::string, Column>> columns(sqlite3* db, const std::stri
   return out;
 }
 
-// The reference: an in-memory database made by the first `version` migrations (milliseconds).
+using Columns = std::vector<std::pair<std::string, Column>>;
+
+// The schema the first `version` migrations make: its objects and every table's columns, read
+// from an in-memory database made by those migrations. Made once per version and process (a few
+// milliseconds that every open of a database would otherwise pay, twice).
 struct Reference {
-  sqlite3* db = nullptr;
-  explicit Reference(std::int64_t version) {
-    if (sqlite3_open(":memory:", &db) != SQLITE_OK) throw std::runtime_error("cannot open an in-memory database");
-    for (std::int64_t v = 0; v < version; ++v) sqlitedb::exec(db, std::string(migrations()[std::size_t(v)]).c_str());
-  }
-  ~Reference() { sqlite3_close(db); }
+  std::map<std::string, Object> objects;
+  std::map<std::string, Columns> columns;  // by table
 };
+const Reference& reference(std::int64_t version) {
+  static std::mutex mu;
+  static std::map<std::int64_t, Reference> made;  // entries stay put when others are added
+  std::lock_guard lock(mu);
+  if (auto it = made.find(version); it != made.end()) return it->second;
+  sqlite3* db = nullptr;
+  if (sqlite3_open(":memory:", &db) != SQLITE_OK) {
+    sqlite3_close(db);
+    throw std::runtime_error("cannot open an in-memory database");
+  }
+  struct Closer {
+    sqlite3* d;
+    ~Closer() { sqlite3_close(d); }
+  } closer{db};
+  for (std::int64_t v = 0; v < version; ++v) sqlitedb::exec(db, std::string(migrations()[std::size_t(v)]).c_str());
+  Reference r;
+  r.objects = objects(db);
+  for (const auto& [name, o] : r.objects)
+    if (o.type == "table") r.columns[name] = columns(db, name);
+  return made.emplace(version, std::move(r)).first->second;
+}
 
 std::string quoted(const std::string& name) { return "'" + name + "'"; }
 
-std::string table_difference(sqlite3* db, sqlite3* ref, const std::string& table) {
-  const auto have = columns(db, table), want = columns(ref, table);
+std::string table_difference(sqlite3* db, const Columns& want, const std::string& table) {
+  const auto have = columns(db, table);
   for (const auto& w : want) {  // (not a structured binding: clang 14 cannot use one in a lambda)
     const std::string& name = w.first;
     const auto& col = w.second;
@@ -209,8 +231,9 @@ std::string table_difference(sqlite3* db, sqlite3* ref, const std::string& table
 }  // namespace
 
 std::string schema_difference(sqlite3* db, std::int64_t version) {
-  const Reference ref(version);
-  const auto have = objects(db), want = objects(ref.db);
+  const Reference& ref = reference(version);
+  const auto have = objects(db);
+  const auto& want = ref.objects;
   // What the file has of its own first: triggers and views are the dangerous part.
   for (const char* type : {"trigger", "view", "table", "index"})
     for (const auto& [name, o] : have)
@@ -228,7 +251,7 @@ std::string schema_difference(sqlite3* db, std::int64_t version) {
                          o.type, quoted(o.table));
     if (it->second.sql == o.sql) continue;
     if (o.type == "table") {
-      std::string d = table_difference(db, ref.db, name);
+      std::string d = table_difference(db, ref.columns.at(name), name);
       return d.empty() ? fmt::format("table {} has other constraints than Tilekit's", quoted(name)) : d;
     }
     return fmt::format("{} {} is defined differently", o.type, quoted(name));
@@ -237,12 +260,14 @@ std::string schema_difference(sqlite3* db, std::int64_t version) {
 }
 
 std::string type_difference(sqlite3* db, std::int64_t version) {
-  const Reference ref(version);
+  const Reference& ref = reference(version);
   for (std::string_view t : required_tables()) {
     const std::string table(t);
     // One scan per table: the first row with a value whose type does not fit, and which column.
+    const auto want = ref.columns.find(table);
+    if (want == ref.columns.end()) continue;  // not made at this version
     std::string cases;
-    for (const auto& [name, col] : columns(ref.db, table)) {
+    for (const auto& [name, col] : want->second) {
       std::string allowed = col.type == "INTEGER" ? "'integer'" : col.type == "REAL" ? "'real', 'integer'" : "'text'";
       if (!col.not_null && col.key == 0) allowed += ", 'null'";
       cases += fmt::format(" WHEN typeof(\"{0}\") NOT IN ({1}) THEN '{0}'", name, allowed);
