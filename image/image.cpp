@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <string_view>
@@ -31,9 +32,42 @@ Image::Image(int w, int h, Rgb fill) : width(w), height(h), pixels(std::size_t(w
     pixels[i] = fill.r, pixels[i + 1] = fill.g, pixels[i + 2] = fill.b, pixels[i + 3] = 255;
 }
 
+namespace {
+
+// stb reads a PNM header's numbers into an int without a bound: a width of 23000023000 is
+// signed overflow, undefined behaviour, before any size check of ours (found by
+// fuzz/fuzz_texture_input.cpp). The header of a binary PNM (P5, P6: what stb reads) is checked
+// here first: its width, height and maxval must have at most 9 digits.
+void check_pnm_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  if (head.size() < 2 || head[0] != 'P' || (head[1] != '5' && head[1] != '6')) return;
+  std::size_t i = 2;
+  for (int number = 0; number < 3; ++number) {
+    for (;;) {  // whitespace and comments, as stb skips them
+      while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+      if (i < head.size() && head[i] == '#') {
+        while (i < head.size() && head[i] != '\n' && head[i] != '\r') ++i;
+        continue;
+      }
+      break;
+    }
+    std::size_t digits = 0;
+    while (i < head.size() && std::isdigit(static_cast<unsigned char>(head[i]))) ++i, ++digits;
+    if (digits > 9)
+      throw InputError(fmt::format("{}: a number in its PNM header has {} digits (at most 9)", path, digits));
+    if (digits == 0) return;  // malformed: stb refuses it
+  }
+}
+
+}  // namespace
+
 Image read_image(const std::string& path, int channels) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
+  check_pnm_header(path);
   int w = 0, h = 0, n = 0;
   if (!stbi_info(path.c_str(), &w, &h, &n))
     throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));

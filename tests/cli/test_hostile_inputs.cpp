@@ -309,4 +309,10 @@ TEST(HostileInputs, FuzzFindingsAreRefusedWithExit2) {
                          d / "t"),
                  "a 16-bit image that is not a PNG");
   EXPECT_FALSE(fs::exists(d / "t"));
+  // A PNM width past int's range was signed overflow inside stb (UBSan), before any check of ours.
+  write_text(d / "wide.ppm", std::string("P6\n# a comment\n23000023000\n255\n") + std::string(48, '\0'));
+  expect_refused(run_cli("texture tiles --exemplar " + d / "wide.ppm" + " --colors 2 --tile-px 16 --quiet --out " +
+                         d / "t"),
+                 "a number in its PNM header has 11 digits");
+  EXPECT_FALSE(fs::exists(d / "t"));
 }
