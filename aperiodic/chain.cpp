@@ -237,7 +237,10 @@ void TransducerChain::check_level(ChainLevel& l, int k) const {
     if (e.from >= l.t.states || e.to >= l.t.states || e.in >= labels_ || e.out >= labels_) throw bad("transition out of range");
     if (i > 0 && !(l.t.transitions[i - 1] < e)) throw bad("transitions not sorted");
   }
-  // A damaged count of states would size the index below: refuse what cannot fit first.
+  // Every state of a stored level lies on a cycle (trim_to_components), so it has a transition
+  // of its own: a count of states beyond the transitions (which the file's size bounds) is damage,
+  // and would size the index below by the damaged count.
+  if (l.t.states > l.t.transitions.size()) throw bad("more states than transitions");
   require_memory(double(l.t.states) * 8.0, fmt::format("level {} of the transducer chain ({} states)", k, l.t.states));
   l.t.finalize();  // the index of transitions by state
   if (k == 1) return;

@@ -12,6 +12,7 @@
 #include "aperiodic/generate.hpp"
 #include "aperiodic/transducer.hpp"
 #include "base/error.hpp"
+#include "checkpoints/checkpoint.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -214,4 +215,41 @@ TEST(DecideCheckpoint, CorruptForeignOrTruncatedCheckpointsAreInputErrors) {
   EXPECT_THROW(resume(flipped, s), InputError);
   EXPECT_THROW(resume(text, resolve_tile_set("kari-14")), InputError);  // another set
   EXPECT_NO_THROW(resume(text, s));
+}
+
+// A level whose count of states is damaged (far beyond its transitions) is refused before the
+// index of transitions by state is sized by it (a fuzzed checkpoint spent seconds there).
+TEST(DecideCheckpoint, AStateCountBeyondTheTransitionsIsRefusedAtOnce) {
+  test::TempDir d;
+  const TileSet s = resolve_tile_set("culik-13");
+  DecideOptions o = quick();
+  o.max_k = 2;
+  o.columns = true, o.rows = false;
+  o.checkpoint_path = d / "c.ckpt";
+  decide_tile_set(s, o);
+  const std::string text = test::slurp(d / "c.ckpt");
+  const DecideCheckpoint c = decode_decide_checkpoint(text, s.wang_tiles(), "c.ckpt");
+  ASSERT_EQ(c.chains.size(), 1u);
+  ASSERT_GE(c.chains[0].k(), 2);
+  const ChainLevel& level = c.chains[0].level(2);
+  // The level's record begins with its states (4 bytes) and its transitions' count (8 bytes).
+  auto bytes = [](std::uint64_t v, int n) {
+    std::string b;
+    for (int i = 0; i < n; ++i) b.push_back(char((v >> (8 * i)) & 0xff));
+    return b;
+  };
+  std::string body(open_checkpoint(text, "TILEKIT-DECIDE", kDecideCheckpointVersion, kDecideCheckpointVersion, "c"));
+  const std::string record = bytes(level.t.states, 4) + bytes(level.t.transitions.size(), 8);
+  const std::size_t at = body.rfind(record);
+  ASSERT_NE(at, std::string::npos);
+  body.replace(at, 4, bytes(0xfffffff0u, 4));
+  const std::string damaged = seal_checkpoint("TILEKIT-DECIDE", kDecideCheckpointVersion, body);
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    decode_decide_checkpoint(damaged, s.wang_tiles(), "damaged.ckpt");
+    ADD_FAILURE() << "a damaged state count was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more states than transitions"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
 }
