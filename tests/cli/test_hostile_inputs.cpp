@@ -315,4 +315,10 @@ TEST(HostileInputs, FuzzFindingsAreRefusedWithExit2) {
                          d / "t"),
                  "a number in its PNM header has 11 digits");
   EXPECT_FALSE(fs::exists(d / "t"));
+  // 21 bytes that stb takes for a TGA of 14939 x 2610 pixels, which it filled past the file's end.
+  write_text(d / "tiny.tga", std::string("\0\0\x0a" "23000   \x0a[:2\x0a  (\"a", 21));
+  expect_refused(run_cli("texture tiles --exemplar " + d / "tiny.tga" + " --colors 2 --tile-px 16 --quiet --out " +
+                         d / "t"),
+                 "pixels from 21 bytes is damaged");
+  EXPECT_FALSE(fs::exists(d / "t"));
 }
