@@ -6,11 +6,12 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 #include <string_view>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "base/input.hpp"
 
 // stb as private, static implementations (no symbols shared with other translation units).
 #define STB_IMAGE_STATIC
@@ -36,28 +37,26 @@ Image::Image(int w, int h, Rgb fill) : width(w), height(h), pixels(std::size_t(w
 
 namespace {
 
+constexpr std::string_view kPngSignature("\x89PNG\r\n\x1a\n", 8);
+
 // stb reads a PNM header's numbers into an int without a bound: a width of 23000023000 is
 // signed overflow, undefined behaviour, before any size check of ours (found by
 // fuzz/fuzz_texture_input.cpp). The header of a binary PNM (P5, P6: what stb reads) is checked
 // here first: its width, height and maxval must have at most 9 digits.
-void check_pnm_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(in.gcount()));
-  if (head.size() < 2 || head[0] != 'P' || (head[1] != '5' && head[1] != '6')) return;
+void check_pnm_header(const std::string& path, std::string_view file) {
+  if (file.size() < 2 || file[0] != 'P' || (file[1] != '5' && file[1] != '6')) return;
   std::size_t i = 2;
   for (int number = 0; number < 3; ++number) {
     for (;;) {  // whitespace and comments, as stb skips them
-      while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
-      if (i < head.size() && head[i] == '#') {
-        while (i < head.size() && head[i] != '\n' && head[i] != '\r') ++i;
+      while (i < file.size() && std::isspace(static_cast<unsigned char>(file[i]))) ++i;
+      if (i < file.size() && file[i] == '#') {
+        while (i < file.size() && file[i] != '\n' && file[i] != '\r') ++i;
         continue;
       }
       break;
     }
     std::size_t digits = 0;
-    while (i < head.size() && std::isdigit(static_cast<unsigned char>(head[i]))) ++i, ++digits;
+    while (i < file.size() && std::isdigit(static_cast<unsigned char>(file[i]))) ++i, ++digits;
     if (digits > 9)
       throw InputError(fmt::format("{}: a number in its PNM header has {} digits (at most 9)", path, digits));
     if (digits == 0) return;  // malformed: stb refuses it
@@ -68,19 +67,31 @@ void check_pnm_header(const std::string& path) {
 // coded: none holds more than 128 pixels a byte of file. A larger image from a small file is
 // damaged, and stb would fill it by reading past the file's end (a 21-byte "TGA" of 39 Mpixels
 // took 12 s under ASan, found by fuzz/fuzz_texture_input.cpp).
-void check_pixels_per_byte(const std::string& path, int w, int h) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const auto size = std::uint64_t(std::max<std::streamoff>(in.tellg(), 0));
-  in.seekg(0);
-  char magic[4] = {};
-  in.read(magic, sizeof magic);
-  const std::string_view m(magic, sizeof magic);
-  if (m == std::string_view("\x89PNG", 4) || m.substr(0, 3) == std::string_view("\xff\xd8\xff", 3) || m == "GIF8") return;
+void check_pixels_per_byte(const std::string& path, std::string_view file, int w, int h) {
+  if (file.starts_with(kPngSignature) || file.starts_with("\xff\xd8\xff") || file.starts_with("GIF8")) return;
   constexpr std::uint64_t kMaxPixelsPerByte = 256;  // twice the most run-length coding gives
-  if (std::uint64_t(w) * std::uint64_t(h) > kMaxPixelsPerByte * size)
+  if (std::uint64_t(w) * std::uint64_t(h) > kMaxPixelsPerByte * file.size())
     throw InputError(fmt::format("{}: {}x{} pixels from {} bytes is damaged (a raw or run-length coded image holds "
                                  "at most {} pixels a byte)",
-                                 path, w, h, size, kMaxPixelsPerByte));
+                                 path, w, h, file.size(), kMaxPixelsPerByte));
+}
+
+// A PNG whose first IDAT chunk is empty makes stb copy zero bytes from a null pointer (undefined
+// behaviour; fuzz/fuzz_texture_input.cpp). Empty IDAT chunks hold no data, so they are dropped;
+// every other byte stays as it was (a chunk's CRC covers only itself).
+void drop_empty_idat_chunks(std::string& file) {
+  if (!std::string_view(file).starts_with(kPngSignature)) return;
+  std::string out(kPngSignature);
+  std::size_t at = kPngSignature.size();
+  while (at + 12 <= file.size()) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(file[at + i])); };
+    const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    if (length > file.size() - at - 12) return;  // damaged: stb refuses it as it is
+    if (!(length == 0 && file.compare(at + 4, 4, "IDAT") == 0)) out.append(file, at, std::size_t(length) + 12);
+    at += std::size_t(length) + 12;
+  }
+  out.append(file, at, std::string::npos);
+  file = std::move(out);
 }
 
 }  // namespace
@@ -88,24 +99,25 @@ void check_pixels_per_byte(const std::string& path, int w, int h) {
 Image read_image(const std::string& path, int channels) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
-  check_pnm_header(path);
+  std::string file = read_input_file(path, "image");
+  check_pnm_header(path, file);
+  drop_empty_idat_chunks(file);
+  const auto* bytes = reinterpret_cast<const stbi_uc*>(file.data());
+  if (file.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw InputError(fmt::format("{}: {} bytes is more than an image file may have", path, file.size()));
+  const int size = int(file.size());
   int w = 0, h = 0, n = 0;
-  if (!stbi_info(path.c_str(), &w, &h, &n))
+  if (!stbi_info_from_memory(bytes, size, &w, &h, &n))
     throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
   if (std::int64_t(w) * std::int64_t(h) > kMaxImagePixels)
     throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
                                  kMaxImagePixels));
-  check_pixels_per_byte(path, w, h);
+  check_pixels_per_byte(path, file, w, h);
   // stb's 16-bit decoders other than PNG's (PNM with a maxval over 255, PSD) can write past their
   // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
-  if (stbi_is_16_bit(path.c_str())) {
-    std::ifstream in(path, std::ios::binary);
-    char magic[8] = {};
-    in.read(magic, sizeof magic);
-    if (std::string_view(magic, sizeof magic) != std::string_view("\x89PNG\r\n\x1a\n", 8))
-      throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
-  }
-  stbi_uc* data = stbi_load(path.c_str(), &w, &h, &n, channels);
+  if (stbi_is_16_bit_from_memory(bytes, size) && !std::string_view(file).starts_with(kPngSignature))
+    throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
+  stbi_uc* data = stbi_load_from_memory(bytes, size, &w, &h, &n, channels);
   if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
   Image img(w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * std::size_t(channels)),
             channels);
