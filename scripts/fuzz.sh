@@ -50,7 +50,7 @@ make_seeds() {
   "$tk" pack --kind corner --colors 4 --method search --threads 1 --quiet --json --portfolio-stats "$s/stats.json" \
     --db "$db" >"$s/portfolio.json"
   seed portfolio_stats "$s/stats.json"
-  python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["group"]["spec"], end="")' "$s/portfolio.json" \
+  python3 -c 'import json,sys; print((json.load(open(sys.argv[1])).get("group") or {}).get("spec", ""), end="")' "$s/portfolio.json" \
     >"$s/group-found" && seed group_spec "$s/group-found"
   # group specs and flags as the README documents them
   local i=0
