@@ -71,12 +71,14 @@ nlohmann::json chain_json(const CornerSetCandidate& c) {
 nlohmann::json smallest_json(const CornerSetCandidate& c, const VerifyResult& v) {
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t k = 0; k < c.set.size(); ++k) list.push_back(c.set.file_colours(k));
-  nlohmann::json found = {{"command", c.record.command}, {"digest", c.record.digest},
-                          {"complete", c.record.complete}, {"expanded", c.record.expanded}, {"sets", c.record.sets}};
-  return {{"name", c.set.name()},    {"set", c.record.set},     {"source", c.source},
-          {"tiles", c.tiles},        {"colors", c.colours},     {"soundness", c.soundness},
-          {"chain", chain_json(c)},  {"found_by", found},       {"verify", verify_json(v)},
-          {"format", "nw ne sw se"}, {"list", list}};
+  nlohmann::json j = {{"name", c.set.name()},    {"set", c.record.set},    {"source", c.source},
+                      {"tiles", c.tiles},        {"colors", c.colours},    {"soundness", c.soundness},
+                      {"chain", chain_json(c)},  {"verify", verify_json(v)}, {"format", "nw ne sw se"},
+                      {"list", list}};
+  if (!c.record.command.empty())  // a search's record (a database holds no command)
+    j["found_by"] = {{"command", c.record.command}, {"digest", c.record.digest}, {"complete", c.record.complete},
+                     {"expanded", c.record.expanded}, {"sets", c.record.sets}};
+  return j;
 }
 
 void print_smallest(const CornerSetCandidate& c, const VerifyResult& v) {

@@ -216,8 +216,9 @@ TEST(EnumerateCli, TheSmallestSetsChainLinksReplayWithTheirCheckCommands) {
 TEST(EnumerateCli, ARunsRecordIsWhatSmallestReDerives) {
   TempDir d;
   const std::string rec = d / "record.json";
+  const std::string db = d / "e.sqlite";
   CliResult r = run_cli("aperiodic enumerate --source jeandel-rao-11-variant-2 --max-depth 1 --max-tiles 100 --record " +
-                        rec + " --quiet --json");
+                        rec + " --db " + db + " --quiet --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["record"], rec);
@@ -227,6 +228,13 @@ TEST(EnumerateCli, ARunsRecordIsWhatSmallestReDerives) {
   EXPECT_EQ(js["set"], j["smallest"]["set"]);
   EXPECT_EQ(js["tiles"], j["smallest"]["tiles"]);
   EXPECT_EQ(js["found_by"]["digest"], j["digest"]);
+  // The same run's database gives the same chain (re-derived the same way; a database records no command).
+  CliResult sd = run_cli("aperiodic smallest --db " + db + " --max-period 4 --time-limit 1 --json");
+  ASSERT_EQ(sd.code, 0) << sd.err;
+  auto jd = nlohmann::json::parse(sd.out);
+  EXPECT_EQ(jd["set"], js["set"]);
+  EXPECT_EQ(jd["chain"], js["chain"]);
+  EXPECT_FALSE(jd.contains("found_by"));
   // Bad records: not JSON, another format, a set the chain does not give, --db with --record.
   write_text(d / "bad.json", "{\"format\": \"tilekit-smallest-chain\"}\n");
   EXPECT_EQ(run_cli("aperiodic smallest --record " + std::string(d / "bad.json")).code, 2);
