@@ -3,35 +3,32 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <tuple>
 
-#include "aperiodic/conversion.hpp"
+#include "aperiodic/recorded_data.hpp"
+#include "aperiodic/steps.hpp"
 #include "base/error.hpp"
-#include "tilesets/tile_set_io.hpp"
+#include "base/json_input.hpp"
 
 namespace tilekit {
 
 namespace {
 
-bool sound(Soundness s) {
-  return s == Soundness::Conjugate || s == Soundness::Lifts;
-}
+constexpr std::string_view kRecordFormat = "tilekit-smallest-chain";
+constexpr std::string_view kEmbeddedRecord = "smallest-chain.json";
 
-std::string section(ConversionMethod m) {
-  switch (m) {
-    case ConversionMethod::Diagonal:
-      return "diagonal translation (thesis 8.3.1)";
-    case ConversionMethod::Horizontal:
-      return "horizontal translation (thesis 8.3.2)";
-    case ConversionMethod::Vertical:
-      return "vertical translation (thesis 8.3.2)";
-    case ConversionMethod::Rotation:
-      return "rotation with checkerboard tiles (thesis 8.3.3)";
-    case ConversionMethod::Subdivision:
-      return "subdivision (thesis 8.3.4)";
-    case ConversionMethod::ToWang:
-      return "pair colours (thesis 8.4)";
-  }
-  return "?";
+// The command that reruns a search with these options (the flags that change its results).
+std::string enumerate_command(const EnumerateOptions& o) {
+  std::string cmd = "tilekit aperiodic enumerate";
+  for (const std::string& s : o.sources) cmd += " --source " + s;
+  cmd += fmt::format(" --max-depth {} --max-tiles {}", o.max_depth, o.max_tiles);
+  const EnumerateOptions d;
+  if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
+  if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
+  if (o.shards > 1) cmd += fmt::format(" --shard {}/{}", o.shard, o.shards);
+  return cmd;
 }
 
 }  // namespace
@@ -41,64 +38,83 @@ const std::vector<std::string>& published_aperiodic_sets() {
   return s;
 }
 
-std::vector<CornerSetCandidate> aperiodic_corner_candidates(int prune_radius) {
-  std::vector<CornerSetCandidate> out;
-  const std::vector<std::pair<ConversionMethod, bool>> methods = {
-      {ConversionMethod::Diagonal, false},    {ConversionMethod::Horizontal, false},
-      {ConversionMethod::Vertical, false},    {ConversionMethod::Rotation, false},
-      {ConversionMethod::Subdivision, false}, {ConversionMethod::Subdivision, true}};
-  for (const std::string& name : published_aperiodic_sets()) {
-    TileSet src = resolve_tile_set(name);
-    ChainStep first{name,
-                    src.size(),
-                    src.colours(),
-                    "wang",
-                    "published",
-                    "aperiodic: " + src.source(),
-                    fmt::format("tilekit tileset show {} --json", name)};
-    for (auto [m, merge] : methods) {
-      ConversionSpec spec{m, {merge, false}, -1};
-      LabelledConversion c = build_conversion(src, spec);
-      CornerSetCandidate cand;
-      cand.source = name;
-      cand.method = spec_name(spec);
-      cand.set = c.set;
-      cand.tiles = cand.set.size();
-      cand.colours = cand.set.colours();
-      cand.soundness = c.soundness;
-      const std::string convert_cmd = fmt::format("tilekit aperiodic convert {} --method {}{}", name, method_name(m),
-                                                  merge ? " --merge-centres" : "");
-      cand.chain = {first,
-                    {section(m) + (merge ? ", centre colours merged" : ""), c.conversion.size(), c.conversion.colours,
-                     "corner", soundness_name(c.soundness), c.argument, convert_cmd + " --json"}};
-      out.push_back(cand);
-      if (prune_radius < 0) continue;
-      spec.prune = prune_radius;
-      LabelledConversion p = build_conversion(src, spec);
-      if (p.pruned->after == p.pruned->before) continue;
-      CornerSetCandidate pr = cand;
-      pr.prune_radius = prune_radius;
-      pr.set = p.set;
-      pr.soundness = p.soundness;
-      pr.tiles = pr.set.size();
-      pr.colours = pr.set.colours();
-      pr.chain.push_back({fmt::format("prune R={}", prune_radius), pr.tiles, pr.colours, "corner", "prune",
-                          p.prune_argument, fmt::format("{} --prune {} --json", convert_cmd, prune_radius)});
-      out.push_back(pr);
-    }
-  }
-  std::stable_sort(out.begin(), out.end(), [](const CornerSetCandidate& a, const CornerSetCandidate& b) {
-    if (sound(a.soundness) != sound(b.soundness)) return sound(a.soundness);
-    if (a.tiles != b.tiles) return a.tiles < b.tiles;
-    return a.colours < b.colours;
-  });
-  return out;
+nlohmann::json smallest_record(const EnumerateOptions& o, const EnumerateResult& r) {
+  const EnumNode* best = nullptr;
+  for (const auto& [h, n] : r.nodes)
+    if (n.depth >= 0 && n.kind == TileKind::Corner &&
+        (!best || std::tie(n.tiles, n.colours, n.hash) < std::tie(best->tiles, best->colours, best->hash)))
+      best = &n;
+  if (!best) throw NotFound("the search reached no corner set with a sound chain: nothing to record");
+  std::vector<ChainLink> chain = recorded_chain(r, best->hash);
+  nlohmann::json steps = nlohmann::json::array();
+  for (std::size_t i = 1; i < chain.size(); ++i) steps.push_back(chain[i].step);
+  return {{"format", kRecordFormat},
+          {"command", enumerate_command(o)},
+          {"digest", r.digest},
+          {"complete", r.complete},
+          {"expanded", r.expanded},
+          {"sets", r.nodes.size()},
+          {"source", best->root},
+          {"steps", steps},
+          {"set", best->hash},
+          {"tiles", best->tiles},
+          {"colors", best->colours}};
 }
 
-CornerSetCandidate smallest_aperiodic_corner_set(int prune_radius) {
-  auto all = aperiodic_corner_candidates(prune_radius);
-  if (all.empty() || !sound(all.front().soundness)) throw InputError("no sound aperiodic corner set candidate");
-  return all.front();
+RecordedChain parse_smallest_record(std::string_view text, const std::string& origin) {
+  const nlohmann::json doc = parse_json_input(text, origin);
+  const JsonIn j(doc, origin);
+  if (j.at("format").string() != kRecordFormat)
+    throw j.at("format").error(fmt::format("expected \"{}\"", kRecordFormat));
+  RecordedChain c;
+  c.source = j.at("source").string(256);
+  const JsonIn steps = j.at("steps");
+  for (std::size_t i = 0, n = steps.array(0, 64); i < n; ++i) c.steps.push_back(steps[i].string(256));
+  c.set = j.at("set").string(64);
+  c.tiles = j.at("tiles").unsigned_integer();
+  c.colours = static_cast<std::uint32_t>(j.at("colors").unsigned_integer(1u << 20));
+  c.command = j.at("command").string(4096);
+  c.digest = j.at("digest").string(64);
+  c.complete = j.at("complete").boolean();
+  c.expanded = j.at("expanded").unsigned_integer();
+  c.sets = j.at("sets").unsigned_integer();
+  return c;
 }
+
+RecordedChain embedded_smallest_record() {
+  for (const EmbeddedFile& f : recorded_data())
+    if (f.name == kEmbeddedRecord) return parse_smallest_record(f.text, "aperiodic/data/smallest-chain.json");
+  throw std::logic_error("aperiodic/data/smallest-chain.json is not embedded");
+}
+
+CornerSetCandidate rederive_chain(const RecordedChain& record) {
+  CornerSetCandidate c;
+  c.record = record;
+  c.source = record.source;
+  std::vector<ReplayedLink> links = replay_chain(record.source, record.steps, &c.set);
+  std::set<std::string> labels;
+  std::vector<std::string> steps;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    const ReplayedLink& l = links[i];
+    if (!sound_label(l.label))
+      throw std::logic_error(fmt::format("the recorded chain from {}: step '{}' is now labelled {}, not sound",
+                                         record.source, l.step, l.label));
+    if (i > 0) steps.push_back(l.step), labels.insert(l.label);
+    c.chain.push_back({l.step, l.hash, l.tiles, l.colours, std::string(kind_name(l.kind)), l.label, l.argument,
+                       i == 0 ? fmt::format("tilekit tileset show {} --json", record.source)
+                              : link_check_command(record.source, steps)});
+  }
+  if (links.back().hash != record.set)
+    throw std::logic_error(fmt::format("the recorded chain from {} ({}) now gives set {}, not the recorded {}",
+                                       record.source, fmt::join(record.steps, ","), links.back().hash, record.set));
+  if (c.set.kind() != TileKind::Corner)
+    throw std::logic_error(fmt::format("the recorded chain from {} ends in a Wang set", record.source));
+  c.tiles = c.set.size();
+  c.colours = c.set.colours();
+  c.soundness = fmt::format("{}", fmt::join(labels, "+"));
+  return c;
+}
+
+CornerSetCandidate smallest_aperiodic_corner_set() { return rederive_chain(embedded_smallest_record()); }
 
 }  // namespace tilekit

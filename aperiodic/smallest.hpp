@@ -1,46 +1,76 @@
 #pragma once
-// The smallest corner set that is *really* aperiodic: one whose aperiodicity follows from
-// a chain of sound steps back to a published aperiodic Wang set. Steps: a ch. 8
-// construction labelled `conjugate` or `lifts` (aperiodic/convert.hpp), then optionally
-// pruning (aperiodic/prune.hpp: keeps every tiling, or at least tileability and every
-// periodic tiling). Every candidate chain is tried; the least tile count wins (then the
-// least colour count). The thesis claims 44 (Fig. 8.6); Nurmi (Bridges 2016) gives 30.
+// The smallest corner set that is *really* aperiodic: one whose aperiodicity follows from a
+// chain of sound steps (aperiodic/steps.hpp: published, conjugate, lifts, prune) back to a
+// published aperiodic Wang set. The chain is the best one a run of `aperiodic enumerate` found
+// (aperiodic/enumerate.hpp); the run writes it as a record (`enumerate --record FILE`), and
+// the record of the run reported in BENCHMARKS.md is aperiodic/data/smallest-chain.json,
+// embedded in the binary. Nothing in the record is trusted: every link is re-derived from the
+// published source by the same steps (replay_chain) and must give the recorded set and a sound
+// label. The thesis claims 44 (Fig. 8.6); Nurmi (Bridges 2016) gives 30.
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "aperiodic/convert.hpp"
+#include <nlohmann/json.hpp>
+
+#include "aperiodic/enumerate.hpp"
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {
 
 struct ChainStep {
-  std::string step;  // e.g. "labbe-19", "vertical translation (thesis 8.3.2)", "prune R=3"
+  std::string step;  // the source's name, then each step ("blocks", "rot90:horizontal", ...)
+  std::string set;   // canonical hash of the set after this step
   std::size_t tiles = 0;
   std::uint32_t colours = 0;
   std::string kind;      // "wang" or "corner"
-  std::string label;     // "published", soundness name, "prune"
+  std::string label;     // "published", "conjugate", "lifts" or "prune"
   std::string argument;  // why the step keeps aperiodicity
-  std::string check;     // a command that re-checks this link (its label, its tile count)
+  std::string check;     // a command that re-derives this link (its set, label and tile count)
 };
 
-// One aperiodic corner set a chain of conversions yields, with its provenance.
-struct CornerSetCandidate {
-  std::string source, method;
-  int prune_radius = -1;  // -1: not pruned
+// A chain as a search recorded it: the source and the steps, the set they must give, and the
+// run that found it (command, digest; what it expanded).
+struct RecordedChain {
+  std::string source;
+  std::vector<std::string> steps;
+  std::string set;  // canonical hash of the last set
   std::size_t tiles = 0;
   std::uint32_t colours = 0;
-  Soundness soundness = Soundness::Unverified;
-  std::vector<ChainStep> chain;
-  TileSet set;
+  std::string command, digest;  // how to rerun the search; its digest (aperiodic/enumerate.hpp)
+  bool complete = false;        // the search exhausted its bounds
+  std::size_t expanded = 0, sets = 0;
 };
 
-// Published aperiodic Wang sets the chains start from (built-in names).
+// The record of the least sound corner set of a search (NotFound when it reached none), and
+// its parse (InputError naming the field for anything malformed).
+nlohmann::json smallest_record(const EnumerateOptions& o, const EnumerateResult& r);
+RecordedChain parse_smallest_record(std::string_view text, const std::string& origin);
+
+// The record embedded from aperiodic/data/smallest-chain.json.
+RecordedChain embedded_smallest_record();
+
+// One aperiodic corner set re-derived from its chain, with its provenance.
+struct CornerSetCandidate {
+  std::string source;
+  std::size_t tiles = 0;
+  std::uint32_t colours = 0;
+  std::string soundness;  // the link labels after the source, distinct, joined by '+' ("conjugate+prune")
+  std::vector<ChainStep> chain;
+  TileSet set;
+  RecordedChain record;
+};
+
+// Replays the record's steps from its source (aperiodic link) and checks every link: a sound
+// label, and the last set is the recorded one, a corner set. std::logic_error when a check
+// fails (a change to a step that the record no longer matches); InputError for an unknown
+// source or step.
+CornerSetCandidate rederive_chain(const RecordedChain& record);
+
+// Published aperiodic Wang sets (built-in names) of the thesis' tables.
 const std::vector<std::string>& published_aperiodic_sets();
 
-// Every chain source -> method [-> prune R], sorted by (tiles, colours); sound ones first.
-std::vector<CornerSetCandidate> aperiodic_corner_candidates(int prune_radius = 3);
-
-// The least sound candidate (InputError if none, which cannot happen with the built-ins).
-CornerSetCandidate smallest_aperiodic_corner_set(int prune_radius = 3);
+// rederive_chain(embedded_smallest_record()).
+CornerSetCandidate smallest_aperiodic_corner_set();
 
 }  // namespace tilekit

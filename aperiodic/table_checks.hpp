@@ -32,7 +32,8 @@ struct TableRun {
   std::vector<CellCheck> checks;  // empty with verify off
   std::optional<CornerSetCandidate> smallest;
   VerifyResult smallest_verify;
-  double seconds = 0;
+  double seconds = 0;           // the tables and their checks
+  double smallest_seconds = 0;  // re-deriving and verifying the smallest set (aperiodic/smallest.hpp)
 };
 
 // "periodic (3x2 torus)", "no-period-up-to 8", "unknown: no period <= 14 rows / 12 columns".

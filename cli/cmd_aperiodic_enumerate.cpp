@@ -9,8 +9,10 @@
 #include "aperiodic/conversion_graph.hpp"
 #include "aperiodic/enumerate.hpp"
 #include "aperiodic/json.hpp"
+#include "aperiodic/smallest.hpp"
 #include "aperiodic/steps.hpp"
 #include "aperiodic/table_checks.hpp"
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/parse.hpp"
 #include "cli/cmd_aperiodic.hpp"
@@ -32,6 +34,7 @@ struct EnumerateArgs {
   std::int64_t max_tiles = 60, batch = 8;  // checked here: CLI11 would wrap a negative size_t
   bool quiet = false;
   int verify_period = 6;
+  std::string record;  // --record FILE
 };
 
 nlohmann::json link_json(const ChainLink& l) {
@@ -136,6 +139,10 @@ void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
                      {"source", best->root}, {"chain", links},                {"format", "nw ne sw se"},
                      {"list", list},         {"verify", verdict_text(*check)}};
   }
+  if (!a.record.empty() && !r.interrupted) {
+    write_file_atomic(a.record, smallest_record(o, r).dump(2) + "\n");
+    j["record"] = a.record;
+  }
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
   if (!o.db.empty()) j["db"] = o.db;
   emit(ctx, j, [&] {
@@ -226,6 +233,9 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   cmd->add_option("--db", a->o.db, "Store every set and conversion in this results database");
   cmd->add_option("--verify-period", a->verify_period, "Torus periods searched on the smallest set (default 6)")
       ->check(CLI::Range(1, 16));
+  cmd->add_option("--record", a->record,
+                  "Write the least sound corner set's chain and this run's command and digest here (JSON, atomically): "
+                  "what `aperiodic smallest` re-derives (aperiodic/data/smallest-chain.json)");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer(

@@ -13,7 +13,7 @@ seconds=${1:-10}
 shift || true
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(tile_set tiling checkpoint db_export group_spec portfolio_stats probability_map flags
-  results_db texture_input point_tiles specs decide_checkpoint)
+  results_db texture_input point_tiles specs decide_checkpoint smallest_record)
 "$root/scripts/setup.sh"
 [ -x "$root/build/tilekit" ] || "$root/scripts/build.sh"
 fz=$root/build-fuzz
@@ -119,6 +119,8 @@ PY
     { printf '\001'; cat "$s/d.ckpt"; } >"$s/d.whole" && seed decide_checkpoint "$s/d.whole"
     { printf '\000'; tail -n +3 "$s/d.ckpt"; } >"$s/d.body" && seed decide_checkpoint "$s/d.body"
   fi
+  # chain records: the embedded one
+  seed smallest_record "$root/aperiodic/data/smallest-chain.json"
 }
 make_seeds
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <regex>
 
+#include "aperiodic/canonical.hpp"
 #include "aperiodic/conversion.hpp"
 #include "aperiodic/decide.hpp"
 #include "aperiodic/smallest.hpp"
@@ -100,4 +101,18 @@ TEST(KnownSets, NoAperiodicSetIsEverPeriodicOrFinite) {
     EXPECT_EQ(r.verdict, "unknown") << s.name();
     EXPECT_GT(r.k, 1) << s.name();
   }
+}
+
+// finite-212 (Jeandel & Rao) and finite-256 (Jeandel & Vanier) are one tile set: the same
+// canonical form up to symmetry and colour names (finite-256 is finite-212 with its colours
+// renamed), so they share one largest square and the transducer counts are equal level by level.
+TEST(KnownSets, Finite212AndFinite256AreOneSetUpToColourNames) {
+  const std::string dir = std::string(TILEKIT_SOURCE_DIR) + "/aperiodic/data/";
+  const CanonicalForm a = canonical_form(read_tile_set_file(dir + "finite-212.tiles"));
+  const CanonicalForm b = canonical_form(read_tile_set_file(dir + "finite-256.tiles"));
+  ASSERT_TRUE(a.exact && b.exact);
+  EXPECT_EQ(a.hash, b.hash);
+  EXPECT_EQ(a.text, b.text);
+  // Not every pair is equal: finite-14 is another set.
+  EXPECT_NE(canonical_form(read_tile_set_file(dir + "finite-14.tiles")).hash, a.hash);
 }
