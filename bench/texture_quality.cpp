@@ -144,6 +144,20 @@ void naive_in_phase(const std::string& name, const Exemplar& given, int px, int 
           img.set(c * px + xx, r * px + y, {q[0], q[1], q[2]});
         }
     }
+  // The exemplar itself as the samples see it (rectified, resampled), on the same lattice with a
+  // corner where the synthesis puts one: the wall's own score, no tiles at all.
+  const Image& own = e.image;
+  if (own.width >= 4 * px && own.height >= 4 * px) {
+    Lattice l = Lattice::square(px);
+    l.offset = {std::round(x.phase()[0]), std::round(x.phase()[1])};
+    const TextureAnalysis a = analyze_texture(own, l, &given.image, nullptr, threads);
+    nlohmann::json j = {{"case", fmt::format("exemplar-in-phase/{}", name)},
+                        {"texture", name},
+                        {"tile_px", px},
+                        {"size", {own.width, own.height}}};
+    j.update(measures(a));
+    print(j);
+  }
   const TextureAnalysis a = analyze_texture(img, Lattice::square(px), &given.image, nullptr, threads);
   if (!out.empty()) write_png(fmt::format("{}/{}-naive-in-phase.png", out, name), img);
   nlohmann::json j = {{"case", fmt::format("naive-in-phase/{}", name)},

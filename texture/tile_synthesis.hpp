@@ -151,6 +151,8 @@ class SynthesisExemplar {
   const ExemplarPeriod& period() const { return found_; }  // as found in the (rectified) exemplar
   const PerspectiveFit& perspective() const { return perspective_; }
   std::array<double, 2> scale() const { return scale_; }
+  // Where the lattice's corners fall in the exemplar, modulo the period (0 along an axis without).
+  std::array<double, 2> phase() const { return phase_; }
   bool periodic() const { return step_[0] > 0 || step_[1] > 0; }
   // The position nearest p that keeps the phase for a w x h sample shown at lattice (u, v).
   std::array<int, 2> in_phase(std::array<int, 2> p, int u, int v, int w, int h) const;
