@@ -121,6 +121,54 @@ void naive(const std::string& name, const Exemplar& e, int px, int size, int thr
   print(j);
 }
 
+// The same mosaic for a periodic exemplar kept in phase (SynthesisExemplar, as the synthesis
+// sees it): random px-square crops, each at the in-phase position nearest a random draw, abutted.
+// Bricks continue across the lattice and no content repeats on it, so its grid repetition is
+// what the exemplar's own period, in phase with the lattice, adds to the measure: the floor of any
+// synthesis that keeps the bricks whole.
+void naive_in_phase(const std::string& name, const Exemplar& given, int px, int size, int threads,
+                    const std::string& out) {
+  SynthesisOptions o;
+  o.tile_px = px;
+  const SynthesisExemplar x(given, o);
+  if (!x.periodic()) return;
+  const Exemplar& e = x.exemplar();
+  Image img(size, size);
+  for (int r = 0; r * px < size; ++r)
+    for (int c = 0; c * px < size; ++c) {
+      const auto p =
+          x.in_phase(random_sample_position(e, px, derive_seed(7, std::uint64_t(r * 1000 + c))), 0, 0, px, px);
+      for (int y = 0; y < px && r * px + y < size; ++y)
+        for (int xx = 0; xx < px && c * px + xx < size; ++xx) {
+          const std::uint8_t* q = e.at(p[0] + xx, p[1] + y);
+          img.set(c * px + xx, r * px + y, {q[0], q[1], q[2]});
+        }
+    }
+  // The exemplar itself as the samples see it (rectified, resampled), on the same lattice with a
+  // corner where the synthesis puts one: the wall's own score, no tiles at all.
+  const Image& own = e.image;
+  if (own.width >= 4 * px && own.height >= 4 * px) {
+    Lattice l = Lattice::square(px);
+    l.offset = {std::round(x.phase()[0]), std::round(x.phase()[1])};
+    const TextureAnalysis a = analyze_texture(own, l, &given.image, nullptr, threads);
+    nlohmann::json j = {{"case", fmt::format("exemplar-in-phase/{}", name)},
+                        {"texture", name},
+                        {"tile_px", px},
+                        {"size", {own.width, own.height}}};
+    j.update(measures(a));
+    print(j);
+  }
+  const TextureAnalysis a = analyze_texture(img, Lattice::square(px), &given.image, nullptr, threads);
+  if (!out.empty()) write_png(fmt::format("{}/{}-naive-in-phase.png", out, name), img);
+  nlohmann::json j = {{"case", fmt::format("naive-in-phase/{}", name)},
+                      {"texture", name},
+                      {"tile_px", px},
+                      {"exemplar_scale", x.scale()},
+                      {"period", {x.period().x, x.period().y}}};
+  j.update(measures(a));
+  print(j);
+}
+
 void speed(const std::string& name, const Exemplar& e, int px, int reps) {
   SynthesisOptions o;
   o.kind = TileKind::Corner;
@@ -170,6 +218,7 @@ int main(int argc, char** argv) {
       continue;
     }
     naive(name, e, px, size, threads);
+    naive_in_phase(name, e, px, size, threads, out);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)
         quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out, thin);

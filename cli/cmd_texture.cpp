@@ -31,7 +31,7 @@ HashKind hash_option(const std::string& name) {
 }
 
 struct TilesArgs {
-  std::string exemplar, kind = "corner", out, period = "auto";
+  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto";
   SynthesisOptions synthesis;  // kind, threads, progress and keep_period come from the fields here
   int threads = 0;
   bool tileable = false, quiet = false;
@@ -43,6 +43,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.threads = threads_or_default(a.threads);
   o.progress = !a.quiet;
   o.keep_period = a.period == "auto";
+  o.rectify = a.perspective == "auto";
   const Exemplar e = load_exemplar(a.exemplar, a.tileable);
   const TextureTileSet s = synthesize_tiles(e, o);
   write_tile_set(s, a.out, e.name);
@@ -58,6 +59,11 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
                a.kind, o.colours, o.tile_px, o.tile_px, e.name, s.method, s.seconds);
     fmt::print("boundary-cut error {:.1f} (first draw {:.1f}); picture of the set: {}\n", s.cut_error,
                s.cut_error_initial, j["sheet"].get<std::string>());
+    if (s.perspective.applied)
+      fmt::print(
+          "photographed wall: rectified by its {} lines ({} of them, {:.3f} periods rms; spacing spread {:.2f})\n",
+          s.perspective.axis == 0 ? "vertical" : "horizontal", s.perspective.lines, s.perspective.rms,
+          s.perspective.spread);
     if (s.exemplar_scale[0] != 1 || s.exemplar_scale[1] != 1)
       fmt::print("periodic exemplar (period {:g} x {:g} px): resampled by {:.3f} x {:.3f} to whole periods per tile\n",
                  s.period.x, s.period.y, s.exemplar_scale[0], s.exemplar_scale[1]);
@@ -98,6 +104,11 @@ void add_tiles(CLI::App& texture, Context& ctx) {
   cmd->add_option("--period", a->period,
                   "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
                   "phase); off: never")
+      ->check(CLI::IsMember({"auto", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--perspective", a->perspective,
+                  "auto: rectify a photographed periodic exemplar whose lines converge (fit the homography that "
+                  "makes them parallel and equally spaced) before keeping its period; off: never")
       ->check(CLI::IsMember({"auto", "off"}))
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");

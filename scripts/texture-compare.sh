@@ -9,9 +9,11 @@
 # (tiles on their square lattice, hex and hpn on their own triangle lattice of side cell_px),
 # seam ratio (square lattices only), cut visibility (tiles: with the labels of the same view;
 # hex and hpn blend and have no cuts) and histogram distance.
+# Tiles come twice, from the same run: `tiles` (the default bands) and `tiles-thin` (`texture tiles
+# --thin-bands`; a periodic exemplar keeps the default bands, so its two are the same).
 # Usage: scripts/texture-compare.sh [EXEMPLAR...]   (default: every PNG in the texture cache)
 #   TILEKIT_COMPARE_OUT  output folder (default: out/texture-compare in the repository)
-# Writes OUT/NAME/{flat,tilted}-METHOD.png, OUT/results.jsonl (one JSON object per texture and
+# Writes OUT/NAME/{flat,tilted}-METHOD.png (METHOD: tiles, tiles-thin, hex, hpn), OUT/results.jsonl (one JSON object per texture and
 # method) and OUT/table.md, and prints the table.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -35,14 +37,22 @@ for ex in "$@"; do
   dir="$out/$name"
   mkdir -p "$dir"
   echo "texture-compare: $name" >&2
-  "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 --out "$dir/tiles" --quiet >/dev/null
-  "$tk" texture atlas "$dir/tiles" --out "$dir/atlas.png" --no-db >/dev/null
-  mkdir -p "$dir/labels"
-  "$tk" texture atlas "$dir/tiles/labels" --out "$dir/labels/atlas.png" --no-db >/dev/null
-  "$tk" texture render --atlas "$dir/labels/atlas.png" --seed 1 --quiet --size 1024x1024 --scale 1 \
-    --out "$dir/flat-labels.png" >/dev/null
-  for m in tiles hex hpn; do
-    src=(--method "$m" --atlas "$dir/atlas.png" --exemplar "$ex" --seed 1 --quiet)
+  for bands in tiles tiles-thin; do
+    thin=()
+    [ "$bands" = tiles-thin ] && thin=(--thin-bands)
+    "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 "${thin[@]}" \
+      --out "$dir/$bands" --quiet >/dev/null
+    "$tk" texture atlas "$dir/$bands" --out "$dir/atlas-$bands.png" --no-db >/dev/null
+    mkdir -p "$dir/labels-$bands"
+    "$tk" texture atlas "$dir/$bands/labels" --out "$dir/labels-$bands/atlas.png" --no-db >/dev/null
+    "$tk" texture render --atlas "$dir/labels-$bands/atlas.png" --seed 1 --quiet --size 1024x1024 --scale 1 \
+      --out "$dir/flat-labels-$bands.png" >/dev/null
+  done
+  for m in tiles tiles-thin hex hpn; do
+    method=${m%-thin}
+    atlas="$dir/atlas-tiles.png"
+    [ "$m" = tiles-thin ] && atlas="$dir/atlas-tiles-thin.png"
+    src=(--method "$method" --atlas "$atlas" --exemplar "$ex" --seed 1 --quiet)
     "$tk" texture render "${src[@]}" --size 1024x1024 --scale 1 --out "$dir/flat-$m.png" >/dev/null
     "$tk" texture render "${src[@]}" --size 1024x576 --scale 1 --tilt 3 --out "$dir/tilted-$m.png" >/dev/null
     j=$("$tk" texture render "${src[@]}" --size 1024x1024 --scale 1 --glsl --frames 10 --json --out "$dir/glsl-$m.png" ||
@@ -54,8 +64,8 @@ for ex in "$@"; do
     if ((analyze)); then
       # hex and hpn: their triangle grid of side S = cell_px, basis (S,0) and (S/2, S sqrt(3)/2)
       # (texture/baseline_samplers.hpp's skew, inverted), a vertex at the origin.
-      lattice=(--tile-px 64 --labels "$dir/flat-labels.png")
-      if [ "$m" != tiles ]; then
+      lattice=(--tile-px 64 --labels "$dir/flat-labels-$m.png")
+      if [ "$method" != tiles ]; then
         s=$(field cell_px "$j")
         lattice=(--lattice "$(awk -v s="$s" 'BEGIN { printf "%g,0,%g,%g", s, s / 2, s * sqrt(3) / 2 }')")
       fi
@@ -67,4 +77,4 @@ for ex in "$@"; do
   done
 done
 printf "%b" "$table" | tee "$out/table.md"
-echo "texture-compare: pictures in $out/*/{flat,tilted}-{tiles,hex,hpn}.png, results in $out/results.jsonl" >&2
+echo "texture-compare: pictures in $out/*/{flat,tilted}-{tiles,tiles-thin,hex,hpn}.png, results in $out/results.jsonl" >&2

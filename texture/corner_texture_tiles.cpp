@@ -62,6 +62,8 @@ class CornerSynthesis {
     s.method = "corner-strips";
     s.shared_sources = c_ + 2 * c_ * c_;
     s.period = x_.period();
+    s.perspective = x_.perspective();
+    if (s.perspective.applied || x_.scale() != std::array<double, 2>{1, 1}) s.sampled = x_.exemplar().image;
     s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
     choose_samples(s);

@@ -40,8 +40,8 @@ void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
   // Each round holds the candidates of one sample at once; beyond 2^16 a search costs hours per
   // round and the memory grows with it, while the exemplars have at most a few million positions.
   if (o.search > kMaxSynthesisSearch)
-    throw InputError(fmt::format("--search {} is more than the {} candidates a round may try", o.search,
-                                 kMaxSynthesisSearch));
+    throw InputError(
+        fmt::format("--search {} is more than the {} candidates a round may try", o.search, kMaxSynthesisSearch));
   const int need = o.tile_px + 16;  // a centre patch of n pixels, with room to choose where
   if (e.width() < need || e.height() < need)
     throw InputError(
@@ -75,7 +75,11 @@ double seam_goal_miss(double ratio) {
 
 SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o) : e_(e) {
   if (!o.keep_period) return;
-  found_ = dominant_period(e);
+  if (o.rectify) {
+    perspective_ = fit_perspective(e);
+    if (perspective_.applied) e_ = rectify_exemplar(e, perspective_);
+  }
+  found_ = dominant_period(e_);
   // the tile holds k whole periods, k the nearest whole number; at most 25 % of stretch
   for (int axis = 0; axis < 2; ++axis) {
     const double p = axis == 0 ? found_.x : found_.y;
@@ -85,19 +89,48 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
     scale_[std::size_t(axis)] = s;
     step_[std::size_t(axis)] = o.tile_px / k;
   }
-  if (scale_[0] != 1 || scale_[1] != 1) e_ = resample_exemplar(e, scale_[0], scale_[1]);
-  // The phase: that of a tile-sized window in the middle of the exemplar, shown at a tile corner.
+  if (scale_[0] != 1 || scale_[1] != 1) e_ = resample_exemplar(e_, scale_[0], scale_[1]);
+  // The phase: that of a tile-sized window in the middle of the exemplar, shown at a tile corner,
+  // moved so that its lines (where they are clear) fall on the tile borders. A border then runs
+  // along a mortar line, both tiles' bands hold its halves and a little of the faces beside it,
+  // and the cuts to the centre patches run close to the line instead of across the middle of the
+  // bricks (skimage's brick: cut visibility 1.78 -> 1.54, seam ratio 1.71 -> 1.05).
   const int n = o.tile_px;
   const std::array<int, 2> p{std::max(0, (e_.width() - n) / 2), std::max(0, (e_.height() - n) / 2)};
+  const int rw = std::min(n, e_.width() - p[0] - 1), rh = std::min(n, e_.height() - p[1] - 1);
   for (std::size_t k = 0; k < 2; ++k)
     if (step_[k] > 0) {
       phase_[k] = std::fmod(p[k], step_[k]);
-      lines_[k] = line_phase(p, 0, std::min(n, e_.width() - p[0] - 1), std::min(n, e_.height() - p[1] - 1), k);
+      // the lines' own spacing: the period's harmonic (step / j, at least 6 px) whose component
+      // is strongest in that window (a two-row bond has its bed joints at half the period)
+      double clearest = 0;
+      for (int j = 1; j <= 4 && step_[k] / j >= 6; ++j) {
+        const double c = line_clarity(p, rw, rh, k, step_[k] / j);
+        if (c > clearest) clearest = c, harmonic_[k] = j;
+      }
+      lines_[k] = line_phase(p, 0, rw, rh, k);
+      if (!std::isnan(lines_[k])) phase_[k] = std::fmod(p[k] + lines_[k], step_[k]), lines_[k] = 0;
     }
 }
 
+double SynthesisExemplar::line_clarity(std::array<int, 2> p, int w, int h, std::size_t axis, double spacing) const {
+  std::complex<double> sum = 0;
+  double total = 0;
+  const int along = axis == 0 ? w : h, across = axis == 0 ? h : w;
+  for (int c = 0; c + 1 < along; ++c) {
+    double g = 0;
+    for (int r = 0; r < across; ++r) {
+      const int x = p[0] + (axis == 0 ? c : r), y = p[1] + (axis == 0 ? r : c);
+      g += std::abs(luma(e_.at(x + (axis == 0), y + (axis == 1))) - luma(e_.at(x, y)));
+    }
+    sum += g * std::polar(1.0, -2 * std::numbers::pi * (c + 0.5) / spacing);
+    total += g;
+  }
+  return total > 0 ? std::abs(sum) / total : 0.0;
+}
+
 double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const {
-  const double step = step_[axis];
+  const double step = step_[axis] / harmonic_[axis];
   std::complex<double> sum = 0;
   double total = 0;
   const int along = axis == 0 ? w : h, across = axis == 0 ? h : w;
@@ -127,8 +160,8 @@ std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int 
     const double lines = line_phase(p, uv[k], w, h, k);
     if (std::isnan(lines) || std::isnan(lines_[k])) continue;
     // moving the window by s moves its lines by -s in lattice coordinates
-    const double s = std::remainder(lines - lines_[k], step);
-    if (std::abs(s) <= step / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);
+    const double spacing = step / harmonic_[k], s = std::remainder(lines - lines_[k], spacing);
+    if (std::abs(s) <= spacing / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);
   }
   return p;
 }
@@ -329,7 +362,8 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
   progress.finish();
   std::size_t shared = 0;
   for (const auto& src : s.sources)
-    shared += std::size_t(std::count_if(src.begin(), src.end(), [&](std::uint32_t id) { return id < s.shared_sources; }));
+    shared +=
+        std::size_t(std::count_if(src.begin(), src.end(), [&](std::uint32_t id) { return id < s.shared_sources; }));
   s.shared_fraction = double(shared) / double(count * px);
   return std::accumulate(cost.begin(), cost.end(), 0.0) / double(count);
 }
@@ -385,6 +419,15 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"sample_overlap", s.overlap},
           {"shared_fraction", s.shared_fraction},
           {"thin_bands", s.thin_bands},
+          {"perspective",
+           {{"applied", s.perspective.applied},
+            {"axis", s.perspective.axis < 0    ? "none"
+                     : s.perspective.axis == 0 ? "x"
+                                               : "y"},
+            {"lines", s.perspective.lines},
+            {"rms_periods", s.perspective.rms},
+            {"drift_periods", s.perspective.drift},
+            {"spacing_spread", s.perspective.spread}}},
           {"period", {s.period.x, s.period.y}},
           {"exemplar_scale", s.exemplar_scale},
           {"seconds", s.seconds}};
@@ -410,6 +453,7 @@ void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::
   for (std::size_t t = 0; t < s.tiles.size(); ++t)
     write_png((fs::path(dir) / fmt::format("tile-{:04d}.png", t)).string(), s.tiles[t]);
   write_png((fs::path(dir) / "tileset.png").string(), tile_set_sheet(s));
+  if (s.sampled.width > 0) write_png((fs::path(dir) / "exemplar.png").string(), s.sampled);
   nlohmann::json j = tile_set_json(s);
   j["exemplar"] = exemplar;
   j["files"] = "tile-NNNN.png, named by tile index (thesis eq. 2.2 / 2.5); labels/: the sample of every pixel";

@@ -17,6 +17,7 @@
 
 #include "atlas/atlas_image.hpp"
 #include "texture/exemplar.hpp"
+#include "texture/perspective.hpp"
 #include "tilesets/tile.hpp"
 
 namespace tilekit {
@@ -36,6 +37,9 @@ struct SynthesisOptions {
   // Structured textures: resample the exemplar so that the tile holds whole periods of it and
   // keep every sample in phase with the lattice (exemplar.hpp's dominant_period); off: never.
   bool keep_period = true;
+  // With keep_period, a photographed wall whose lines converge is first rectified
+  // (perspective.hpp); off: never.
+  bool rectify = true;
   // Thin shared bands (TileGeometry): a margin of 3n/64, a cut zone of 3n/16 and the centre's
   // pull; fewer texels repeat on the lattice, but mip level 2 is no longer exact next to a border.
   // Periodic exemplars (keep_period and a period found) keep the default bands.
@@ -100,8 +104,10 @@ struct TextureTileSet {
   double overlap = 0;            // shared samples: mean fraction of a sample's window another one also covers
   double shared_fraction = 0;    // the fraction of all tile texels copied from a shared sample
   bool thin_bands = false;       // made with TileGeometry's thin bands
-  ExemplarPeriod period;         // of the exemplar as given (0: none found, or keep_period off)
+  PerspectiveFit perspective;    // the rectification of a photographed wall (applied: the exemplar was resampled)
+  ExemplarPeriod period;         // of the exemplar as rectified (0: none found, or keep_period off)
   std::array<double, 2> exemplar_scale{1, 1};  // the resampling that fits whole periods into a tile
+  Image sampled;  // the exemplar as the samples saw it, when rectified or resampled (else empty)
   double seconds = 0;
   std::string method;  // "corner-strips", "wang-strips" or "naive"
 };
@@ -126,33 +132,43 @@ double line_activity(const Exemplar& e, int x, int y, int length, bool horizonta
 inline constexpr double kBorderTolerance = 0.04;
 double seam_goal_miss(double border_to_own_activity);
 
-// The exemplar as the samples see it: resampled to whole periods per tile when it has a dominant
-// period (keep_period), and the phase every sample keeps. A sample shown with its top-left at
+// The exemplar as the samples see it: rectified when it is a photographed wall whose lines
+// converge (perspective.hpp; keep_period and rectify), resampled to whole periods per tile when it
+// has a dominant period (keep_period), and the phase every sample keeps. A sample shown with its top-left at
 // (u, v) in lattice coordinates (tile corners at multiples of n) is taken from an exemplar
 // position congruent to (u, v) + phase modulo the period, so that bricks continue across every
 // cut and every tile border (exemplar.hpp, dominant_period). A photographed wall is periodic
 // only roughly (perspective bends and spreads its mortar lines), so the position is then
-// refined by up to a quarter period: where the window's lines (the period's Fourier component of
-// its gradient profile along the axis) are clear, they are put where the lines of a tile-sized
-// window in the middle of the exemplar are, shown at a tile corner.
+// refined by up to a quarter of the lines' spacing: where the window's lines (the Fourier
+// component of its gradient profile along the axis at the lines' spacing: the period, or the
+// harmonic of it that is strongest in the middle of the exemplar, as a two-column period of
+// single columns) are clear, they are put where the lines of a tile-sized window in the middle
+// of the exemplar are, shown at a tile corner.
 class SynthesisExemplar {
  public:
   SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o);
   const Exemplar& exemplar() const { return e_; }
-  const ExemplarPeriod& period() const { return found_; }  // as found in the given exemplar
+  const ExemplarPeriod& period() const { return found_; }  // as found in the (rectified) exemplar
+  const PerspectiveFit& perspective() const { return perspective_; }
   std::array<double, 2> scale() const { return scale_; }
+  // Where the lattice's corners fall in the exemplar, modulo the period (0 along an axis without).
+  std::array<double, 2> phase() const { return phase_; }
   bool periodic() const { return step_[0] > 0 || step_[1] > 0; }
   // The position nearest p that keeps the phase for a w x h sample shown at lattice (u, v).
   std::array<int, 2> in_phase(std::array<int, 2> p, int u, int v, int w, int h) const;
 
  private:
   // Where the lines of a w x h window at p lie along an axis, in lattice coordinates modulo the
-  // step (the window shown at lattice u), and how clear they are (0..1); NaN when unclear.
+  // lines' spacing (the window shown at lattice u); NaN when unclear.
   double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const;
+  // |that Fourier component| / the summed gradient, at a given spacing of the lines.
+  double line_clarity(std::array<int, 2> p, int w, int h, std::size_t axis, double spacing) const;
 
   Exemplar e_;
+  PerspectiveFit perspective_;
   ExemplarPeriod found_;
   std::array<double, 2> scale_{1, 1}, step_{0, 0}, phase_{0, 0};  // step: the period after resampling
+  std::array<int, 2> harmonic_{1, 1};                             // the lines' spacing is step / harmonic
   std::array<double, 2> lines_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
 };
 
@@ -236,7 +252,8 @@ nlohmann::json tile_set_json(const TextureTileSet& s);
 // ids, so two samples never share a colour.
 Image source_labels(const TextureTileSet& s, TileIndex t);
 // DIR/tile-NNNN.png per tile (named by index, as `tilekit atlas build --tiles` reads them),
-// DIR/tiles.json (the report), DIR/tileset.png (the sheet) and DIR/labels/ (the same files for
+// DIR/tiles.json (the report), DIR/tileset.png (the sheet), DIR/exemplar.png (`sampled`, when
+// there is one) and DIR/labels/ (the same files for
 // the source labels: `texture atlas DIR/labels` and `texture render` of that atlas give the
 // labels of a render); files written atomically.
 void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar);
