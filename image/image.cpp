@@ -86,12 +86,18 @@ void drop_empty_idat_chunks(std::string& file) {
   while (at + 12 <= file.size()) {
     const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(file[at + i])); };
     const std::uint64_t length = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
-    if (length > file.size() - at - 12) return;  // damaged: stb refuses it as it is
+    if (length > file.size() - at - 12) break;  // damaged from here: kept as it is, for stb to refuse
     if (!(length == 0 && file.compare(at + 4, 4, "IDAT") == 0)) out.append(file, at, std::size_t(length) + 12);
     at += std::size_t(length) + 12;
   }
   out.append(file, at, std::string::npos);
   file = std::move(out);
+}
+
+// stb's reason for its last failure; it gives none for some damaged files.
+std::string_view failure_reason() {
+  const char* r = stbi_failure_reason();
+  return r && *r ? r : "damaged or not an image";
 }
 
 }  // namespace
@@ -108,7 +114,7 @@ Image read_image(const std::string& path, int channels) {
   const int size = int(file.size());
   int w = 0, h = 0, n = 0;
   if (!stbi_info_from_memory(bytes, size, &w, &h, &n))
-    throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+    throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
   if (std::int64_t(w) * std::int64_t(h) > kMaxImagePixels)
     throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
                                  kMaxImagePixels));
@@ -118,7 +124,7 @@ Image read_image(const std::string& path, int channels) {
   if (stbi_is_16_bit_from_memory(bytes, size) && !std::string_view(file).starts_with(kPngSignature))
     throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
   stbi_uc* data = stbi_load_from_memory(bytes, size, &w, &h, &n, channels);
-  if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, stbi_failure_reason()));
+  if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
   Image img(w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * std::size_t(channels)),
             channels);
   stbi_image_free(data);

@@ -66,3 +66,14 @@ TEST(ImageDecode, ATruncatedPngIsAnInputErrorNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("t.png"), std::string::npos) << e.what();
   }
 }
+
+// The same with a damaged chunk after the empty one (its length runs past the file's end): the
+// empty chunk is still dropped, and the damaged rest is refused (fuzz_texture_input, 138,304 runs).
+TEST(ImageDecode, AnEmptyIdatBeforeADamagedChunkIsRefused) {
+  tilekit::test::TempDir d;
+  const std::string png = with_empty_idat_first(encode_png(gradient(16, 16)));
+  const std::size_t second = png.find("IDAT", png.find("IDAT") + 4) - 4;
+  std::string bad = png.substr(0, second) + std::string("\x78\x5e\x7c\x7c", 4) + png.substr(second + 4);
+  write_bytes(d / "d.png", bad);
+  EXPECT_THROW(read_image(d / "d.png"), InputError);
+}
