@@ -124,6 +124,40 @@ Tiling numbers_to_tiling(const TileSet& set, const std::vector<std::vector<std::
   return t;
 }
 
+namespace {
+
+// A level just built: finite or periodic? Records the verdict in `res` (true: decided).
+bool record_verdict(DecideResult& res, const TransducerChain& c, Budget& budget, const DecideOptions& o) {
+  if (c.finite()) {
+    res.verdict = "finite";
+    SquareBound b = c.square_bound();
+    res.square_bound = b.side;
+    res.square_bound_log10 = b.log10;
+  } else {
+    TransducerChain::Strip strip;
+    try {
+      strip = c.periodic_strip(budget);
+    } catch (const std::logic_error& e) {
+      // Every cycle of a chain this build made lifts; one read from a checkpoint may not.
+      if (!res.resumed) throw;
+      throw InputError(fmt::format("checkpoint {}: its transducer chain is not the one the tile set gives ({}); "
+                                   "delete it to start afresh",
+                                   o.resume_path, e.what()));
+    }
+    if (strip.rows.empty()) return false;
+    res.shift = strip.shift;
+    res.witness = least_period(strip_torus(strip, c.columns()));
+    res.period_rows = int(res.witness.size());
+    res.period_cols = int(res.witness.front().size());
+    res.verdict = "periodic";
+  }
+  res.direction = c.columns() ? "columns" : "rows";
+  res.k = c.k();
+  return true;
+}
+
+}  // namespace
+
 DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
   if (!o.rows && !o.columns) throw InputError("decide: at least one of rows and columns is needed");
@@ -162,35 +196,7 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
     ++res.checkpoints;
     last_checkpoint = Clock::now();
   };
-  // A level just built: finite or periodic? (true: decided)
-  auto decided = [&](const TransducerChain& c) {
-    if (c.finite()) {
-      res.verdict = "finite";
-      SquareBound b = c.square_bound();
-      res.square_bound = b.side;
-      res.square_bound_log10 = b.log10;
-    } else {
-      TransducerChain::Strip strip;
-      try {
-        strip = c.periodic_strip(budget);
-      } catch (const std::logic_error& e) {
-        // Every cycle of a chain this build made lifts; one read from a checkpoint may not.
-        if (!res.resumed) throw;
-        throw InputError(fmt::format("checkpoint {}: its transducer chain is not the one the tile set gives ({}); "
-                                     "delete it to start afresh",
-                                     o.resume_path, e.what()));
-      }
-      if (strip.rows.empty()) return false;
-      res.shift = strip.shift;
-      res.witness = least_period(strip_torus(strip, c.columns()));
-      res.period_rows = int(res.witness.size());
-      res.period_cols = int(res.witness.front().size());
-      res.verdict = "periodic";
-    }
-    res.direction = c.columns() ? "columns" : "rows";
-    res.k = c.k();
-    return true;
-  };
+  auto decided = [&](const TransducerChain& c) { return record_verdict(res, c, budget, o); };
   try {
     bool done = false;
     if (!res.resumed)

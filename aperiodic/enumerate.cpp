@@ -225,16 +225,69 @@ EnumNode new_node(const CanonicalForm& f) {
   return n;
 }
 
-}  // namespace
-
-const std::vector<std::string>& published_enumeration_sources() {
-  static const std::vector<std::string> s = {
-      "jeandel-rao-11", "jeandel-rao-11-variant-2", "jeandel-rao-11-variant-3", "kari-14", "culik-13", "ammann-gs-16",
-      "labbe-19"};
-  return s;
+// The published sources as the nodes of depth 0.
+void add_sources(EnumerateResult& r, const std::vector<std::string>& sources, std::vector<std::string>& new_nodes) {
+  for (const std::string& name : sources) {
+    CanonicalForm f = canonical_form(resolve_tile_set(name));
+    auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
+    EnumNode& n = it->second;
+    if (added) {
+      n = new_node(f);
+      n.root = name;
+      n.label = "published";
+      new_nodes.push_back(f.hash);
+    }
+    n.depth = n.owned_depth = 0;
+  }
 }
 
-EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
+// One expanded set's children merged into the graph: new sets and edges (recorded for the
+// database), the shortest sound chain to each set, and the depth this shard owns it at.
+void merge_children(EnumerateResult& r, const std::string& parent_hash, std::vector<Child>& children,
+                    const EnumerateOptions& o, std::vector<std::string>& new_nodes, std::vector<EnumEdge>& new_edges,
+                    std::size_t& best_corner) {
+  EnumNode& parent = r.nodes.at(parent_hash);
+  parent.expanded = parent.owned_depth;
+  ++r.expanded;
+  const bool from_root = parent.label == "published";
+  for (Child& c : children) {
+    if (!c.form) {
+      ++r.over_limit[operation_of(c.step)];
+      continue;
+    }
+    const CanonicalForm& f = *c.form;
+    auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
+    EnumNode& n = it->second;
+    if (added) {
+      n = new_node(f);
+      new_nodes.push_back(f.hash);
+    }
+    EnumEdge e{parent.hash, c.step, f.hash, c.label,
+               c.lead.empty() ? c.argument : c.argument + "; decision: " + c.lead};
+    auto [eit, eadded] = r.edges.emplace(std::pair{e.from, e.step}, e);
+    if (eadded) new_edges.push_back(e);
+    if (!sound_label(c.label)) {
+      if (n.depth < 0 && n.lead.empty()) n.lead = c.lead.empty() ? c.label : c.lead;
+      continue;
+    }
+    const int d = parent.depth + 1;
+    if (n.depth < 0 || d < n.depth) {
+      n.depth = d;
+      n.parent = parent.hash;
+      n.step = c.step;
+      n.label = c.label;
+      n.root = parent.root;
+      n.lead.clear();
+    }
+    const bool owned = !from_root || hash_value(f.hash) % std::uint64_t(o.shards) == std::uint64_t(o.shard);
+    if (owned && parent.owned_depth >= 0 && (n.owned_depth < 0 || parent.owned_depth + 1 < n.owned_depth))
+      n.owned_depth = parent.owned_depth + 1;
+    if (n.kind == TileKind::Corner && (best_corner == 0 || n.tiles < best_corner)) best_corner = n.tiles;
+  }
+}
+
+// The run's sources, after every option is checked (InputError naming the first bad one).
+std::vector<std::string> checked_sources(const EnumerateOptions& o) {
   if (o.max_depth < 0) throw InputError(fmt::format("--max-depth must be >= 0, got {}", o.max_depth));
   if (o.max_tiles < 1) throw InputError("--max-tiles must be >= 1");
   if (o.batch < 1) throw InputError("--batch must be >= 1");
@@ -245,13 +298,27 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", o.time_limit));
   if (!(o.checkpoint_every >= 0) || !std::isfinite(o.checkpoint_every))
     throw InputError(fmt::format("--checkpoint-every must be a number of seconds >= 0, got {}", o.checkpoint_every));
-  const int threads = o.threads > 0 ? checked_thread_count(o.threads) : default_thread_count();
   std::vector<std::string> sources = o.sources.empty() ? published_enumeration_sources() : o.sources;
   const auto& known = published_enumeration_sources();
   for (const std::string& s : sources)
     if (std::find(known.begin(), known.end(), s) == known.end())
       throw InputError(
           fmt::format("unknown source '{}' (expected published aperiodic Wang sets: {})", s, fmt::join(known, ", ")));
+  return sources;
+}
+
+}  // namespace
+
+const std::vector<std::string>& published_enumeration_sources() {
+  static const std::vector<std::string> s = {
+      "jeandel-rao-11", "jeandel-rao-11-variant-2", "jeandel-rao-11-variant-3", "kari-14", "culik-13", "ammann-gs-16",
+      "labbe-19"};
+  return s;
+}
+
+EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
+  const std::vector<std::string> sources = checked_sources(o);
+  const int threads = o.threads > 0 ? checked_thread_count(o.threads) : default_thread_count();
 
   const auto t0 = Clock::now();
   std::optional<SignalCatcher> signals;
@@ -276,19 +343,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
   };
   std::vector<std::string> new_nodes;
   std::vector<EnumEdge> new_edges;
-  if (!r.resumed)
-    for (const std::string& name : sources) {
-      CanonicalForm f = canonical_form(resolve_tile_set(name));
-      auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
-      EnumNode& n = it->second;
-      if (added) {
-        n = new_node(f);
-        n.root = name;
-        n.label = "published";
-        new_nodes.push_back(f.hash);
-      }
-      n.depth = n.owned_depth = 0;
-    }
+  if (!r.resumed) add_sources(r, sources, new_nodes);
 
   auto pending = [&] {
     std::vector<const EnumNode*> p;
@@ -359,46 +414,8 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       break;
     }
     // Merge in batch order, steps in order: the same state whatever the threads did.
-    for (std::size_t i = 0; i < batch.size(); ++i) {
-      EnumNode& parent = r.nodes.at(batch[i].hash);
-      parent.expanded = parent.owned_depth;
-      ++r.expanded;
-      const bool from_root = parent.label == "published";
-      for (Child& c : children[i]) {
-        if (!c.form) {
-          ++r.over_limit[operation_of(c.step)];
-          continue;
-        }
-        const CanonicalForm& f = *c.form;
-        auto [it, added] = r.nodes.emplace(f.hash, EnumNode{});
-        EnumNode& n = it->second;
-        if (added) {
-          n = new_node(f);
-          new_nodes.push_back(f.hash);
-        }
-        EnumEdge e{parent.hash, c.step, f.hash, c.label,
-                   c.lead.empty() ? c.argument : c.argument + "; decision: " + c.lead};
-        auto [eit, eadded] = r.edges.emplace(std::pair{e.from, e.step}, e);
-        if (eadded) new_edges.push_back(e);
-        if (!sound_label(c.label)) {
-          if (n.depth < 0 && n.lead.empty()) n.lead = c.lead.empty() ? c.label : c.lead;
-          continue;
-        }
-        const int d = parent.depth + 1;
-        if (n.depth < 0 || d < n.depth) {
-          n.depth = d;
-          n.parent = parent.hash;
-          n.step = c.step;
-          n.label = c.label;
-          n.root = parent.root;
-          n.lead.clear();
-        }
-        const bool owned = !from_root || hash_value(f.hash) % std::uint64_t(o.shards) == std::uint64_t(o.shard);
-        if (owned && parent.owned_depth >= 0 && (n.owned_depth < 0 || parent.owned_depth + 1 < n.owned_depth))
-          n.owned_depth = parent.owned_depth + 1;
-        if (n.kind == TileKind::Corner && (best_corner == 0 || n.tiles < best_corner)) best_corner = n.tiles;
-      }
-    }
+    for (std::size_t i = 0; i < batch.size(); ++i)
+      merge_children(r, batch[i].hash, children[i], o, new_nodes, new_edges, best_corner);
     ++r.batches;
     ++batches_here;
     progress.update(double(r.expanded), double(r.expanded + queue.size() - take),

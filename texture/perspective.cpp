@@ -122,16 +122,18 @@ struct AxisFit {
   double sc = 1, along_extent = 0, across_extent = 0;
 };
 
-AxisFit fit_axis(const Exemplar& e, int axis) {
-  AxisFit f;
-  const int w = e.width(), h = e.height();
-  const int A = axis == 0 ? w : h, B = axis == 0 ? h : w;
-  f.along_extent = A, f.across_extent = B;
-  f.sc = std::max(A, B) / 2.0;
+// The crossings of the lines with each strip across the axis (to a fraction of a pixel), and the
+// strips' centres; no strips when the picture has too few or no contrast.
+struct StripCrossings {
+  std::vector<std::vector<double>> peaks;
+  std::vector<double> centre;
+};
+
+StripCrossings strip_crossings(const Exemplar& e, int axis, int A, int B) {
+  StripCrossings out;
   auto lum = [&](int a, int b) { return double(axis == 0 ? luma(e.at(a, b)) : luma(e.at(b, a))); };
   // 1. Band-passed profiles of the strips, and their polarity.
   std::vector<std::vector<double>> prof;
-  std::vector<double> centre;
   double m3 = 0, m2 = 0;
   for (int b0 = 0; b0 + kStrip <= B; b0 += kStrip / 2) {
     std::vector<double> p(std::size_t(A), 0);
@@ -144,12 +146,13 @@ AxisFit fit_axis(const Exemplar& e, int axis) {
       m3 += p[std::size_t(a)] * p[std::size_t(a)] * p[std::size_t(a)];
     }
     prof.push_back(std::move(p));
-    centre.push_back(b0 + kStrip / 2.0);
+    out.centre.push_back(b0 + kStrip / 2.0);
   }
-  if (prof.size() < 3 || m2 <= 0) return f;
+  if (prof.size() < 3 || m2 <= 0) return {};
   const double polarity = m3 >= 0 ? 1 : -1;
   // 2. The crossings: peaks above one standard deviation, to a fraction of a pixel.
-  std::vector<std::vector<double>> peaks(prof.size());
+  std::vector<std::vector<double>>& peaks = out.peaks;
+  peaks.resize(prof.size());
   for (std::size_t s = 0; s < prof.size(); ++s) {
     std::vector<double>& p = prof[s];
     double var = 0;
@@ -165,14 +168,28 @@ AxisFit fit_axis(const Exemplar& e, int axis) {
       peaks[s].push_back(a + 0.5 + (den < 0 ? 0.5 * (l - r) / den : 0));
     }
   }
+  return out;
+}
+
+AxisFit fit_axis(const Exemplar& e, int axis) {
+  AxisFit f;
+  const int w = e.width(), h = e.height();
+  const int A = axis == 0 ? w : h, B = axis == 0 ? h : w;
+  f.along_extent = A, f.across_extent = B;
+  f.sc = std::max(A, B) / 2.0;
+  // 1-2. The crossings of the lines with band-passed strip profiles.
+  StripCrossings crossings = strip_crossings(e, axis, A, B);
+  if (crossings.peaks.empty()) return f;
+  const std::vector<std::vector<double>>& peaks = crossings.peaks;
+  const std::vector<double>& centre = crossings.centre;
   // the strip nearest the middle with three or more crossings, its period and its line nearest
   // the middle
-  std::vector<std::size_t> order(prof.size());
+  std::vector<std::size_t> order(peaks.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return std::abs(centre[a] - B / 2.0) < std::abs(centre[b] - B / 2.0);
   });
-  std::size_t first = prof.size();
+  std::size_t first = peaks.size();
   double period = 0;
   for (std::size_t s : order) {
     if (peaks[s].size() < 3) continue;
@@ -189,7 +206,7 @@ AxisFit fit_axis(const Exemplar& e, int axis) {
     first = s, period = kept[kept.size() / 2];
     break;
   }
-  if (first == prof.size() || period < 4) return f;
+  if (first == peaks.size() || period < 4) return f;
   const double sc = f.sc;
   auto norm_u = [&](double a) { return (a - A / 2.0) / sc; };
   auto norm_v = [&](double b) { return (b - B / 2.0) / sc; };
@@ -216,7 +233,7 @@ AxisFit fit_axis(const Exemplar& e, int axis) {
   }
   for (double tolerance : {0.3, 0.2, 0.2}) {
     cross.clear(), k.clear();
-    for (std::size_t s = 0; s < prof.size(); ++s) assign(s, tolerance);
+    for (std::size_t s = 0; s < peaks.size(); ++s) assign(s, tolerance);
     if (cross.size() < 8 || !fit_pencil(cross, k, 5, g)) return f;
   }
   // 4. How well it fits, and how far a single period and slant (the affine fit) would miss.
