@@ -22,6 +22,8 @@ struct PackArgs {
   std::string out;
   std::vector<std::string> portfolio_stats;
   bool portfolio_report = false;
+  std::int64_t estimate = 0;      // --estimate PROBES: the candidates' distances instead of a search
+  double estimate_seconds = 5;    // the slice that measures each candidate's node rate
   bool quiet = false;
   std::int64_t threads = 0;   // when --threads is not given: default_thread_count()
   std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
@@ -55,6 +57,32 @@ void print_portfolio_report(const PackArgs& a, const Context& ctx) {
                  r["tries"].get<std::uint64_t>(), r["successes"].get<std::uint64_t>(),
                  r["median_seconds"].get<double>(), r["group"].get<std::string>());
     if (j.contains("out")) fmt::print("sum written to {}\n", j["out"].get<std::string>());
+  });
+}
+
+// --estimate PROBES: per portfolio candidate, Knuth's estimate of its search tree and the node
+// rate of one slice, so the projected CPU time to exhaust it.
+void print_estimate(const PackRequest& req, const PackArgs& a, const Context& ctx) {
+  if (a.estimate < 1) throw InputError(fmt::format("--estimate needs at least 1 probe, got {}", a.estimate));
+  const nlohmann::json j = estimate_pack(req, std::uint64_t(a.estimate), a.estimate_seconds);
+  emit(ctx, j, [&] {
+    fmt::print("{} C={}: each candidate's search tree by Knuth's estimate ({} probes), node rate of a {:g} s slice on "
+               "{} threads\n",
+               j["kind"].get<std::string>(), j["colors"].get<int>(), j["probes"].get<std::uint64_t>(),
+               j["slice_seconds"].get<double>(), j["threads"].get<int>());
+    fmt::print("{:<36} {:>12} {:>14} {:>21}  {}\n", "candidate", "tree nodes", "nodes/CPU-s", "CPU-hours to exhaust",
+               "found in the slice");
+    for (const auto& r : j["candidates"]) {
+      if (!r["estimable"].get<bool>()) {
+        fmt::print("{:<36} {:>12} {:>14} {:>21}  -\n", r["candidate"].get<std::string>(), "(cadical)", "-", "-");
+        continue;
+      }
+      fmt::print("{:<36} {:>12.3g} {:>14.3g} {:>21}  {}\n", r["candidate"].get<std::string>(),
+                 r["tree_nodes"].get<double>(), r["nodes_per_cpu_second"].get<double>(),
+                 r["exhaust_cpu_hours"].is_null() ? std::string("-")
+                                                  : fmt::format("{:.3g}", r["exhaust_cpu_hours"].get<double>()),
+                 r["found"].get<bool>() ? "yes" : "no");
+    }
   });
 }
 
@@ -138,6 +166,7 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   req.run.progress = !a.quiet;
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
   if (!a.portfolio_stats.empty()) req.portfolio_stats = a.portfolio_stats.front();
+  if (cmd.count("--estimate")) return print_estimate(req, a, ctx);
   std::set<std::string> given;
   for (const auto& flag : identity_flags())
     if (cmd.count(flag)) given.insert(flag);
@@ -209,6 +238,12 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "candidate groups and plain)");
   cmd->add_flag("--portfolio-report", a->portfolio_report,
                 "Print the per-candidate statistics (tries, successes, median time) that order the portfolio");
+  cmd->add_option("--estimate", a->estimate,
+                  "Instead of searching: each portfolio candidate's search tree by Knuth's estimate (this many "
+                  "random dives) and its node rate, so the CPU time to exhaust it");
+  cmd->add_option("--estimate-seconds", a->estimate_seconds,
+                  "With --estimate: the slice per candidate that measures its node rate")
+      ->capture_default_str();
   cmd->add_option("--portfolio-stats", a->portfolio_stats,
                   "Portfolio statistics file (default $TILEKIT_PORTFOLIO_STATS or ~/.local/share/tilekit/"
                   "portfolio-stats.json); with --portfolio-report repeatable: the files are added up");

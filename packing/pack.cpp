@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "base/error.hpp"
+#include "base/parallel.hpp"
 #include "base/parse.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
@@ -381,6 +383,38 @@ nlohmann::json portfolio_report(const std::vector<std::string>& stats_files, con
                       {"groups", rows}};
   if (!out.empty()) j["out"] = out;
   return j;
+}
+
+nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double slice_seconds) {
+  const TilingProblem problem = make_problem(a);
+  SearchOptions o = search_options(a);
+  if (o.mode != SearchMode::First || !is_complete_set_problem(problem) || !uses_portfolio(a, o.mode, true))
+    throw InputError("--estimate measures the portfolio's candidates: a complete set (--kind, --colors), --mode first, "
+                     "no --impose, --lift, --plain, --formulation or --ordering");
+  o.run.threads = o.run.threads > 0 ? o.run.threads : default_thread_count();
+  PortfolioOptions po;
+  po.candidates = a.candidates;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const CandidateEstimate& e : estimate_candidates(problem, o, po, probes, slice_seconds)) {
+    nlohmann::json r = {{"candidate", e.name}, {"family", e.family}, {"estimable", e.estimable}};
+    if (e.estimable) {
+      const double cpu = e.seconds * o.run.threads, rate = cpu > 0 ? double(e.nodes) / cpu : 0;
+      r["tree_nodes"] = e.tree_nodes;
+      r["log10_tree_nodes"] = e.tree_nodes > 0 ? std::log10(e.tree_nodes) : 0.0;
+      r["nodes"] = e.nodes;
+      r["seconds"] = e.seconds;
+      r["nodes_per_cpu_second"] = rate;
+      r["exhaust_cpu_hours"] = rate > 0 ? nlohmann::json(e.tree_nodes / rate / 3600) : nlohmann::json(nullptr);
+      r["found"] = e.found;
+    }
+    rows.push_back(r);
+  }
+  return {{"kind", std::string(kind_name(problem.set.kind()))},
+          {"colors", problem.set.colours()},
+          {"threads", o.run.threads},
+          {"probes", probes},
+          {"slice_seconds", slice_seconds},
+          {"candidates", rows}};
 }
 
 }  // namespace tilekit

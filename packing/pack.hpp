@@ -49,4 +49,11 @@ PackOutcome run_pack(PackRequest request, const std::set<std::string>& given = {
 nlohmann::json portfolio_report(const std::vector<std::string>& stats_files, const std::string& kind,
                                 std::int64_t colours, const std::string& out = "");
 
+// `pack --estimate PROBES`: for a first-mode search of a complete set, every portfolio candidate's
+// distance (solver/portfolio.hpp estimate_candidates), as
+// {"kind", "colors", "threads", "probes", "slice_seconds", "candidates": [{candidate, family,
+//   estimable, tree_nodes, log10_tree_nodes, nodes, seconds, nodes_per_cpu_second,
+//   exhaust_cpu_hours, found}]}. Nothing is stored. InputError for other requests.
+nlohmann::json estimate_pack(const PackRequest& request, std::uint64_t probes, double slice_seconds);
+
 }  // namespace tilekit

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <set>
 
@@ -396,6 +397,45 @@ PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions&
   std::optional<SignalCatcher> signals;
   if (options.run.catch_signals) signals.emplace();
   return Scheduler(problem, options, po).run();
+}
+
+std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem, const SearchOptions& options,
+                                                   const PortfolioOptions& portfolio, std::uint64_t probes,
+                                                   double seconds) {
+  if (probes < 1) throw InputError("--estimate needs at least 1 probe");
+  if (!(seconds > 0) || !std::isfinite(seconds))
+    throw InputError(fmt::format("--estimate-seconds must be positive, got {}", seconds));
+  const std::vector<std::string> names = portfolio.candidates.empty()
+                                             ? default_candidates(problem.set.kind(), problem.set.colours())
+                                             : portfolio.candidates;
+  std::vector<CandidateEstimate> out;
+  for (const std::string& name : names) {
+    const Candidate c = make_candidate(problem, name);
+    CandidateEstimate e;
+    e.name = c.name;
+    e.family = c.family;
+    e.estimable = c.family != "sat" && c.family != "lift-sat";
+    if (e.estimable) {
+      SearchOptions o = options;
+      o.mode = SearchMode::First;
+      o.run.time_limit = seconds;
+      o.run.checkpoint_path.clear();
+      o.run.checkpoint_every = 0;
+      o.estimate_probes = probes;
+      o.save_checkpoint = nullptr;
+      o.resume_state.reset();
+      o.title = fmt::format("estimate {}", c.name);
+      const SearchResult r = c.run(problem, o);
+      e.tree_nodes = r.estimated_nodes;
+      e.probes = probes;
+      e.nodes = r.nodes;
+      e.seconds = r.seconds;
+      e.found = !r.found.empty();
+    }
+    out.push_back(e);
+    if (options.run.catch_signals && SignalCatcher::caught()) break;
+  }
+  return out;
 }
 
 }  // namespace tilekit

@@ -100,4 +100,23 @@ std::string portfolio_fingerprint(const TilingProblem& problem, const SearchOpti
 PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
                               const PortfolioOptions& portfolio = {});
 
+// How far each candidate is from exhausting its subspace: Knuth's estimate of its search tree
+// (solver/knuth_estimate.hpp, `probes` random root-to-leaf dives) and the node rate of one
+// slice of `seconds` on options.run.threads threads. The projected time to exhaust the tree
+// is tree_nodes / rate; a first solution may come much sooner, so it bounds the distance from
+// above, not below. Candidates solved by cadical (sat, lift-sat) have no engine tree: they are
+// listed with estimable = false and not run.
+struct CandidateEstimate {
+  std::string name, family;
+  bool estimable = false;
+  double tree_nodes = 0;  // Knuth's estimate of the whole tree
+  std::uint64_t probes = 0;
+  std::uint64_t nodes = 0;  // searched in the timed slice
+  double seconds = 0;       // of the slice (wall)
+  bool found = false;       // the slice found a packing
+};
+std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem, const SearchOptions& options,
+                                                   const PortfolioOptions& portfolio, std::uint64_t probes,
+                                                   double seconds);
+
 }  // namespace tilekit

@@ -1,5 +1,5 @@
 // `tilekit pack --impose SPEC`, `--method search` (the imposed-group portfolio; `auto` tries the database and constructions first) and
-// `--portfolio-report` end to end.
+// `--portfolio-report` and `--estimate` end to end.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -103,6 +103,47 @@ TEST_F(ImposeCli, SearchPortfolioFindsFourColourCornerAndWangPackingsOnTwoThread
   ASSERT_EQ(human.code, 0) << human.err;
   EXPECT_NE(human.out.find("wang"), std::string::npos);
   EXPECT_EQ(human.out.find("corner  "), std::string::npos);  // filtered by --kind
+}
+
+// --estimate: every candidate's search tree (Knuth) and node rate, reproducible for a seed,
+// nothing stored; requests it cannot measure are exit 2.
+TEST_F(ImposeCli, EstimateGivesEachCandidatesTreeAndRateAndStoresNothing) {
+  const std::string args = "--kind corner --colors 4 --estimate 100 --estimate-seconds 0.3 --threads 1 --seed 3 --json";
+  CliResult r = pack(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = r.json();
+  EXPECT_EQ(j["probes"], 100);
+  double plain = 0, largest_group = 0;
+  int estimable = 0;
+  for (const auto& c : j["candidates"]) {
+    if (!c["estimable"].get<bool>()) {
+      EXPECT_EQ(c["family"].get<std::string>().find("sat"), c["family"].get<std::string>().size() - 3) << c;
+      continue;
+    }
+    ++estimable;
+    EXPECT_GT(c["tree_nodes"].get<double>(), 1.0) << c;
+    EXPECT_GT(c["nodes"].get<std::uint64_t>(), 0u) << c;
+    EXPECT_GT(c["nodes_per_cpu_second"].get<double>(), 0.0) << c;
+    if (c["candidate"] == "plain") plain = c["tree_nodes"].get<double>();
+    if (c["family"] == "impose") largest_group = std::max(largest_group, c["tree_nodes"].get<double>());
+  }
+  EXPECT_GE(estimable, 3);
+  // The whole space's tree dwarfs every invariant subspace's (1e83 against at most 1e43 here).
+  EXPECT_GT(plain, 1e20 * largest_group);
+  EXPECT_FALSE(std::filesystem::exists(dir / "results.sqlite"));
+  // The probes follow the seed: the same estimates again.
+  CliResult again = pack(args);
+  ASSERT_EQ(again.code, 0) << again.err;
+  for (std::size_t i = 0; i < j["candidates"].size(); ++i)
+    EXPECT_EQ(again.json()["candidates"][i].value("tree_nodes", 0.0), j["candidates"][i].value("tree_nodes", 0.0));
+  for (const std::string bad :
+       {"--kind corner --colors 4 --estimate 0", "--kind corner --colors 4 --estimate 10 --mode all",
+        "--kind corner --colors 4 --estimate 10 --impose 't=0,4:pi=1,2,3,0'",
+        "--kind corner --colors 4 --estimate 10 --estimate-seconds 0"}) {
+    CliResult b = pack(bad);
+    EXPECT_EQ(b.code, 2) << bad << ": " << b.err;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << b.err;
+  }
 }
 
 }  // namespace
