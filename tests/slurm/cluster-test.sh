@@ -379,8 +379,11 @@ scancel "$merge3" || true
 
 # ---- 4. resuming a whole run: the same submit again; then scancel ends it for good ------------
 log "case 4: the wall-time run submitted again (resume the whole run), then cancelled"
+# A wall time of 5 minutes, not case 3's 1: Slurm sends the USR1 warning from a periodic check,
+# and in one CI run it came 0.4 s after the start (not 10 s or later): the task checkpointed and
+# requeued itself before the scancel below. Only the shards and pack arguments must match case 3's.
 out4=$("$TK" cluster submit --kind corner --colors 3 --mode count --method search --shards 1 --cpus-per-task 1 \
-  --time 1 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
+  --time 5 --signal-seconds 50 --checkpoint-every 5 --max-requeues 1 --run-dir "$run3" --json) ||
   fatal "the second cluster submit into $run3 failed"
 array4=$(submitted_id array_job "$out4")
 check "the run directory now records two submissions" grep -q '"submissions":2' <<<"$out4"
