@@ -2,6 +2,7 @@
 // portfolio, search, checkpoints, signals, storage) is packing/pack.hpp.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 
 #include "base/atomic_file.hpp"
@@ -60,6 +61,12 @@ void print_portfolio_report(const PackArgs& a, const Context& ctx) {
   });
 }
 
+// 10^x as "8.68e+164" (x may be far beyond double's range).
+std::string power_of_ten(double x) {
+  const double e = std::floor(x);
+  return fmt::format("{:.2f}e{:+}", std::pow(10.0, x - e), std::int64_t(e));
+}
+
 // --estimate PROBES: per portfolio candidate, Knuth's estimate of its search tree and the node
 // rate of one slice, so the projected CPU time to exhaust it.
 void print_estimate(const PackRequest& req, const PackArgs& a, const Context& ctx) {
@@ -77,10 +84,10 @@ void print_estimate(const PackRequest& req, const PackArgs& a, const Context& ct
         fmt::print("{:<36} {:>12} {:>14} {:>21}  -\n", r["candidate"].get<std::string>(), "(cadical)", "-", "-");
         continue;
       }
-      fmt::print("{:<36} {:>12.3g} {:>14.3g} {:>21}  {}\n", r["candidate"].get<std::string>(),
-                 r["tree_nodes"].get<double>(), r["nodes_per_cpu_second"].get<double>(),
-                 r["exhaust_cpu_hours"].is_null() ? std::string("-")
-                                                  : fmt::format("{:.3g}", r["exhaust_cpu_hours"].get<double>()),
+      fmt::print("{:<36} {:>12} {:>14.3g} {:>21}  {}\n", r["candidate"].get<std::string>(),
+                 power_of_ten(r["log10_tree_nodes"].get<double>()), r["nodes_per_cpu_second"].get<double>(),
+                 r["log10_exhaust_cpu_hours"].is_null() ? std::string("-")
+                                                        : power_of_ten(r["log10_exhaust_cpu_hours"].get<double>()),
                  r["found"].get<bool>() ? "yes" : "no");
     }
   });

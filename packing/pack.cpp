@@ -399,12 +399,12 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
     nlohmann::json r = {{"candidate", e.name}, {"family", e.family}, {"estimable", e.estimable}};
     if (e.estimable) {
       const double cpu = e.seconds * o.run.threads, rate = cpu > 0 ? double(e.nodes) / cpu : 0;
-      r["tree_nodes"] = e.tree_nodes;
-      r["log10_tree_nodes"] = e.tree_nodes > 0 ? std::log10(e.tree_nodes) : 0.0;
+      r["log10_tree_nodes"] = e.log10_tree_nodes;
       r["nodes"] = e.nodes;
       r["seconds"] = e.seconds;
       r["nodes_per_cpu_second"] = rate;
-      r["exhaust_cpu_hours"] = rate > 0 ? nlohmann::json(e.tree_nodes / rate / 3600) : nlohmann::json(nullptr);
+      r["log10_exhaust_cpu_hours"] =
+          rate > 0 ? nlohmann::json(e.log10_tree_nodes - std::log10(rate * 3600)) : nlohmann::json(nullptr);
       r["found"] = e.found;
     }
     rows.push_back(r);

@@ -52,8 +52,9 @@ nlohmann::json portfolio_report(const std::vector<std::string>& stats_files, con
 // `pack --estimate PROBES`: for a first-mode search of a complete set, every portfolio candidate's
 // distance (solver/portfolio.hpp estimate_candidates), as
 // {"kind", "colors", "threads", "probes", "slice_seconds", "candidates": [{candidate, family,
-//   estimable, tree_nodes, log10_tree_nodes, nodes, seconds, nodes_per_cpu_second,
-//   exhaust_cpu_hours, found}]}. Nothing is stored. InputError for other requests.
+//   estimable, log10_tree_nodes, nodes, seconds, nodes_per_cpu_second, log10_exhaust_cpu_hours,
+//   found}]} (logarithms: the trees of large sets pass double's range). Nothing is stored.
+// InputError for other requests.
 nlohmann::json estimate_pack(const PackRequest& request, std::uint64_t probes, double slice_seconds);
 
 }  // namespace tilekit

@@ -426,7 +426,7 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
       o.resume_state.reset();
       o.title = fmt::format("estimate {}", c.name);
       const SearchResult r = c.run(problem, o);
-      e.tree_nodes = r.estimated_nodes;
+      e.log10_tree_nodes = r.estimated_log10_nodes;
       e.probes = probes;
       e.nodes = r.nodes;
       e.seconds = r.seconds;

@@ -109,7 +109,7 @@ PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions&
 struct CandidateEstimate {
   std::string name, family;
   bool estimable = false;
-  double tree_nodes = 0;  // Knuth's estimate of the whole tree
+  double log10_tree_nodes = 0;  // Knuth's estimate of the whole tree, as a logarithm
   std::uint64_t probes = 0;
   std::uint64_t nodes = 0;  // searched in the timed slice
   double seconds = 0;       // of the slice (wall)

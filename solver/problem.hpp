@@ -105,7 +105,8 @@ struct SearchResult {
   int threads = 1;
   std::uint64_t subproblems = 0, shard_subproblems = 0, subproblems_done = 0;
   std::uint64_t restarts = 0;   // First mode with restarts
-  double estimated_nodes = 0;   // Knuth estimate (when estimate_probes > 0)
+  double estimated_nodes = 0;   // Knuth estimate (when estimate_probes > 0; infinite beyond double's range)
+  double estimated_log10_nodes = 0;  // the same as a logarithm
   std::size_t checkpoints = 0;  // checkpoints written by this run
 };
 

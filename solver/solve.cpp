@@ -344,6 +344,7 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
   res.subproblems_done = out.subproblems_done;
   res.restarts = out.restarts;
   res.estimated_nodes = out.estimate.nodes;
+  res.estimated_log10_nodes = out.estimate.log10_nodes;
   res.checkpoints = out.checkpoints_written;
   return res;
 }

@@ -2,6 +2,7 @@
 // gives exactly the uninterrupted result; shards partition the search.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "checkpoints/checkpoint.hpp"
@@ -199,4 +200,6 @@ TEST(KnuthEstimate, IsWithinAFactorOfTwoOfTheExactTreeSize) {
   EXPECT_LT(e.nodes, 2.0 * double(r.nodes));
   EXPECT_GT(e.leaves * 16, 0.5 * 203520);
   EXPECT_LT(e.leaves * 16, 2.0 * 203520);
+  // The logarithmic form (for trees beyond double's range) is the same mean.
+  EXPECT_NEAR(e.log10_nodes, std::log10(e.nodes), 1e-9);
 }
