@@ -139,19 +139,14 @@ ColourHash::ColourHash(HashKind kind, std::uint32_t colours, std::uint64_t seed)
   reduce_.resize(max_sum_ + 1);
   for (std::uint64_t s = 0; s <= max_sum_; ++s) reduce_[s] = std::uint16_t((s % range_) % colours);
   by_colours_ = div_magic(colours, std::uint32_t(std::min<std::uint64_t>(max_sum_, 1u << 16)));
-  // s / C = (s * m) >> k for every byte s with s * m < 2^16 (16-bit vector multiplies), packed m << 8 | k
-  for (std::uint32_t k = 8; k < 16 && !byte_magic_; ++k) {
-    const std::uint32_t m = ((1u << k) + colours - 1) / colours;
-    bool ok = m * 255 < 65536;
-    for (std::uint32_t s = 0; s < 256 && ok; ++s) ok = (s * m) >> k == s / colours;
-    if (ok) byte_magic_ = m << 8 | k;
-  }
-  if (max_sum_ < 256 && comps_.size() <= kMaxComponents &&
-      byte_magic_)  // row_bytes' tables: ext_[i][y % N_i][t] for t < N_i + kChunk
+  // row_bytes' tables: ext_[i][y % N_i][t] for t < N_i + kChunk, each value already mod C (the sum
+  // of the values mod C is the colour, as reduce_ says), so a row's sums stay below m * C.
+  if (max_sum_ < 256 && comps_.size() <= kMaxComponents)
     for (const Component& c : comps_) {
       ext_offset_.push_back(ext_.size());
       for (std::uint32_t ym = 0; ym < c.n; ++ym)
-        for (std::uint32_t t = 0; t < c.n + kChunk; ++t) ext_.push_back(std::uint8_t(c.p[(c.p[t % c.n] + ym) % c.n]));
+        for (std::uint32_t t = 0; t < c.n + kChunk; ++t)
+          ext_.push_back(std::uint8_t(c.p[(c.p[t % c.n] + ym) % c.n] % colours));
     }
 }
 
@@ -246,8 +241,13 @@ TILEKIT_CLONES const std::uint8_t* ColourHash::row_bytes(RowCache& cache, std::i
   const std::uint32_t c = colours_;
   const bool power_of_two = (c & (c - 1)) == 0;
   const std::uint8_t mask = std::uint8_t(c - 1);
-  const std::uint16_t c16 = std::uint16_t(c);
-  const std::uint16_t magic = std::uint16_t(byte_magic_ >> 8), shift = std::uint16_t(byte_magic_ & 255);
+  // The sums are below m * C (each value is mod C): C 2^j, j descending, subtracted where it fits
+  // leaves the sum mod C. In bytes, min(s, s - k) is s - k when s >= k and s otherwise (s - k
+  // wraps above s), two vector instructions per step.
+  std::uint8_t steps[8];
+  std::size_t nsteps = 0;
+  const std::uint64_t largest = std::min<std::uint64_t>(std::uint64_t(m) * (c - 1), max_sum_);  // < 256
+  for (std::uint64_t k = c; k <= largest; k *= 2) steps[nsteps++] = std::uint8_t(k);
   using Bytes = std::uint8_t __attribute__((vector_size(kChunk)));  // one register (AVX2), two (SSE2)
   for (std::size_t k = 0; k < chunks; ++k) {
     Bytes acc, v;
@@ -260,17 +260,15 @@ TILEKIT_CLONES const std::uint8_t* ColourHash::row_bytes(RowCache& cache, std::i
       off[i] += adv[i];
       if (off[i] >= size[i]) off[i] -= size[i];
     }
-    std::uint8_t* o = out + k * kChunk;
-    std::memcpy(o, &acc, kChunk);
     if (power_of_two) {
-      for (std::size_t l = 0; l < kChunk; ++l) o[l] &= mask;
+      acc &= mask;
     } else {
-      for (std::size_t l = 0; l < kChunk; ++l) {
-        const std::uint16_t s = o[l];
-        const std::uint16_t q = std::uint16_t(std::uint16_t(s * magic) >> shift);  // s / C, in 16 bits
-        o[l] = std::uint8_t(s - std::uint16_t(c16 * q));
+      for (std::size_t j = nsteps; j-- > 0;) {
+        const Bytes less = acc - steps[j];
+        acc = acc < less ? acc : less;
       }
     }
+    std::memcpy(out + k * kChunk, &acc, kChunk);
   }
   return out;
 }

@@ -157,9 +157,8 @@ class ColourHash {
   static constexpr std::size_t kChunk = 32, kMaxComponents = 8;
   std::uint64_t max_sum_ = 0;  // largest sum of component values
   std::vector<std::uint8_t>
-      ext_;  // row_bytes: per component and y % N_i, P_i[(P_i[t % N_i] + y) % N_i], t < N_i + kChunk
+      ext_;  // row_bytes: per component and y % N_i, P_i[(P_i[t % N_i] + y) % N_i] % C, t < N_i + kChunk
   std::vector<std::size_t> ext_offset_;  // where each component's table starts in ext_
-  std::uint32_t byte_magic_ = 0;         // row_bytes: s / C = (s * (magic >> 8)) >> (magic & 255) for bytes s
   std::vector<std::uint16_t> reduce_;    // sum of component values -> (sum % N_j) % C = sum % C
   DivMagic by_colours_;                  // vectorisable sum % C, when exact for every sum
 };
