@@ -414,7 +414,7 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
     CandidateEstimate e;
     e.name = c.name;
     e.family = c.family;
-    e.estimable = c.family != "sat" && c.family != "lift-sat";
+    e.estimable = c.resumable;  // an engine search: its tree can be probed (cadical's cannot)
     if (e.estimable) {
       SearchOptions o = options;
       o.mode = SearchMode::First;
