@@ -14,11 +14,13 @@ cd "$root"
 
 sources() { find "$1" \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) -type f; }
 
-# Project folders: top-level folders with C++ sources (build trees and hidden folders aside).
+# Project folders: top-level folders with C++ sources (build trees, hidden folders and folders git
+# ignores aside: the main job writes C headers into out/).
 folders=()
 for d in */; do
   d=${d%/}
   case "$d" in build* | shared) continue ;; esac
+  git check-ignore -q "$d/" 2>/dev/null && continue
   [ -n "$(sources "$d" | head -n 1)" ] && folders+=("$d")
 done
 is_folder() {

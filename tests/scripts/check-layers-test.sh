@@ -10,8 +10,8 @@ passed=0
 failed=0
 copy_tree() {
   rm -rf "$tmp/tree" && mkdir "$tmp/tree"
-  (cd "$root" && find . -path './build*' -prune -o -path './.*' -prune -o \
-    \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name README.md \) -type f -print0 |
+  # the files git tracks or would track (not build trees, nor outputs it ignores such as out/)
+  (cd "$root" && git ls-files -z --cached --others --exclude-standard -- '*.cpp' '*.hpp' '*.h' '*README.md' |
     xargs -0 cp --parents -t "$tmp/tree")
 }
 # expect RC PATTERN: the check on the copy exits RC and its output matches PATTERN.
