@@ -12,8 +12,6 @@
 #       (C = 4, 64 px, --thin-bands) of four real textures, the grid hidden;
 #   texture-grid-{brick,oa-brick}.png  the same of the two brick walls (default bands: a periodic
 #       exemplar keeps them);
-#   texture-brick-rectified.png  skimage's brick (a perspective photograph) as the synthesis samples
-#       it: rectified by the homography of its mortar lines, resampled to two columns per tile;
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
 #       the borders, the corner squares, a centre patch per tile);
 #   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
@@ -42,7 +40,6 @@ for t in brick oa-brick; do
   "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
   "$tk" texture render --atlas "$work/$t/atlas.png" --size 256x256 --out "$img/texture-grid-$t.png" --quiet
 done
-cp "$work/brick/tiles/exemplar.png" "$img/texture-brick-rectified.png"
 "$tk" texture render --atlas "$work/gravel/atlas.png" "${view[@]}" --out "$img/texture-gravel-surface.png"
 "$tk" texture render --atlas "$work/gravel/atlas.png" "${view[@]}" --aniso 1 --out "$img/texture-gravel-surface-trilinear.png"
 for m in hex hpn; do
@@ -52,4 +49,4 @@ done
 "$tk" texture render --atlas "$work/grass-labels/atlas.png" --size 256x256 --out "$img/texture-grid-labels.png" --quiet
 "$tk" texture render --atlas "$work/grass/atlas.png" --size 1024x1024 --out "$work/grass-1024.png" --quiet
 "$tk" texture analyze "$work/grass-1024.png" --tile-px 64 --exemplar grass --plot "$img/texture-grid-spectrum.png"
-echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface,surface-trilinear,surface-hex,surface-hpn}.png, $img/texture-grid-*.png, $img/texture-brick-rectified.png"
+echo "texture-pictures: $img/texture-gravel-{corner-tiles,atlas,surface,surface-trilinear,surface-hex,surface-hpn}.png, $img/texture-grid-*.png"
