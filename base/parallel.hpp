@@ -16,7 +16,7 @@
 
 namespace tilekit {
 
-enum class StopReason : int { None = 0, Found, Signal, TimeLimit, Error, Exhausted };
+enum class StopReason : int { None = 0, Found, Signal, TimeLimit, Error, Exhausted, Cancelled };
 
 class StopToken {
  public:

@@ -142,6 +142,8 @@ nlohmann::json portfolio_json(const PortfolioState& ps) {
   return {{"fingerprint", ps.fingerprint},
           {"round", ps.round},
           {"next", ps.next},
+          {"side_round", ps.side_round},
+          {"side_next", ps.side_next},
           {"seconds", ps.seconds},
           {"candidates", cands}};
 }
@@ -154,6 +156,8 @@ PortfolioState portfolio_from(const JsonIn& j) {
   ps.fingerprint = j.at("fingerprint").string();
   ps.round = j.at("round").unsigned_integer(64);
   ps.next = j.at("next").unsigned_integer();
+  if (auto r = j.find("side_round")) ps.side_round = r->unsigned_integer(64);  // absent before the side lane
+  if (auto n = j.find("side_next")) ps.side_next = n->unsigned_integer();
   ps.seconds = j.at("seconds").number(0);
   const JsonIn cands = j.at("candidates");
   const std::size_t n = cands.array(1, 1 << 16);
@@ -174,6 +178,9 @@ PortfolioState portfolio_from(const JsonIn& j) {
   if (ps.next > ps.candidates.size())
     throw j.at("next").error(
         fmt::format("schedule position {} is past the {} candidates", ps.next, ps.candidates.size()));
+  if (ps.side_next > ps.candidates.size())
+    throw j.at("side_next").error(
+        fmt::format("side-lane position {} is past the {} candidates", ps.side_next, ps.candidates.size()));
   return ps;
 }
 

@@ -368,13 +368,15 @@ class ParallelSearch {
     if (cfg_.run.progress) report(progress);
   }
 
-  // Signals and the time limit: requests the stop, and says whether one is requested.
+  // Signals, the time limit and another lane's cancel: requests the stop, and says whether one is
+  // requested.
   bool poll_stop() {
     if (cfg_.run.catch_signals && SignalCatcher::caught()) {
       signal_ = SignalCatcher::caught();
       stop_.request(StopReason::Signal);
     }
     if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
+    if (cfg_.run.cancelled()) stop_.request(StopReason::Cancelled);
     return stop_.requested();
   }
 

@@ -6,11 +6,14 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <set>
+#include <thread>
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
@@ -213,6 +216,13 @@ std::string portfolio_fingerprint(const TilingProblem& problem, const SearchOpti
 
 namespace {
 
+// Two lanes when there are threads to spare. Candidates that restart from scratch each slice
+// (cadical's: sat, lift-sat) are one thread each and lose everything at the end of a slice, so
+// in the engine's round-robin they reach a long enough slice only after every engine candidate
+// has had as long (C=8 corner: about 90 s for a 3 s cadical run). With two or more threads
+// they run in a side lane instead, one at a time on their own doubling schedule, beside the
+// engine candidates, which then get one thread fewer. The first solution in either lane cancels
+// the other (RunSettings::cancel). On one thread every candidate takes its turn in one lane.
 class Scheduler {
  public:
   Scheduler(const TilingProblem& p, const SearchOptions& o, const PortfolioOptions& po) : p_(p), o_(o), po_(po) {}
@@ -220,7 +230,7 @@ class Scheduler {
   PortfolioResult run();
 
  private:
-  void save() {
+  void save() {  // holds mu_
     if (!po_.save_checkpoint) return;
     state_.seconds = prior_seconds_ + elapsed();
     po_.save_checkpoint(state_);
@@ -231,15 +241,31 @@ class Scheduler {
   bool mine(std::size_t i) const {  // a candidate that cannot be split runs in one shard
     return candidates_[i].splittable || i % std::size_t(o_.run.shard.count) == std::size_t(o_.run.shard.index);
   }
-  void slice(std::size_t i, double seconds);
+  bool on_side(std::size_t i) const { return side_lane_ && !candidates_[i].resumable; }
+  bool live(std::size_t i) const { return mine(i) && !state_.candidates[i].empty; }  // holds mu_
+  // The length of a slice in `round`, cut to the time left; 0 when the time limit has passed.
+  double slice_seconds(std::uint64_t round) const {
+    double seconds = po_.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(round, 20));
+    if (o_.run.time_limit > 0) seconds = std::min(seconds, o_.run.time_limit - elapsed());
+    return std::max(seconds, 0.0);
+  }
+  bool stopping() const {
+    return cancel_.load() || (o_.run.catch_signals && SignalCatcher::caught());
+  }
+  void slice(std::size_t i, double seconds, int threads);
+  void side();
 
   const TilingProblem& p_;
   const SearchOptions& o_;
   const PortfolioOptions& po_;
-  PortfolioState state_;
+  PortfolioState state_;  // with out_ and fresh_, guarded by mu_ while the side lane runs
   std::vector<Candidate> candidates_;
   PortfolioStats fresh_;  // this run's slices, merged into the statistics file at the end
   PortfolioResult out_;
+  std::mutex mu_;
+  bool side_lane_ = false;            // the restarting candidates run in their own lane
+  std::atomic<bool> side_busy_{false};  // the side lane has candidates left to run
+  std::atomic<bool> cancel_{false};     // a solution was found: every lane stops
   Clock::time_point t0_ = Clock::now();
   double prior_seconds_ = 0;
 };
@@ -265,39 +291,54 @@ void Scheduler::start() {
     candidates_.push_back(make_candidate(p_, c.name));
   }
   if (candidates_.empty()) throw InputError("the portfolio has no candidates");
+  bool restarting = false, engine = false;
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    if (!live(i)) continue;
+    (candidates_[i].resumable ? engine : restarting) = true;
+  }
+  side_lane_ = o_.run.threads >= 2 && restarting && engine;
+  side_busy_ = side_lane_;
 }
 
-void Scheduler::slice(std::size_t i, double seconds) {
-  PortfolioCandidateState& cs = state_.candidates[i];
+void Scheduler::slice(std::size_t i, double seconds, int threads) {
   const Candidate& cand = candidates_[i];
   SearchOptions o = o_;
   o.mode = SearchMode::First;
+  o.run.threads = threads;
   o.run.time_limit = seconds;
-  o.title = fmt::format("portfolio {} round {}", cand.name, state_.round);
+  o.run.cancel = &cancel_;
   o.estimate_probes = 0;
   o.save_checkpoint = nullptr;
   o.resume_state.reset();
-  if (cand.resumable) {
-    o.resume_state = cs.engine;
-    o.run.checkpoint_every = po_.save_checkpoint ? o_.run.checkpoint_every : 0;
-    o.save_checkpoint = [this, i](const SearchState& st) {
-      state_.candidates[i].engine = st;
-      save();
-    };
+  {
+    std::lock_guard lock(mu_);
+    o.title = fmt::format("portfolio {} round {}", cand.name, on_side(i) ? state_.side_round : state_.round);
+    if (cand.resumable) {
+      o.resume_state = state_.candidates[i].engine;
+      o.run.checkpoint_every = po_.save_checkpoint ? o_.run.checkpoint_every : 0;
+      o.save_checkpoint = [this, i](const SearchState& st) {
+        std::lock_guard lock(mu_);
+        state_.candidates[i].engine = st;
+        save();
+      };
+    }
   }
   SearchResult r = cand.run(p_, o);
   assert(r.found.size() <= 1);
+  const bool success = !r.found.empty();
+  std::lock_guard lock(mu_);
+  PortfolioCandidateState& cs = state_.candidates[i];
   cs.slices += 1;
   cs.nodes += r.nodes;
   cs.seconds += r.seconds;
-  out_.nodes += r.nodes;
-  const bool success = !r.found.empty();
-  // A slice cut short by a signal says nothing about the candidate.
-  if (!r.interrupted) fresh_.record(p_.set.kind(), p_.set.colours(), cand.name, success, r.seconds);
-  if (success) {
+  // A slice cut short by a signal or by the other lane's solution says nothing about the candidate.
+  if (!r.interrupted && (success || !cancel_.load()))
+    fresh_.record(p_.set.kind(), p_.set.colours(), cand.name, success, r.seconds);
+  if (success && !out_.found) {
     out_.found = true;
     out_.winner = cand.name;
     out_.result = std::move(r);
+    cancel_ = true;
     return;
   }
   if (r.complete) cs.empty = true;  // exhausted without a solution: never scheduled again
@@ -307,45 +348,96 @@ void Scheduler::slice(std::size_t i, double seconds) {
   }
 }
 
+// The side lane: the restarting candidates in doubling rounds of their own, one thread.
+void Scheduler::side() {
+  for (;;) {
+    std::size_t i = 0;
+    double seconds = 0;
+    {
+      std::lock_guard lock(mu_);
+      bool any = false;
+      for (std::size_t k = 0; k < candidates_.size(); ++k) any = any || (on_side(k) && live(k));
+      if (!any || stopping() || out_.interrupted) break;
+      if (state_.side_next >= candidates_.size()) {
+        ++state_.side_round;
+        state_.side_next = 0;
+        continue;
+      }
+      i = std::size_t(state_.side_next);
+      if (!on_side(i) || !live(i)) {
+        ++state_.side_next;
+        continue;
+      }
+      seconds = slice_seconds(state_.side_round);
+      if (seconds <= 0) break;
+    }
+    slice(i, seconds, 1);
+    std::lock_guard lock(mu_);
+    if (out_.found || out_.interrupted) break;
+    ++state_.side_next;
+    save();
+  }
+  side_busy_ = false;
+}
+
 PortfolioResult Scheduler::run() {
   start();
-  save();  // the first checkpoint, before any work
+  {
+    std::lock_guard lock(mu_);
+    save();  // the first checkpoint, before any work
+  }
+  std::thread side_lane;
+  if (side_lane_) side_lane = std::thread([this] { side(); });
+  bool lanes_done = false;  // the engine lane ran out of candidates
   for (;;) {
     if (o_.run.catch_signals && SignalCatcher::caught()) {
+      std::lock_guard lock(mu_);
       out_.interrupted = true;
       out_.signal = SignalCatcher::caught();
       break;
     }
-    bool live = false;
-    for (std::size_t i = 0; i < candidates_.size(); ++i) live = live || (mine(i) && !state_.candidates[i].empty);
-    if (!live) {
-      out_.complete = true;
-      break;
-    }
-    if (state_.next >= candidates_.size()) {
-      ++state_.round;
-      state_.next = 0;
-      continue;
-    }
-    const std::size_t i = std::size_t(state_.next);
-    if (!mine(i) || state_.candidates[i].empty) {
-      ++state_.next;
-      continue;
-    }
-    double seconds = po_.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(state_.round, 20));
-    if (o_.run.time_limit > 0) {
-      const double left = o_.run.time_limit - elapsed();
-      if (left <= 0) {
+    std::size_t i = 0;
+    double seconds = 0;
+    {
+      std::lock_guard lock(mu_);
+      if (out_.found || out_.interrupted) break;
+      bool any = false;
+      for (std::size_t k = 0; k < candidates_.size(); ++k) any = any || (!on_side(k) && live(k));
+      if (!any) {  // only the side lane's candidates may be left: its end is the run's
+        lanes_done = true;
+        break;
+      }
+      if (state_.next >= candidates_.size()) {
+        ++state_.round;
+        state_.next = 0;
+        continue;
+      }
+      i = std::size_t(state_.next);
+      if (on_side(i) || !live(i)) {
+        ++state_.next;
+        continue;
+      }
+      seconds = slice_seconds(state_.round);
+      if (seconds <= 0) {
         out_.timed_out = true;
         break;
       }
-      seconds = std::min(seconds, left);
     }
-    slice(i, seconds);
+    slice(i, seconds, side_busy_ ? o_.run.threads - 1 : o_.run.threads);
+    std::lock_guard lock(mu_);
     if (out_.found || out_.interrupted) break;
     ++state_.next;
     save();
   }
+  if (!lanes_done) cancel_ = true;  // whatever ended the engine lane ends the side lane
+  if (side_lane.joinable()) side_lane.join();
+  std::lock_guard lock(mu_);
+  if (lanes_done && !out_.found && !out_.interrupted) {
+    bool any = false;
+    for (std::size_t k = 0; k < candidates_.size(); ++k) any = any || live(k);
+    (any ? out_.timed_out : out_.complete) = true;
+  }
+  if (out_.found) out_.timed_out = out_.complete = false;
   save();
   out_.seconds = elapsed();
   out_.total_seconds = prior_seconds_ + out_.seconds;

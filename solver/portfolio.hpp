@@ -4,8 +4,9 @@
 // encoding of a group, ...); they run in rounds of time slices that double each round (Luby
 // and Zuckerman's doubling idea: the total work is within a constant of the best candidate's
 // alone), each slice on all threads with the candidate's engine resumed from where its last
-// slice stopped. The first solution ends the run; a candidate whose subspace is exhausted is
-// dropped. The schedule and every candidate's engine state are a PortfolioState, which the
+// slice stopped. With two or more threads, the candidates that restart each slice (cadical's)
+// run in a side lane of their own beside the engine's (portfolio.cpp, Scheduler). The first
+// solution ends the run; a candidate whose subspace is exhausted is dropped. The schedule and every candidate's engine state are a PortfolioState, which the
 // caller checkpoints (checkpoints/checkpoint.hpp) exactly like a single search.
 //
 // Candidate names: "plain" (the whole space), "SPEC" or "impose:SPEC" (only the packings

@@ -1,5 +1,6 @@
 #pragma once
 // RunSettings: how a search runs, as opposed to what it searches (solver/problem.hpp).
+#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -23,6 +24,10 @@ struct RunSettings {
   // ---- reporting and signals ----
   bool progress = false;       // progress bar / log lines on stderr
   bool catch_signals = false;  // SIGTERM/SIGINT/SIGUSR1 stop the search (result.interrupted)
+  // Another lane of the same run (solver/portfolio.hpp) found what was sought: when this becomes
+  // true the search stops as soon as it looks, neither complete nor timed out nor interrupted.
+  const std::atomic<bool>* cancel = nullptr;
+  bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 };
 
 }  // namespace tilekit

@@ -169,7 +169,7 @@ SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, 
   const CnfBuilder& cnf = build();
   auto stop = [&] {
     if (o.run.catch_signals && SignalCatcher::caught()) return true;
-    return o.run.time_limit > 0 && elapsed() >= o.run.time_limit;
+    return o.run.cancelled() || (o.run.time_limit > 0 && elapsed() >= o.run.time_limit);
   };
   SatRun run =
       run_cadical(cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);

@@ -93,6 +93,7 @@ struct PortfolioState {
   std::string fingerprint;                          // problem, seed, shard, the set of candidates, the first slice
   std::uint64_t round = 0;                          // slices of this round last first_slice * 2^round seconds
   std::uint64_t next = 0;                           // the next candidate to run in this round (index into candidates)
+  std::uint64_t side_round = 0, side_next = 0;      // the same for the side lane of restarting candidates
   std::vector<PortfolioCandidateState> candidates;  // in schedule order
   double seconds = 0;                               // wall time spent by earlier runs of this portfolio
 };

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -355,7 +356,11 @@ SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan&
   res.formulation = "sat-" + std::string(p.set.kind() == TileKind::Wang ? "edges" : "pegs");
   res.threads = 1;
   const double limit = o.run.time_limit > 0 ? o.run.time_limit : 1e6;
-  auto stop = [&] { return o.run.catch_signals && SignalCatcher::caught() != 0; };
+  const auto t0 = std::chrono::steady_clock::now();
+  auto stop = [&] {  // cadical's own -t counts whole seconds: the limit is also watched here
+    if (o.run.catch_signals && SignalCatcher::caught() != 0) return true;
+    return o.run.cancelled() || std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= limit;
+  };
   SatOutcome sat = solve_symmetric_sat(*pl.domain, limit, o.run.seed, stop);
   if (sat.status == SatOutcome::Status::Satisfiable) {
     Tiling t = pl.domain->to_tiling(sat.values);

@@ -309,11 +309,15 @@ TEST(BadInput, PortfolioCheckpointIsValidatedStructurally) {
   PortfolioState bad_engine = past;
   bad_engine.next = 0;
   bad_engine.candidates[0].engine = engine;
+  PortfolioState side_past = past;
+  side_past.next = 0;
+  side_past.side_next = 5;
   const std::string run = "pack --kind corner --colors 4 --quiet --resume " + d / "ck" + " --db " + d / "db.sqlite";
   const std::string where = "checkpoint " + d / "ck" + ": portfolio";
   const std::pair<PortfolioState, std::string> cases[] = {
       {twice, where + ".candidates[1].name: candidate plain is listed twice"},
       {past, where + ".next: schedule position 2 is past the 1 candidates"},
+      {side_past, where + ".side_next: side-lane position 5 is past the 1 candidates"},
       {bad_engine, where + ".candidates[0].engine: inconsistent: in-flight subproblem 3 is listed twice"}};
   for (const auto& [state, message] : cases) {
     write_checkpoint(d / "ck", CheckpointFile{nullptr, std::nullopt, state});

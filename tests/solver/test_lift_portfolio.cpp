@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <optional>
+#include <unistd.h>
 
 #include "base/error.hpp"
 #include "solver/portfolio.hpp"
+#include "solver/portfolio_stats.hpp"
 #include "solver/sat_cnf.hpp"
 #include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
@@ -76,6 +79,58 @@ TEST(LiftPortfolio, ADiveCutShortByTheTimeLimitIsRunAgainOnResume) {
   ASSERT_TRUE(last.has_value());
   EXPECT_EQ(last->restarts, 0u);  // dives 0 and 1 were cut short: the resume starts at dive 0
   EXPECT_GE(r.restarts, 2u);      // both had started
+}
+
+// With two threads, cadical's candidates (which restart each slice) run in a side lane of their
+// own beside the engine's candidates: lift-sat:3 finds C=6 on its own doubling schedule while the
+// plain search takes the engine lane's slices, and the schedule's state says which lane ran what.
+TEST(SideLane, CadicalRunsBesideTheEngineAndItsSolutionEndsTheRun) {
+  if (!sat_solver_available()) GTEST_SKIP() << "cadical is not on PATH";
+  SearchOptions o;
+  o.run.threads = 2;
+  o.run.time_limit = 300;
+  PortfolioOptions po;
+  po.stats_path = "-";
+  po.candidates = {"plain", "lift-sat:3"};
+  std::optional<PortfolioState> last;
+  po.save_checkpoint = [&](const PortfolioState& s) { last = s; };
+  PortfolioResult r = run_portfolio(complete_packing_problem(TileKind::Corner, 6), o, po);
+  ASSERT_TRUE(r.found);
+  EXPECT_EQ(r.winner, "lift-sat:3");
+  ASSERT_EQ(r.result.found.size(), 1u);
+  EXPECT_TRUE(validate(r.result.found[0]).packing);
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(last->side_next, 1u);  // the side lane stopped at the winner
+  EXPECT_GE(last->candidates[0].slices, 1u);
+  EXPECT_TRUE(last->candidates[0].engine.has_value());  // the engine lane ran the plain search
+  EXPECT_FALSE(last->candidates[1].engine.has_value());
+}
+
+// The engine lane's solution cancels the cadical run in progress: with slices of 600 s neither
+// lane ends by time, so the run ends only if lift:4's solution (seed 0: the natural-order dive,
+// well under a second) stops the side lane's cadical on lift-sat:2. The cancelled slice teaches
+// the statistics nothing.
+TEST(SideLane, TheEngineLanesSolutionStopsCadicalAndTheCancelledSliceIsNotRecorded) {
+  if (!sat_solver_available()) GTEST_SKIP() << "cadical is not on PATH";
+  const std::string stats =
+      (std::filesystem::temp_directory_path() / ("tilekit-side-lane-" + std::to_string(::getpid()) + ".json")).string();
+  SearchOptions o;
+  o.run.threads = 2;
+  o.run.seed = 0;
+  PortfolioOptions po;
+  po.stats_path = stats;
+  po.first_slice = 600;
+  po.candidates = {"lift:4", "lift-sat:2"};
+  PortfolioResult r = run_portfolio(complete_packing_problem(TileKind::Corner, 8), o, po);
+  ASSERT_TRUE(r.found);
+  EXPECT_EQ(r.winner, "lift:4");
+  EXPECT_TRUE(validate(r.result.found[0]).packing);
+  EXPECT_LT(r.seconds, 120.0);  // far below one 600 s slice: the side lane did not run to its end
+  const PortfolioStats learned = PortfolioStats::load(stats);
+  const auto won = learned.find(TileKind::Corner, 8, "lift:4");
+  ASSERT_TRUE(won.has_value());
+  EXPECT_FALSE(learned.find(TileKind::Corner, 8, "lift-sat:2").has_value());
+  std::filesystem::remove(stats);
 }
 
 }  // namespace
