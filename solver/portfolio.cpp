@@ -12,6 +12,7 @@
 #include <cmath>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -266,6 +267,8 @@ class Scheduler {
   bool side_lane_ = false;            // the restarting candidates run in their own lane
   std::atomic<bool> side_busy_{false};  // the side lane has candidates left to run
   std::atomic<bool> cancel_{false};     // a solution was found: every lane stops
+  std::mutex solution_mu_;
+  std::optional<std::size_t> reported_by_;  // the candidate whose packing was reported
   Clock::time_point t0_ = Clock::now();
   double prior_seconds_ = 0;
 };
@@ -307,6 +310,15 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
   o.run.threads = threads;
   o.run.time_limit = seconds;
   o.run.cancel = &cancel_;
+  // Both lanes may find a packing at once: the first to report it wins, and only its packing
+  // reaches the caller's hook (which is never called concurrently).
+  o.on_solution = [this, i](const Tiling& t) {
+    std::lock_guard lock(solution_mu_);
+    if (reported_by_) return;
+    reported_by_ = i;
+    cancel_ = true;
+    if (o_.on_solution) o_.on_solution(t);
+  };
   o.estimate_probes = 0;
   o.save_checkpoint = nullptr;
   o.resume_state.reset();
@@ -325,7 +337,12 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
   }
   SearchResult r = cand.run(p_, o);
   assert(r.found.size() <= 1);
-  const bool success = !r.found.empty();
+  bool success = !r.found.empty();
+  if (success) {
+    std::lock_guard lock(solution_mu_);
+    if (!reported_by_) reported_by_ = i;  // a path that did not call the hook
+    success = reported_by_ == i;          // else the other lane's packing was reported first
+  }
   std::lock_guard lock(mu_);
   PortfolioCandidateState& cs = state_.candidates[i];
   cs.slices += 1;
@@ -334,7 +351,7 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
   // A slice cut short by a signal or by the other lane's solution says nothing about the candidate.
   if (!r.interrupted && (success || !cancel_.load()))
     fresh_.record(p_.set.kind(), p_.set.colours(), cand.name, success, r.seconds);
-  if (success && !out_.found) {
+  if (success) {
     out_.found = true;
     out_.winner = cand.name;
     out_.result = std::move(r);
