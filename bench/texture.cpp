@@ -204,6 +204,8 @@ void renderers(const TextureAtlas& atlas, const ExemplarSurface& ex, int reps, c
             const double frags = double(view.width) * view.height * frames;
             nlohmann::json j = {{"case", name},
                                 {"renderer", r.renderer()},
+                                {"shader", r.mode() == GlslMode::FlatTexture ? "flat: level of detail uniform"
+                                                                             : "footprint per fragment"},
                                 {"lp_num_threads", lp ? lp : "unset"},
                                 {"reps", reps},
                                 {"frames", frames},

@@ -86,13 +86,15 @@ struct GlRenderer::State {
   Context ctx;
   int width = 0, height = 0;
   GLuint program = 0, fbo = 0, colour = 0, vao = 0;
-  // the atlas or the exemplar, the row table, hpn's look-up table, the tiling's tables (units 3, 4)
-  GLuint textures[5] = {0, 0, 0, 0, 0};
+  GlslMode mode = GlslMode::Texture;  // as drawn
+  // the atlas or the exemplar, the row table, hpn's look-up table, the tiling's tables (units 3,
+  // 4), FlatTexture's tiles of the view
+  GLuint textures[6] = {0, 0, 0, 0, 0, 0};
   ~State() {
     glDeleteProgram(program);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &colour);
-    glDeleteTextures(5, textures);
+    glDeleteTextures(6, textures);
     glDeleteVertexArrays(1, &vao);
   }
 };
@@ -182,6 +184,14 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   if (vectors + 16 > std::size_t(max_vectors))
     throw InputError(
         fmt::format("the hash tables need {} uniform vectors, more than this GPU's {}", vectors, max_vectors));
+  // a view of tiles with one footprint everywhere: its level of detail and its tiles' cells given
+  Footprint flat;
+  std::optional<GlslTileWindow> window;
+  if (mode == GlslMode::Texture && src.method == RenderMethod::Tiles &&
+      uniform_footprint(vr, src.unit_px(), o.max_aniso, &flat) &&
+      (window = glsl_tile_window(*src.atlas, vr, view.width, o)))
+    mode = GlslMode::FlatTexture;
+  s.mode = mode;
   s.program = link(glsl_fragment_shader(src, o, mode));
   // The textures exactly as the CPU renderer samples them.
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -232,6 +242,18 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   glUniform1i(glGetUniformLocation(s.program, "tk_height"), view.height);
   glUniform1i(glGetUniformLocation(s.program, "tk_max_aniso"), o.max_aniso);
   glUniform2i(glGetUniformLocation(s.program, "tk_origin"), 0, 0);
+  if (mode == GlslMode::FlatTexture) {
+    glUniform1f(glGetUniformLocation(s.program, "tk_lod"), flat.lod);
+    glGenTextures(1, &s.textures[5]);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, s.textures[5]);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG16UI, window->cols, window->rows, 0, GL_RG_INTEGER, GL_UNSIGNED_SHORT,
+                 window->cells.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glUniform1i(glGetUniformLocation(s.program, "tk_window"), 5);
+    glUniform2i(glGetUniformLocation(s.program, "tk_window0"), window->u0, window->v0);
+  }
   offscreen(s.colour, s.fbo, s.vao, view.width, view.height);
 }
 
@@ -269,6 +291,10 @@ Image GlRenderer::read() {
   return img;
 }
 
+GlslMode GlRenderer::mode() const {
+  return s_->mode;
+}
+
 std::string GlRenderer::renderer() const {
   s_->ctx.make_current();
   return fmt::format("{} ({})", reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
@@ -303,6 +329,9 @@ double GlRenderer::draw(int) {
   unavailable();
 }
 Image GlRenderer::read() {
+  unavailable();
+}
+GlslMode GlRenderer::mode() const {
   unavailable();
 }
 std::string GlRenderer::renderer() const {

@@ -23,7 +23,9 @@ std::string gl_renderer_name();
 class GlRenderer {
  public:
   // Compiles the shader for `mode` and uploads the textures (the atlas or the exemplar surface,
-  // all levels, and hpn's look-up table), the hash tables and the view's row table.
+  // all levels, and hpn's look-up table), the hash tables and the view's row table. Tiles in
+  // mode Texture over a view with one footprint everywhere (uniform_footprint: flat) draw with
+  // FlatTexture, the same pixels with the level of detail a uniform.
   GlRenderer(const RenderSource& source, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture);
   GlRenderer(const TextureAtlas& atlas, const View& view, const RenderOptions& o, GlslMode mode = GlslMode::Texture)
       : GlRenderer(RenderSource{RenderMethod::Tiles, &atlas, nullptr}, view, o, mode) {}
@@ -39,6 +41,7 @@ class GlRenderer {
   double draw(int frames = 1);
   Image read();  // the framebuffer, row 0 at the top
   std::string renderer() const;
+  GlslMode mode() const;  // the shader drawn (FlatTexture where Texture was asked for a flat view of tiles)
 
  private:
   struct State;

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
+
 #include "texture/anisotropic.hpp"
 #include "texture/baseline_samplers.hpp"
 
@@ -147,6 +150,40 @@ std::string glsl_vertex_shader() {
          "}\n";
 }
 
+std::optional<GlslTileWindow> glsl_tile_window(const TextureAtlas& a, const ViewRows& vr, int width,
+                                               const RenderOptions& o) {
+  if (vr.rows.empty() || width < 1) return std::nullopt;
+  std::int64_t u0 = INT64_MAX, u1 = INT64_MIN, v0 = INT64_MAX, v1 = INT64_MIN;
+  for (const ViewRow& r : vr.rows) {
+    u0 = std::min<std::int64_t>(u0, r.tile_u0 + std::int64_t(r.frac_u0 >> kFracBits));
+    u1 = std::max<std::int64_t>(
+        u1, r.tile_u0 + std::int64_t((r.frac_u0 + std::uint32_t(width - 1) * r.step_u) >> kFracBits));
+    v0 = std::min<std::int64_t>(v0, r.tile_v);
+    v1 = std::max<std::int64_t>(v1, r.tile_v);
+  }
+  if (u1 - u0 >= kMaxTileWindow || v1 - v0 >= kMaxTileWindow) return std::nullopt;
+  GlslTileWindow w{std::int32_t(u0), std::int32_t(v0), int(u1 - u0 + 1), int(v1 - v0 + 1), {}};
+  std::vector<TileIndex> tiles(std::size_t(w.cols) * std::size_t(w.rows));
+  DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed).fill(u0, v0, w.rows, w.cols, tiles.data());
+  w.cells.resize(tiles.size() * 2);
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    w.cells[2 * i] = std::uint16_t(a.lookup.positions[tiles[i]].first);
+    w.cells[2 * i + 1] = std::uint16_t(a.lookup.positions[tiles[i]].second);
+  }
+  return w;
+}
+
+bool uniform_footprint(const ViewRows& vr, int tile_px, int max_aniso, Footprint* footprint) {
+  if (vr.rows.empty() || vr.dudy_step != 0) return false;
+  const ViewRow& first = vr.rows.front();
+  for (const ViewRow& r : vr.rows)
+    if (r.dudx != first.dudx || r.dvdy != first.dvdy || r.dudy0 != first.dudy0) return false;
+  const Footprint f = anisotropic_footprint(first.dudx, 0.0f, first.dudy0, first.dvdy, tile_px, max_aniso);
+  if (f.taps != 1) return false;
+  if (footprint) *footprint = f;
+  return true;
+}
+
 std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, GlslMode mode) {
   std::string g = "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp isampler2D;\n";
   g += glsl_method_library(s, o);
@@ -155,8 +192,12 @@ std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, 
        "uniform float tk_dudy_step;\n"
        "uniform int tk_height;\n"
        "uniform int tk_max_aniso;\n"
-       "uniform ivec2 tk_origin;\n"
-       "out vec4 tk_colour;\n"
+       "uniform ivec2 tk_origin;\n";
+  if (mode == GlslMode::FlatTexture)
+    g += "uniform float tk_lod;  // every pixel's footprint: one tap at this level\n"
+         "uniform highp usampler2D tk_window;  // the atlas cell (row, col) of every tile the view shows\n"
+         "uniform ivec2 tk_window0;  // the first of those tiles\n";
+  g += "out vec4 tk_colour;\n"
        "void main() {\n"
        "  ivec2 px = ivec2(gl_FragCoord.xy);\n"
        "  int j = tk_height - 1 - px.y;  // image row, 0 at the top\n";
@@ -173,6 +214,16 @@ std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, 
            "  ivec2 axis;\n"
            "  tk_footprint(vec2(dudx, 0.0), vec2(dudy, dvdy), tk_max_aniso, taps, lod, axis);\n"
            "  tk_colour = tk_sample(tile, frac, taps, lod, axis);\n";
+      break;
+    case GlslMode::FlatTexture:
+      g += "  ivec4 r0 = texelFetch(tk_rows, ivec2(0, j), 0);\n"
+           "  int frac_v = texelFetch(tk_rows, ivec2(1, j), 0).x;\n"
+           "  uint fu = uint(r0.y) + uint(px.x) * uint(r0.z);  // fixed point, texture/view.hpp\n"
+           "  ivec2 tile = ivec2(r0.x + int(fu >> 16u), r0.w);\n"
+           "  ivec2 rc = ivec2(texelFetch(tk_window, tile - tk_window0, 0).xy);  // tk_tile_cell(tile)\n"
+           "  vec2 f = vec2(ivec2(int(fu & 65535u), frac_v)) / 65536.0;\n"
+           "  vec2 st = (vec2(float(rc.y), float(rc.x)) + f) * vec2(TK_INV_COLS, TK_INV_ROWS);  // tk_sample_tile\n"
+           "  tk_colour = textureLod(tk_atlas, st, tk_lod);\n";
       break;
     case GlslMode::PlainTexture:
       g += "  tk_colour = textureLod(tk_atlas, gl_FragCoord.xy * (1.0 / 1024.0), 0.0);\n";

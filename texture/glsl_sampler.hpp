@@ -23,11 +23,14 @@
 //   ivec2 tk_tile_cell(ivec2 tile);                    // both: the (row, col) of the tile at `tile`
 //   vec4 tk_sample(ivec2 tile, ivec2 frac, int taps, float lod, ivec2 axis);  // frac: 16 bits
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "texture/anisotropic.hpp"
 #include "texture/cpu_renderer.hpp"
+#include "texture/view.hpp"
 #include "tiling/direct_tiling_glsl.hpp"
 
 namespace tilekit {
@@ -37,6 +40,13 @@ enum class GlslMode {
   Texture,        // the rendered texture (the view's row table, texture/view.hpp)
   AtlasCell,      // tiles: the atlas cell of the tile at (x, y) + tk_origin: col, row as 16-bit pairs (tests)
   PlainTexture,   // tiles: one textureLod of the atlas per fragment, no tiling (the benchmark baseline)
+  // tiles, a view whose every pixel has the same footprint of one tap (a flat view): Texture with
+  // the level of detail a uniform, tk_lod, set from the CPU's anisotropic_footprint, and the
+  // atlas cell of each tile read from a texture of the view's tiles (tk_window: glsl_tile_window)
+  // instead of evaluating the lattice hash. GlRenderer chooses it for such views (the preview,
+  // whose view changes, keeps Texture). The same pixels; on llvmpipe 1.6x (perm) to 3.3x (long-period) as fast
+  // (BENCHMARKS.md).
+  FlatTexture,
 };
 
 std::string glsl_sampler_library(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling, GlslTables tables);
@@ -48,6 +58,22 @@ std::string glsl_method_library(const RenderSource& source, const RenderOptions&
 // The complete fragment shader of the renderer and of the preview (#version 300 es, main()).
 std::string glsl_fragment_shader(const RenderSource& source, const RenderOptions& o, GlslMode mode);
 std::string glsl_vertex_shader();  // a full-screen triangle
+
+// The atlas cell of every tile a view shows (FlatTexture's tk_window, an RG16UI texture): tile
+// (u0 + i, v0 + j) at texel (i, j), (row, col) of the packing, from the same C++ tiling as the
+// CPU renderer. None where the view spans kMaxTileWindow tiles or more along an axis.
+struct GlslTileWindow {
+  std::int32_t u0 = 0, v0 = 0;
+  int cols = 0, rows = 0;
+  std::vector<std::uint16_t> cells;  // (row, col) per tile, row-major
+};
+inline constexpr int kMaxTileWindow = 4096;
+std::optional<GlslTileWindow> glsl_tile_window(const TextureAtlas& atlas, const ViewRows& rows, int width,
+                                               const RenderOptions& o);
+
+// Whether every pixel of a view has the same footprint with one tap (what FlatTexture needs), and
+// that footprint: no shear (dudy_step 0) and the same derivatives on every row.
+bool uniform_footprint(const ViewRows& rows, int tile_px, int max_aniso, Footprint* footprint = nullptr);
 // The uniform tables (uniform ivec4 NAME[...]) of glsl_fragment_shader for the seed and hash of o
 // (hex and hpn).
 std::vector<std::pair<std::string, std::vector<std::int32_t>>> glsl_table_uniforms(const RenderSource& source,

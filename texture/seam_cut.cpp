@@ -10,6 +10,8 @@ namespace tilekit {
 CutPath min_error_cut(const CutBand& b) {
   assert(b.rows > 0 && b.width > 0 && int(b.lo.size()) == b.rows && int(b.hi.size()) == b.rows);
   assert(b.cost.size() == std::size_t(b.rows) * std::size_t(b.width));
+  assert(b.rise.empty() || b.rise.size() == b.cost.size());
+  assert(b.fall.empty() || b.fall.size() == b.cost.size());
   constexpr double inf = std::numeric_limits<double>::infinity();
   const std::size_t w = std::size_t(b.width);
   std::vector<double> acc(std::size_t(b.rows) * w, inf);  // cumulative error E(r, p), Efros & Freeman eq.
@@ -28,7 +30,11 @@ CutPath min_error_cut(const CutBand& b) {
         if (b.diagonal && d == 0) continue;
         const int q = p + d;
         if (q < 0 || q >= b.width) continue;
-        const double v = acc[std::size_t(r - 1) * w + std::size_t(q)];
+        const std::size_t here = std::size_t(r) * w + std::size_t(p);
+        const double v = acc[std::size_t(r - 1) * w + std::size_t(q)] +
+                         (d < 0 && !b.rise.empty()   ? b.rise[here]
+                          : d > 0 && !b.fall.empty() ? b.fall[here]
+                                                     : 0.0);
         if (v < best || (v == best && v < inf && arg >= 0 && better(q, arg))) best = v, arg = q;
       }
       if (arg < 0 || best == inf) continue;

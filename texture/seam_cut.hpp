@@ -14,6 +14,11 @@ struct CutBand {
   // Consecutive positions differ by exactly one (a cut along the pixel diagonal, where the
   // band's rows are anti-diagonals), else by at most one (a cut along a pixel row or column).
   bool diagonal = false;
+  // Optional (empty, or rows x width): what a step of the path costs where it moves between rows
+  // r - 1 and r (not with `diagonal`): into position p from p - 1 (rise) or from p + 1 (fall). A
+  // cut along pixel columns that moves leaves one pair of vertical neighbours from different
+  // samples, whose step shows like the steps across the path.
+  std::vector<float> rise, fall;
   float& at(int r, int p) { return cost[std::size_t(r) * std::size_t(width) + std::size_t(p)]; }
 };
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 #include "../cli_runner.hpp"
@@ -114,7 +115,7 @@ TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindPositionAndMethod) 
   for (auto [kind, c] :
        {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
-      for (GlslMode mode : {GlslMode::Texture, GlslMode::AtlasCell}) {
+      for (GlslMode mode : {GlslMode::Texture, GlslMode::FlatTexture, GlslMode::AtlasCell}) {
         const TextureAtlas a{atlas_lookup(kind, c, {}), 64, {}, ""};
         test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{RenderMethod::Tiles, &a, nullptr},
                                                             RenderOptions{h, 3, 1, false}, mode));
@@ -276,6 +277,32 @@ TEST(GlslSampler, A1024SquareRenderEqualsTheCpuReferenceWithinOneAtMipZeroAndTwo
     RecordProperty(std::string(kind_name(kind)) + "_max_mip0", d0.max);
     RecordProperty(std::string(kind_name(kind)) + "_max_all", d1.max);
   }
+}
+
+// A flat view has one footprint at every pixel: the renderer draws it with the level of detail as
+// a uniform (GlslMode::FlatTexture), magnified and minified, within what the per-fragment shader
+// keeps to the CPU; a tilted view keeps the footprint per fragment.
+TEST(GlslSampler, FlatViewsDrawWithTheLevelOfDetailAsAUniformAndEqualTheCpuReference) {
+  for (TileKind kind : {TileKind::Corner, TileKind::Wang})
+    for (HashKind hash : {HashKind::LongPeriod, HashKind::Permutation})
+      for (double scale : {0.9, 2.6, 5.3}) {  // magnified; levels 1-2; levels 2-3
+        const TextureAtlas& atlas = test::grass_atlas(kind);
+        const RenderOptions o{hash, 3, 2, false};
+        const View v{512, 384, scale, 333.3, -1234.6, 0};
+        std::unique_ptr<GlRenderer> r;
+        SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, v, o));
+        const std::string what = fmt::format("{} {} scale {}", kind_name(kind), hash_kind_name(hash), scale);
+        EXPECT_EQ(r->mode(), GlslMode::FlatTexture) << what;
+        r->draw();
+        const Diff d = diff(r->read(), render_cpu(atlas, v, o));
+        EXPECT_LE(d.max, scale < 1 ? 1 : 2) << what << ", mean " << d.mean;
+      }
+  const TextureAtlas& atlas = test::grass_atlas(TileKind::Corner);
+  const RenderOptions o{HashKind::LongPeriod, 3, 2, false};
+  const ViewRows tilted = view_rows(View{64, 64, 0.6, 0, 0, 3}, atlas.tile_px);
+  EXPECT_FALSE(uniform_footprint(tilted, atlas.tile_px, 16));
+  EXPECT_EQ(GlRenderer(atlas, View{64, 64, 0.6, 0, 0, 3}, o).mode(), GlslMode::Texture);
+  EXPECT_EQ(GlRenderer(atlas, View{64, 64, 2.0, 0, 0, 0}, o, GlslMode::AtlasCell).mode(), GlslMode::AtlasCell);
 }
 
 }  // namespace
