@@ -298,12 +298,16 @@ TEST(HostileInputs, DamagedVerifyCheckpointsAreRefusedOrResumeToTheSameAnswer) {
 }
 
 // Inputs the fuzz harnesses found (fuzz/fuzz_specs.cpp, fuzz_texture_input.cpp): a window
-// coordinate beyond double's range, and a 16-bit PNM whose pixels stb would convert past its
-// buffer.
+// coordinate beyond double's range, a window of finite coordinates whose area is not (fuzz_driver:
+// it was refused later, as "about inf points"), and a 16-bit PNM whose pixels stb would convert
+// past its buffer.
 TEST(HostileInputs, FuzzFindingsAreRefusedWithExit2) {
   TempDir d;
   expect_refused_saying(run_cli("points generate --window=-1.5e362,0.4,100,200 --density 1 --quiet --out " + d / "p.csv"),
                  "--window must be x0,y0,x1,y1");
+  expect_refused_saying(run_cli("points generate --window=-1.5e3,2,4e-121,1e306 --density 1 --quiet --out " + d / "p.csv"),
+                 "--window must be x0,y0,x1,y1");
+  EXPECT_FALSE(fs::exists(d / "p.csv"));
   write_text(d / "e.ppm", std::string("P6\n1 2\n65535\n") + std::string(3, '\x7b'));
   expect_refused_saying(run_cli("texture tiles --exemplar " + d / "e.ppm" + " --colors 2 --tile-px 16 --quiet --out " +
                          d / "t"),
