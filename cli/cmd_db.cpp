@@ -132,13 +132,13 @@ void add_stats(CLI::App& db, Context& ctx) {
   cmd->callback([a, &ctx] { run_stats(*a, ctx); });
 }
 
-struct ShowArgs {
+struct DbShowArgs {
   DbArgs database;
   std::int64_t id = 0;
   std::string table = "solutions";
 };
 
-void run_show(const ShowArgs& a, const Context& ctx) {
+void run_db_show(const DbShowArgs& a, const Context& ctx) {
   auto db = open_for_reading(a.database);
   auto missing = [&] { return NotFound(fmt::format("{}: no row {} in table {}", db->path(), a.id, a.table)); };
   if (a.table == "solutions") {
@@ -177,16 +177,16 @@ void run_show(const ShowArgs& a, const Context& ctx) {
   }
 }
 
-void add_show(CLI::App& db, Context& ctx) {
+void add_db_show(CLI::App& db, Context& ctx) {
   auto* cmd = db.add_subcommand("show", "Show one stored row by id (a solution unless --table says otherwise)");
-  auto a = std::make_shared<ShowArgs>();
+  auto a = std::make_shared<DbShowArgs>();
   cmd->add_option("ID", a->id, "Row id (see `tilekit db list`)")->required();
   cmd->add_option("--table", a->table, "solutions, runs, tilesets or conversions")
       ->check(CLI::IsMember(kTables))
       ->capture_default_str();
   add_db_option(cmd, a->database);
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { run_show(*a, ctx); });
+  cmd->callback([a, &ctx] { run_db_show(*a, ctx); });
 }
 
 struct ExportArgs {
@@ -333,7 +333,7 @@ void add_db_commands(CLI::App& app, Context& ctx) {
   db->require_subcommand(1);
   add_list(*db, ctx);
   add_stats(*db, ctx);
-  add_show(*db, ctx);
+  add_db_show(*db, ctx);
   add_export(*db, ctx);
   add_merge(*db, ctx);
   add_add(*db, ctx);

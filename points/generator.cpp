@@ -33,7 +33,9 @@ Window parse_window(const std::string& text, const char* flag) {
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }
-  if (v.size() != 4 || !(v[0] < v[2]) || !(v[1] < v[3]) || !std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]))
+  // Finite coordinates can still give an infinite width, height or area (1e306 wide and tall).
+  if (v.size() != 4 || !(v[0] < v[2]) || !(v[1] < v[3]) || !std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]) ||
+      !std::isfinite((v[2] - v[0]) * (v[3] - v[1])))
     throw InputError(fmt::format("{} must be x0,y0,x1,y1 with x0 < x1 and y0 < y1, got '{}'", flag, text));
   return {v[0], v[1], v[2], v[3]};
 }

@@ -32,7 +32,7 @@ struct Window {
   double height() const { return y1 - y0; }
   double area() const { return width() * height(); }
 };
-// "x0,y0,x1,y1"; InputError naming `flag` otherwise (x0 < x1, y0 < y1, finite).
+// "x0,y0,x1,y1"; InputError naming `flag` otherwise (x0 < x1, y0 < y1, finite, a finite area).
 Window parse_window(const std::string& text, const char* flag = "--window");
 
 class PoissonTileGenerator {

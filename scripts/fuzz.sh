@@ -1,27 +1,52 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses of fuzz/ (clang, -fsanitize=fuzzer,address,undefined) in
-# build-fuzz/, makes their seed corpora from Tilekit's own outputs (build/tilekit), and runs each
-# harness for SECONDS (default 10). Prints one line per harness (runs, seconds, runs/s, corpus)
-# and fails if any harness found a crash, leak, hang or sanitizer report (the input is kept in
-# build-fuzz/crashes/NAME/; turn it into a regression test). Usage:
-#   scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
+# Runs the harnesses of fuzz/ (one per parser of outside input) on seed corpora made from
+# Tilekit's own outputs (build/tilekit), SECONDS each (default 10), FUZZ_JOBS (default: the number
+# of cores) at a time. Prints one line per harness (runs, seconds, runs/s, corpus) and fails if any
+# harness found a crash, hang or sanitizer report (the input is kept in CRASHES/NAME/; turn it into
+# a regression test). Two engines:
+#   scripts/fuzz.sh [SECONDS] [HARNESS...]
+#       libFuzzer: clang, -fsanitize=fuzzer,address,undefined, in build-fuzz/ (every library rebuilt
+#       instrumented); coverage-guided, with leaks and memory errors reported. Corpora grow in
+#       build-fuzz/corpus/NAME/ from run to run; crashes in build-fuzz/crashes/NAME/.
+#   scripts/fuzz.sh --driver [SECONDS] [HARNESS...]
+#       fuzz_driver (fuzz/driver.cpp) of the Release build (build/, g++, asserts on): every seed,
+#       then mutants of them (a plain mutation loop, seeded by FUZZ_SEED, default 1, so a run is
+#       repeatable; no coverage guidance, no sanitizer); crashes, failed asserts and property checks,
+#       hangs and runaway memory fail it. Fresh corpora in build/fuzz-driver/corpus/NAME/ each run;
+#       crashes in build/fuzz-driver/crashes/NAME/. What scripts/test.sh runs.
 #   FUZZ_RUNS=1000000 scripts/fuzz.sh 0   each harness for exactly that many executions (SECONDS 0:
 #                                         no time bound), the 10^6-execution figures in docs/TESTING.md
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+engine=libfuzzer
+if [ "${1:-}" = --driver ]; then
+  engine=driver
+  shift
+fi
 seconds=${1:-10}
 shift || true
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(tile_set tiling checkpoint db_export group_spec portfolio_stats probability_map flags
   results_db texture_input point_tiles specs decide_checkpoint smallest_record)
+jobs=${FUZZ_JOBS:-$(nproc)}
 "$root/scripts/setup.sh"
 [ -x "$root/build/tilekit" ] || "$root/scripts/build.sh"
-fz=$root/build-fuzz
-cmake -S "$root" -B "$fz" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g" -DTILEKIT_FUZZ=ON -DTILEKIT_TESTS=OFF -DTILEKIT_BENCH=OFF >/dev/null
-targets=()
-for h in "${harnesses[@]}"; do targets+=(--target "fuzz_$h"); done
-cmake --build "$fz" -j "$(nproc)" "${targets[@]}"
+if [ "$engine" = driver ]; then
+  [ -x "$root/build/fuzz_driver" ] || cmake --build "$root/build" -j "$(nproc)" --target fuzz_driver
+  fz=$root/build/fuzz-driver
+  rm -rf "$fz/corpus"  # fresh seeds each run: the driver adds nothing to its corpus
+  run_harness() { "$root/build/fuzz_driver" "$1" -seed="${FUZZ_SEED:-1}" "${@:2}"; }
+else
+  fz=$root/build-fuzz
+  gen=()
+  [ -f "$fz/CMakeCache.txt" ] || ! command -v ninja >/dev/null || gen=(-G Ninja)
+  cmake -S "$root" -B "$fz" "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g" -DTILEKIT_FUZZ=ON -DTILEKIT_TESTS=OFF -DTILEKIT_BENCH=OFF >/dev/null
+  targets=()
+  for h in "${harnesses[@]}"; do targets+=(--target "fuzz_$h"); done
+  cmake --build "$fz" -j "$(nproc)" "${targets[@]}"
+  run_harness() { "$fz/fuzz_$1" -print_final_stats=1 "${@:2}"; }
+fi
 
 # ---- seed corpora: the project's own outputs, made fresh (never stored in git) ----
 tk=$root/build/tilekit
@@ -124,15 +149,25 @@ PY
 }
 make_seeds
 
-# ---- runs ----
+# ---- runs: FUZZ_JOBS harnesses at a time, then one line each in order ----
+mkdir -p "$fz/logs"
+one() {  # one NAME: runs harness NAME, leaves its log and exit code in $fz/logs/
+  local h=$1 rc=0
+  mkdir -p "$fz/corpus/$h" "$fz/crashes/$h"
+  (cd "$fz" && TILEKIT_MEMORY=1G run_harness "$h" -max_total_time="$seconds" ${FUZZ_RUNS:+-runs=$FUZZ_RUNS} -max_len=16384 \
+    -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$fz/crashes/$h/" "$fz/corpus/$h" >"$fz/logs/$h.log" 2>&1) || rc=$?
+  echo "$rc" >"$fz/logs/$h.rc"
+}
+for h in "${harnesses[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+  one "$h" &
+done
+wait
 status=0
 printf '%-16s %12s %8s %10s %8s  %s\n' harness runs seconds runs/s corpus result
 for h in "${harnesses[@]}"; do
-  mkdir -p "$fz/corpus/$h" "$fz/crashes/$h"
-  log=$fz/fuzz_$h.log
-  rc=0
-  (cd "$fz" && TILEKIT_MEMORY=1G "./fuzz_$h" -max_total_time="$seconds" ${FUZZ_RUNS:+-runs=$FUZZ_RUNS} -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
-    -print_final_stats=1 -artifact_prefix="$fz/crashes/$h/" "$fz/corpus/$h" >"$log" 2>&1) || rc=$?
+  log=$fz/logs/$h.log
+  rc=$(cat "$fz/logs/$h.rc" 2>/dev/null || echo 1)
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   took=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -1)
   files=$(ls "$fz/corpus/$h" | wc -l)

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Sanitizer builds and their test runs (docs/TESTING.md).
 #   scripts/sanitize.sh asan [CTEST_ARGS...]  AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1) in
-#                                           build-asan/, then the whole ctest suite
+#                                           build-asan/, then the whole ctest suite (the "slow" label
+#                                           too). This build also compiles the benchmarks (the
+#                                           README's test command does not) and compiles every file on
+#                                           its own (TILEKIT_UNITY=OFF: each must include what it uses)
 #   scripts/sanitize.sh tsan [CTEST_ARGS...]  ThreadSanitizer (clang, libomp with its Archer tool) in
 #                                           build-tsan/, then the parallel engine tests: counts,
 #                                           checkpoints and resumes, kills, signals and shards
@@ -11,15 +14,20 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 kind=${1:?usage: scripts/sanitize.sh asan|tsan [ctest args]}
 shift
 jobs=$(nproc)
+gen=()
+generator() {  # Ninja for a new build directory (one already configured keeps its generator)
+  [ -f "$1/CMakeCache.txt" ] || ! command -v ninja >/dev/null || gen=(-G Ninja)
+}
 case "$kind" in
   asan)
     build=$root/build-asan
     # GCC 12 at -O1 with the sanitizers reports false maybe-uninitialized warnings inside
     # libstdc++ (std::function in <regex>); -Werror would turn them into errors.
     flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
-    cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
+    generator "$build"
+    cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-      -DTILEKIT_BENCH=OFF >/dev/null
+      -DTILEKIT_BENCH=ON -DTILEKIT_UNITY=OFF >/dev/null
     cmake --build "$build" -j "$jobs"
     export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=0:strict_string_checks=1}
     export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
@@ -28,7 +36,8 @@ case "$kind" in
   tsan)
     build=$root/build-tsan
     flags="-O1 -g -fsanitize=thread -fno-omit-frame-pointer"
-    cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
+    generator "$build"
+    cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" -DTILEKIT_BENCH=OFF >/dev/null
     cmake --build "$build" -j "$jobs" --target tilekit test_solver test_cli
     # libomp's own synchronisation is invisible to TSan without its Archer tool.

@@ -10,6 +10,7 @@ PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt
       clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev  # fuzzing and the sanitizer builds
       unzip        # scripts/fetch-textures.sh reads OpenArena's pk3 (a zip)
       jq dpkg-dev  # the install and Debian package tests (tests/install/install-test.sh)
+      ninja-build  # the build (scripts/build.sh)
       chromium)    # the browser test of `texture preview`
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,17 +1,24 @@
 #!/usr/bin/env bash
-# Sets up, builds and tests (docs/TESTING.md). The default is the README's test command, about
-# ten minutes on 2 cores once set up:
+# Sets up, builds and tests (docs/TESTING.md, with the measured time of each step). The default is
+# the README's test command, about ten minutes on 2 cores once set up (ccache warm; see TESTING.md):
 #   0. the layer check (scripts/check-layers.sh: includes against each folder README's
 #      "May include" line, no cycles), before anything is built;
-#   1. the Release build (build/) and its whole ctest suite;
-#   2. every libFuzzer harness for a few seconds (build-fuzz/, ASan+UBSan; FUZZ_SECONDS, default 5);
+#   1. the Release build (build/, Ninja; the benchmarks are left to the sanitizer build) and its
+#      ctest suite less the tests labelled "slow" (the SIGKILL/SIGTERM/resume rounds and shard
+#      merges of pack and enumerate, tests/CMakeLists.txt);
+#   2. every libFuzzer harness of fuzz/ through fuzz_driver of the Release build: its seeds, then
+#      seeded mutants, FUZZ_SECONDS each (default 5), two at a time (scripts/fuzz.sh --driver);
 #   3. the end-to-end test against a real single-node Slurm (tests/slurm/cluster-test.sh; needs
 #      root, 2-3 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm.
 # Options:
-#   --full      adds the whole suite under AddressSanitizer + UndefinedBehaviorSanitizer
-#               (build-asan/), the ThreadSanitizer engine tests (build-tsan/) and long fuzzing
-#               (FUZZ_SECONDS, default 300 per harness)
-#   --sanitize  only the ASan+UBSan suite (what .ci/run adds after the default run)
+#   --sanitize  what .ci/run runs after the default: the "slow" tests in the Release build (built
+#               first if it is not there), the whole ctest suite under AddressSanitizer +
+#               UndefinedBehaviorSanitizer (build-asan/, which also compiles the benchmarks and
+#               every file on its own), and every harness under libFuzzer with ASan+UBSan
+#               (build-fuzz/, FUZZ_SECONDS each, default 5)
+#   --full      everything: the Release build and its whole suite, the ASan+UBSan suite, the
+#               ThreadSanitizer engine tests (build-tsan/), libFuzzer for FUZZ_SECONDS (default
+#               300) per harness, and the real-Slurm test
 # TILEKIT_SKIP_SLURM=1 or TILEKIT_SKIP_FUZZ=1 leaves a step out (it then says so). Other
 # arguments go to every ctest run. Each step ends with one line: what ran, how it ended, how long.
 set -euo pipefail
@@ -32,28 +39,41 @@ step() {  # step NAME COMMAND...: runs it, then one line with its time and the t
   echo "test.sh: $1 $([ $rc -eq 0 ] && echo ok || echo "FAILED (exit $rc)") in $((SECONDS - t0)) s (total $((SECONDS - start)) s)" >&2
   return $rc
 }
+release_ctest() {  # release_ctest CTEST_ARGS...: the Release suite, with EGL and the browser required
+  # setup.sh installed Mesa's EGL and chromium: the GLSL-vs-CPU tests and the browser test of the
+  # preview page must run (fail, not skip, without a context or a browser).
+  (cd "$root/build" && TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1} TILEKIT_REQUIRE_BROWSER=${TILEKIT_REQUIRE_BROWSER:-1} \
+    ctest --output-on-failure -j "$(nproc)" "$@")
+}
 step "set-up" "$root/scripts/setup.sh"
 step "layer check" bash "$root/scripts/check-layers.sh"
-if [ "$mode" = sanitize ]; then
+if [ "$mode" = default ]; then
+  # The benchmarks are compiled by the sanitizer build (--sanitize), not here.
+  step "Release build" env TILEKIT_BENCH=OFF "$root/scripts/build.sh"
+  step "Release ctest (all but the slow label)" release_ctest -LE slow "${args[@]}"
+else
+  # Keeps the benchmarks of a build/ that has them (scripts/build.sh alone builds them).
+  bench=OFF
+  grep -q '^TILEKIT_BENCH:BOOL=ON' "$root/build/CMakeCache.txt" 2>/dev/null && bench=ON
+  step "Release build" env TILEKIT_BENCH=$bench "$root/scripts/build.sh"
+  if [ "$mode" = sanitize ]; then
+    step "Release ctest (the slow label)" release_ctest -L slow "${args[@]}"
+  else
+    step "Release ctest (all)" release_ctest "${args[@]}"
+  fi
   step "ASan+UBSan build and ctest" "$root/scripts/sanitize.sh" asan "${args[@]}"
-  exit
-fi
-step "Release build" "$root/scripts/build.sh"
-# setup.sh installed Mesa's EGL and chromium: the GLSL-vs-CPU tests and the browser test of the
-# preview page must run (fail, not skip, without a context or a browser).
-export TILEKIT_REQUIRE_EGL=${TILEKIT_REQUIRE_EGL:-1}
-export TILEKIT_REQUIRE_BROWSER=${TILEKIT_REQUIRE_BROWSER:-1}
-step "Release ctest" bash -c 'cd "$0/build" && ctest --output-on-failure -j "$(nproc)" "${@:1}"' "$root" "${args[@]}"
-if [ "$mode" = full ]; then
-  step "ASan+UBSan build and ctest" "$root/scripts/sanitize.sh" asan "${args[@]}"
-  step "TSan build and engine tests" "$root/scripts/sanitize.sh" tsan "${args[@]}"
+  [ "$mode" = full ] && step "TSan build and engine tests" "$root/scripts/sanitize.sh" tsan "${args[@]}"
 fi
 if [ "${TILEKIT_SKIP_FUZZ:-0}" = 1 ]; then
   echo "test.sh: the fuzz run was SKIPPED (TILEKIT_SKIP_FUZZ=1)" >&2
+elif [ "$mode" = default ]; then
+  step "fuzz_driver run (Release)" "$root/scripts/fuzz.sh" --driver "${FUZZ_SECONDS:-5}"
 else
-  step "fuzz build and run" "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-$([ "$mode" = full ] && echo 300 || echo 5)}"
+  step "libFuzzer build and run (ASan+UBSan)" "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-$([ "$mode" = full ] && echo 300 || echo 5)}"
 fi
-if [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then
+if [ "$mode" = sanitize ]; then
+  exit 0
+elif [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then
   echo "test.sh: the real-Slurm test was SKIPPED (TILEKIT_SKIP_SLURM=1)" >&2
 else
   step "real-Slurm test" flock /tmp/tilekit-slurm.lock bash "$root/tests/slurm/cluster-test.sh"

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/build_paths.hpp"
+
 namespace tilekit::test {
 
 struct CliResult {
@@ -59,6 +61,16 @@ inline CliResult run_cli_prefixed(const std::string& prefix, const std::string& 
 }
 
 inline CliResult run_cli(const std::string& args) { return run_cli_prefixed("", args); }
+
+// `s` in single quotes, for the shell (the paths of a TempDir hold no quote).
+inline std::string q(const std::string& s) { return "'" + s + "'"; }
+
+// The last write time of `path`; the earliest time there is when it does not exist.
+inline std::filesystem::file_time_type mtime(const std::string& path) {
+  std::error_code ec;
+  auto t = std::filesystem::last_write_time(path, ec);
+  return ec ? std::filesystem::file_time_type::min() : t;
+}
 
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

@@ -12,6 +12,7 @@
 #include "aperiodic/conversion.hpp"
 #include "aperiodic/decide.hpp"
 #include "aperiodic/smallest.hpp"
+#include "tests/build_paths.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
 

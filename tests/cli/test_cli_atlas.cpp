@@ -4,10 +4,6 @@
 
 using namespace tilekit::test;
 
-namespace {
-std::string q(const std::string& s) { return "'" + s + "'"; }
-}  // namespace
-
 TEST(CliAtlas, HelpWorksForEveryAtlasCommand) {
   for (const char* cmd : {"atlas", "atlas lookup", "atlas build"}) {
     CliResult r = run_cli(std::string(cmd) + " --help");

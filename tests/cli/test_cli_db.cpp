@@ -25,8 +25,6 @@ void make_shard(const std::string& path, std::uint32_t first, std::uint32_t coun
   db.add_solutions(batch);
 }
 
-std::string q(const std::string& s) { return "'" + s + "'"; }
-
 }  // namespace
 
 TEST(CliDb, HelpWorksForEveryDbCommand) {
@@ -40,7 +38,7 @@ TEST(CliDb, HelpWorksForEveryDbCommand) {
 TEST(CliDb, StatsCreatesTheEmbeddedDefaultOnFirstUse) {
   TempDir d;
   const std::string path = d / "data/tilekit/results.sqlite";
-  CliResult r = run_cli("--version >/dev/null; TILEKIT_DB=" + q(path) + " " TILEKIT_BINARY " db stats --json");
+  CliResult r = run_cli("--version >/dev/null; TILEKIT_DB=" + q(path) + " " + std::string(TILEKIT_BINARY) + " db stats --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = r.json();
   EXPECT_EQ(j["db"], path);
@@ -50,8 +48,8 @@ TEST(CliDb, StatsCreatesTheEmbeddedDefaultOnFirstUse) {
 
 TEST(CliDb, XdgDataHomeIsTheDefaultDirectory) {
   TempDir d;
-  CliResult r = run_cli("--version >/dev/null; env -u TILEKIT_DB XDG_DATA_HOME=" + q(d / "xdg") + " " TILEKIT_BINARY
-                        " db stats --json");
+  CliResult r = run_cli("--version >/dev/null; env -u TILEKIT_DB XDG_DATA_HOME=" + q(d / "xdg") + " " +
+                        std::string(TILEKIT_BINARY) + " db stats --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.json()["db"], d / "xdg/tilekit/results.sqlite");
 }

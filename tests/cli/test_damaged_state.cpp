@@ -72,7 +72,7 @@ TEST(DamagedDatabase, AlteredSchemasAndWrongTypesAreExit2WithTheFileUnchanged) {
     const std::string db = tampered_db(d, std::string(t.name) + ".sqlite", t.sql);
     const std::string before = slurp(db);
     const std::string good = d / (std::string(t.name) + "-good.json");
-    write_text(good, slurp(TILEKIT_SOURCE_DIR "/tilesets/data/packing-corner-2.json"));
+    write_text(good, slurp(std::string(TILEKIT_SOURCE_DIR) + "/tilesets/data/packing-corner-2.json"));
     const std::string other = d / (std::string(t.name) + "-other.sqlite");
     ASSERT_EQ(run_cli("pack --kind corner --colors 2 --method construct --quiet --db " + other).code, 0);
     for (const std::string& cmd :

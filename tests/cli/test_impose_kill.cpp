@@ -87,12 +87,6 @@ void expect_final_run_matches_reference(const std::string& ck, const std::string
   EXPECT_EQ(stored_hashes(db), ref.hashes);  // exactly the same stored solutions
 }
 
-fs::file_time_type mtime(const std::string& p) {
-  std::error_code ec;
-  auto t = fs::last_write_time(p, ec);
-  return ec ? fs::file_time_type::min() : t;
-}
-
 }  // namespace
 
 TEST(ImposeKill, TenRandomSigkillsResumedFromTheCheckpointAloneStoreTheSameSolutions) {

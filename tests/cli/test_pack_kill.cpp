@@ -33,12 +33,6 @@ std::vector<std::string> enumeration_args(const std::string& ck, const std::stri
   return a;
 }
 
-fs::file_time_type mtime(const std::string& p) {
-  std::error_code ec;
-  auto t = fs::last_write_time(p, ec);
-  return ec ? fs::file_time_type::min() : t;
-}
-
 void expect_final_run_and_database(const std::vector<std::string>& args, const std::string& db, const TempDir& d) {
   pid_t pid = spawn_tilekit(args, d / "out", d / "err");
   ASSERT_EQ(wait_exit(pid), 0) << slurp(d / "err");

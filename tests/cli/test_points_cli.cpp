@@ -5,14 +5,6 @@
 
 using namespace tilekit::test;
 
-namespace {
-
-std::string q(const std::string& s) {
-  return "'" + s + "'";
-}
-
-}  // namespace
-
 TEST(PointsCli, TilesBuildsChecksStoresAndWritesASetThatGenerateReads) {
   TempDir d;
   const std::string db = d / "r.sqlite", set = d / "c.ptiles", pic = d / "t.svg";

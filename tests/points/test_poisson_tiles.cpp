@@ -9,6 +9,7 @@
 #include "points/sampler.hpp"
 #include "points/tile_parts.hpp"
 #include "points/tile_set_file.hpp"
+#include "tests/build_paths.hpp"
 
 using namespace tilekit;
 using namespace tilekit::points;

@@ -29,7 +29,7 @@ const RecursiveWangTiles& rtiles() {
   return t;
 }
 
-std::set<std::pair<float, float>> as_set(const std::vector<double>& xy) {
+std::set<std::pair<float, float>> point_set(const std::vector<double>& xy) {
   std::set<std::pair<float, float>> s;
   for (std::size_t i = 0; i + 1 < xy.size(); i += 2) s.emplace(xy[i], xy[i + 1]);
   return s;
@@ -64,7 +64,7 @@ TEST(RecursiveWangTiles, PointsAtALowerDensityAreASubsetOfThoseAtAHigherOne) {
   std::set<std::pair<float, float>> previous;
   for (double d : {40.0, 120.0, 300.0, 700.0, 2500.0, 9000.0}) {
     const auto xy = g.generate(w, *constant_density(d), 1.0);
-    const auto now = as_set(xy);
+    const auto now = point_set(xy);
     EXPECT_EQ(now.size(), xy.size() / 2);  // no point twice
     for (const auto& p : previous) ASSERT_TRUE(now.count(p)) << "density " << d;
     EXPECT_NEAR(double(now.size()), d * w.area(), 0.06 * d * w.area());
@@ -78,8 +78,8 @@ TEST(RecursiveWangTiles, ProgressiveForAVaryingDensityToo) {
   const auto low = expression_density("300 * (1 + x) * exp(-0.2 * y)");
   const auto high = expression_density("900 * (1 + x) * exp(-0.2 * y) + 50");
   const auto a = g.generate(w, *low, 1.0), b = g.generate(w, *high, 1.0);
-  const auto sb = as_set(b);
-  for (const auto& p : as_set(a)) ASSERT_TRUE(sb.count(p));
+  const auto sb = point_set(b);
+  for (const auto& p : point_set(a)) ASSERT_TRUE(sb.count(p));
   EXPECT_GT(b.size(), 2 * a.size());
 }
 
@@ -88,9 +88,9 @@ TEST(RecursiveWangTiles, OverlappingWindowsAgree) {
   const auto d = constant_density(800);
   const auto a = g.generate({0, 0, 3, 3}, *d, 1.0), b = g.generate({1, 1, 4, 4}, *d, 1.0);
   std::set<std::pair<float, float>> sa, sb;
-  for (const auto& p : as_set(a))
+  for (const auto& p : point_set(a))
     if (p.first >= 1 && p.second >= 1) sa.insert(p);
-  for (const auto& p : as_set(b))
+  for (const auto& p : point_set(b))
     if (p.first < 3 && p.second < 3) sb.insert(p);
   EXPECT_EQ(sa, sb);
   EXPECT_GT(sa.size(), 3000u);

@@ -68,7 +68,7 @@ const std::vector<Tiling>& all_wang_packings_c2() {
 }
 
 // solve() under the group `spec` (the one engine).
-SearchResult solve_under(const TilingProblem& p, const std::string& spec, SearchOptions o) {
+SearchResult solve_imposed(const TilingProblem& p, const std::string& spec, SearchOptions o) {
   o.impose = spec;
   return solve(p, o);
 }
@@ -77,7 +77,7 @@ std::uint64_t count_of(TileKind kind, const std::string& spec, int threads = 1) 
   SearchOptions o;
   o.mode = SearchMode::Count;
   o.run.threads = threads;
-  return solve_under(complete_packing_problem(kind, 2), spec, o).solutions;
+  return solve_imposed(complete_packing_problem(kind, 2), spec, o).solutions;
 }
 
 // Count in Count mode, collect in All mode, and compare both with the brute-force filter.
@@ -90,7 +90,7 @@ void expect_matches_filter(TileKind kind, const std::string& spec, const std::ve
 
   SearchOptions count;
   count.mode = SearchMode::Count;
-  auto counted = solve_under(p, spec, count);
+  auto counted = solve_imposed(p, spec, count);
   EXPECT_TRUE(counted.complete) << spec;
   EXPECT_EQ(counted.solutions, expected.size()) << spec;
 
@@ -102,7 +102,7 @@ void expect_matches_filter(TileKind kind, const std::string& spec, const std::ve
     EXPECT_TRUE(g.is_invariant(t));
     got.insert(t.cells);
   };
-  auto listed = solve_under(p, spec, all_mode);
+  auto listed = solve_imposed(p, spec, all_mode);
   EXPECT_EQ(listed.solutions, expected.size()) << spec;
   EXPECT_EQ(got, expected) << spec;
 }
@@ -147,7 +147,7 @@ TEST(ImposeCount, CountsDoNotDependOnThreadsAndShardsSumToTheWhole) {
       o.mode = SearchMode::Count;
       o.run.threads = 2;
       o.run.shard = {i, 3};
-      SearchResult r = solve_under(complete_packing_problem(TileKind::Wang, 2), spec, o);
+      SearchResult r = solve_imposed(complete_packing_problem(TileKind::Wang, 2), spec, o);
       EXPECT_TRUE(r.complete);
       EXPECT_GT(r.shard_subproblems, 0u);
       sum += r.solutions;

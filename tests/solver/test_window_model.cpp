@@ -5,6 +5,7 @@
 #include "base/error.hpp"
 #include "solver/sat_cnf.hpp"
 #include "solver/solve.hpp"
+#include "tests/build_paths.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
 #include "tilesets/window_torus.hpp"
