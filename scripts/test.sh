@@ -11,7 +11,7 @@
 #   3. the end-to-end test against a real single-node Slurm (tests/slurm/cluster-test.sh; needs
 #      root, 2-3 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm.
 # Options:
-#   --sanitize  what .ci/run runs after the default: the "slow" tests in the Release build (built
+#   --sanitize  the sanitizer step (by hand for now, docs/TESTING.md): the "slow" tests in the Release build (built
 #               first if it is not there), the whole ctest suite under AddressSanitizer +
 #               UndefinedBehaviorSanitizer (build-asan/, which also compiles the benchmarks and
 #               every file on its own), and every harness under libFuzzer with ASan+UBSan
