@@ -9,7 +9,10 @@
 #   2. every libFuzzer harness of fuzz/ through fuzz_driver of the Release build: its seeds, then
 #      seeded mutants, FUZZ_SECONDS each (default 5), two at a time (scripts/fuzz.sh --driver);
 #   3. the end-to-end test against a real single-node Slurm (tests/slurm/cluster-test.sh; needs
-#      root, 2-3 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm.
+#      root, 2-3 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm. It
+#      waits on Slurm (a wall-time limit of one minute, requeues) for more than half of its time,
+#      so it starts right after the build and runs beside steps 1 and 2; its output is printed
+#      when it ends, with its own time.
 # Options:
 #   --sanitize  the sanitizer step (by hand for now, docs/TESTING.md): the "slow" tests in the Release build (built
 #               first if it is not there), the whole ctest suite under AddressSanitizer +
@@ -47,15 +50,41 @@ release_ctest() {  # release_ctest CTEST_ARGS...: the Release suite, with EGL an
 }
 step "set-up" "$root/scripts/setup.sh"
 step "layer check" bash "$root/scripts/check-layers.sh"
+slurm_pid=""
+slurm_log=$root/build/slurm-test.log
+start_slurm() {  # the real-Slurm test in the background, its output and exit code in build/
+  if [ "$mode" = sanitize ] || [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then return 0; fi
+  rm -f "$slurm_log" "$slurm_log.end"
+  (
+    t0=$SECONDS rc=0
+    flock /tmp/tilekit-slurm.lock bash "$root/tests/slurm/cluster-test.sh" >"$slurm_log" 2>&1 || rc=$?
+    echo "$rc $((SECONDS - t0))" >"$slurm_log.end"
+  ) &
+  slurm_pid=$!
+}
+finish_slurm() {  # waits for it, prints its output, returns its exit code
+  wait "$slurm_pid" || true
+  slurm_pid=""
+  cat "$slurm_log"
+  local rc=1 took=?
+  [ -f "$slurm_log.end" ] && read -r rc took <"$slurm_log.end"
+  echo "test.sh: the real-Slurm test itself ran $took s, beside the steps before it" >&2
+  return "$rc"
+}
+# A step that fails ends this script (set -e): the Slurm test still ends first, so that no
+# daemon of it is left running.
+trap '[ -z "$slurm_pid" ] || finish_slurm >/dev/null 2>&1 || true' EXIT
 if [ "$mode" = default ]; then
   # The benchmarks are compiled by the sanitizer build (--sanitize), not here.
   step "Release build" env TILEKIT_BENCH=OFF "$root/scripts/build.sh"
+  start_slurm
   step "Release ctest (all but the slow label)" release_ctest -LE slow "${args[@]}"
 else
   # Keeps the benchmarks of a build/ that has them (scripts/build.sh alone builds them).
   bench=OFF
   grep -q '^TILEKIT_BENCH:BOOL=ON' "$root/build/CMakeCache.txt" 2>/dev/null && bench=ON
   step "Release build" env TILEKIT_BENCH=$bench "$root/scripts/build.sh"
+  start_slurm
   if [ "$mode" = sanitize ]; then
     step "Release ctest (the slow label)" release_ctest -L slow "${args[@]}"
   else
@@ -76,5 +105,5 @@ if [ "$mode" = sanitize ]; then
 elif [ "${TILEKIT_SKIP_SLURM:-0}" = 1 ]; then
   echo "test.sh: the real-Slurm test was SKIPPED (TILEKIT_SKIP_SLURM=1)" >&2
 else
-  step "real-Slurm test" flock /tmp/tilekit-slurm.lock bash "$root/tests/slurm/cluster-test.sh"
+  step "real-Slurm test (waited for)" finish_slurm
 fi
