@@ -172,7 +172,12 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
   // by the disk, not the memory.
   const bool tile_set = a.source.method == "corner" || a.source.method == "wang" || a.source.method == "dual";
   const bool stream = tile_set && !fn && is_point_file_path(a.out) && !a.analyze;
-  // Before the tile set is built: the points must fit in memory, or (streamed) on the disk.
+  // Before the tile set is built: a point file must hold the window's coordinates (at a uniform
+  // density; under a density function the points' own spacing is checked when they are written),
+  // and the points must fit in memory, or (streamed) on the disk.
+  if (is_point_file_path(a.out) && !fn)
+    check_point_file(a.out, std::max({std::abs(w.x0), std::abs(w.x1), std::abs(w.y0), std::abs(w.y1)}),
+                     1 / std::sqrt(a.density));
   if (stream) {
     const double expected = w.area() * a.density;
     const double per_point = a.out.ends_with(".csv") ? 40 : a.out.ends_with(".f64") ? 16 : 8;

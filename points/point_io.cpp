@@ -55,6 +55,11 @@ constexpr std::size_t kFlushBytes = std::size_t(1) << 20;
 
 }  // namespace
 
+void check_point_file(const std::string& path, double largest, double spacing) {
+  check_extension(path);
+  if (is_raw32(path)) check_float32_fits(path, largest, spacing);
+}
+
 PointFileWriter::PointFileWriter(const std::string& path, double largest, double spacing)
     : format_(is_raw32(path) ? Format::F32 : is_raw64(path) ? Format::F64 : Format::Csv),
       out_((check_extension(path), path)) {

@@ -14,6 +14,10 @@ namespace tilekit::points {
 
 bool is_point_file_path(const std::string& path);  // .f32, .bin, .f64 or .csv
 void write_points(const std::string& path, const std::vector<double>& xy);
+// The checks PointFileWriter makes, for a caller to make before its work: InputError for an unknown
+// extension, or float32 output that would round coordinates as large as `largest` by more than
+// 1% of the points' mean `spacing`.
+void check_point_file(const std::string& path, double largest, double spacing);
 
 // A point file written a piece at a time (`points generate` streams a window row by row, so its
 // size is bounded by the disk, not the memory) and put in place whole by commit(); destroyed

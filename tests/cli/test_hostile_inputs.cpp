@@ -72,7 +72,7 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
     expect_refused_saying(run_cli("points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.png --quiet"),
                    "set TILEKIT_MEMORY");
     // Streamed to a point file, the disk bounds the window instead.
-    expect_refused_saying(run_cli("points generate --window 0,0,1000000,1000000 --density 1000 --out " + d / "p.f32 --quiet"),
+    expect_refused_saying(run_cli("points generate --window 0,0,1000000,1000000 --density 1000 --out " + d / "p.f64 --quiet"),
                    "on disk, more than the");
     expect_refused_saying(run_cli("points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 "
                            "--out " +
@@ -90,6 +90,7 @@ TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
         "candidates a round may try");
   });
   EXPECT_FALSE(fs::exists(d / "p.f32"));
+  EXPECT_FALSE(fs::exists(d / "p.f64"));
   EXPECT_FALSE(fs::exists(d / "p.png"));
   EXPECT_LT(s, 20) << "refused before any work";
   // An image that decodes to 23000 x 23000 grey pixels (529 MB) is refused from its header.
@@ -137,9 +138,11 @@ TEST(HostileInputs, PointsFarFromTheOriginKeepTheirDistances) {
     const CliResult a = run_cli("points analyze " + d / "p.f64 --quiet --json");
     ASSERT_EQ(a.code, 0) << a.err;
     EXPECT_GE(a.json()["rho"].get<double>(), 0.75);
-    // float32 cannot hold them: refused, naming the formats that can.
+    // float32 cannot hold them: refused before the tile set is built, naming the formats that can.
+    const auto start = std::chrono::steady_clock::now();
     expect_refused_saying(run_cli("points generate --window " + window + " --density 100 --quiet --out " + d / "p.f32"),
                    "write .f64 or .csv instead");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
     EXPECT_FALSE(fs::exists(d / "p.f32"));
   }
 }
