@@ -27,7 +27,7 @@ case "$kind" in
     generator "$build"
     cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-      -DTILEKIT_BENCH=ON -DTILEKIT_UNITY=OFF >/dev/null
+      -DTILEKIT_BENCH=ON -DTILEKIT_UNITY=OFF -DTILEKIT_GLUE_OPT= -DTILEKIT_CLI_OPT= >/dev/null
     cmake --build "$build" -j "$jobs"
     export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=0:strict_string_checks=1}
     export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
@@ -38,7 +38,8 @@ case "$kind" in
     flags="-O1 -g -fsanitize=thread -fno-omit-frame-pointer"
     generator "$build"
     cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" -DTILEKIT_BENCH=OFF >/dev/null
+      -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" -DTILEKIT_BENCH=OFF \
+      -DTILEKIT_GLUE_OPT= -DTILEKIT_CLI_OPT= >/dev/null
     cmake --build "$build" -j "$jobs" --target tilekit test_solver test_cli
     # libomp's own synchronisation is invisible to TSan without its Archer tool.
     archer=$(ls /usr/lib/llvm-*/lib/libarcher.so 2>/dev/null | tail -1)
