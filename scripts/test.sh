@@ -14,7 +14,7 @@
 #      so it starts right after the build and runs beside steps 1 and 2; its output is printed
 #      when it ends, with its own time.
 # Options:
-#   --sanitize  the sanitizer step (.ci/run runs its first two parts): the "slow" tests in the Release build (built
+#   --sanitize  the sanitizer step (.ci/run runs the first part, and the second less "slow"): the "slow" tests in the Release build (built
 #               first if it is not there), the whole ctest suite under AddressSanitizer +
 #               UndefinedBehaviorSanitizer (build-asan/, which also compiles the benchmarks and
 #               every file on its own), and every harness under libFuzzer with ASan+UBSan
