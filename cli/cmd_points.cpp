@@ -139,6 +139,11 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   });
 }
 
+// The largest coordinate of `w` in absolute value: what a point file must hold.
+double largest_coordinate(const Window& w) {
+  return std::max({std::abs(w.x0), std::abs(w.x1), std::abs(w.y0), std::abs(w.y1)});
+}
+
 // The points of `w` from a tile set straight into the point file a.out, a row of tiles at a time;
 // returns how many. The file appears whole, or not at all (a full disk, an error).
 std::uint64_t stream_points(const PoissonTileSet& set, const Window& w, const GenerateArgs& a, int threads,
@@ -148,8 +153,7 @@ std::uint64_t stream_points(const PoissonTileSet& set, const Window& w, const Ge
   // A batch of rows of tiles in memory at once: 4 per thread, 16 bytes a point, twice.
   const double row_points = (std::floor(w.x1 / side) - std::floor(w.x0 / side) + 1) * double(set.points);
   require_memory(row_points * 16 * 2 * 4 * std::max(threads, 1), "a row of tiles of the window");
-  const double largest = std::max({std::abs(w.x0), std::abs(w.x1), std::abs(w.y0), std::abs(w.y1)});
-  PointFileWriter out(a.out, largest, 1 / std::sqrt(a.density));
+  PointFileWriter out(a.out, largest_coordinate(w), 1 / std::sqrt(a.density));
   gen.generate_rows(
       w, a.density, [&](const std::vector<double>& row) { out.append(row.data(), row.size() / 2); }, threads,
       &progress);
@@ -176,8 +180,7 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
   // density; under a density function the points' own spacing is checked when they are written),
   // and the points must fit in memory, or (streamed) on the disk.
   if (is_point_file_path(a.out) && !fn)
-    check_point_file(a.out, std::max({std::abs(w.x0), std::abs(w.x1), std::abs(w.y0), std::abs(w.y1)}),
-                     1 / std::sqrt(a.density));
+    check_point_file(a.out, largest_coordinate(w), 1 / std::sqrt(a.density));
   if (stream) {
     const double expected = w.area() * a.density;
     const double per_point = a.out.ends_with(".csv") ? 40 : a.out.ends_with(".f64") ? 16 : 8;
