@@ -41,7 +41,7 @@ else
   gen=()
   [ -f "$fz/CMakeCache.txt" ] || ! command -v ninja >/dev/null || gen=(-G Ninja)
   cmake -S "$root" -B "$fz" "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g" -DTILEKIT_FUZZ=ON -DTILEKIT_TESTS=OFF -DTILEKIT_BENCH=OFF >/dev/null
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -fdebug-prefix-map=$root=." -DTILEKIT_FUZZ=ON -DTILEKIT_TESTS=OFF -DTILEKIT_BENCH=OFF >/dev/null
   targets=()
   for h in "${harnesses[@]}"; do targets+=(--target "fuzz_$h"); done
   cmake --build "$fz" -j "$(nproc)" "${targets[@]}"

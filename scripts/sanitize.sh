@@ -14,6 +14,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 kind=${1:?usage: scripts/sanitize.sh asan|tsan [ctest args]}
 shift
 jobs=$(nproc)
+# Debug information names paths relative to the checkout, so ccache (which otherwise hashes the
+# working directory of a -g compile) shares these builds between checkouts: CI's fresh clone
+# builds from the cache.
+prefix_map="-fdebug-prefix-map=$root=."
 gen=()
 generator() {  # Ninja for a new build directory (one already configured keeps its generator)
   [ -f "$1/CMakeCache.txt" ] || ! command -v ninja >/dev/null || gen=(-G Ninja)
@@ -23,7 +27,7 @@ case "$kind" in
     build=$root/build-asan
     # GCC 12 at -O1 with the sanitizers reports false maybe-uninitialized warnings inside
     # libstdc++ (std::function in <regex>); -Werror would turn them into errors.
-    flags="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
+    flags="-O1 -g $prefix_map -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-maybe-uninitialized"
     generator "$build"
     cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
@@ -35,7 +39,7 @@ case "$kind" in
     ;;
   tsan)
     build=$root/build-tsan
-    flags="-O1 -g -fsanitize=thread -fno-omit-frame-pointer"
+    flags="-O1 -g $prefix_map -fsanitize=thread -fno-omit-frame-pointer"
     generator "$build"
     cmake -S "$root" -B "$build" "${gen[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_CXX_FLAGS_RELEASE="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" -DTILEKIT_BENCH=OFF \

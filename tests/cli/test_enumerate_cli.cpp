@@ -130,11 +130,13 @@ TEST(EnumerateKill, SigtermCheckpointsAndExits3ThenTheResumeEndsTheSame) {
   std::string ck = d / "ck", db = d / "db.sqlite";
   int terms = 0;
   bool complete = false;
-  // A SIGTERM in the middle of a batch drops the batch, so each round waits a little longer than
-  // the last: on a loaded machine a fixed wait could end every run before its first batch.
-  for (int round = 0; round < 100 && !complete; ++round) {
+  // A SIGTERM in the middle of a batch drops the batch, so the waits are fractions of the
+  // uninterrupted run (four batches), each a tenth of it longer than the last: a fixed wait could
+  // end every run before its first batch on a loaded machine or under the sanitizers (ten times
+  // slower), and waits longer than the run would end none of them.
+  for (int round = 0; round < 30 && !complete; ++round) {
     pid_t pid = spawn_tilekit(run_args(ck, db), d / "out", d / "err");
-    std::this_thread::sleep_for(std::chrono::milliseconds(150 + 100 * round));
+    std::this_thread::sleep_for(std::chrono::duration<double>(base.seconds * (0.3 + 0.1 * round)));
     kill(pid, SIGTERM);
     const int code = wait_exit(pid);
     auto j = nlohmann::json::parse(slurp(d / "out"));
