@@ -190,9 +190,27 @@ void add_analyze(CLI::App* points, Context& ctx) {
   cmd->callback([a, &ctx] { run_analyze(*a, ctx); });
 }
 
+// How far the periodogram of a set of `points` points reaches, in multiples of the principal
+// frequency: it depends on the count alone (at most 2048 x 2048 bins).
+double periodogram_reach(double points) {
+  return double(periodogram_size(points, 1)) / 2 / principal_frequency(points);
+}
+
+// The anisotropy band reaches 2 f_p: a set of `points` points whose periodogram does not is
+// refused, with the largest count that fits.
+[[noreturn]] void refuse_reach(double set_points, double points) {
+  const double reach = periodogram_reach(points);
+  throw InputError(fmt::format("--set-points {}: the periodogram reaches {:.2f} f_p, not the 2 f_p of the "
+                               "anisotropy band (it is at most 2048 x 2048); use at most about {:.0f} points per set",
+                               set_points, reach, points * reach * reach / 4 * 0.99));
+}
+
 void run_spectrum(const SpectrumArgs& a, const Context& ctx) {
   check_extension(a.image, {".png"}, "--image");
   check_extension(a.plot, {".png", ".svg"}, "--plot");
+  // Before any tile set is built: a layout of whole tiles holds at least a quarter of the target
+  // (layout_for rounds the period), so a quarter that is already too many is refused here.
+  if (periodogram_reach(a.set_points / 4) < 2) refuse_reach(a.set_points, a.set_points);
   const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
   std::vector<std::string> methods = {a.source.method};
   std::stringstream list(a.compare);
@@ -210,13 +228,8 @@ void run_spectrum(const SpectrumArgs& a, const Context& ctx) {
   std::vector<PlotSeries> series;
   for (const Source& src : sources) {
     const SetLayout l = layout_for(src, a.set_points);
-    // The anisotropy band reaches 2 f_p: the periodogram (at most 2048 x 2048) must cover it.
-    const double reach = double(periodogram_size(l.density, l.window.width())) / 2 / l.window.width() /
-                         principal_frequency(l.density);
-    if (reach < 2)
-      throw InputError(fmt::format("--set-points {}: the periodogram reaches {:.2f} f_p, not the 2 f_p of the "
-                                   "anisotropy band (it is at most 2048 x 2048); use at most about {:.0f} points per set",
-                                   a.set_points, reach, a.set_points * reach * reach / 4 * 0.99));
+    const double points = l.density * l.window.width() * l.window.height();
+    if (periodogram_reach(points) < 2) refuse_reach(a.set_points, points);
     const Estimate e = estimate(src, l, a.sets, a.seed, threads, progress);
     const auto radial = radial_stats(e.spectrum);
     const double density = e.spectrum.density();
