@@ -7,6 +7,7 @@
 #include "results/results_db.hpp"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
@@ -57,11 +58,11 @@ std::string immutable_uri(const std::string& path) {
 // this object outlives it).
 struct SideFiles {
   std::string wal, shm;
-  bool wal_existed, shm_existed, refused = false;
+  bool wal_existed, shm_existed, refused = false, ours = true;
   explicit SideFiles(const std::string& path)
       : wal(path + "-wal"), shm(path + "-shm"), wal_existed(exists(wal)), shm_existed(exists(shm)) {}
   ~SideFiles() {
-    if (!refused) return;
+    if (!refused || !ours) return;
     std::error_code ec;
     if (!wal_existed) std::filesystem::remove(wal, ec);
     if (!shm_existed) std::filesystem::remove(shm, ec);
@@ -72,10 +73,29 @@ struct SideFiles {
   }
 };
 
+// What an immutable read of a file relies on staying unchanged while it reads: the main file
+// (inode, size, modification time) and whether a -wal file is beside it.
+struct FileStamp {
+  bool present = false, wal = false;
+  ino_t inode = 0;
+  off_t size = 0;
+  std::int64_t mtime_ns = 0;
+  explicit FileStamp(const std::string& path) : wal(SideFiles::exists(path + "-wal")) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return;
+    present = true;
+    inode = st.st_ino;
+    size = st.st_size;
+    mtime_ns = std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+  }
+  bool operator==(const FileStamp&) const = default;
+};
+
 // Read-only inspection of an existing file. Returns Fresh for an empty file (0 bytes, or an
 // SQLite file without tables and without an application id: e.g. one a concurrent process
 // is creating right now), Current/Older for a Tilekit database; throws InputError otherwise.
-FileState inspect(const std::string& path, const DbOpenOptions& opt) {
+// `locked`: never read it as immutable (see inspect below).
+FileState inspect_file(const std::string& path, const DbOpenOptions& opt, bool locked) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) return FileState::Missing;
@@ -104,7 +124,8 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
   // rollback-journal file, which a reader never adds files to; or a writer is active, or one
   // crashed) open it normally, and remove on refusal the side files this created.
   SideFiles side(path);
-  const bool immutable = header[18] == 2 && header[19] == 2 && !side.wal_existed;
+  const bool immutable = !locked && header[18] == 2 && header[19] == 2 && !side.wal_existed;
+  side.ours = !immutable;  // an immutable read creates no side file: one that appears is a writer's
   sqlite3* db = nullptr;
   int rc = immutable ? sqlite3_open_v2(immutable_uri(path).c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr)
                      : sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
@@ -115,6 +136,10 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
   if (rc != SQLITE_OK) throw not_ours(path, fmt::format("SQLite cannot open it ({})", sqlite3_errstr(rc)));
   sqlite3_busy_timeout(db, opt.busy_timeout_ms);
   try {
+    // One read transaction: the header fields and the tables from one snapshot, even while a
+    // concurrent process commits its new schema (read apart, they once gave application_id 0
+    // with 5 tables, and the file was refused as another application's).
+    sqlitedb::exec(db, "BEGIN");
     const auto app = sqlitedb::pragma_int(db, "application_id");
     const auto version = sqlitedb::pragma_int(db, "user_version");
     Statement tables(db, "SELECT name FROM sqlite_master WHERE type = 'table'");
@@ -151,6 +176,20 @@ FileState inspect(const std::string& path, const DbOpenOptions& opt) {
     side.refused = true;
     throw not_ours(path, fmt::format("unreadable ({})", e.what()));
   }
+}
+
+// An immutable read takes no lock, so it is exact only if no process wrote the file meanwhile:
+// one that creates the database, or checkpoints its -wal into it, makes the read see a mixture.
+// When the file changed during the read, it is read again through SQLite's locks.
+FileState inspect(const std::string& path, const DbOpenOptions& opt) {
+  const FileStamp before(path);
+  try {
+    FileState state = inspect_file(path, opt, false);
+    if (FileStamp(path) == before) return state;
+  } catch (const NotOurs&) {
+    if (FileStamp(path) == before) throw;
+  }
+  return inspect_file(path, opt, true);
 }
 
 // Field 22 of /proc/PID/stat: the process's start time in clock ticks after boot (0 when the

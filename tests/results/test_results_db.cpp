@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <sstream>
 #include <thread>
@@ -258,6 +259,38 @@ TEST(ResultsDb, TwoWritersBothLandEveryRow) {
   b.join();
   ResultsDb db(path);
   EXPECT_EQ(db.stats().solutions, 300u);
+}
+
+// A reader opening a database while a writer creates it, fills it and checkpoints it on close
+// must see it whole. Its header fields and tables were once read from two snapshots
+// (application_id 0 with 5 tables: refused as another application's), and a lock-free
+// (immutable) read of a file that a checkpoint was rewriting could see a mixture of both.
+TEST(ResultsDb, AReaderDuringTheCreationAndCheckpointOfANewFileSeesItWhole) {
+  TempDir d;
+  for (int round = 0; round < 20; ++round) {
+    const std::string path = d / ("r" + std::to_string(round) + ".sqlite");
+    std::atomic<bool> done{false};
+    std::thread writer([&] {
+      {
+        ResultsDb db(path);
+        for (std::uint32_t i = 0; i < 100; ++i) db.add_solution(record_of(numbered_grid(i)));
+      }  // the close checkpoints the -wal into the file
+      done = true;
+    });
+    std::string error;
+    int reads = 0;
+    while (!done && error.empty()) {
+      try {
+        ResultsDb db(path, DbOpenOptions{.create = false, .read_only = true});
+        ++reads;
+      } catch (const NotFound&) {  // not created yet
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+    writer.join();
+    ASSERT_EQ(error, "") << "round " << round << ", after " << reads << " reads";
+  }
 }
 
 TEST(ResultsDb, ExportThenMergeIntoEmptyRoundTrips) {
