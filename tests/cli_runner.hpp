@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "tests/build_paths.hpp"
@@ -93,6 +95,21 @@ inline pid_t spawn_tilekit(const std::vector<std::string>& args, const std::stri
   int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
   return rc == 0 ? pid : -1;
+}
+
+// Waits until process `pid` has a handler for `sig` (its SigCgt mask in /proc/PID/status), at
+// most `seconds`; false if it never had one. A signal sent before the program installs its
+// handler ends the process instead of stopping it cleanly, and a sanitizer build can take longer
+// than a fixed wait just to start.
+inline bool wait_until_catching(pid_t pid, int sig, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  do {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  } while (std::chrono::steady_clock::now() < end);
+  return false;
 }
 
 // Waits for `pid`; its exit code, or 128 + the signal that ended it.

@@ -127,6 +127,7 @@ TEST(AperiodicDecideCli, SigtermCheckpointsExits3AndTheRunResumes) {
       {"aperiodic", "verify", "kari-14", "--time-limit", "60", "--checkpoint", ck, "--quiet", "--json"}, d / "out",
       d / "err");
   ASSERT_GT(pid, 0);
+  EXPECT_TRUE(tilekit::test::wait_until_catching(pid, SIGTERM, 60));  // the kill below ends it either way
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   kill(pid, SIGTERM);
   int status = 0;

@@ -19,6 +19,9 @@ namespace {
 int run_and_signal(const std::vector<std::string>& args, const std::string& out, const std::string& err) {
   pid_t pid = spawn_tilekit(args, out, err);
   if (pid < 0) return -1;
+  // A sanitizer build can take longer than the wait below just to start (a SIGTERM before the
+  // handler ends the process with 143, which the callers report).
+  wait_until_catching(pid, SIGTERM, 60);
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   kill(pid, SIGTERM);
   return wait_exit(pid);

@@ -73,6 +73,7 @@ TEST(PackLift, SigtermWritesACheckpointAndExits3) {
                              "--json", "--checkpoint", ck, "--db", d / "r.sqlite"},
                             d / "out", d / "err");
   ASSERT_GT(pid, 0);
+  EXPECT_TRUE(wait_until_catching(pid, SIGTERM, 60));  // the kill below ends it either way
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   kill(pid, SIGTERM);
   EXPECT_EQ(wait_exit(pid), 3) << slurp(d / "err");

@@ -100,6 +100,8 @@ TEST_F(Resume, PortfolioRunsCheckpointAndResumeWithTheirBudgetAndStopOnSigtermWi
   // SIGTERM: checkpoint, exit 3, and the portfolio state goes on from there.
   pid_t pid =
       spawn_tilekit({"pack", "--resume", ck, "--quiet", "--json", "--time-limit", "60"}, dir / "out", dir / "err");
+  ASSERT_GT(pid, 0);
+  EXPECT_TRUE(wait_until_catching(pid, SIGTERM, 60));  // the kill below ends it either way
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   kill(pid, SIGTERM);
   int code = wait_exit(pid);

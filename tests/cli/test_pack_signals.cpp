@@ -43,11 +43,14 @@ TEST(PackSignals, SigtermAndSigusr1WriteACheckpointAndExit3AndResumeContinues) {
     if (round > 0) a.insert(a.end(), {"--resume", ck});
     pid_t pid = spawn_tilekit(a, d / "out", d / "err");
     ASSERT_GT(pid, 0);
+    const int sig = round == 1 ? SIGUSR1 : SIGTERM;
+    // Under ASan, starting alone can take longer than the wait below; the kill ends it either way.
+    EXPECT_TRUE(wait_until_catching(pid, sig, 60));
     if (round == 0) {
       ASSERT_TRUE(wait_for_file(ck, 20));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100 + rng() % 200));
-    kill(pid, round == 1 ? SIGUSR1 : SIGTERM);
+    kill(pid, sig);
     EXPECT_EQ(wait_exit(pid), 3) << slurp(d / "err");
     EXPECT_NE(slurp(d / "err").find("checkpoint written to " + ck), std::string::npos) << slurp(d / "err");
     auto j = nlohmann::json::parse(slurp(d / "out"));

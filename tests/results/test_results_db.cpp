@@ -270,11 +270,14 @@ TEST(ResultsDb, AReaderDuringTheCreationAndCheckpointOfANewFileSeesItWhole) {
   for (int round = 0; round < 20; ++round) {
     const std::string path = d / ("r" + std::to_string(round) + ".sqlite");
     std::atomic<bool> done{false};
+    std::string written;  // the writer's error, if any
     std::thread writer([&] {
-      {
+      try {
         ResultsDb db(path);
         for (std::uint32_t i = 0; i < 100; ++i) db.add_solution(record_of(numbered_grid(i)));
-      }  // the close checkpoints the -wal into the file
+      } catch (const std::exception& e) {  // the close (at the brace) checkpoints the -wal into the file
+        written = e.what();
+      }
       done = true;
     });
     std::string error;
@@ -289,6 +292,7 @@ TEST(ResultsDb, AReaderDuringTheCreationAndCheckpointOfANewFileSeesItWhole) {
       }
     }
     writer.join();
+    ASSERT_EQ(written, "") << "round " << round;
     ASSERT_EQ(error, "") << "round " << round << ", after " << reads << " reads";
   }
 }
