@@ -94,8 +94,8 @@ struct FileStamp {
 // Read-only inspection of an existing file. Returns Fresh for an empty file (0 bytes, or an
 // SQLite file without tables and without an application id: e.g. one a concurrent process
 // is creating right now), Current/Older for a Tilekit database; throws InputError otherwise.
-// `locked`: never read it as immutable (see inspect below).
-FileState inspect_file(const std::string& path, const DbOpenOptions& opt, bool locked) {
+// `locked`: never read it as immutable; `lock_free` tells whether it did (see inspect below).
+FileState inspect_file(const std::string& path, const DbOpenOptions& opt, bool locked, bool& lock_free) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) return FileState::Missing;
@@ -126,6 +126,7 @@ FileState inspect_file(const std::string& path, const DbOpenOptions& opt, bool l
   SideFiles side(path);
   const bool immutable = !locked && header[18] == 2 && header[19] == 2 && !side.wal_existed;
   side.ours = !immutable;  // an immutable read creates no side file: one that appears is a writer's
+  lock_free = immutable;
   sqlite3* db = nullptr;
   int rc = immutable ? sqlite3_open_v2(immutable_uri(path).c_str(), &db, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr)
                      : sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
@@ -180,16 +181,19 @@ FileState inspect_file(const std::string& path, const DbOpenOptions& opt, bool l
 
 // An immutable read takes no lock, so it is exact only if no process wrote the file meanwhile:
 // one that creates the database, or checkpoints its -wal into it, makes the read see a mixture.
-// When the file changed during the read, it is read again through SQLite's locks.
+// The raw read of the header takes none either. When the file changed during a lock-free read,
+// or before a refusal, it is read again through SQLite's locks; a locked read that accepted the
+// file stands (a concurrent writer changes the file without making that read inexact).
 FileState inspect(const std::string& path, const DbOpenOptions& opt) {
   const FileStamp before(path);
+  bool lock_free = false;
   try {
-    FileState state = inspect_file(path, opt, false);
-    if (FileStamp(path) == before) return state;
+    FileState state = inspect_file(path, opt, false, lock_free);
+    if (!lock_free || FileStamp(path) == before) return state;
   } catch (const NotOurs&) {
     if (FileStamp(path) == before) throw;
   }
-  return inspect_file(path, opt, true);
+  return inspect_file(path, opt, true, lock_free);
 }
 
 // Field 22 of /proc/PID/stat: the process's start time in clock ticks after boot (0 when the
