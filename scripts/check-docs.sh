@@ -2,7 +2,7 @@
 # The doc check: the docs say what the tree holds. Fails (exit 1, one line per problem) when
 #   (a) a source file of a library folder (a top-level folder whose CMakeLists.txt makes a
 #       library, or cli/) is not named in that folder's README.md: its name, its path from the
-#       folder, or a `stem.*` pattern that covers it (`progress.*` names progress.hpp and .cpp);
+#       folder, or a pattern that covers it (`progress.*` or `progress.hpp/.cpp` names both files);
 #   (b) a file a doc names does not exist. The docs are every *.md file of the tree (README.md,
 #       BENCHMARKS.md, docs/**, the folder READMEs). Checked: markdown links to local files
 #       (relative to the doc, as a reader's browser resolves them), and, in `code spans`, code
@@ -55,7 +55,7 @@ is_top() {
 source_pattern='.*\.(cpp|hpp|h|c|cc|glsl|vert|frag|js)$'
 for d in "${top[@]}"; do
   [ -f "$d/CMakeLists.txt" ] || continue
-  grep -qE 'add_library|add_executable\(tilekit ' "$d/CMakeLists.txt" || continue
+  grep -qE 'add_library|tilekit_library\(|add_executable\(tilekit ' "$d/CMakeLists.txt" || continue
   case "$d" in bench | tests | fuzz | examples) continue ;; esac
   readme="$d/README.md"
   if [ ! -f "$readme" ]; then
@@ -66,10 +66,10 @@ for d in "${top[@]}"; do
     rel=${f#"$d"/}
     name=${rel##*/}
     stem=${name%.*}
-    # the name or its path inside the folder, or stem.* (a name with no letter, digit or _
-    # before it, so that input.hpp is not named by json_input.hpp)
+    # the name or its path inside the folder, stem.* or stem.hpp/.cpp (a name with no letter,
+    # digit or _ before it, so that input.hpp is not named by json_input.hpp)
     found=0
-    for word in "$rel" "$name" "$stem.*"; do
+    for word in "$rel" "$name" "$stem.*" "$stem.hpp/.cpp"; do
       esc=$(printf '%s' "$word" | sed 's/[.[\*^$/]/\\&/g')
       if grep -qE "(^|[^A-Za-z0-9_])$esc([^A-Za-z0-9_]|\$)" "$readme"; then
         found=1
