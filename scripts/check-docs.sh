@@ -62,22 +62,20 @@ for d in "${top[@]}"; do
     fail "$d/: a library folder without a README.md"
     continue
   fi
+  # the name or its path inside the folder, stem.* or stem.hpp/.cpp, with no letter, digit or
+  # _ on either side (so that input.hpp is not named by json_input.hpp)
   while IFS= read -r f; do
-    rel=${f#"$d"/}
-    name=${rel##*/}
-    stem=${name%.*}
-    # the name or its path inside the folder, stem.* or stem.hpp/.cpp (a name with no letter,
-    # digit or _ before it, so that input.hpp is not named by json_input.hpp)
-    found=0
-    for word in "$rel" "$name" "$stem.*" "$stem.hpp/.cpp"; do
-      esc=$(printf '%s' "$word" | sed 's/[.[\*^$/]/\\&/g')
-      if grep -qE "(^|[^A-Za-z0-9_])$esc([^A-Za-z0-9_]|\$)" "$readme"; then
-        found=1
-        break
-      fi
-    done
-    [ $found = 1 ] || fail "$readme: does not name $f (a source file of the folder)"
-  done < <(find "$d" -type f -regextype posix-extended -regex "$source_pattern" | sort)
+    fail "$readme: does not name $f (a source file of the folder)"
+  done < <(find "$d" -type f -regextype posix-extended -regex "$source_pattern" | sort |
+    awk -v d="$d" -v readme="$readme" '
+      BEGIN { while ((getline line < readme) > 0) text = text "\n" line; text = text "\n" }
+      function esc(w) { gsub(/[][.*^$\/+?(){}|\\]/, "\\\\&", w); return w }
+      function named(w) { return text ~ ("[^A-Za-z0-9_]" esc(w) "([^A-Za-z0-9_]|$)") }
+      {
+        rel = substr($0, length(d) + 2); name = rel; sub(/.*\//, "", name)
+        stem = name; sub(/\.[^.]*$/, "", stem)
+        if (!(named(rel) || named(name) || named(stem ".*") || named(stem ".hpp/.cpp"))) print
+      }')
 done
 
 # ---- (b) every file a doc names exists.

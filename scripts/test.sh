@@ -2,7 +2,8 @@
 # Sets up, builds and tests (docs/TESTING.md, with the measured time of each step). The default is
 # the README's test command, about ten minutes on 2 cores once set up (ccache warm; see TESTING.md):
 #   0. the layer check (scripts/check-layers.sh: includes against each folder README's
-#      "May include" line, no cycles), before anything is built;
+#      "May include" line, no cycles) and the doc check (scripts/check-docs.sh: every source file
+#      in its folder README, every file a doc names present), before anything is built;
 #   1. the Release build (build/, Ninja; the benchmarks are left to the sanitizer build) and its
 #      ctest suite less the tests labelled "slow" (the SIGKILL/SIGTERM/resume rounds and shard
 #      merges of pack and enumerate, tests/CMakeLists.txt);
@@ -50,6 +51,7 @@ release_ctest() {  # release_ctest CTEST_ARGS...: the Release suite, with EGL an
 }
 step "set-up" "$root/scripts/setup.sh"
 step "layer check" bash "$root/scripts/check-layers.sh"
+step "doc check" bash "$root/scripts/check-docs.sh"
 slurm_pid=""
 slurm_log=$root/build/slurm-test.log
 start_slurm() {  # the real-Slurm test in the background, its output and exit code in build/
