@@ -27,7 +27,7 @@ class ImposeModel {
  public:
   enum class Ordering { Static, MostConstrained };
   // `pattern_sizes`: bit k set = slot subsets of size k (1..3) get demand/avail counts
-  // (default 4: pairs; measured in BENCHMARKS.md, "Search under imposed automorphisms").
+  // (default 4: pairs; measured in BENCHMARKS.md, "Packings by search").
   ImposeModel(FundamentalDomain domain, Ordering ordering, unsigned pattern_sizes = 4);
 
   int branch(std::vector<int>& values);
