@@ -1,4 +1,4 @@
-#include "texture/preview.hpp"
+#include "render/preview.hpp"
 
 #include <fmt/format.h>
 
@@ -6,8 +6,8 @@
 #include <string_view>
 
 #include "base/hash.hpp"
-#include "texture/baseline_samplers.hpp"
-#include "texture/glsl_sampler.hpp"
+#include "render/baseline_samplers.hpp"
+#include "render/glsl_sampler.hpp"
 
 namespace tilekit {
 
