@@ -1,10 +1,11 @@
 #pragma once
 // One way to find a packing of the complete Wang or corner set over C colours, used by
-// `tilekit pack`, `tilekit atlas lookup` and `texture atlas --db`: a validated packing from the results database,
-// else a construction (closed forms, products, stored data: tilesets/constructions.hpp), else
-// a search (the caller's, e.g. pack's checkpointed portfolio). Every answer is a packing the
-// independent validator accepts (a stored one is re-checked; constructions are checked when
-// `validate_construction`, otherwise the caller checks every tile once).
+// `tilekit pack`, `tilekit atlas lookup` and `texture atlas --db`: a validated packing from the
+// results database, else a construction (closed forms, products, stored data:
+// tilesets/constructions.hpp), else a search (the caller's, e.g. pack's checkpointed portfolio).
+// Every answer is a packing the independent validator accepts (a stored one is re-checked;
+// constructions are checked when `validate_construction`, otherwise the caller checks every tile
+// once).
 #include <cstdint>
 #include <functional>
 #include <optional>
