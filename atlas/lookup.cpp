@@ -1,17 +1,15 @@
-// Atlas lookup: where a packing comes from (packing/find_packing.hpp: database, then
-// construction) and the CPU reference of the shader mapping. The text formats are in
-// lookup_formats.cpp.
+// Atlas lookup: a packing's positions (from any packing, or the constructed one) and the CPU
+// reference of the shader mapping. The text formats are in lookup_formats.cpp; a packing from a
+// results database comes through packing/find_packing.hpp.
 #include "atlas/lookup.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
-#include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "base/error.hpp"
-#include "packing/find_packing.hpp"
-#include "results/results_db.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
 
@@ -49,49 +47,22 @@ AtlasLookup lookup_from_packing(const Tiling& t, std::string source, std::string
   return a;
 }
 
-namespace {
-
-std::unique_ptr<ResultsDb> open_lookup_db(const std::string& path) {
-  std::error_code ec;
-  if (path.empty() || !std::filesystem::exists(path, ec)) return nullptr;  // a lookup never creates one
-  // Read-only and without the O(size) integrity check: a lookup must answer in milliseconds;
-  // the packing read is re-checked by the validator instead.
-  return std::make_unique<ResultsDb>(path, DbOpenOptions{.create = false, .read_only = true});
-}
-
-std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb* db, const std::string& db_path) {
-  std::vector<std::uint32_t> avail = constructible_colours(kind, 32);
-  if (db)
-    for (std::uint32_t c = 1; c <= 32; ++c)
-      if (db->find_solution(kind, c, int(c * c), int(c * c)) && std::find(avail.begin(), avail.end(), c) == avail.end())
-        avail.push_back(c);
-  std::sort(avail.begin(), avail.end());
-  std::string list;
-  for (std::uint32_t c : avail) list += (list.empty() ? "" : ", ") + std::to_string(c);
-  return fmt::format(
-      "no {} packing over {} colours is available (no construction, none stored{}); available C up to 32: {}. "
-      "Search for one with `tilekit pack --kind {} --colors {} --method search --db {}` (it is stored there and "
-      "`tilekit atlas lookup` finds it next time)",
-      kind_name(kind), colours, db ? " in " + db->path() : "", list, kind_name(kind), colours,
-      db_path.empty() ? "FILE" : db_path);
-}
-
-}  // namespace
-
-AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options) {
+AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours) {
   check_complete_set_colours(colours);
-  std::unique_ptr<ResultsDb> db = open_lookup_db(options.db_path);
-  PackingSources src;
-  src.db = db.get();
-  // Every answer is checked by the independent validator: a stored packing in find_packing, a
-  // construction there too (proven, see tilesets/construct_*.cpp; a C=32 corner packing,
-  // 1024x1024 cells, validates in about 0.1 s: BENCHMARKS.md).
-  src.validate_construction = true;
-  std::optional<FoundPacking> found = find_packing(kind, colours, src);
-  if (!found) throw NotFound(unavailable_message(kind, colours, db.get(), options.db_path));
-  AtlasLookup a = lookup_from_packing(found->tiling, found->source, found->how, found->closed_form, false);
-  a.solution_id = found->solution_id;
-  return a;
+  std::optional<ConstructedPacking> p = construct_packing(kind, colours);
+  if (!p) {
+    std::string list;
+    for (std::uint32_t c : constructible_colours(kind, 32)) list += (list.empty() ? "" : ", ") + std::to_string(c);
+    throw NotFound(fmt::format(
+        "no {} packing over {} colours is constructed or stored in Tilekit; constructed C up to 32: {}. Search for "
+        "one with `tilekit pack --kind {} --colors {} --method search --db FILE` and name that database with --db",
+        kind_name(kind), colours, list, kind_name(kind), colours));
+  }
+  // Proven constructions (tilesets/construct_*.cpp), checked all the same: a C=32 corner packing,
+  // 1024x1024 cells, validates in about 0.1 s (BENCHMARKS.md).
+  if (!validate(p->tiling).packing)
+    throw std::logic_error(fmt::format("the {} construction for C={} is not a packing", p->how, colours));
+  return lookup_from_packing(p->tiling, "construct", p->how, p->closed_form, false);
 }
 
 void check_same_set(const AtlasLookup& a, const DirectTiling& tiling) {

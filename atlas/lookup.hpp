@@ -20,20 +20,19 @@ struct AtlasLookup {
   int rows = 0, cols = 0;
   std::vector<TileIndex> cells;                // atlas cell (row-major) -> tile index
   std::vector<std::pair<int, int>> positions;  // tile index -> (row, col)
-  std::string source;                          // "db" | "construct"
+  std::string source;                          // "db" | "construct" | "file"
   std::string how;                             // construction name, or "solution N in FILE"
   bool closed_form = false;                    // positions have a closed form (GLSL uses it)
   std::int64_t solution_id = 0;                // for source "db"
 };
 
-struct LookupOptions {
-  std::string db_path;  // "" = no database
-};
-
-// Database hit first (a validated stored packing, re-checked by the validator), then a
-// construction. Throws NotFound (exit 1) naming the available colour counts and the search
-// command when neither has one, InputError for C outside 1..kMaxCompleteSetColours (tilesets/tile_set.hpp).
-AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours, const LookupOptions& options);
+// The packing that needs no search and no database: a construction or one of the reference
+// packings stored in tilesets/data/ (tilesets/constructions.hpp), checked by the independent
+// validator, so the answer depends on C alone, never on a user's database (a stored search result
+// is packing/find_packing.hpp's `find_lookup_packing`). Throws NotFound (exit 1) naming the
+// constructed colour counts and the search command when there is none, InputError for C outside
+// 1..kMaxCompleteSetColours (tilesets/tile_set.hpp).
+AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours);
 
 // From a packing. Throws InputError unless it is a C^2 x C^2 torus holding every tile once and,
 // with `run_validator`, the independent validator accepts it as a packing.

@@ -23,10 +23,10 @@
 #include "atlas/lookup.hpp"
 #include "base/parallel.hpp"
 #include "bench/bench_common.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/exemplar_surface.hpp"
-#include "texture/gl_renderer.hpp"
-#include "texture/sampling.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/exemplar_surface.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/sampling.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -98,7 +98,7 @@ void seams(int threads, bool quick) {
   for (const std::string name : {"brick", "grass", "gravel"}) {
     const Exemplar e = texture(name);
     for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
-      const AtlasLookup lookup = atlas_lookup(kind, 2, {});
+      const AtlasLookup lookup = atlas_lookup(kind, 2);
       const Tiling t = kind == TileKind::Corner ? DirectCornerTiling(2, HashKind::LongPeriod, 1).generate(32, 32)
                                                 : DirectWangTiling(2, 2, HashKind::LongPeriod, 1).generate(32, 32);
       for (const char* method : {"searched", "no-search", "naive"}) {
@@ -244,8 +244,7 @@ int main(int argc, char** argv) {
   if (runs("seams")) seams(2, quick);
   if (!runs("cpu-render") && !runs("glsl-render")) return 0;
   SynthesisOptions o = options(TileKind::Corner, 3, 128, 2);
-  const TextureAtlas atlas =
-      build_texture_atlas(atlas_lookup(TileKind::Corner, 3, {}), synthesize_tiles(grass, o).tiles);
+  const TextureAtlas atlas = build_texture_atlas(atlas_lookup(TileKind::Corner, 3), synthesize_tiles(grass, o).tiles);
   const ExemplarSurface ex = make_exemplar_surface(grass.image, grass.name);
   renderers(atlas, ex, reps, only);
   return 0;

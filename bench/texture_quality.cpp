@@ -21,7 +21,7 @@
 #include "atlas/lookup.hpp"
 #include "base/random.hpp"
 #include "bench/bench_common.hpp"
-#include "texture/cpu_renderer.hpp"
+#include "render/cpu_renderer.hpp"
 #include "texture/texture_analysis.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -77,7 +77,7 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
   o.threads = threads;
   TextureTileSet s;
   const double seconds = seconds_of([&] { s = synthesize_tiles(e, o); });
-  const AtlasLookup lookup = atlas_lookup(kind, c, {});
+  const AtlasLookup lookup = atlas_lookup(kind, c);
   std::vector<Image> labels;
   for (TileIndex t = 0; t < s.tiles.size(); ++t) labels.push_back(source_labels(s, t));
   const View view{size, size, 1, 0, 0, 0};

@@ -3,12 +3,13 @@
 
 #include <iostream>
 
-#include "base/atomic_file.hpp"
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
-#include "results/results_db.hpp"
-#include "cli/command.hpp"
+#include "base/atomic_file.hpp"
 #include "base/error.hpp"
+#include "cli/command.hpp"
+#include "cli/packing_lookup.hpp"
+#include "results/results_db.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -30,9 +31,8 @@ void add_packing_options(CLI::App* cmd, PackingArgs& a) {
 }
 
 AtlasLookup lookup(const PackingArgs& a) {
-  LookupOptions o;
-  if (!a.no_db) o.db_path = a.db.empty() ? ResultsDb::default_path() : a.db;
-  return atlas_lookup(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, o);
+  const std::string db = a.no_db ? "" : a.db.empty() ? ResultsDb::default_path() : a.db;
+  return lookup_with_database(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, db);
 }
 
 struct LookupArgs {

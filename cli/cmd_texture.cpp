@@ -11,8 +11,8 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "cli/command.hpp"
-#include "results/results_db.hpp"
-#include "texture/glsl_sampler.hpp"
+#include "cli/packing_lookup.hpp"
+#include "render/glsl_sampler.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
 
@@ -125,9 +125,10 @@ struct AtlasArgs {
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
   const TileSetManifest m = read_tile_set_manifest(a.dir);
   const TileKind kind = m.kind;
-  LookupOptions lo;
-  if (!a.no_db) lo.db_path = a.db.empty() ? ResultsDb::default_path() : a.db;
-  const AtlasLookup lookup = atlas_lookup(kind, m.colours, lo);
+  // The constructed (or reference) packing unless a database is named, so that the atlas of a tile
+  // set depends on nothing but the set: never on what the user's own database holds.
+  const AtlasLookup lookup =
+      a.db.empty() || a.no_db ? atlas_lookup(kind, m.colours) : lookup_with_database(kind, m.colours, a.db);
   const TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
@@ -160,8 +161,10 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
   cmd->add_option("--out", a->out, "Atlas PNG; atlas.mipK.png, atlas.json, atlas.h and atlas.glsl go beside it")
       ->required();
-  cmd->add_option("--db", a->db, "Results database to look for a stored packing in (default: the per-user one)");
-  cmd->add_flag("--no-db", a->no_db, "Constructions only, no database");
+  cmd->add_option("--db", a->db,
+                  "Results database to look for a stored packing in first (default: none, the constructed or "
+                  "reference packing)");
+  cmd->add_flag("--no-db", a->no_db, "Constructions only, no database (the default; kept for scripts)");
   cmd->add_option("--hash", a->hash, "Lattice hash of the tiling in atlas.glsl: perm or long-period")
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of that hash")->capture_default_str();

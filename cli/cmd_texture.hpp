@@ -10,8 +10,8 @@
 #include <string>
 
 #include "cli/command.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/exemplar_surface.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/exemplar_surface.hpp"
 
 namespace tilekit::cli {
 

@@ -1,5 +1,5 @@
 // tilekit texture preview: one self-contained HTML page that renders the infinite texture live with
-// WebGL2 and the same GLSL as `texture render --glsl` (texture/preview.hpp).
+// WebGL2 and the same GLSL as `texture render --glsl` (render/preview.hpp).
 #include <fmt/format.h>
 
 #include <memory>
@@ -7,7 +7,7 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "cli/cmd_texture.hpp"
-#include "texture/preview.hpp"
+#include "render/preview.hpp"
 
 namespace tilekit::cli {
 

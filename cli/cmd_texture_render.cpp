@@ -12,9 +12,9 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "cli/cmd_texture.hpp"
-#include "texture/anisotropic.hpp"
+#include "render/anisotropic.hpp"
+#include "render/gl_renderer.hpp"
 #include "texture/exemplar.hpp"
-#include "texture/gl_renderer.hpp"
 
 namespace tilekit::cli {
 

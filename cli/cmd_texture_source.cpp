@@ -7,7 +7,7 @@
 #include "base/error.hpp"
 #include "base/parse.hpp"
 #include "cli/cmd_texture.hpp"
-#include "texture/anisotropic.hpp"
+#include "render/anisotropic.hpp"
 #include "texture/exemplar.hpp"
 
 namespace tilekit::cli {

@@ -1,8 +1,9 @@
 # Writes OUT, a C++ file defining FUNCTION(), which returns every file of DIR matching PATTERNS
 # (comma-separated) as an EmbeddedFile (tilesets/reference_data.hpp): its name, less STRIP when
 # given, and its text as a raw string. The one way Tilekit embeds files in the binary: the
-# reference sets of tilesets/data/ (reference_data()) and the Slurm job-script bodies of
-# scripts/slurm/ (slurm_script_bodies()).
+# reference sets of tilesets/data/ (reference_data()), the Slurm job-script bodies of
+# scripts/slurm/ (slurm_script_bodies()) and the preview page's JavaScript of render/
+# (preview_scripts()).
 # Usage: cmake -DDIR=tilesets/data -DPATTERNS=*.tiles,*.json [-DSTRIP=.body.sh] -DHEADER=lib/x.hpp
 #              -DNAMESPACE=tilekit -DFUNCTION=reference_data -DOUT=file.cpp -P embed_files.cmake
 string(REPLACE "," ";" patterns "${PATTERNS}")

@@ -11,8 +11,8 @@ include(CMakePackageConfigHelpers)
 
 # The libraries a program needs to look up packings (atlas, packing), tile (tiling), store and
 # query results (results) and check aperiodic sets or make point sets, with every library they
-# link. texture/ is left out: its GLSL renderer links the system's EGL privately, which a static
-# export would have to name by absolute path.
+# link. texture/ and render/ are left out: render's GLSL renderer links the system's EGL
+# privately, which a static export would have to name by absolute path.
 set(TILEKIT_INSTALLED_LIBRARIES base image tilesets tiling solver results checkpoints packing aperiodic atlas points)
 set(TILEKIT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Tilekit)
 

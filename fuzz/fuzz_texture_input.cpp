@@ -29,7 +29,7 @@ const std::string& workdir() {
     std::string d = ::mkdtemp(t.data());
     // A valid atlas of the two-colour corner packing with 16-pixel tiles, like the seed that
     // `texture atlas` writes (scripts/fuzz.sh): its PNG levels stay, the manifest is the input.
-    const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 2, {});
+    const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 2);
     std::vector<Image> tiles;
     for (std::size_t i = 0; i < lookup.cells.size(); ++i) tiles.emplace_back(16, 16, Rgb{std::uint8_t(i * 16), 0, 0});
     write_texture_atlas(build_texture_atlas(lookup, tiles), d + "/atlas.png", "// glsl\n");

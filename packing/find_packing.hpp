@@ -1,10 +1,11 @@
 #pragma once
 // One way to find a packing of the complete Wang or corner set over C colours, used by
-// `tilekit pack` and `tilekit atlas lookup`: a validated packing from the results database,
-// else a construction (closed forms, products, stored data: tilesets/constructions.hpp), else
-// a search (the caller's, e.g. pack's checkpointed portfolio). Every answer is a packing the
-// independent validator accepts (a stored one is re-checked; constructions are checked when
-// `validate_construction`, otherwise the caller checks every tile once).
+// `tilekit pack`, `tilekit atlas lookup` and `texture atlas --db`: a validated packing from the
+// results database, else a construction (closed forms, products, stored data:
+// tilesets/constructions.hpp), else a search (the caller's, e.g. pack's checkpointed portfolio).
+// Every answer is a packing the independent validator accepts (a stored one is re-checked;
+// constructions are checked when `validate_construction`, otherwise the caller checks every tile
+// once).
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -35,5 +36,11 @@ struct PackingSources {
 
 // nullopt when no source has one. Throws InputError for C outside 1..255.
 std::optional<FoundPacking> find_packing(TileKind kind, std::uint32_t colours, const PackingSources& sources);
+
+// What `atlas lookup` (and `texture atlas --db`) ask for: find_packing without a search, the
+// database at `db_path` first (opened read-only, never created; "" or a missing file: none),
+// every answer validated. Throws NotFound (exit 1) naming the colour counts available and the
+// search command that would store one, InputError for C outside 1..kMaxCompleteSetColours.
+FoundPacking find_lookup_packing(TileKind kind, std::uint32_t colours, const std::string& db_path);
 
 }  // namespace tilekit

@@ -63,7 +63,7 @@ for ex in "$@"; do
     a='null'
     if ((analyze)); then
       # hex and hpn: their triangle grid of side S = cell_px, basis (S,0) and (S/2, S sqrt(3)/2)
-      # (texture/baseline_samplers.hpp's skew, inverted), a vertex at the origin.
+      # (render/baseline_samplers.hpp's skew, inverted), a vertex at the origin.
       lattice=(--tile-px 64 --labels "$dir/flat-labels-$m.png")
       if [ "$method" != tiles ]; then
         s=$(field cell_px "$j")

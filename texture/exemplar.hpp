@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "atlas/atlas_image.hpp"
+#include "image/image.hpp"
 
 namespace tilekit {
 

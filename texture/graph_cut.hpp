@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "atlas/atlas_image.hpp"
+#include "image/image.hpp"
 
 namespace tilekit {
 

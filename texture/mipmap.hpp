@@ -7,7 +7,7 @@
 // of the infinite tiling. Integer weights, so the chain is exact and reproducible.
 #include <vector>
 
-#include "atlas/atlas_image.hpp"
+#include "image/image.hpp"
 
 namespace tilekit {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "atlas/atlas_image.hpp"
+#include "image/image.hpp"
 #include "texture/tile_synthesis.hpp"
 #include "tilesets/tile_grid.hpp"
 

@@ -27,7 +27,7 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& t
 
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
 // atlas.mipL.png, atlas.json (the manifest: tile size, levels, the lookup), atlas.h (C lookup
-// table) and atlas.glsl (the GLSL ES 3.0 sampler, texture/glsl_sampler.hpp, with the given hash).
+// table) and atlas.glsl (the GLSL ES 3.0 sampler, render/glsl_sampler.hpp, with the given hash).
 struct AtlasFiles {
   std::vector<std::string> levels;
   std::string manifest, header, glsl;

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "atlas/atlas_image.hpp"
+#include "image/image.hpp"
 #include "texture/exemplar.hpp"
 #include "texture/perspective.hpp"
 #include "tilesets/tile.hpp"

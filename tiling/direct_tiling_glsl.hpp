@@ -2,7 +2,7 @@
 // The GLSL ES 3.0 text of the lattice hashes and of the direct stochastic tiling (thesis 3.3),
 // generated here, in one place, from the same ColourHash tables that the C++ code evaluates
 // (lattice_hash.hpp, direct_tiling.hpp): integer arithmetic only, so a shader gives the same
-// colour and the same tile as the C++ at every lattice point, bit for bit (tests/texture).
+// colour and the same tile as the C++ at every lattice point, bit for bit (tests/render).
 //
 // Axis convention, the one of lattice_tiling.hpp and of every part of Tilekit (the atlas lookup,
 // the renderers, the shaders): x grows to the east, y to the south (image rows); tile (x, y)

@@ -107,7 +107,7 @@ class ColourHash {
 
   // The permutation tables P_i of size N_i that make up the hash (one for kind Permutation),
   // and the final modulo divisor N_j (the range before the reduction to C colours): what a
-  // shader needs to evaluate the same function (texture/glsl_sampler.cpp).
+  // shader needs to evaluate the same function (render/glsl_sampler.cpp).
   struct Component {
     std::uint32_t n;
     std::vector<std::uint32_t> p;

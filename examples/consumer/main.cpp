@@ -13,7 +13,7 @@
 
 int main(int argc, char** argv) {
   const auto colours = std::uint32_t(argc > 1 ? std::stoul(argv[1]) : 3);
-  const tilekit::AtlasLookup atlas = tilekit::atlas_lookup(tilekit::TileKind::Corner, colours, {});
+  const tilekit::AtlasLookup atlas = tilekit::atlas_lookup(tilekit::TileKind::Corner, colours);
   const tilekit::Tiling window = tilekit::DirectCornerTiling(colours, tilekit::HashKind::LongPeriod, 1).generate(4, 8);
   std::cout << tilekit::lookup_json_text(atlas) << "\n" << tilekit::tiling_to_json(window).dump() << "\n";
   for (int r = 0; r < window.rows; ++r, std::cout << "\n")

@@ -12,7 +12,9 @@ using namespace tilekit;
 using namespace tilekit::test;
 
 namespace {
-AtlasLookup lookup(TileKind k, std::uint32_t c) { return atlas_lookup(k, c, LookupOptions{}); }
+AtlasLookup lookup(TileKind k, std::uint32_t c) {
+  return atlas_lookup(k, c);
+}
 
 // The same tiles in a random order: not a packing, so borders no longer match.
 AtlasLookup shuffled(AtlasLookup a) {

@@ -5,6 +5,7 @@
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
+#include "cli/packing_lookup.hpp"
 #include "results/results_db.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/constructions.hpp"
@@ -16,7 +17,7 @@ using namespace tilekit::test;
 namespace {
 
 AtlasLookup no_db(TileKind k, std::uint32_t c) {
-  return atlas_lookup(k, c, LookupOptions{});
+  return atlas_lookup(k, c);
 }
 
 void expect_lookup_consistent(const AtlasLookup& a) {
@@ -68,14 +69,17 @@ TEST(AtlasLookup, AStoredPackingInTheDatabaseComesFirst) {
     s.validated = true;
     db.add_solution(s);
   }
-  AtlasLookup a = atlas_lookup(TileKind::Corner, 3, LookupOptions{d / "r.sqlite"});
+  // The database through packing/ (find_lookup_packing), laid out by atlas/: what `atlas lookup` does.
+  AtlasLookup a = cli::lookup_with_database(TileKind::Corner, 3, d / "r.sqlite");
   EXPECT_EQ(a.source, "db");
   EXPECT_FALSE(a.closed_form);
   EXPECT_EQ(a.cells, shifted.cells);
   expect_lookup_consistent(a);
   // A database that does not exist is not created by a lookup.
-  EXPECT_EQ(atlas_lookup(TileKind::Corner, 3, LookupOptions{d / "none.sqlite"}).source, "construct");
+  EXPECT_EQ(cli::lookup_with_database(TileKind::Corner, 3, d / "none.sqlite").source, "construct");
   EXPECT_FALSE(std::filesystem::exists(d / "none.sqlite"));
+  // atlas/'s own lookup reads no database: the construction, whatever a database holds.
+  EXPECT_EQ(atlas_lookup(TileKind::Corner, 3).cells, t.cells);
 }
 
 TEST(AtlasLookup, EveryCornerColourCountFromTwoToThirtyTwoAnswersAValidatedPacking) {

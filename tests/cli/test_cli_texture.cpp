@@ -6,10 +6,12 @@
 #include <map>
 
 #include "../cli_runner.hpp"
-#include "base/hash.hpp"
 #include "../texture/texture_fixtures.hpp"
-#include "texture/exemplar_surface.hpp"
-#include "texture/glsl_sampler.hpp"
+#include "base/hash.hpp"
+#include "render/exemplar_surface.hpp"
+#include "render/glsl_sampler.hpp"
+#include "results/results_db.hpp"
+#include "tilesets/constructions.hpp"
 
 namespace tilekit {
 namespace {
@@ -55,6 +57,40 @@ TEST(CliTexture, TilesAtlasAndRenderMakeTheirFilesAndReportJson) {
       run_cli("texture render --atlas " + (d / "atlas.json") + " --size 20x10 --out " + (d / "h.png") + " --quiet");
   EXPECT_EQ(human.code, 0);
   EXPECT_NE(human.out.find("cpu renderer"), std::string::npos) << human.out;
+}
+
+// `texture atlas` lays the tiles out by the constructed (or reference) packing unless --db names a
+// database: a packing stored in the user's default database changes `atlas lookup`'s answer, never
+// the texture atlas's.
+TEST(CliTexture, AtlasUsesTheConstructedPackingUnlessADatabaseIsNamed) {
+  TempDir d;
+  ASSERT_NO_FATAL_FAILURE(make_small_atlas(d));
+  const Tiling t = construct_packing(TileKind::Corner, 2)->tiling;
+  Tiling shifted = t;  // another packing: the constructed one shifted by (1, 2)
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) shifted.at(r, c) = t.at((r + 1) % 4, (c + 2) % 4);
+  {
+    ResultsDb db(d / "r.sqlite");
+    SolutionRecord s;
+    s.tiling = shifted;
+    s.method = "search";
+    s.validated = true;
+    db.add_solution(s);
+  }
+  const std::string user_db = "env TILEKIT_DB=" + (d / "r.sqlite") + " ";
+  auto plain = test::run_cli_prefixed(user_db, "texture atlas " + (d / "t") + " --out " + (d / "c.png") + " --json");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.json()["source"], "construct");
+  EXPECT_EQ(read_texture_atlas(d / "c.png").lookup.cells, t.cells);
+  auto named =
+      run_cli("texture atlas " + (d / "t") + " --out " + (d / "s.png") + " --db " + (d / "r.sqlite") + " --json");
+  ASSERT_EQ(named.code, 0) << named.err;
+  EXPECT_EQ(named.json()["source"], "db");
+  EXPECT_EQ(read_texture_atlas(d / "s.png").lookup.cells, shifted.cells);
+  // `atlas lookup` keeps reading the default database.
+  auto lookup = test::run_cli_prefixed(user_db, "atlas lookup --kind corner --colors 2");
+  ASSERT_EQ(lookup.code, 0) << lookup.err;
+  EXPECT_EQ(lookup.json()["source"], "db");
 }
 
 // texture analyze on a render of a small atlas: the measures in JSON, the labels of the same

@@ -6,7 +6,7 @@
 
 #include <numeric>
 
-#include "texture/cpu_renderer.hpp"
+#include "render/cpu_renderer.hpp"
 #include "texture/graph_cut.hpp"
 #include "texture/seam_cut.hpp"
 #include "texture/texture_analysis.hpp"
@@ -67,7 +67,7 @@ TEST(CornerTiles, CutsOfBrickShowAtMostOnePointFiveTheStepsInsideASample) {
   const TextureTileSet s = synthesize_tiles(test::real_exemplar("brick"), o);
   std::vector<Image> labels;
   for (TileIndex t = 0; t < s.tiles.size(); ++t) labels.push_back(source_labels(s, t));
-  const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 4, {});
+  const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 4);
   const View v{1024, 1024, 1, 0, 0, 0};
   const RenderOptions ro{HashKind::LongPeriod, 1, 2, false};
   const Image img = render_cpu(build_texture_atlas(lookup, s.tiles), v, ro);
@@ -90,7 +90,7 @@ TEST(CornerTiles, ThinBandsOfGravelHideTheGridAtLevelsZeroAndTwo) {
   const TextureTileSet s = synthesize_tiles(test::real_exemplar("gravel"), o);
   EXPECT_TRUE(s.thin_bands);
   EXPECT_LT(s.shared_fraction, 0.35);  // 0.48 with the default bands
-  const TextureAtlas atlas = build_texture_atlas(atlas_lookup(TileKind::Corner, 4, {}), s.tiles);
+  const TextureAtlas atlas = build_texture_atlas(atlas_lookup(TileKind::Corner, 4), s.tiles);
   for (int scale : {1, 4}) {
     const Image img = render_cpu(atlas, View{1024, 1024, double(scale), 0, 0, 0}, {HashKind::LongPeriod, 1, 2, false});
     const TextureAnalysis a = analyze_texture(img, Lattice::square(64 / scale));

@@ -5,7 +5,7 @@
 // Without the fetched textures, procedural exemplars stand in (texture_fixtures.hpp).
 #include <gtest/gtest.h>
 
-#include "texture/cpu_renderer.hpp"
+#include "render/cpu_renderer.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture_fixtures.hpp"
 
@@ -19,7 +19,7 @@ TEST(Seams, RenderedTilingsOfRealTexturesHaveSeamRatioAtMostOnePointOne) {
       const int px = 64;
       SynthesisOptions o = test::small_options(kind, 2, px, 2);
       const TextureTileSet s = synthesize_tiles(e, o);
-      const TextureAtlas atlas = build_texture_atlas(atlas_lookup(kind, 2, {}), s.tiles);
+      const TextureAtlas atlas = build_texture_atlas(atlas_lookup(kind, 2), s.tiles);
       const Image img = render_cpu(atlas, View{32 * px, 32 * px, 1, 0, 0, 0}, {HashKind::LongPeriod, 1, 2, false});
       const SeamStatistics st = seam_statistics(img, px);
       EXPECT_LE(st.seam_ratio, 1.10) << name << " " << kind_name(kind);

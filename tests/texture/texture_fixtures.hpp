@@ -81,7 +81,7 @@ inline const TextureAtlas& grass_atlas(TileKind kind) {
   static std::map<TileKind, TextureAtlas> cache;
   auto it = cache.find(kind);
   if (it == cache.end())
-    it = cache.emplace(kind, build_texture_atlas(atlas_lookup(kind, 2, {}), grass_tiles(kind).tiles)).first;
+    it = cache.emplace(kind, build_texture_atlas(atlas_lookup(kind, 2), grass_tiles(kind).tiles)).first;
   return it->second;
 }
 

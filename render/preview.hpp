@@ -5,10 +5,12 @@
 // (its mip chain, the Gaussianized chain and the look-up table as half floats), so the page can
 // switch between tiles, hex and hpn. No network and no server: open the file.
 //
-// The page computes the view's row table (texture/view.hpp) in JavaScript with the same double
+// The page computes the view's row table (render/view.hpp) in JavaScript with the same double
 // arithmetic as view_rows, and the hash tables of any seed with a port of the seeded shuffle
 // (base/random.hpp, tiling/lattice_hash.hpp); at load it checks that port against the tables of
-// the page's default seed computed here and shows an error if they differ.
+// the page's default seed computed here and shows an error if they differ. The JavaScript is
+// render/preview_tables.js (the ports) and render/preview.js (the page), embedded at build time
+// (render/preview_scripts.hpp) and tested under node against golden vectors (tests/render/).
 //
 // Query: ?capture=1&size=WxH&u=U&v=V&scale=S&seed=N&tilt=T[&method=M&aniso=A] shows only the
 // canvas, W x H, with that view: (u, v) the texel at the top-left as in `texture render --origin
@@ -17,7 +19,7 @@
 // a slider to tilt, buttons for the method).
 #include <string>
 
-#include "texture/cpu_renderer.hpp"
+#include "render/cpu_renderer.hpp"
 
 namespace tilekit {
 

@@ -1,4 +1,4 @@
-// The baselines of texture/baseline_samplers.hpp and what they sample (texture/exemplar_surface.hpp):
+// The baselines of render/baseline_samplers.hpp and what they sample (render/exemplar_surface.hpp):
 // half floats, the histogram transformation of Heitz & Neyret 2018 and its inverse, and the
 // properties the papers claim for the blends.
 #include <gtest/gtest.h>
@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numeric>
 
+#include "../texture/texture_fixtures.hpp"
 #include "base/error.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/exemplar_surface.hpp"
-#include "texture_fixtures.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/exemplar_surface.hpp"
 
 namespace tilekit {
 namespace {

@@ -3,16 +3,16 @@
 //  - tiles (thesis sec. 5.4, Tilekit's method): every pixel goes through the direct stochastic
 //    tiling (tiling/direct_tiling.hpp) to a tile, through the packing to the tile's place in the
 //    atlas, and is sampled from the atlas's mip chain;
-//  - hex and hpn, the baselines that sample the exemplar directly (texture/baseline_samplers.hpp).
-// Filtering follows OpenGL's rules (texture/sampling.hpp) with anisotropic taps along the
-// footprint's major axis (texture/anisotropic.hpp; max_aniso 1 is trilinear). The GLSL renderer
+//  - hex and hpn, the baselines that sample the exemplar directly (render/baseline_samplers.hpp).
+// Filtering follows OpenGL's rules (render/sampling.hpp) with anisotropic taps along the
+// footprint's major axis (render/anisotropic.hpp; max_aniso 1 is trilinear). The GLSL renderer
 // (glsl_sampler.hpp, gl_renderer.hpp) does the same on the GPU; tests compare the two.
 #include <cstdint>
 #include <string>
 
-#include "texture/exemplar_surface.hpp"
+#include "render/exemplar_surface.hpp"
+#include "render/view.hpp"
 #include "texture/texture_atlas.hpp"
-#include "texture/view.hpp"
 #include "tiling/direct_tiling.hpp"
 
 namespace tilekit {

@@ -1,6 +1,6 @@
 #pragma once
 // The two baselines of `texture render --method hex|hpn`, on the CPU and as GLSL ES 3.0 text, both
-// sampling the exemplar directly (texture/exemplar_surface.hpp) on a triangle grid:
+// sampling the exemplar directly (render/exemplar_surface.hpp) on a triangle grid:
 //  - the grid (Heitz & Neyret 2018, the same in Mikkelsen 2022): the plane in units of the
 //    triangle side, skewed by (x - y / sqrt 3, 2 y / sqrt 3), floored; the three vertices of the
 //    pixel's triangle with barycentric weights w1, w2, w3. Each vertex v shows the exemplar
@@ -12,20 +12,20 @@
 //  - hpn (Heitz & Neyret 2018): the Gaussianized patches blended preserving mean and variance,
 //    G = (sum w_i G_i - 1/2) / sqrt(sum w_i^2) + 1/2, then every channel through the inverse
 //    transformation of the mip level the fetches used, and the PCA basis back to RGB.
-// Each of the three fetches is the anisotropic fetch of texture/anisotropic.hpp (N taps along the
+// Each of the three fetches is the anisotropic fetch of render/anisotropic.hpp (N taps along the
 // footprint's major axis, in texels); the grid is evaluated once, at the pixel.
 //
 // CPU and GLSL run the same float operations in the same order (the constants are printed with
 // 9 significant digits, which reads back as the same float), so the renders agree within the
-// filtering differences of the GPU (tests/texture). The only discontinuities of the grid, a
+// filtering differences of the GPU (tests/render). The only discontinuities of the grid, a
 // vertex changing across a triangle edge, have weight 0 on that edge, so a rounding difference
 // there changes nothing visible.
 #include <array>
 #include <cstdint>
 #include <string>
 
-#include "texture/anisotropic.hpp"
-#include "texture/exemplar_surface.hpp"
+#include "render/anisotropic.hpp"
+#include "render/exemplar_surface.hpp"
 #include "tiling/lattice_hash.hpp"
 
 namespace tilekit {
@@ -36,7 +36,7 @@ struct PatchHashes {
   PatchHashes(HashKind kind, std::uint64_t seed);
 };
 
-// A pixel: texel position (tile, frac) of the view's fixed point (texture/view.hpp) with
+// A pixel: texel position (tile, frac) of the view's fixed point (render/view.hpp) with
 // `unit_px` texels per tile, and its footprint (anisotropic_footprint with tile_px = unit_px).
 struct PixelPosition {
   std::int32_t tile_u = 0, tile_v = 0;

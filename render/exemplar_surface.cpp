@@ -1,4 +1,4 @@
-#include "texture/exemplar_surface.hpp"
+#include "render/exemplar_surface.hpp"
 
 #include <fmt/format.h>
 

@@ -1,11 +1,11 @@
-#include "texture/baseline_samplers.hpp"
+#include "render/baseline_samplers.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "base/random.hpp"
-#include "texture/sampling.hpp"
+#include "render/sampling.hpp"
 #include "tiling/direct_tiling_glsl.hpp"
 
 namespace tilekit {

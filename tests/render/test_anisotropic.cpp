@@ -1,14 +1,14 @@
-// Anisotropic filtering (texture/anisotropic.hpp): the footprint rule, the CPU and GLSL renders of
+// Anisotropic filtering (render/anisotropic.hpp): the footprint rule, the CPU and GLSL renders of
 // every method equal within 2/255 on tilted views, and what it changes (detail along the short
 // axis of a tilted view; nothing on a flat one).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "../texture/texture_fixtures.hpp"
 #include "gl_test.hpp"
-#include "texture/anisotropic.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture_fixtures.hpp"
+#include "render/anisotropic.hpp"
+#include "render/cpu_renderer.hpp"
 
 namespace tilekit {
 namespace {

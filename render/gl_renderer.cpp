@@ -1,4 +1,4 @@
-#include "texture/gl_renderer.hpp"
+#include "render/gl_renderer.hpp"
 
 #include <fmt/format.h>
 
@@ -215,13 +215,13 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
     glActiveTexture(GLenum(GL_TEXTURE0 + t.unit));
     glBindTexture(GL_TEXTURE_2D, texture);
     const bool rg = t.channels == 2;
-    glTexImage2D(GL_TEXTURE_2D, 0, rg ? GL_RG8UI : GL_RGBA8UI, t.width, t.height, 0, rg ? GL_RG_INTEGER : GL_RGBA_INTEGER,
-                 GL_UNSIGNED_BYTE, t.texels.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, rg ? GL_RG8UI : GL_RGBA8UI, t.width, t.height, 0,
+                 rg ? GL_RG_INTEGER : GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, t.texels.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glUniform1i(glGetUniformLocation(s.program, t.sampler.c_str()), t.unit);
   }
-  // The view's row table (texture/view.hpp), two RGBA32I texels per row.
+  // The view's row table (render/view.hpp), two RGBA32I texels per row.
   std::vector<GLint> table;
   for (const ViewRow& r : vr.rows) {
     GLint bits[3];

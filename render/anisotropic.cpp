@@ -1,4 +1,4 @@
-#include "texture/anisotropic.hpp"
+#include "render/anisotropic.hpp"
 
 namespace tilekit {
 

@@ -3,7 +3,7 @@
 // the exemplar itself, with no precomputed tiles. Both cover the plane with a triangle grid
 // (Heitz & Neyret 2018; Mikkelsen 2022 uses the same grid): every vertex shows a patch
 // of the exemplar around a random centre, and a pixel blends the patches of the three vertices of
-// its triangle (texture/baseline_samplers.hpp).
+// its triangle (render/baseline_samplers.hpp).
 //  - hex tiling (Mikkelsen 2022, "Practical Real-Time Hex-Tiling", JCGT 11(3)) samples the
 //    exemplar's mip chain (`levels`).
 //  - histogram-preserving blending (Heitz & Neyret 2018, "High-Performance By-Example Noise using

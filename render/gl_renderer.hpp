@@ -8,8 +8,8 @@
 #include <string>
 
 #include "base/error.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/glsl_sampler.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/glsl_sampler.hpp"
 
 namespace tilekit {
 

@@ -9,14 +9,14 @@
 // Both renderers evaluate exactly this: the CPU one through anisotropic_footprint and tap_offset
 // below, the shaders through the text of anisotropic_glsl(), with the same float operations (no
 // division, no transcendental function except the log2 of the level of detail, which only
-// moves the trilinear weights) and the tap offsets in the fixed point of texture/view.hpp, in
+// moves the trilinear weights) and the tap offsets in the fixed point of render/view.hpp, in
 // integers, so that every tap of a pixel lands in the same tile in both.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
-#include "texture/view.hpp"
+#include "render/view.hpp"
 
 namespace tilekit {
 

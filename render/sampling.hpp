@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "image/image.hpp"
-#include "texture/exemplar_surface.hpp"
+#include "render/exemplar_surface.hpp"
 
 namespace tilekit {
 

@@ -1,4 +1,4 @@
-#include "texture/view.hpp"
+#include "render/view.hpp"
 
 #include <fmt/format.h>
 
@@ -35,7 +35,7 @@ ViewRows view_rows(const View& v, int tile_px) {
     // u(x) = centre column + (x + 0.5 - W/2) s q; v(y) = v0 + s G(y) with G' = q^2 (perspective:
     // a row that is q times farther covers q times more texels across and q^2 times more along).
     const double step = s * q, first = u0 + W / 2 * s + (0.5 - W / 2) * step;
-    // (1 + t)^3 as products: the preview page (texture/preview.cpp) repeats these double operations in
+    // (1 + t)^3 as products: the preview page (render/preview.cpp) repeats these double operations in
     // JavaScript, whose Math.pow need not round as std::pow does.
     const double vv = v0 + s * (t == 0 ? yc : H / (3 * t) * ((1 + t) * (1 + t) * (1 + t) - q * q * q));
     if (step * kFracOne >= double(2 * kFracOne))

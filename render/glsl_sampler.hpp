@@ -1,15 +1,15 @@
 #pragma once
-// The GLSL ES 3.0 samplers of the three methods of texture/cpu_renderer.hpp, line for line the CPU
+// The GLSL ES 3.0 samplers of the three methods of render/cpu_renderer.hpp, line for line the CPU
 // reference's operations:
 //  - tiles (thesis sec. 5.4): the direct stochastic tiling as tiling/direct_tiling_glsl.hpp
 //    generates it (bit-identical to the C++), the packing position (atlas/lookup.hpp), and per
-//    anisotropic tap (texture/anisotropic.hpp) a textureLod of the mip-mapped atlas. The renderer
+//    anisotropic tap (render/anisotropic.hpp) a textureLod of the mip-mapped atlas. The renderer
 //    and the preview page read the tiling from small integer textures (glsl_table_textures), made
 //    by the C++ tiling itself: with the permutation hash the atlas cell of each tile of one
 //    period (the tiling repeats every N tiles), so a tile costs one texelFetch; with the
 //    long-period hash, whose period is too long for that, each permutation table over one period
 //    (one texelFetch per table gives the table's part of the colours at a tile's four corners);
-//  - hex and hpn: texture/baseline_samplers.hpp.
+//  - hex and hpn: render/baseline_samplers.hpp.
 // The level of detail comes from derivatives of the virtual texture coordinate, not of the atlas
 // coordinate, which jumps at every tile border.
 //
@@ -28,18 +28,18 @@
 #include <utility>
 #include <vector>
 
-#include "texture/anisotropic.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/view.hpp"
+#include "render/anisotropic.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/view.hpp"
 #include "tiling/direct_tiling_glsl.hpp"
 
 namespace tilekit {
 
 // What the fragment shader of the headless renderer (gl_renderer.hpp) outputs.
 enum class GlslMode {
-  Texture,        // the rendered texture (the view's row table, texture/view.hpp)
-  AtlasCell,      // tiles: the atlas cell of the tile at (x, y) + tk_origin: col, row as 16-bit pairs (tests)
-  PlainTexture,   // tiles: one textureLod of the atlas per fragment, no tiling (the benchmark baseline)
+  Texture,       // the rendered texture (the view's row table, render/view.hpp)
+  AtlasCell,     // tiles: the atlas cell of the tile at (x, y) + tk_origin: col, row as 16-bit pairs (tests)
+  PlainTexture,  // tiles: one textureLod of the atlas per fragment, no tiling (the benchmark baseline)
   // tiles, a view whose every pixel has the same footprint of one tap (a flat view): Texture with
   // the level of detail a uniform, tk_lod, set from the CPU's anisotropic_footprint, and the
   // atlas cell of each tile read from a texture of the view's tiles (tk_window: glsl_tile_window)

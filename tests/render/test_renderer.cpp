@@ -10,13 +10,13 @@
 #include <string>
 
 #include "../cli_runner.hpp"
+#include "../texture/texture_fixtures.hpp"
 #include "gl_test.hpp"
-#include "texture/cpu_renderer.hpp"
-#include "texture/gl_renderer.hpp"
-#include "texture/glsl_sampler.hpp"
+#include "render/cpu_renderer.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/glsl_sampler.hpp"
 #include "texture/mipmap.hpp"
 #include "texture/seam_metrics.hpp"
-#include "texture_fixtures.hpp"
 
 namespace tilekit {
 namespace {
@@ -116,7 +116,7 @@ TEST(GlslSampler, CompilesAsAnEs300FragmentShaderForEveryKindPositionAndMethod) 
        {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod})
       for (GlslMode mode : {GlslMode::Texture, GlslMode::FlatTexture, GlslMode::AtlasCell}) {
-        const TextureAtlas a{atlas_lookup(kind, c, {}), 64, {}, ""};
+        const TextureAtlas a{atlas_lookup(kind, c), 64, {}, ""};
         test::write_text(d / "t.frag", glsl_fragment_shader(RenderSource{RenderMethod::Tiles, &a, nullptr},
                                                             RenderOptions{h, 3, 1, false}, mode));
         EXPECT_EQ(sh("glslangValidator " + (d / "t.frag") + " > " + (d / "log.txt") + " 2>&1"), 0)
@@ -179,7 +179,7 @@ TEST(DirectTiling, CppAtlasLookupAndGlslAgreeTileForTileOnAWindow) {
                                        Case{TileKind::Wang, 3, HashKind::LongPeriod, -40, -23},
                                        Case{TileKind::Wang, 3, HashKind::Permutation, 5003, -70001}}) {
     const std::string what = fmt::format("{} C={} {} origin {},{}", kind_name(kind), c, hash_kind_name(hash), ox, oy);
-    const AtlasLookup lookup = atlas_lookup(kind, c, {});
+    const AtlasLookup lookup = atlas_lookup(kind, c);
     const DirectTiling tiling(kind, c, hash, 11);
     std::vector<TileIndex> truth(std::size_t(w) * h);
     tiling.fill(ox, oy, h, w, truth.data());
@@ -224,12 +224,12 @@ TEST(GlslSampler, TilingTexturesGiveTheCppTilesAtTheEndsOfTheIntRange) {
   const int w = 64, h = 16;
   for (HashKind hash : {HashKind::Permutation, HashKind::LongPeriod})
     for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
-      const AtlasLookup lookup = atlas_lookup(kind, 2, {});
+      const AtlasLookup lookup = atlas_lookup(kind, 2);
       const DirectTiling tiling(kind, 2, hash, 5);
       const TextureAtlas atlas{lookup, 4, mip_chain(Image(lookup.cols * 4, lookup.rows * 4), MipEdge::Wrap), ""};
       std::unique_ptr<GlRenderer> r;
       SKIP_WITHOUT_EGL(r = std::make_unique<GlRenderer>(atlas, View{w, h, 1, 0, 0, 0}, RenderOptions{hash, 5, 1, false},
-                                                         GlslMode::AtlasCell));
+                                                        GlslMode::AtlasCell));
       for (auto [ox, oy] : {std::pair{-2147483647 - 1, 2147483647 - h}, std::pair{2147483647 - w, -2147483647 - 1}}) {
         r->set_origin(ox, oy);
         r->draw();

@@ -1,4 +1,4 @@
-#include "texture/sampling.hpp"
+#include "render/sampling.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "texture/cpu_renderer.hpp"
+#include "render/cpu_renderer.hpp"
 
 #include <fmt/format.h>
 
@@ -7,9 +7,9 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
-#include "texture/anisotropic.hpp"
-#include "texture/baseline_samplers.hpp"
-#include "texture/sampling.hpp"
+#include "render/anisotropic.hpp"
+#include "render/baseline_samplers.hpp"
+#include "render/sampling.hpp"
 
 namespace tilekit {
 

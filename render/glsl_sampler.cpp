@@ -1,12 +1,12 @@
-#include "texture/glsl_sampler.hpp"
+#include "render/glsl_sampler.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdint>
 
-#include "texture/anisotropic.hpp"
-#include "texture/baseline_samplers.hpp"
+#include "render/anisotropic.hpp"
+#include "render/baseline_samplers.hpp"
 
 namespace tilekit {
 

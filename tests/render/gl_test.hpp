@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "texture/gl_renderer.hpp"
+#include "render/gl_renderer.hpp"
 
 #define SKIP_WITHOUT_EGL(statement)                                                                   \
   try {                                                                                               \

@@ -1,0 +1,50 @@
+# tilekit_forbid_links(TARGET FORBIDDEN...): fails the configuration when TARGET links any of
+# FORBIDDEN, directly or through any library it links (its transitive link closure: LINK_LIBRARIES
+# and INTERFACE_LINK_LIBRARIES of every target reached, $<LINK_ONLY:...> unwrapped, aliases
+# resolved). The message names the chain, e.g. "texture -> atlas -> packing". Why at configure
+# time: a link edge is added in one CMakeLists.txt line, far from the library that must not get
+# it, and no include check sees it (a library links what it never includes).
+# tests/link_closure/CMakeLists.txt is a project that breaks this rule on purpose (ctest runs it).
+function(tilekit_forbid_links target)
+  set(queue ${target})
+  set(seen ${target})
+  string(MAKE_C_IDENTIFIER "${target}" key)
+  set(chain_${key} ${target})
+  while(queue)
+    list(POP_FRONT queue t)
+    string(MAKE_C_IDENTIFIER "${t}" tkey)
+    set(deps "")
+    get_target_property(type ${t} TYPE)
+    if(NOT type STREQUAL "INTERFACE_LIBRARY")
+      get_target_property(direct ${t} LINK_LIBRARIES)
+      if(direct)
+        list(APPEND deps ${direct})
+      endif()
+    endif()
+    get_target_property(interface ${t} INTERFACE_LINK_LIBRARIES)
+    if(interface)
+      list(APPEND deps ${interface})
+    endif()
+    foreach(dep IN LISTS deps)
+      string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" dep "${dep}")
+      if(NOT TARGET "${dep}")
+        continue()  # a file path, a linker flag or a generator expression: no further edges
+      endif()
+      get_target_property(aliased ${dep} ALIASED_TARGET)
+      if(aliased)
+        set(dep ${aliased})
+      endif()
+      if(dep IN_LIST seen)
+        continue()
+      endif()
+      list(APPEND seen ${dep})
+      string(MAKE_C_IDENTIFIER "${dep}" dkey)
+      set(chain_${dkey} "${chain_${tkey}} -> ${dep}")
+      if(dep IN_LIST ARGN)
+        message(FATAL_ERROR "${target} must not link ${dep}, but it does: ${chain_${dkey}} "
+                            "(cmake/link_closure.cmake; it may not link any of: ${ARGN})")
+      endif()
+      list(APPEND queue ${dep})
+    endforeach()
+  endwhile()
+endfunction()
