@@ -226,9 +226,7 @@ class ParallelSearch {
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
-  bool mine(std::uint64_t i) const {
-    return i % std::uint64_t(cfg_.run.shard.count) == std::uint64_t(cfg_.run.shard.index);
-  }
+  bool mine(std::uint64_t i) const { return cfg_.run.shard.owns(i); }
 
   std::uint64_t done_in_shard() const {
     std::uint64_t n = 0;

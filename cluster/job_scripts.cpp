@@ -1,17 +1,14 @@
-#include "cli/cluster_scripts.hpp"
+#include "cluster/job_scripts.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <regex>
+#include <stdexcept>
 #include <utility>
 
-#include "base/error.hpp"
 #include "base/version.hpp"
 
-namespace tilekit::cli {
+namespace tilekit::cluster {
 namespace {
 
 // One #SBATCH directive and what it is for.
@@ -36,16 +33,6 @@ std::string bash_array(const std::string& name, const std::vector<std::string>& 
   for (std::size_t i = 0; i < values.size(); ++i) out += (i ? " " : "") + shell_quote(values[i]);
   return out + ")\n";
 }
-
-}  // namespace
-
-std::string_view slurm_script_body(std::string_view name) {
-  for (const EmbeddedFile& f : slurm_script_bodies())
-    if (f.name == name) return f.text;
-  return {};
-}
-
-namespace {
 
 std::string body(std::string_view name) {
   std::string_view b = slurm_script_body(name);
@@ -72,30 +59,10 @@ std::string script_head(const ClusterPlan& p, std::vector<Directive> ds, const s
 
 }  // namespace
 
-long parse_slurm_time(std::string_view text) {
-  // sbatch --time formats: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S.
-  static const std::regex re(R"(^(?:(\d+)-(\d+)(?::(\d+)(?::(\d+))?)?|(\d+)(?::(\d+)(?::(\d+))?)?)$)");
-  std::cmatch m;
-  std::string s(text);
-  if (!std::regex_match(s.c_str(), m, re))
-    throw InputError(fmt::format("--time '{}': expected minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S", text));
-  auto num = [&](int i) { return m[i].matched ? std::stol(m[i].str()) : 0L; };
-  long secs = 0;
-  if (m[1].matched) {
-    secs = num(1) * 86400 + num(2) * 3600 + num(3) * 60 + num(4);
-  } else if (m[7].matched) {
-    secs = num(5) * 3600 + num(6) * 60 + num(7);
-  } else if (m[6].matched) {
-    secs = num(5) * 60 + num(6);
-  } else {
-    secs = num(5) * 60;
-  }
-  if (secs <= 0) throw InputError(fmt::format("--time '{}': the wall time must be positive", text));
-  return secs;
-}
-
-int default_signal_seconds(long seconds) {
-  return static_cast<int>(std::max(1L, std::min(120L, seconds / 2)));
+std::string_view slurm_script_body(std::string_view name) {
+  for (const EmbeddedFile& f : slurm_script_bodies())
+    if (f.name == name) return f.text;
+  return {};
 }
 
 std::string shell_quote(std::string_view text) {
@@ -104,44 +71,6 @@ std::string shell_quote(std::string_view text) {
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
-}
-
-std::string default_job_binary(std::string_view path_env, const std::string& self) {
-  namespace fs = std::filesystem;
-  for (std::size_t begin = 0; begin <= path_env.size();) {
-    std::size_t end = std::min(path_env.find(':', begin), path_env.size());
-    // An empty PATH entry means the current directory to a shell; a job must not depend on it.
-    if (end > begin) {
-      const fs::path candidate = fs::path(path_env.substr(begin, end - begin)) / "tilekit";
-      std::error_code ec;
-      if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0)
-        return fs::canonical(fs::absolute(candidate)).string();
-    }
-    begin = end + 1;
-  }
-  return fs::canonical(self).string();
-}
-
-void check_plan(const ClusterPlan& p) {
-  if (p.shards < 1) throw InputError("--shards must be at least 1");
-  if (p.cpus_per_task < 1) throw InputError("--cpus-per-task must be at least 1");
-  if (p.max_requeues < 0) throw InputError("--max-requeues must not be negative");
-  if (p.checkpoint_every <= 0) throw InputError("--checkpoint-every must be positive");
-  long limit = parse_slurm_time(p.time);
-  parse_slurm_time(p.merge_time);
-  if (p.signal_seconds < 1 || p.signal_seconds >= limit)
-    throw InputError(
-        fmt::format("--signal-seconds {} must be between 1 and the wall time ({} s)", p.signal_seconds, limit));
-  // #SBATCH lines are split at white space, and '%' starts a Slurm filename pattern.
-  for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"--run-dir", p.run_dir},
-                                    {"--partition", p.partition},
-                                    {"--job-name", p.job_name}})
-    if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos)
-      throw InputError(
-          fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
-  for (const auto& a : p.sbatch_args)
-    if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
-      throw InputError(fmt::format("--sbatch-arg '{}': expected one sbatch option like --account=NAME", a));
 }
 
 std::string pack_array_script(const ClusterPlan& p) {
@@ -205,4 +134,9 @@ std::string submit_script(const ClusterPlan& p) {
   return s;
 }
 
-}  // namespace tilekit::cli
+std::vector<JobScript> job_scripts(const ClusterPlan& p) {
+  return {
+      {"pack-array.sbatch", pack_array_script(p)}, {"merge.sbatch", merge_script(p)}, {"submit.sh", submit_script(p)}};
+}
+
+}  // namespace tilekit::cluster
