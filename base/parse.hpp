@@ -26,10 +26,6 @@ Dimensions parse_dimensions(std::string_view text, std::int64_t max_side, std::i
 // "I/N" with 0 <= I < N <= kMaxShards.
 struct ShardSpec {
   int index = 0, count = 1;
-  // Whether subproblem `k` of a search belongs to this shard: every count-th one, from index.
-  // The one definition the engine (solver/parallel_search.hpp) and a run's status
-  // (cluster/status.cpp) share.
-  bool owns(std::uint64_t k) const { return k % std::uint64_t(count) == std::uint64_t(index); }
 };
 ShardSpec parse_shard(std::string_view text, std::string_view what = "--shard");
 // "I/N", the text parse_shard() reads.
