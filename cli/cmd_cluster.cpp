@@ -2,9 +2,13 @@
 // scripts, the run directory, the submission and a run's status are cluster/.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <regex>
+#include <string_view>
 
+#include "base/error.hpp"
 #include "cli/command.hpp"
 #include "cluster/job_scripts.hpp"
 #include "cluster/plan.hpp"
@@ -24,6 +28,43 @@ struct SubmitArgs {
 struct StatusArgs {
   std::string run_dir;
 };
+
+// A field name with '-' for '_'.
+std::string dashed(std::string name) {
+  std::replace(name.begin(), name.end(), '_', '-');
+  return name;
+}
+
+// A cluster/ message in flag terms: the library names the fields of its request between
+// backquotes ("`checkpoint_every` must be ..."), the user reads the flags that set them
+// ("--checkpoint-every must be ...").
+std::string cluster_message_in_flags(std::string_view message) {
+  static const std::regex field("`([a-z][a-z0-9_]*)`");
+  const char* from = message.data();
+  const char* const last = message.data() + message.size();
+  std::string out;
+  for (std::cregex_iterator m(from, last, field), end; m != end; ++m) {
+    out.append(from, (*m)[0].first);
+    const std::string name = (*m)[1].str();
+    out += name == "shard_args"    ? std::string("--pack-arg")
+           : name == "sbatch_args" ? std::string("--sbatch-arg")
+                                   : "--" + dashed(name);
+    from = (*m)[0].second;
+  }
+  return out.append(from, last);
+}
+
+// Runs one cluster/ call, its errors worded in flag terms (the exit codes unchanged).
+template <class F>
+void with_cluster_errors_in_flags(F call) {
+  try {
+    call();
+  } catch (const NotFound& e) {
+    throw NotFound(cluster_message_in_flags(e.what()));
+  } catch (const InputError& e) {
+    throw InputError(cluster_message_in_flags(e.what()));
+  }
+}
 
 void print_dry_run(const cluster::ClusterPlan& p, const Context& ctx) {
   const fs::path dir(p.run_dir);
@@ -131,7 +172,7 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--sbatch", a->sbatch, "The sbatch command")->capture_default_str();
   cmd->add_flag("--dry-run", a->dry_run, "Print the scripts; write and queue nothing");
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { run_submit(*a, ctx); });
+  cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_submit(*a, ctx); }); });
 }
 
 void add_status(CLI::App& cluster, Context& ctx) {
@@ -139,7 +180,7 @@ void add_status(CLI::App& cluster, Context& ctx) {
   auto a = std::make_shared<StatusArgs>();
   cmd->add_option("--run-dir", a->run_dir, "The run directory given to submit")->required();
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { run_status(*a, ctx); });
+  cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_status(*a, ctx); }); });
 }
 
 }  // namespace

@@ -27,19 +27,19 @@ void set_shard_command(const SubmitRequest& r, ClusterPlan& p) {
     // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
     // with --pack-arg.
     if (!r.kind.empty() || r.colors != 0 || !r.method.empty() || !r.seed.empty())
-      throw InputError("--command enumerate takes no --kind, --colors, --method or --seed (use --pack-arg)");
+      throw InputError("`command` enumerate takes no `kind`, `colors`, `method` or `seed` (use `shard_args`)");
     p.command = {"aperiodic", "enumerate"};
     p.pack_args.clear();
     return;
   }
-  if (r.command != "pack") throw InputError(fmt::format("--command must be pack or enumerate, got '{}'", r.command));
+  if (r.command != "pack") throw InputError(fmt::format("`command` must be pack or enumerate, got '{}'", r.command));
   if (r.kind != "wang" && r.kind != "corner" && r.kind != "window")
-    throw InputError("--kind must be wang, corner or window");
+    throw InputError("`kind` must be wang, corner or window");
   const bool has_window = std::any_of(r.shard_args.begin(), r.shard_args.end(),
                                       [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
   if (r.kind == "window" && !has_window)
-    throw InputError("--kind window needs --pack-arg=--window=KxL (and --pack-arg=--size=RxS)");
-  if (r.colors < 1) throw InputError("--colors must be at least 1");
+    throw InputError("`kind` window needs `shard_args`=--window=KxL (and `shard_args`=--size=RxS)");
+  if (r.colors < 1) throw InputError("`colors` must be at least 1");
   p.pack_args = {"--kind", r.kind, "--colors", std::to_string(r.colors)};
   if (!r.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", r.method});
   p.pack_args.insert(p.pack_args.end(), {"--mode", r.mode});
@@ -52,7 +52,7 @@ void append_shard_args(const SubmitRequest& r, ClusterPlan& p) {
     for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
                             "--portfolio-stats"})
       if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
-        throw InputError(fmt::format("--pack-arg {}: the job script sets it per shard", a));
+        throw InputError(fmt::format("`shard_args` {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);
   }
 }
@@ -70,7 +70,7 @@ std::string job_binary(const SubmitRequest& r, const PlanEnvironment& env) {
   if (r.tilekit.empty()) return default_job_binary(env.path, env.self);
   std::string path = fs::absolute(r.tilekit).string();
   if (!fs::is_regular_file(path) || ::access(path.c_str(), X_OK) != 0)
-    throw InputError(fmt::format("--tilekit {}: not an executable file", r.tilekit));
+    throw InputError(fmt::format("`tilekit` {}: not an executable file", r.tilekit));
   return path;
 }
 
@@ -113,33 +113,33 @@ ClusterPlan make_plan(const SubmitRequest& r, const PlanEnvironment& env) {
 
 void check_plan(const ClusterPlan& p) {
   if (p.shards < 1 || p.shards > kMaxShards)
-    throw InputError(fmt::format("--shards must be between 1 and {}", kMaxShards));
-  if (p.cpus_per_task < 1) throw InputError("--cpus-per-task must be at least 1");
-  if (p.max_requeues < 0) throw InputError("--max-requeues must not be negative");
+    throw InputError(fmt::format("`shards` must be between 1 and {}", kMaxShards));
+  if (p.cpus_per_task < 1) throw InputError("`cpus_per_task` must be at least 1");
+  if (p.max_requeues < 0) throw InputError("`max_requeues` must not be negative");
   // NaN fails every comparison: !(x > 0) refuses it with the non-positive ones.
   if (!(p.checkpoint_every > 0) || !(p.checkpoint_every <= kMaxCheckpointSeconds))
-    throw InputError(fmt::format("--checkpoint-every must be a positive number of seconds, at most {} (a year), got {}",
+    throw InputError(fmt::format("`checkpoint_every` must be a positive number of seconds, at most {} (a year), got {}",
                                  kMaxCheckpointSeconds, p.checkpoint_every));
   long limit = parse_slurm_time(p.time);
-  parse_slurm_time(p.merge_time);
+  parse_slurm_time(p.merge_time, "merge_time");
   if (p.signal_seconds < 1 || p.signal_seconds >= limit)
     throw InputError(
-        fmt::format("--signal-seconds {} must be between 1 and the wall time ({} s)", p.signal_seconds, limit));
+        fmt::format("`signal_seconds` {} must be between 1 and the wall time ({} s)", p.signal_seconds, limit));
   // #SBATCH lines are split at white space, and '%' starts a Slurm filename pattern.
-  for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"--run-dir", p.run_dir},
-                                    {"--partition", p.partition},
-                                    {"--job-name", p.job_name}})
+  for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"`run_dir`", p.run_dir},
+                                    {"`partition`", p.partition},
+                                    {"`job_name`", p.job_name}})
     if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos)
       throw InputError(
           fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
   for (const auto& a : p.sbatch_args)
     if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
-      throw InputError(fmt::format("--sbatch-arg '{}': expected one sbatch option like --account=NAME", a));
+      throw InputError(fmt::format("`sbatch_args` '{}': expected one sbatch option like --account=NAME", a));
   // What the run file may hold (run_directory.cpp reads it back with these bounds).
-  if (p.pack_args.size() > kMaxShardArgs) throw InputError(fmt::format("at most {} --pack-arg", kMaxShardArgs));
+  if (p.pack_args.size() > kMaxShardArgs) throw InputError(fmt::format("at most {} `shard_args`", kMaxShardArgs));
   for (const auto& a : p.pack_args)
     if (a.size() > kMaxShardArgBytes)
-      throw InputError(fmt::format("--pack-arg: an argument of {} bytes, more than {}", a.size(), kMaxShardArgBytes));
+      throw InputError(fmt::format("`shard_args`: an argument of {} bytes, more than {}", a.size(), kMaxShardArgBytes));
 }
 
 }  // namespace tilekit::cluster

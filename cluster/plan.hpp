@@ -59,6 +59,10 @@ PlanEnvironment current_environment();
 // a build tree's build/tilekit). The result is absolute, with links resolved.
 std::string default_job_binary(std::string_view path_env, const std::string& self);
 
+// Errors name the request's fields between backquotes, never flags ("`checkpoint_every` must be
+// ...", "`shard_args` --db=x: the job script sets it per shard"; the field of a ClusterPlan
+// setting is its member's name): the CLI words them as the flags that set them.
+
 // The request checked and completed: the shard command and its arguments, the absolute run
 // directory, the binary, the job name, the merge time and the signal lead. Throws InputError for
 // anything the job scripts could not run with (check_plan()).

@@ -10,7 +10,7 @@
 
 namespace tilekit::cluster {
 
-long parse_slurm_time(std::string_view text) {
+long parse_slurm_time(std::string_view text, std::string_view field) {
   // sbatch --time formats: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S. Nine digits at most per number,
   // so that the sum below cannot overflow (std::stol of 20 digits would throw out_of_range).
   static const std::regex re(
@@ -18,7 +18,7 @@ long parse_slurm_time(std::string_view text) {
   std::cmatch m;
   const std::string s(text);
   if (!std::regex_match(s.c_str(), m, re))
-    throw InputError(fmt::format("--time '{}': expected minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S", text));
+    throw InputError(fmt::format("`{}` '{}': expected minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S", field, text));
   auto num = [&](int i) { return m[i].matched ? std::stol(m[i].str()) : 0L; };
   long secs = 0;
   if (m[1].matched) {
@@ -30,7 +30,7 @@ long parse_slurm_time(std::string_view text) {
   } else {
     secs = num(5) * 60;
   }
-  if (secs <= 0) throw InputError(fmt::format("--time '{}': the wall time must be positive", text));
+  if (secs <= 0) throw InputError(fmt::format("`{}` '{}': the wall time must be positive", field, text));
   return secs;
 }
 

@@ -27,7 +27,7 @@ std::string run_capture(const std::string& command, const std::string& what) {
   int status = ::pclose(f);
   int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
   if (code == 127)
-    throw NotFound(fmt::format("{}: '{}' not found (not a Slurm host? --dry-run prints the scripts)", what, command));
+    throw NotFound(fmt::format("{}: '{}' not found (not a Slurm host? `dry_run` prints the scripts)", what, command));
   if (code != 0) throw InputError(fmt::format("{}: '{}' failed with exit code {}", what, command, code));
   return out;
 }
@@ -44,7 +44,7 @@ nlohmann::json resumed_record(const ClusterPlan& p, const fs::path& dir) {
   if (auto old = read_run_file(dir / "run.json")) {
     for (const char* key : {"shards", "pack_args"})
       if (old->doc[key] != record[key])
-        throw InputError(fmt::format("{} holds a different run ({}: {} vs {}); pick another --run-dir", p.run_dir, key,
+        throw InputError(fmt::format("{} holds a different run ({}: {} vs {}); pick another `run_dir`", p.run_dir, key,
                                      old->doc[key].dump(), record[key].dump()));
     record["submissions"] = old->submissions;
   } else if (fs::exists(dir) && !fs::is_empty(dir)) {

@@ -1,5 +1,6 @@
 // The plan of a cluster run: what make_plan() makes of a request, and what it refuses before
-// anything is written (exit 2 in the CLI), e.g. a checkpoint interval of inf or 1e308.
+// anything is written (exit 2 in the CLI), e.g. a checkpoint interval of inf or 1e308. A refusal
+// names the request field at fault between backquotes; the CLI words it as the flag.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -110,7 +111,7 @@ TEST(ClusterPlan, RefusesACheckpointIntervalThatIsNotAPositiveFiniteNumberOfSeco
        {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
         std::numeric_limits<double>::quiet_NaN(), 1e308, cluster::kMaxCheckpointSeconds * 1.0001, 0.0, -1.0}) {
     r.settings.checkpoint_every = bad;
-    EXPECT_NE(refusal(r).find("--checkpoint-every"), std::string::npos) << bad;
+    EXPECT_NE(refusal(r).find("`checkpoint_every`"), std::string::npos) << bad;
   }
   for (double good : {0.25, 300.0, cluster::kMaxCheckpointSeconds}) {
     r.settings.checkpoint_every = good;
@@ -124,29 +125,29 @@ TEST(ClusterPlan, RefusesEveryValueTheScriptsCouldNotRunWith) {
   const cluster::SubmitRequest ok = wang2(d / "r");
   ASSERT_EQ(refusal(ok), "accepted");
   std::vector<std::pair<std::string, std::function<void(cluster::SubmitRequest&)>>> cases = {
-      {"--shards", [](auto& r) { r.settings.shards = 0; }},
-      {"--shards", [](auto& r) { r.settings.shards = int(kMaxShards) + 1; }},
-      {"--cpus-per-task", [](auto& r) { r.settings.cpus_per_task = 0; }},
-      {"--max-requeues", [](auto& r) { r.settings.max_requeues = -1; }},
-      {"--time", [](auto& r) { r.settings.time = "soon"; }},
-      {"--time", [](auto& r) { r.settings.time = "99999999999999999999"; }},
-      {"--time", [](auto& r) { r.merge_time = "0"; }},
-      {"--signal-seconds", [](auto& r) { r.settings.time = "1", r.signal_seconds = 60; }},
-      {"--run-dir", [&](auto& r) { r.run_dir = d / "a b"; }},
-      {"--partition", [](auto& r) { r.settings.partition = "long%x"; }},
-      {"--job-name", [](auto& r) { r.job_name = "it's"; }},
-      {"--sbatch-arg", [](auto& r) { r.settings.sbatch_args = {"account=x"}; }},
-      {"--sbatch-arg", [](auto& r) { r.settings.sbatch_args = {"--account=x --qos=y"}; }},
-      {"--pack-arg --db=x.sqlite", [](auto& r) { r.shard_args = {"--db=x.sqlite"}; }},
-      {"--pack-arg --shard", [](auto& r) { r.shard_args = {"--shard"}; }},
-      {"--pack-arg", [](auto& r) { r.shard_args.assign(cluster::kMaxShardArgs, "--quiet"); }},
-      {"--pack-arg", [](auto& r) { r.shard_args = {"--x=" + std::string(cluster::kMaxShardArgBytes, 'y')}; }},
-      {"--kind", [](auto& r) { r.kind = "hex"; }},
-      {"--kind window", [](auto& r) { r.kind = "window"; }},
-      {"--colors", [](auto& r) { r.colors = 0; }},
-      {"--command", [](auto& r) { r.command = "solve"; }},
-      {"--command enumerate", [](auto& r) { r.command = "enumerate"; }},  // with --kind and --colors
-      {"--tilekit", [&](auto& r) { r.tilekit = d / "none"; }},
+      {"`shards`", [](auto& r) { r.settings.shards = 0; }},
+      {"`shards`", [](auto& r) { r.settings.shards = int(kMaxShards) + 1; }},
+      {"`cpus_per_task`", [](auto& r) { r.settings.cpus_per_task = 0; }},
+      {"`max_requeues`", [](auto& r) { r.settings.max_requeues = -1; }},
+      {"`time`", [](auto& r) { r.settings.time = "soon"; }},
+      {"`time`", [](auto& r) { r.settings.time = "99999999999999999999"; }},
+      {"`merge_time`", [](auto& r) { r.merge_time = "0"; }},
+      {"`signal_seconds`", [](auto& r) { r.settings.time = "1", r.signal_seconds = 60; }},
+      {"`run_dir`", [&](auto& r) { r.run_dir = d / "a b"; }},
+      {"`partition`", [](auto& r) { r.settings.partition = "long%x"; }},
+      {"`job_name`", [](auto& r) { r.job_name = "it's"; }},
+      {"`sbatch_args`", [](auto& r) { r.settings.sbatch_args = {"account=x"}; }},
+      {"`sbatch_args`", [](auto& r) { r.settings.sbatch_args = {"--account=x --qos=y"}; }},
+      {"`shard_args` --db=x.sqlite", [](auto& r) { r.shard_args = {"--db=x.sqlite"}; }},
+      {"`shard_args` --shard", [](auto& r) { r.shard_args = {"--shard"}; }},
+      {"`shard_args`", [](auto& r) { r.shard_args.assign(cluster::kMaxShardArgs, "--quiet"); }},
+      {"`shard_args`", [](auto& r) { r.shard_args = {"--x=" + std::string(cluster::kMaxShardArgBytes, 'y')}; }},
+      {"`kind`", [](auto& r) { r.kind = "hex"; }},
+      {"`kind` window", [](auto& r) { r.kind = "window"; }},
+      {"`colors`", [](auto& r) { r.colors = 0; }},
+      {"`command`", [](auto& r) { r.command = "solve"; }},
+      {"`command` enumerate", [](auto& r) { r.command = "enumerate"; }},  // with --kind and --colors
+      {"`tilekit`", [&](auto& r) { r.tilekit = d / "none"; }},
   };
   for (auto& [what, change] : cases) {
     cluster::SubmitRequest r = ok;
