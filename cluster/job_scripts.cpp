@@ -11,7 +11,8 @@
 namespace tilekit::cluster {
 namespace {
 
-// One #SBATCH directive and what it is for.
+// One #SBATCH directive and what it is for: an sbatch option, written without its leading
+// "--" (sbatch's options, not Tilekit's: "job-name=tk-wang2").
 struct Directive {
   std::string option, comment;
 };
@@ -20,7 +21,7 @@ std::string directives_block(const std::vector<Directive>& ds) {
   std::size_t width = 0;
   for (const auto& d : ds) width = std::max(width, d.option.size());
   std::string out;
-  for (const auto& d : ds) out += fmt::format("#SBATCH {:<{}}  # {}\n", d.option, width, d.comment);
+  for (const auto& d : ds) out += fmt::format("#SBATCH --{:<{}}  # {}\n", d.option, width, d.comment);
   return out;
 }
 
@@ -41,8 +42,9 @@ std::string body(std::string_view name) {
 }
 
 void common_directives(const ClusterPlan& p, std::vector<Directive>& ds) {
-  if (!p.partition.empty()) ds.push_back({"--partition=" + p.partition, "the partition (queue) to run in"});
-  for (const auto& a : p.sbatch_args) ds.push_back({a, "passed through with --sbatch-arg"});
+  if (!p.partition.empty()) ds.push_back({"partition=" + p.partition, "the partition (queue) to run in"});
+  // check_plan(): each starts with "--"
+  for (const auto& a : p.sbatch_args) ds.push_back({a.substr(2), "passed through with --sbatch-arg"});
 }
 
 // What both sbatch scripts start with: the shebang, their header comment, the #SBATCH block
@@ -75,19 +77,19 @@ std::string shell_quote(std::string_view text) {
 
 std::string pack_array_script(const ClusterPlan& p) {
   std::vector<Directive> ds = {
-      {"--job-name=" + p.job_name, "the name squeue shows"},
-      {fmt::format("--array=0-{}", p.shards - 1),
+      {"job-name=" + p.job_name, "the name squeue shows"},
+      {fmt::format("array=0-{}", p.shards - 1),
        fmt::format("one array task per shard: shard I of {} runs as task I", p.shards)},
-      {"--ntasks=1", "one tilekit process per shard..."},
-      {fmt::format("--cpus-per-task={}", p.cpus_per_task),
+      {"ntasks=1", "one tilekit process per shard..."},
+      {fmt::format("cpus-per-task={}", p.cpus_per_task),
        "...with this many cores (OMP_NUM_THREADS = SLURM_CPUS_PER_TASK)"},
-      {"--time=" + p.time, "wall time of one attempt; a requeued attempt gets it anew"},
-      {fmt::format("--signal=B:USR1@{}", p.signal_seconds),
+      {"time=" + p.time, "wall time of one attempt; a requeued attempt gets it anew"},
+      {fmt::format("signal=B:USR1@{}", p.signal_seconds),
        fmt::format("USR1 to this script {} s (to 60 s more) before the limit: checkpoint, exit 3", p.signal_seconds)},
-      {"--requeue", "let the task requeue itself after exit 3 and resume"},
-      {"--open-mode=append", "every attempt of a shard appends to the same log"},
-      {"--chdir=" + p.run_dir, "working directory, on the shared filesystem"},
-      {"--output=" + p.run_dir + "/logs/pack-%A_%a.out", "log of array job %A, shard %a"},
+      {"requeue", "let the task requeue itself after exit 3 and resume"},
+      {"open-mode=append", "every attempt of a shard appends to the same log"},
+      {"chdir=" + p.run_dir, "working directory, on the shared filesystem"},
+      {"output=" + p.run_dir + "/logs/pack-%A_%a.out", "log of array job %A, shard %a"},
   };
   std::string s = script_head(
       p, std::move(ds),
@@ -103,17 +105,18 @@ std::string pack_array_script(const ClusterPlan& p) {
 
 std::string merge_script(const ClusterPlan& p) {
   std::vector<Directive> ds = {
-      {"--job-name=" + p.job_name + "-merge", "the name squeue shows"},
-      {"--ntasks=1", "merging is one process..."},
-      {"--cpus-per-task=1", "...writing one SQLite file"},
-      {"--time=" + p.merge_time, "wall time of the merge"},
-      {"--chdir=" + p.run_dir, "working directory, on the shared filesystem"},
-      {"--output=" + p.run_dir + "/logs/merge-%j.out", "log of merge job %j"},
+      {"job-name=" + p.job_name + "-merge", "the name squeue shows"},
+      {"ntasks=1", "merging is one process..."},
+      {"cpus-per-task=1", "...writing one SQLite file"},
+      {"time=" + p.merge_time, "wall time of the merge"},
+      {"chdir=" + p.run_dir, "working directory, on the shared filesystem"},
+      {"output=" + p.run_dir + "/logs/merge-%j.out", "log of merge job %j"},
   };
   std::string s = script_head(
       p, std::move(ds),
       fmt::format("# Tilekit merge job, written by `tilekit cluster submit` (tilekit {}).\n", version_line()) +
-          "# Queued after the shard array: sbatch --dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +
+          "# Queued after the shard array: sbatch "
+          "--dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +  // not a tilekit flag
           "# (afterok: it starts only when every shard task ended with exit code 0).\n");
   s += "\n" + body("merge");
   return s;
@@ -126,9 +129,10 @@ std::string submit_script(const ClusterPlan& p) {
   s += "# resume from their checkpoints, and the merge runs when all of them are done.\n";
   s += "set -euo pipefail\n";
   s += "cd " + shell_quote(p.run_dir) + "\n";
-  s += "array=$(sbatch --parsable pack-array.sbatch)\n";
-  s += "array=${array%%;*}  # --parsable prints ID or ID;CLUSTER\n";
-  s += "merge=$(sbatch --parsable --dependency=afterok:\"$array\" merge.sbatch)\n";
+  // sbatch's options below: not a tilekit flag
+  s += "array=$(sbatch --parsable pack-array.sbatch)\n";                             // not a tilekit flag
+  s += "array=${array%%;*}  # --parsable prints ID or ID;CLUSTER\n";                 // not a tilekit flag
+  s += "merge=$(sbatch --parsable --dependency=afterok:\"$array\" merge.sbatch)\n";  // not a tilekit flag
   s += "merge=${merge%%;*}\n";
   s += "echo \"tilekit: shard array job $array, merge job $merge (afterok:$array)\"\n";
   return s;

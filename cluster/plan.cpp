@@ -134,7 +134,10 @@ void check_plan(const ClusterPlan& p) {
           fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
   for (const auto& a : p.sbatch_args)
     if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
-      throw InputError(fmt::format("`sbatch_args` '{}': expected one sbatch option like --account=NAME", a));
+      throw InputError(
+          fmt::format("`sbatch_args` '{}': expected one sbatch option like "
+                      "--account=NAME",  // not a tilekit flag
+                      a));
   // What the run file may hold (run_directory.cpp reads it back with these bounds).
   if (p.pack_args.size() > kMaxShardArgs) throw InputError(fmt::format("at most {} `shard_args`", kMaxShardArgs));
   for (const auto& a : p.pack_args)

@@ -65,7 +65,7 @@ std::string utc_now() {
 }  // namespace
 
 std::string sbatch(const std::string& sbatch_cmd, const std::vector<std::string>& args) {
-  std::string cmd = shell_quote(sbatch_cmd) + " --parsable";
+  std::string cmd = shell_quote(sbatch_cmd) + " --parsable";  // sbatch's: not a tilekit flag
   for (const auto& a : args) cmd += " " + shell_quote(a);
   std::string out = run_capture(cmd, "sbatch");
   std::string id = out.substr(0, out.find_first_of(";\n"));
@@ -84,7 +84,8 @@ Submission submit_run(const ClusterPlan& p, const std::string& sbatch_command) {
 
   Submission out;
   out.array_job = sbatch(sbatch_command, {(dir / "pack-array.sbatch").string()});
-  out.merge_job = sbatch(sbatch_command, {"--dependency=afterok:" + out.array_job, (dir / "merge.sbatch").string()});
+  const std::string after = "--dependency=afterok:" + out.array_job;  // sbatch's: not a tilekit flag
+  out.merge_job = sbatch(sbatch_command, {after, (dir / "merge.sbatch").string()});
   record["submissions"].push_back({{"array_job", out.array_job}, {"merge_job", out.merge_job}, {"time", utc_now()}});
   write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
   out.submissions = record["submissions"].size();
