@@ -107,7 +107,7 @@ std::string checkpoint_text(const cluster::ShardStatus& s) {
 }
 
 template <class T>
-std::string or_dash(const std::optional<T>& v) {
+std::string value_or_dash(const std::optional<T>& v) {
   return v ? fmt::format("{}", *v) : std::string("-");
 }
 
@@ -120,7 +120,7 @@ void print_status(const cluster::RunStatus& r) {
              "solutions", "checkpoint (progress so far)");
   for (const auto& s : r.per_shard) {
     fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", s.shard, s.state, s.attempts, s.checkpointed_exits,
-               or_dash(s.last_exit), or_dash(s.solutions), checkpoint_text(s));
+               value_or_dash(s.last_exit), value_or_dash(s.solutions), checkpoint_text(s));
     if (!s.attempts_error.empty()) fmt::print("       attempts unreadable: {}\n", s.attempts_error);
   }
   fmt::print("solutions in done shards: {}\n", r.solutions_in_done_shards);

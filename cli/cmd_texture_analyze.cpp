@@ -84,7 +84,7 @@ void check_plot_path(const std::string& plot) {
 }
 
 template <class T>
-nlohmann::json or_null(const std::optional<T>& v) {
+nlohmann::json measure_or_null(const std::optional<T>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json();
 }
 
@@ -101,10 +101,10 @@ nlohmann::json analysis_json(const AnalyzeArgs& a, const Lattice& l, const Textu
                       {"reference_correlation", r.reference_correlation},
                       {"reference_lags", r.reference_lags},
                       {"lattice_lags", lags},
-                      {"seam_ratio", or_null(r.seam_ratio)},
-                      {"cut_visibility", or_null(r.cut_visibility)},
-                      {"histogram_distance", or_null(r.histogram_distance)},
-                      {"histogram_emd", or_null(r.histogram_emd)},
+                      {"seam_ratio", measure_or_null(r.seam_ratio)},
+                      {"cut_visibility", measure_or_null(r.cut_visibility)},
+                      {"histogram_distance", measure_or_null(r.histogram_distance)},
+                      {"histogram_emd", measure_or_null(r.histogram_emd)},
                       {"lattice_peak_db", r.spectrum.lattice_peak_db},
                       {"lattice_frequencies", r.spectrum.lattice_frequencies},
                       {"plot", a.plot.empty() ? nlohmann::json() : nlohmann::json(a.plot)}};
