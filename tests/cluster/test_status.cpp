@@ -2,6 +2,7 @@
 // checkpoint progress over the subproblems it owns (the engine's shard_owns), and files
 // that are not what a job script writes (a FIFO, a link to /dev/urandom, a huge file) reported
 // without ever being waited on.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
