@@ -133,148 +133,228 @@ std::vector<std::uint32_t> trim_to_components(Transducer& t, std::size_t* compon
   return renum;
 }
 
-std::vector<std::uint32_t> merge_bisimilar(Transducer& t, bool forward, const Budget& budget) {
-  // Naive partition refinement with a worklist (Kanellakis & Smolka 1983): a state's signature
-  // is the set of (in, out, block of the other end) over its transitions; a block whose members
-  // differ in signature splits, the largest part keeping its id, and the blocks holding a
-  // predecessor of a moved state are examined again. No block left to split: the partition is
-  // the coarsest bisimulation.
+namespace {
+
+// The transitions of each state in one direction (forward: leaving it, backward: entering it),
+// as compressed rows: state s has rows first[s]..first[s+1] of label ((in, out) of the
+// transition) and other (the state at its other end). preds[pfirst[s]..pfirst[s+1]) are the
+// states whose rows mention s, the ones whose signature changes when s moves.
+struct DirectedTransitions {
+  std::vector<std::size_t> first, pfirst;
+  std::vector<std::uint64_t> label;
+  std::vector<std::uint32_t> other, preds;
+};
+
+DirectedTransitions directed_transitions(const Transducer& t, bool forward) {
   const std::size_t n = t.states;
-  std::vector<std::uint32_t> block(n, 0);
-  if (n == 0) return block;
-  // Transitions of each state in the chosen direction (forward: leaving it, backward: entering),
-  // and its predecessors in that direction (the states whose signature mentions it).
-  std::vector<std::size_t> first(n + 1, 0), pfirst(n + 1, 0);
-  std::vector<std::uint64_t> label(t.transitions.size());  // (in, out) of each transition, by state
-  std::vector<std::uint32_t> other(t.transitions.size()), preds(t.transitions.size());
-  for (const Transition& e : t.transitions) ++first[(forward ? e.from : e.to) + 1], ++pfirst[(forward ? e.to : e.from) + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::partial_sum(pfirst.begin(), pfirst.end(), pfirst.begin());
-  {
-    std::vector<std::size_t> fill(first.begin(), first.end() - 1), pfill(pfirst.begin(), pfirst.end() - 1);
-    for (const Transition& e : t.transitions) {
-      const std::size_t k = fill[forward ? e.from : e.to]++;
-      label[k] = (std::uint64_t(e.in) << 32) | e.out;
-      other[k] = forward ? e.to : e.from;
-      preds[pfill[forward ? e.to : e.from]++] = forward ? e.from : e.to;
-    }
+  DirectedTransitions d;
+  d.first.assign(n + 1, 0);
+  d.pfirst.assign(n + 1, 0);
+  d.label.resize(t.transitions.size());
+  d.other.resize(t.transitions.size());
+  d.preds.resize(t.transitions.size());
+  for (const Transition& e : t.transitions)
+    ++d.first[(forward ? e.from : e.to) + 1], ++d.pfirst[(forward ? e.to : e.from) + 1];
+  std::partial_sum(d.first.begin(), d.first.end(), d.first.begin());
+  std::partial_sum(d.pfirst.begin(), d.pfirst.end(), d.pfirst.begin());
+  std::vector<std::size_t> fill(d.first.begin(), d.first.end() - 1), pfill(d.pfirst.begin(), d.pfirst.end() - 1);
+  for (const Transition& e : t.transitions) {
+    const std::size_t k = fill[forward ? e.from : e.to]++;
+    d.label[k] = (std::uint64_t(e.in) << 32) | e.out;
+    d.other[k] = forward ? e.to : e.from;
+    d.preds[pfill[forward ? e.to : e.from]++] = forward ? e.from : e.to;
   }
+  return d;
+}
+
+// Naive partition refinement with a worklist (Kanellakis & Smolka 1983): a state's signature
+// is the set of (in, out, block of the other end) over its transitions; a block whose members
+// differ in signature splits, the largest part keeping its id, and the blocks holding a
+// predecessor of a moved state are examined again. No block left to split: the partition is
+// the coarsest bisimulation.
+//
+// Blocks are member lists (pos: a state's place in its list). A block is examined only for its
+// touched members (predecessors of moved states): the others kept one common signature, so
+// one of them (rep) stands for all (Paige & Tarjan's idea; the largest part stays, so a state
+// moves O(log n) times).
+class BisimulationRefinement {
+ public:
+  BisimulationRefinement(const DirectedTransitions& d, std::size_t n)
+      : d_(d), block_(n, 0), members_(1), pending_(n, 1), current_(n, 0), queued_{1}, queue_{0} {
+    members_[0].resize(n);
+    std::iota(members_[0].begin(), members_[0].end(), 0u);
+    pos_ = members_[0];
+    touched_.assign(1, members_[0]);
+  }
+
+  // Refines until no block splits; returns state -> block. Checks `budget` every 65,536 states
+  // examined.
+  std::vector<std::uint32_t> run(const Budget& budget) {
+    std::size_t work = 0;
+    while (!queue_.empty()) {
+      const std::uint32_t b = queue_.back();
+      queue_.pop_back();
+      queued_[b] = 0;
+      const std::size_t size = members_[b].size();
+      const std::uint32_t rep = take_touched(b);
+      if ((work += list_.size()) >= 65536) work = 0, check_budget(budget);
+      compute_signatures();
+      const std::vector<Group> groups = group_by_signature(size, rep);
+      if (groups.size() > 1) {
+        split(b, groups, rep);
+      } else {
+        for (std::uint32_t s : list_) current_[s] = 0;
+      }
+    }
+    return block_;
+  }
+
+  std::size_t blocks() const { return members_.size(); }
+
+ private:
+  // The members of a block with one signature among those examined; `has_rep` when rep is among
+  // them, and then every untouched member of the block too (counted in size).
+  struct Group {
+    std::size_t begin, end, size;
+    bool has_rep;
+  };
   struct Entry {
     std::uint64_t label;
     std::uint32_t other;
     auto operator<=>(const Entry&) const = default;
   };
-  // Blocks as member lists (pos: a state's place in its list). A block is examined only for its
-  // touched members (predecessors of moved states): the others kept one common signature, so
-  // one of them (rep) stands for all (Paige & Tarjan's idea; the largest part stays, so a state
-  // moves O(log n) times).
-  std::vector<std::vector<std::uint32_t>> members(1);
-  members[0].resize(n);
-  std::iota(members[0].begin(), members[0].end(), 0u);
-  std::vector<std::uint32_t> pos(members[0]);
-  std::vector<std::vector<std::uint32_t>> touched(1, members[0]);
-  std::vector<char> pending(n, 1), current(n, 0), queued{1};
-  std::vector<std::uint32_t> queue{0};
-  auto touch = [&](std::uint32_t s) {
-    if (pending[s]) return;
-    pending[s] = 1;
-    touched[block[s]].push_back(s);
-    if (!queued[block[s]]) queued[block[s]] = 1, queue.push_back(block[s]);
-  };
-  std::vector<Entry> sig;
-  std::vector<std::size_t> sig_first;
-  std::vector<std::uint64_t> hash;
-  std::vector<std::uint32_t> list, idx, moved;
-  std::size_t work = 0;
-  while (!queue.empty()) {
-    const std::uint32_t b = queue.back();
-    queue.pop_back();
-    queued[b] = 0;
-    list.swap(touched[b]);
-    touched[b].clear();
-    for (std::uint32_t s : list) pending[s] = 0, current[s] = 1;
-    const std::size_t size = members[b].size();
-    std::uint32_t rep = kNoState;  // an untouched member, standing for all of them
-    if (list.size() < size)
-      for (std::uint32_t s : members[b])
-        if (!current[s]) {
+
+  // Marks state s's signature as possibly changed: its block is examined again.
+  void touch(std::uint32_t s) {
+    if (pending_[s]) return;
+    pending_[s] = 1;
+    touched_[block_[s]].push_back(s);
+    if (!queued_[block_[s]]) queued_[block_[s]] = 1, queue_.push_back(block_[s]);
+  }
+
+  // The touched members of block b into list_ (marked current), plus one untouched member, rep,
+  // when there is one; returns rep (kNoState when every member was touched).
+  std::uint32_t take_touched(std::uint32_t b) {
+    list_.swap(touched_[b]);
+    touched_[b].clear();
+    for (std::uint32_t s : list_) pending_[s] = 0, current_[s] = 1;
+    std::uint32_t rep = kNoState;
+    if (list_.size() < members_[b].size())
+      for (std::uint32_t s : members_[b])
+        if (!current_[s]) {
           rep = s;
           break;
         }
-    if (rep != kNoState) list.push_back(rep);
-    if ((work += list.size()) >= 65536) work = 0, check_budget(budget);
-    sig.clear();
-    sig_first.assign(1, 0);
-    hash.clear();
-    for (std::uint32_t s : list) {
-      const std::size_t from = sig.size();
-      for (std::size_t k = first[s]; k < first[s + 1]; ++k) sig.push_back({label[k], block[other[k]]});
-      std::sort(sig.begin() + std::ptrdiff_t(from), sig.end());
-      sig.erase(std::unique(sig.begin() + std::ptrdiff_t(from), sig.end()), sig.end());
-      sig_first.push_back(sig.size());
+    if (rep != kNoState) list_.push_back(rep);
+    return rep;
+  }
+
+  // The sorted, deduplicated signature of each state of list_ (sig_ from sig_first_[i]) and a
+  // hash of it.
+  void compute_signatures() {
+    sig_.clear();
+    sig_first_.assign(1, 0);
+    hash_.clear();
+    for (std::uint32_t s : list_) {
+      const std::size_t from = sig_.size();
+      for (std::size_t k = d_.first[s]; k < d_.first[s + 1]; ++k) sig_.push_back({d_.label[k], block_[d_.other[k]]});
+      std::sort(sig_.begin() + std::ptrdiff_t(from), sig_.end());
+      sig_.erase(std::unique(sig_.begin() + std::ptrdiff_t(from), sig_.end()), sig_.end());
+      sig_first_.push_back(sig_.size());
       std::uint64_t h = 0;  // an in-memory key only (equal keys are compared in full)
-      for (std::size_t k = from; k < sig.size(); ++k) h = mix_seed(h ^ sig[k].label) + sig[k].other;
-      hash.push_back(mix_seed(h));
-    }
-    auto less = [&](std::uint32_t x, std::uint32_t y) {
-      if (hash[x] != hash[y]) return hash[x] < hash[y];
-      return std::lexicographical_compare(sig.begin() + std::ptrdiff_t(sig_first[x]), sig.begin() + std::ptrdiff_t(sig_first[x + 1]),
-                                          sig.begin() + std::ptrdiff_t(sig_first[y]), sig.begin() + std::ptrdiff_t(sig_first[y + 1]));
-    };
-    idx.resize(list.size());
-    std::iota(idx.begin(), idx.end(), 0u);
-    std::sort(idx.begin(), idx.end(), less);
-    struct Group {
-      std::size_t begin, end, size;
-      bool has_rep;
-    };
-    std::vector<Group> groups;
-    for (std::size_t i = 0, j; i < idx.size(); i = j) {
-      bool r = false;
-      for (j = i; j < idx.size() && (j == i || !less(idx[i], idx[j])); ++j) r = r || list[idx[j]] == rep;
-      // rep's group also holds every untouched member
-      groups.push_back({i, j, j - i + (r ? size - (list.size() - 1) - 1 : 0), r});
-    }
-    if (groups.size() > 1) {
-      std::size_t largest = 0;
-      for (std::size_t g = 1; g < groups.size(); ++g)
-        if (groups[g].size > groups[largest].size) largest = g;
-      moved.clear();
-      for (std::size_t g = 0; g < groups.size(); ++g) {
-        if (g == largest) continue;
-        const std::uint32_t nb = std::uint32_t(members.size());
-        members.emplace_back();
-        touched.emplace_back();
-        queued.push_back(0);
-        std::vector<std::uint32_t> part;
-        if (groups[g].has_rep) {  // the untouched members go too
-          for (std::uint32_t s : members[b])
-            if (!current[s]) part.push_back(s);
-        }
-        for (std::size_t i = groups[g].begin; i < groups[g].end; ++i)
-          if (list[idx[i]] != rep) part.push_back(list[idx[i]]);
-        for (std::uint32_t s : part) {
-          // swap-remove from b, append to nb
-          std::vector<std::uint32_t>& mb = members[b];
-          const std::uint32_t last = mb.back();
-          mb[pos[s]] = last;
-          pos[last] = pos[s];
-          mb.pop_back();
-          block[s] = nb;
-          pos[s] = std::uint32_t(members[nb].size());
-          members[nb].push_back(s);
-          moved.push_back(s);
-        }
-      }
-      for (std::uint32_t s : list) current[s] = 0;
-      for (std::uint32_t s : moved)
-        for (std::size_t k = pfirst[s]; k < pfirst[s + 1]; ++k) touch(preds[k]);
-    } else {
-      for (std::uint32_t s : list) current[s] = 0;
+      for (std::size_t k = from; k < sig_.size(); ++k) h = mix_seed(h ^ sig_[k].label) + sig_[k].other;
+      hash_.push_back(mix_seed(h));
     }
   }
+
+  // Signature order of list_ entries x and y: by hash, then in full.
+  bool less(std::uint32_t x, std::uint32_t y) const {
+    if (hash_[x] != hash_[y]) return hash_[x] < hash_[y];
+    return std::lexicographical_compare(
+        sig_.begin() + std::ptrdiff_t(sig_first_[x]), sig_.begin() + std::ptrdiff_t(sig_first_[x + 1]),
+        sig_.begin() + std::ptrdiff_t(sig_first_[y]), sig_.begin() + std::ptrdiff_t(sig_first_[y + 1]));
+  }
+
+  // list_ sorted by signature into idx_, and its runs of equal signatures; `size` is the
+  // block's member count.
+  std::vector<Group> group_by_signature(std::size_t size, std::uint32_t rep) {
+    idx_.resize(list_.size());
+    std::iota(idx_.begin(), idx_.end(), 0u);
+    std::sort(idx_.begin(), idx_.end(), [this](std::uint32_t x, std::uint32_t y) { return less(x, y); });
+    std::vector<Group> groups;
+    for (std::size_t i = 0, j; i < idx_.size(); i = j) {
+      bool r = false;
+      for (j = i; j < idx_.size() && (j == i || !less(idx_[i], idx_[j])); ++j) r = r || list_[idx_[j]] == rep;
+      // rep's group also holds every untouched member
+      groups.push_back({i, j, j - i + (r ? size - (list_.size() - 1) - 1 : 0), r});
+    }
+    return groups;
+  }
+
+  // Block b split by `groups`: every group but the largest becomes a new block, and the
+  // predecessors of the states that moved are touched.
+  void split(std::uint32_t b, const std::vector<Group>& groups, std::uint32_t rep) {
+    std::size_t largest = 0;
+    for (std::size_t g = 1; g < groups.size(); ++g)
+      if (groups[g].size > groups[largest].size) largest = g;
+    moved_.clear();
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (g != largest) move_group(b, groups[g], rep);
+    for (std::uint32_t s : list_) current_[s] = 0;
+    for (std::uint32_t s : moved_)
+      for (std::size_t k = d_.pfirst[s]; k < d_.pfirst[s + 1]; ++k) touch(d_.preds[k]);
+  }
+
+  // The members of `group` moved from block b to a new block.
+  void move_group(std::uint32_t b, const Group& group, std::uint32_t rep) {
+    const std::uint32_t nb = std::uint32_t(members_.size());
+    members_.emplace_back();
+    touched_.emplace_back();
+    queued_.push_back(0);
+    std::vector<std::uint32_t> part;
+    if (group.has_rep) {  // the untouched members go too
+      for (std::uint32_t s : members_[b])
+        if (!current_[s]) part.push_back(s);
+    }
+    for (std::size_t i = group.begin; i < group.end; ++i)
+      if (list_[idx_[i]] != rep) part.push_back(list_[idx_[i]]);
+    for (std::uint32_t s : part) {
+      // swap-remove from b, append to nb
+      std::vector<std::uint32_t>& mb = members_[b];
+      const std::uint32_t last = mb.back();
+      mb[pos_[s]] = last;
+      pos_[last] = pos_[s];
+      mb.pop_back();
+      block_[s] = nb;
+      pos_[s] = std::uint32_t(members_[nb].size());
+      members_[nb].push_back(s);
+      moved_.push_back(s);
+    }
+  }
+
+  const DirectedTransitions& d_;
+  std::vector<std::uint32_t> block_;
+  std::vector<std::vector<std::uint32_t>> members_, touched_;
+  std::vector<std::uint32_t> pos_;
+  std::vector<char> pending_, current_, queued_;
+  std::vector<std::uint32_t> queue_;
+  // The block being examined: its states (list_), their signatures, and their signature order.
+  std::vector<std::uint32_t> list_, idx_, moved_;
+  std::vector<Entry> sig_;
+  std::vector<std::size_t> sig_first_;
+  std::vector<std::uint64_t> hash_;
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> merge_bisimilar(Transducer& t, bool forward, const Budget& budget) {
+  const std::size_t n = t.states;
+  if (n == 0) return {};
+  const DirectedTransitions d = directed_transitions(t, forward);
+  BisimulationRefinement refinement(d, n);
+  std::vector<std::uint32_t> block = refinement.run(budget);
   for (Transition& e : t.transitions) e.from = block[e.from], e.to = block[e.to];
-  t.states = std::uint32_t(members.size());
+  t.states = std::uint32_t(refinement.blocks());
   t.finalize();
   return block;
 }

@@ -50,7 +50,8 @@ struct AnalyzeArgs {
   int tile_px = 0, threads = 0;
 };
 
-void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
+// The lattice the tiles sit on: --tile-px T (square) or --lattice AX,AY,BX,BY, and --offset.
+Lattice analysis_lattice(const AnalyzeArgs& a) {
   if ((a.tile_px > 0) == !a.lattice.empty())
     throw InputError("give the lattice as either --tile-px T or --lattice AX,AY,BX,BY");
   Lattice l;
@@ -67,6 +68,67 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
     const std::vector<double> v = parse_numbers(a.offset, 2, "--offset");
     l.offset = {v[0], v[1]};
   }
+  return l;
+}
+
+// Refuses a --plot path that cannot be written before the analysis runs.
+void check_plot_path(const std::string& plot) {
+  if (const fs::path dir = fs::path(plot).parent_path(); !plot.empty() && !dir.empty()) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+      throw InputError(fmt::format("{}: no folder {} to write the plot in", plot, dir.string()));
+  }
+  if (std::error_code ec; !plot.empty() && fs::is_directory(plot, ec)) {
+    throw InputError(fmt::format("{}: is a folder, not a file to write the plot to", plot));
+  }
+}
+
+template <class T>
+nlohmann::json measure_or_null(const std::optional<T>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json();
+}
+
+nlohmann::json analysis_json(const AnalyzeArgs& a, const Lattice& l, const TextureAnalysis& r,
+                             const std::string& exemplar_name) {
+  nlohmann::json lags = nlohmann::json::array();
+  for (const LagValue& v : r.lattice_lags) lags.push_back({{"lag", {v.dx, v.dy}}, {"r", v.r}});
+  nlohmann::json j = {{"image", a.image},
+                      {"width", r.width},
+                      {"height", r.height},
+                      {"lattice", {{"a", l.a}, {"b", l.b}, {"offset", l.offset}}},
+                      {"grid_repetition", r.grid_repetition},
+                      {"lattice_correlation", r.lattice_correlation},
+                      {"reference_correlation", r.reference_correlation},
+                      {"reference_lags", r.reference_lags},
+                      {"lattice_lags", lags},
+                      {"seam_ratio", measure_or_null(r.seam_ratio)},
+                      {"cut_visibility", measure_or_null(r.cut_visibility)},
+                      {"histogram_distance", measure_or_null(r.histogram_distance)},
+                      {"histogram_emd", measure_or_null(r.histogram_emd)},
+                      {"lattice_peak_db", r.spectrum.lattice_peak_db},
+                      {"lattice_frequencies", r.spectrum.lattice_frequencies},
+                      {"plot", a.plot.empty() ? nlohmann::json() : nlohmann::json(a.plot)}};
+  if (!exemplar_name.empty()) j["exemplar"] = exemplar_name;
+  return j;
+}
+
+void print_analysis(const AnalyzeArgs& a, const Lattice& l, const TextureAnalysis& r,
+                    const std::string& exemplar_name) {
+  fmt::print("{}: {}x{}, lattice ({:g},{:g}) ({:g},{:g})\n", a.image, r.width, r.height, l.a[0], l.a[1], l.b[0],
+             l.b[1]);
+  fmt::print("grid repetition  {:.3f}  (R at the lattice lags {:.3f} - mean |R| at {} reference lags {:.3f})\n",
+             r.grid_repetition, r.lattice_correlation, r.reference_lags, r.reference_correlation);
+  if (r.seam_ratio) fmt::print("seam ratio       {:.3f}\n", *r.seam_ratio);
+  if (r.cut_visibility) fmt::print("cut visibility   {:.3f}\n", *r.cut_visibility);
+  if (r.histogram_emd)
+    fmt::print("histogram EMD    {:.2f} grey levels (R {:.2f}, G {:.2f}, B {:.2f}) to {}\n", *r.histogram_distance,
+               (*r.histogram_emd)[0], (*r.histogram_emd)[1], (*r.histogram_emd)[2], exemplar_name);
+  fmt::print("lattice peak     {:+.1f} dB in the power spectrum{}\n", r.spectrum.lattice_peak_db,
+             a.plot.empty() ? "" : "; plot: " + a.plot);
+}
+
+void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
+  const Lattice l = analysis_lattice(a);
   const int threads = a.threads == 0 ? default_thread_count() : checked_thread_count(a.threads);
   const Image img = read_image(a.image);
   std::optional<Image> exemplar, labels;
@@ -77,50 +139,11 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
     exemplar = std::move(e.image);
   }
   if (!a.labels.empty()) labels = read_image(a.labels);
-  if (const fs::path dir = fs::path(a.plot).parent_path(); !a.plot.empty() && !dir.empty()) {
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-      throw InputError(fmt::format("{}: no folder {} to write the plot in", a.plot, dir.string()));
-  }
-  if (std::error_code ec; !a.plot.empty() && fs::is_directory(a.plot, ec)) {
-    throw InputError(fmt::format("{}: is a folder, not a file to write the plot to", a.plot));
-  }
+  check_plot_path(a.plot);
   const TextureAnalysis r =
       analyze_texture(img, l, exemplar ? &*exemplar : nullptr, labels ? &*labels : nullptr, threads);
   if (!a.plot.empty()) write_png(a.plot, spectrum_plot(r, fs::path(a.image).filename().string()));
-  nlohmann::json lags = nlohmann::json::array();
-  for (const LagValue& v : r.lattice_lags) lags.push_back({{"lag", {v.dx, v.dy}}, {"r", v.r}});
-  nlohmann::json j = {
-      {"image", a.image},
-      {"width", r.width},
-      {"height", r.height},
-      {"lattice", {{"a", l.a}, {"b", l.b}, {"offset", l.offset}}},
-      {"grid_repetition", r.grid_repetition},
-      {"lattice_correlation", r.lattice_correlation},
-      {"reference_correlation", r.reference_correlation},
-      {"reference_lags", r.reference_lags},
-      {"lattice_lags", lags},
-      {"seam_ratio", r.seam_ratio ? nlohmann::json(*r.seam_ratio) : nlohmann::json()},
-      {"cut_visibility", r.cut_visibility ? nlohmann::json(*r.cut_visibility) : nlohmann::json()},
-      {"histogram_distance", r.histogram_distance ? nlohmann::json(*r.histogram_distance) : nlohmann::json()},
-      {"histogram_emd", r.histogram_emd ? nlohmann::json(*r.histogram_emd) : nlohmann::json()},
-      {"lattice_peak_db", r.spectrum.lattice_peak_db},
-      {"lattice_frequencies", r.spectrum.lattice_frequencies},
-      {"plot", a.plot.empty() ? nlohmann::json() : nlohmann::json(a.plot)}};
-  if (!exemplar_name.empty()) j["exemplar"] = exemplar_name;
-  emit(ctx, j, [&] {
-    fmt::print("{}: {}x{}, lattice ({:g},{:g}) ({:g},{:g})\n", a.image, r.width, r.height, l.a[0], l.a[1], l.b[0],
-               l.b[1]);
-    fmt::print("grid repetition  {:.3f}  (R at the lattice lags {:.3f} - mean |R| at {} reference lags {:.3f})\n",
-               r.grid_repetition, r.lattice_correlation, r.reference_lags, r.reference_correlation);
-    if (r.seam_ratio) fmt::print("seam ratio       {:.3f}\n", *r.seam_ratio);
-    if (r.cut_visibility) fmt::print("cut visibility   {:.3f}\n", *r.cut_visibility);
-    if (r.histogram_emd)
-      fmt::print("histogram EMD    {:.2f} grey levels (R {:.2f}, G {:.2f}, B {:.2f}) to {}\n", *r.histogram_distance,
-                 (*r.histogram_emd)[0], (*r.histogram_emd)[1], (*r.histogram_emd)[2], exemplar_name);
-    fmt::print("lattice peak     {:+.1f} dB in the power spectrum{}\n", r.spectrum.lattice_peak_db,
-               a.plot.empty() ? "" : "; plot: " + a.plot);
-  });
+  emit(ctx, analysis_json(a, l, r, exemplar_name), [&] { print_analysis(a, l, r, exemplar_name); });
 }
 
 }  // namespace

@@ -51,6 +51,49 @@ double seconds_of(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// --glsl or --compare: the GLSL sampler's image, with its timings in `j` and, with --compare,
+// its difference from the CPU reference `cpu`. No EGL: one line on stderr and exit 2.
+Image render_glsl(const RenderArgs& a, const RenderSource& src, const View& view, const RenderOptions& o,
+                  const Image& cpu, nlohmann::json& j) {
+  Image img;
+  try {
+    GlRenderer r(src, view, o);
+    double s = r.draw(1);
+    if (a.frames > 1) {  // the first draw compiled the shader's variant: time the others
+      s = r.draw(a.frames) / a.frames;
+      j["glsl_mfragments_per_second"] = double(view.width) * view.height / s / 1e6;
+    }
+    img = r.read();
+    j["gl_renderer"] = r.renderer();
+    j["glsl_seconds"] = s;
+  } catch (const GlUnavailable& e) {
+    std::cerr << "tilekit: texture render --glsl skipped: " << e.what() << std::endl;
+    throw Exit{2};
+  }
+  if (a.compare) {
+    const Difference d = difference(cpu, img);
+    j["max_difference"] = d.max;
+    j["mean_difference"] = d.mean;
+  }
+  return img;
+}
+
+void print_render(const RenderArgs& a, const RenderSource& src, const View& view, const RenderOptions& o,
+                  const nlohmann::json& j) {
+  fmt::print("{}: {}x{} window ({} method, scale {}, tilt {}, anisotropy {}x), {} renderer{}\n", a.out, view.width,
+             view.height, render_method_name(src.method), view.scale, view.tilt, o.max_aniso,
+             j["renderer"].get<std::string>(),
+             j.contains("gl_renderer") ? " on " + j["gl_renderer"].get<std::string>() : "");
+  fmt::print("{:.2f} texture fetches per pixel, {:.1f} MiB of texture memory\n", j["fetches_per_pixel"].get<double>(),
+             double(src.memory_bytes()) / (1 << 20));
+  if (j.contains("cpu_seconds"))
+    fmt::print("CPU reference: {:.3f} s, {:.1f} Mpixel/s on {} threads\n", j["cpu_seconds"].get<double>(),
+               j["cpu_mpixels_per_second"].get<double>(), o.threads);
+  if (a.compare)
+    fmt::print("GLSL vs CPU: largest difference {}/255, mean {:.4f}/255\n", j["max_difference"].get<int>(),
+               j["mean_difference"].get<double>());
+}
+
 void run_render(const RenderArgs& a, const Context& ctx) {
   View view = parse_view(a.size, a.scale, a.origin, a.tilt);
   const std::unique_ptr<LoadedSource> loaded = load_source(a.source);
@@ -77,43 +120,10 @@ void run_render(const RenderArgs& a, const Context& ctx) {
     j["cpu_mpixels_per_second"] = double(view.width) * view.height / s / 1e6;
     img = cpu;
   }
-  if (a.glsl || a.compare) {
-    try {
-      GlRenderer r(src, view, o);
-      double s = r.draw(1);
-      if (a.frames > 1) {  // the first draw compiled the shader's variant: time the others
-        s = r.draw(a.frames) / a.frames;
-        j["glsl_mfragments_per_second"] = double(view.width) * view.height / s / 1e6;
-      }
-      img = r.read();
-      j["gl_renderer"] = r.renderer();
-      j["glsl_seconds"] = s;
-    } catch (const GlUnavailable& e) {
-      std::cerr << "tilekit: texture render --glsl skipped: " << e.what() << std::endl;
-      throw Exit{2};
-    }
-    if (a.compare) {
-      const Difference d = difference(cpu, img);
-      j["max_difference"] = d.max;
-      j["mean_difference"] = d.mean;
-    }
-  }
+  if (a.glsl || a.compare) img = render_glsl(a, src, view, o, cpu, j);
   j["renderer"] = a.glsl || a.compare ? "glsl" : "cpu";
   write_png(a.out, img);
-  emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} window ({} method, scale {}, tilt {}, anisotropy {}x), {} renderer{}\n", a.out, view.width,
-               view.height, render_method_name(src.method), view.scale, view.tilt, o.max_aniso,
-               j["renderer"].get<std::string>(),
-               j.contains("gl_renderer") ? " on " + j["gl_renderer"].get<std::string>() : "");
-    fmt::print("{:.2f} texture fetches per pixel, {:.1f} MiB of texture memory\n", j["fetches_per_pixel"].get<double>(),
-               double(src.memory_bytes()) / (1 << 20));
-    if (j.contains("cpu_seconds"))
-      fmt::print("CPU reference: {:.3f} s, {:.1f} Mpixel/s on {} threads\n", j["cpu_seconds"].get<double>(),
-                 j["cpu_mpixels_per_second"].get<double>(), o.threads);
-    if (a.compare)
-      fmt::print("GLSL vs CPU: largest difference {}/255, mean {:.4f}/255\n", j["max_difference"].get<int>(),
-                 j["mean_difference"].get<double>());
-  });
+  emit(ctx, j, [&] { print_render(a, src, view, o, j); });
 }
 
 }  // namespace

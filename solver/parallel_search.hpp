@@ -45,6 +45,7 @@
 #include "solver/model.hpp"
 #include "solver/problem.hpp"
 #include "solver/search_state.hpp"
+#include "solver/shard.hpp"
 #include "solver/subproblems.hpp"
 
 namespace tilekit {
@@ -226,9 +227,7 @@ class ParallelSearch {
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
-  bool mine(std::uint64_t i) const {
-    return i % std::uint64_t(cfg_.run.shard.count) == std::uint64_t(cfg_.run.shard.index);
-  }
+  bool mine(std::uint64_t i) const { return shard_owns(cfg_.run.shard, i); }
 
   std::uint64_t done_in_shard() const {
     std::uint64_t n = 0;

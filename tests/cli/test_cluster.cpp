@@ -1,11 +1,13 @@
 // `tilekit cluster submit|status` without a Slurm: the scripts it writes (--dry-run) and the
-// progress it reads. The real-Slurm run is tests/slurm/cluster-test.sh.
+// progress it reads, through the binary. The library's own tests are tests/cluster/; the
+// real-Slurm run is tests/slurm/cluster-test.sh.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <regex>
 
-#include "cli/cluster_scripts.hpp"
+#include "cluster/plan.hpp"
 #include "tests/cli_runner.hpp"
 #include "base/error.hpp"
 
@@ -14,29 +16,6 @@ namespace {
 using test::run_cli;
 using test::TempDir;
 using test::write_text;
-
-TEST(SlurmTime, ParsesEverySbatchFormat) {
-  EXPECT_EQ(cli::parse_slurm_time("90"), 90 * 60);
-  EXPECT_EQ(cli::parse_slurm_time("1:30"), 90);
-  EXPECT_EQ(cli::parse_slurm_time("2:00:05"), 7205);
-  EXPECT_EQ(cli::parse_slurm_time("2-12"), 2 * 86400 + 12 * 3600);
-  EXPECT_EQ(cli::parse_slurm_time("1-0:30"), 86400 + 1800);
-  EXPECT_EQ(cli::parse_slurm_time("1-00:00:07"), 86407);
-  for (const char* bad : {"", "x", "0", "1:2:3:4", "-5", "UNLIMITED", "1-", "1h"})
-    EXPECT_THROW(cli::parse_slurm_time(bad), InputError) << bad;
-}
-
-TEST(SlurmTime, SignalLeadIsTwoMinutesAtMostHalfTheLimit) {
-  EXPECT_EQ(cli::default_signal_seconds(3600), 120);
-  EXPECT_EQ(cli::default_signal_seconds(60), 30);
-}
-
-TEST(ShellQuote, QuotesOnlyWhatBashWouldSplit) {
-  EXPECT_EQ(cli::shell_quote("--colors"), "--colors");
-  EXPECT_EQ(cli::shell_quote("/a b/c"), "'/a b/c'");
-  EXPECT_EQ(cli::shell_quote("it's"), "'it'\\''s'");
-  EXPECT_EQ(cli::shell_quote(""), "''");
-}
 
 TEST(ClusterSubmit, DryRunPrintsScriptsWithACommentOnEveryDirectiveAndWritesNothing) {
   TempDir d;
@@ -88,9 +67,9 @@ TEST(ClusterSubmit, JobsRunTheTilekitOnPathElseThisOneAndTilekitFlagOverridesBot
   fs::permissions(d / "bin/tilekit", fs::perms::owner_all);
   const std::string self = fs::canonical(TILEKIT_BINARY).string();
   const std::string installed = fs::canonical(d / "bin/tilekit").string();
-  EXPECT_EQ(cli::default_job_binary(d / "plain:" + d / "noexec:" + d / "bin:/usr/bin", TILEKIT_BINARY), installed);
-  EXPECT_EQ(cli::default_job_binary(d / "plain:" + d / "noexec", TILEKIT_BINARY), self);
-  EXPECT_EQ(cli::default_job_binary("", TILEKIT_BINARY), self);
+  EXPECT_EQ(cluster::default_job_binary(d / "plain:" + d / "noexec:" + d / "bin:/usr/bin", TILEKIT_BINARY), installed);
+  EXPECT_EQ(cluster::default_job_binary(d / "plain:" + d / "noexec", TILEKIT_BINARY), self);
+  EXPECT_EQ(cluster::default_job_binary("", TILEKIT_BINARY), self);
 
   const std::string submit = "cluster submit --kind corner --colors 3 --shards 2 --dry-run --json --run-dir " + d / "r";
   auto on_path = test::run_cli_prefixed("env PATH=" + d / "bin" + ":/usr/bin:/bin ", submit);
@@ -124,6 +103,17 @@ TEST(ClusterSubmit, BadInputIsExitTwo) {
   EXPECT_EQ(run_cli(base + " --shards 2 --pack-arg=--db=x.sqlite").code, 2);
   EXPECT_EQ(run_cli("cluster submit --kind hex --colors 2 --shards 2 --dry-run").code, 2);
   EXPECT_EQ(run_cli("cluster submit --kind wang --colors 2 --shards 2 --dry-run --run-dir '" + d / "a b" + "'").code, 2);
+}
+
+TEST(ClusterSubmit, AnInfiniteOrHugeCheckpointIntervalIsExitTwoAndNothingIsWritten) {
+  TempDir d;
+  for (const char* every : {"inf", "1e308", "nan", "0"}) {
+    auto r = run_cli("cluster submit --kind wang --colors 2 --shards 2 --run-dir " + d / "r" +
+                     " --sbatch /bin/false --checkpoint-every " + every);
+    EXPECT_EQ(r.code, 2) << every << ": " << r.err;
+    EXPECT_NE(r.err.find("--checkpoint-every"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(d / "r")) << every;
+  }
 }
 
 TEST(ClusterSubmit, WithoutSbatchItIsNotFoundAndSaysSo) {
@@ -188,6 +178,23 @@ TEST(ClusterStatus, ReadsProgressFromARealShardCheckpoint) {
   EXPECT_EQ(p["solutions"], pack.json()["solutions"]);
   EXPECT_GT(p["nodes"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(r.json()["per_shard"][0]["progress"], nullptr);
+}
+
+TEST(ClusterStatus, AFifoAsAttemptsFileIsReportedNotWaitedOn) {
+  TempDir d;
+  std::filesystem::create_directories(d / "r/shards");
+  write_text(d / "r/run.json", R"({"shards": 2, "pack_args": ["--kind","wang","--colors","2"]})");
+  ASSERT_EQ(::mkfifo((d / "r/shards/shard-0.attempts").c_str(), 0600), 0);
+  std::filesystem::create_symlink("/dev/urandom", d / "r/shards/shard-1.attempts");
+  auto r = test::run_cli_prefixed("timeout 60 ", "cluster status --run-dir " + d / "r" + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (int i = 0; i < 2; ++i) {
+    const auto s = r.json()["per_shard"][i];
+    EXPECT_NE(s["attempts_error"].get<std::string>().find("not a regular file"), std::string::npos) << s.dump();
+  }
+  auto human = test::run_cli_prefixed("timeout 60 ", "cluster status --run-dir " + d / "r");
+  ASSERT_EQ(human.code, 0) << human.err;
+  EXPECT_NE(human.out.find("attempts unreadable"), std::string::npos) << human.out;
 }
 
 TEST(ClusterStatus, NoRunDirectoryIsNotFound) {

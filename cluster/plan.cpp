@@ -1,0 +1,148 @@
+#include "cluster/plan.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <utility>
+
+#include "base/error.hpp"
+#include "base/parse.hpp"
+#include "cluster/slurm_time.hpp"
+
+namespace tilekit::cluster {
+namespace fs = std::filesystem;
+namespace {
+
+bool enumerate_run(const SubmitRequest& r) {
+  return r.command == "enumerate";
+}
+
+// The shard command and the arguments the request gives it (before --pack-arg).
+void set_shard_command(const SubmitRequest& r, ClusterPlan& p) {
+  if (enumerate_run(r)) {
+    // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
+    // with --pack-arg.
+    if (!r.kind.empty() || r.colors != 0 || !r.method.empty() || !r.seed.empty())
+      throw InputError("`command` enumerate takes no `kind`, `colors`, `method` or `seed` (use `shard_args`)");
+    p.command = {"aperiodic", "enumerate"};
+    p.pack_args.clear();
+    return;
+  }
+  if (r.command != "pack") throw InputError(fmt::format("`command` must be pack or enumerate, got '{}'", r.command));
+  if (r.kind != "wang" && r.kind != "corner" && r.kind != "window")
+    throw InputError("`kind` must be wang, corner or window");
+  const bool has_window = std::any_of(r.shard_args.begin(), r.shard_args.end(),
+                                      [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
+  if (r.kind == "window" && !has_window)
+    throw InputError("`kind` window needs `shard_args`=--window=KxL (and `shard_args`=--size=RxS)");
+  if (r.colors < 1) throw InputError("`colors` must be at least 1");
+  p.pack_args = {"--kind", r.kind, "--colors", std::to_string(r.colors)};
+  if (!r.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", r.method});
+  p.pack_args.insert(p.pack_args.end(), {"--mode", r.mode});
+  if (!r.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", r.seed});
+}
+
+// The user's extra shard arguments; the ones the job script sets per shard are refused.
+void append_shard_args(const SubmitRequest& r, ClusterPlan& p) {
+  for (const auto& a : r.shard_args) {
+    for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
+                            "--portfolio-stats"})
+      if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
+        throw InputError(fmt::format("`shard_args` {}: the job script sets it per shard", a));
+    p.pack_args.push_back(a);
+  }
+}
+
+std::string absolute_run_dir(const SubmitRequest& r) {
+  const std::string run_dir = !r.run_dir.empty() ? r.run_dir
+                              : enumerate_run(r) ? std::string("tilekit-run-enumerate")
+                                                 : fmt::format("tilekit-run-{}{}-{}", r.kind, r.colors, r.mode);
+  std::string dir = fs::absolute(run_dir).lexically_normal().string();
+  if (dir.size() > 1 && dir.back() == '/') dir.pop_back();
+  return dir;
+}
+
+std::string job_binary(const SubmitRequest& r, const PlanEnvironment& env) {
+  if (r.tilekit.empty()) return default_job_binary(env.path, env.self);
+  std::string path = fs::absolute(r.tilekit).string();
+  if (!fs::is_regular_file(path) || ::access(path.c_str(), X_OK) != 0)
+    throw InputError(fmt::format("`tilekit` {}: not an executable file", r.tilekit));
+  return path;
+}
+
+}  // namespace
+
+PlanEnvironment current_environment() {
+  const char* path = std::getenv("PATH");
+  return {path ? path : "", "/proc/self/exe"};
+}
+
+std::string default_job_binary(std::string_view path_env, const std::string& self) {
+  for (std::size_t begin = 0; begin <= path_env.size();) {
+    std::size_t end = std::min(path_env.find(':', begin), path_env.size());
+    // An empty PATH entry means the current directory to a shell; a job must not depend on it.
+    if (end > begin) {
+      const fs::path candidate = fs::path(path_env.substr(begin, end - begin)) / "tilekit";
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0)
+        return fs::canonical(fs::absolute(candidate)).string();
+    }
+    begin = end + 1;
+  }
+  return fs::canonical(self).string();
+}
+
+ClusterPlan make_plan(const SubmitRequest& r, const PlanEnvironment& env) {
+  ClusterPlan p = r.settings;
+  set_shard_command(r, p);
+  append_shard_args(r, p);
+  p.run_dir = absolute_run_dir(r);
+  p.tilekit = job_binary(r, env);
+  p.job_name = !r.job_name.empty() ? r.job_name
+               : enumerate_run(r)  ? std::string("tk-enumerate")
+                                   : fmt::format("tk-{}{}", r.kind, r.colors);
+  p.merge_time = r.merge_time.empty() ? p.time : r.merge_time;
+  p.signal_seconds = r.signal_seconds > 0 ? r.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
+  check_plan(p);
+  return p;
+}
+
+void check_plan(const ClusterPlan& p) {
+  if (p.shards < 1 || p.shards > kMaxShards)
+    throw InputError(fmt::format("`shards` must be between 1 and {}", kMaxShards));
+  if (p.cpus_per_task < 1) throw InputError("`cpus_per_task` must be at least 1");
+  if (p.max_requeues < 0) throw InputError("`max_requeues` must not be negative");
+  // NaN fails every comparison: !(x > 0) refuses it with the non-positive ones.
+  if (!(p.checkpoint_every > 0) || !(p.checkpoint_every <= kMaxCheckpointSeconds))
+    throw InputError(fmt::format("`checkpoint_every` must be a positive number of seconds, at most {} (a year), got {}",
+                                 kMaxCheckpointSeconds, p.checkpoint_every));
+  long limit = parse_slurm_time(p.time);
+  parse_slurm_time(p.merge_time, "merge_time");
+  if (p.signal_seconds < 1 || p.signal_seconds >= limit)
+    throw InputError(
+        fmt::format("`signal_seconds` {} must be between 1 and the wall time ({} s)", p.signal_seconds, limit));
+  // #SBATCH lines are split at white space, and '%' starts a Slurm filename pattern.
+  for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"`run_dir`", p.run_dir},
+                                    {"`partition`", p.partition},
+                                    {"`job_name`", p.job_name}})
+    if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos)
+      throw InputError(
+          fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
+  for (const auto& a : p.sbatch_args)
+    if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
+      throw InputError(
+          fmt::format("`sbatch_args` '{}': expected one sbatch option like "
+                      "--account=NAME",  // not a tilekit flag
+                      a));
+  // What the run file may hold (run_directory.cpp reads it back with these bounds).
+  if (p.pack_args.size() > kMaxShardArgs) throw InputError(fmt::format("at most {} `shard_args`", kMaxShardArgs));
+  for (const auto& a : p.pack_args)
+    if (a.size() > kMaxShardArgBytes)
+      throw InputError(fmt::format("`shard_args`: an argument of {} bytes, more than {}", a.size(), kMaxShardArgBytes));
+}
+
+}  // namespace tilekit::cluster

@@ -1,0 +1,74 @@
+#pragma once
+// The plan of a cluster run: what `tilekit cluster submit` is asked (SubmitRequest), checked and
+// completed into the settings every job script is written from (ClusterPlan).
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tilekit::cluster {
+
+// Everything the job scripts are written from; the defaults are those of `cluster submit`.
+struct ClusterPlan {
+  std::string tilekit;                       // absolute path of the binary the jobs run (default_job_binary)
+  std::string run_dir;                       // absolute; on the filesystem shared by the nodes
+  std::string job_name;                      // squeue's name; the merge job adds "-merge"
+  std::vector<std::string> command{"pack"};  // the shard command: pack, or aperiodic enumerate
+  std::vector<std::string> pack_args;        // the shard command's arguments common to every shard
+  int shards = 1;
+  int cpus_per_task = 1;
+  std::string time = "1:00:00";  // Slurm time of one attempt, as the user wrote it
+  std::string merge_time = "1:00:00";
+  int signal_seconds = 120;  // USR1 this long before the wall-time limit
+  std::string partition;     // "" = the cluster's default partition
+  int max_requeues = 10;
+  double checkpoint_every = 300;         // seconds between periodic checkpoints
+  std::vector<std::string> sbatch_args;  // extra directives, e.g. "--account=proj"
+};
+
+// The longest checkpoint interval a plan takes: a year (a longer one would never fire, and
+// inf or 1e308 would reach the job scripts as text that the shard command refuses).
+inline constexpr double kMaxCheckpointSeconds = 365.0 * 86400.0;
+// The most arguments of the shard command, and the longest one (what a run file may hold).
+inline constexpr std::size_t kMaxShardArgs = 4096, kMaxShardArgBytes = 4096;
+
+// What `cluster submit` is asked. `settings` carries the scheduling fields as given (shards,
+// cpus_per_task, time, partition, max_requeues, checkpoint_every, sbatch_args); make_plan()
+// fills in the rest.
+struct SubmitRequest {
+  std::string command = "pack";                  // or "enumerate": tilekit aperiodic enumerate
+  std::string kind, method, mode = "all", seed;  // pack's (empty: not given)
+  int colors = 0;
+  std::vector<std::string> shard_args;     // more arguments of the shard command (--pack-arg)
+  std::string run_dir, tilekit, job_name;  // "" = the defaults
+  int signal_seconds = 0;                  // 0 = default_signal_seconds(time)
+  std::string merge_time;                  // "" = time
+  ClusterPlan settings;
+};
+
+// Where make_plan() looks for the binary the jobs run: the PATH variable and this binary.
+struct PlanEnvironment {
+  std::string path;                     // $PATH
+  std::string self = "/proc/self/exe";  // the binary running submit
+};
+// $PATH of this process, and /proc/self/exe.
+PlanEnvironment current_environment();
+
+// The binary the jobs run when `cluster submit` has no --tilekit: the first executable file named
+// tilekit in the directories of `path_env` (PATH: an installed binary, which a rebuild of a
+// checkout does not replace under a running array), else `self` (the binary running submit, e.g.
+// a build tree's build/tilekit). The result is absolute, with links resolved.
+std::string default_job_binary(std::string_view path_env, const std::string& self);
+
+// Errors name the request's fields between backquotes, never flags ("`checkpoint_every` must be
+// ...", "`shard_args` --db=x: the job script sets it per shard"; the field of a ClusterPlan
+// setting is its member's name): the CLI words them as the flags that set them.
+
+// The request checked and completed: the shard command and its arguments, the absolute run
+// directory, the binary, the job name, the merge time and the signal lead. Throws InputError for
+// anything the job scripts could not run with (check_plan()).
+ClusterPlan make_plan(const SubmitRequest& request, const PlanEnvironment& env = current_environment());
+
+// Throws InputError when the plan cannot make working scripts (bad counts, odd paths).
+void check_plan(const ClusterPlan& plan);
+
+}  // namespace tilekit::cluster

@@ -1,0 +1,69 @@
+#pragma once
+// The status of a cluster run, read from its run directory alone (no Slurm needed): each
+// shard's attempts, checkpoint and result, and the merged count.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/parse.hpp"
+
+namespace tilekit::cluster {
+
+// A shard's progress from its checkpoint: of the subproblems it owns (shard_owns, solver/shard.hpp, the
+// engine's definition), how many are done; the counts of the finished ones plus what the
+// in-flight ones counted so far. `error` instead when the checkpoint cannot be read.
+struct ShardProgress {
+  std::string error;  // non-empty: the reason, and no counts
+  std::uint64_t subproblems = 0, subproblems_done = 0, solutions = 0, nodes = 0;
+  double seconds = 0, fraction = 0;
+};
+
+struct ShardStatus {
+  int shard = 0;
+  std::string state;           // done, checkpointed, started or pending
+  int attempts = 0;            // attempt lines in shard-I.attempts
+  int checkpointed_exits = 0;  // of them, those that ended with exit 3
+  std::optional<std::int64_t> last_exit;
+  std::string attempts_error;              // non-empty: shard-I.attempts exists but cannot be read (why)
+  std::optional<std::uint64_t> solutions;  // from shard-I.done.json
+  std::optional<bool> complete;
+  std::optional<std::int64_t> checkpoint_age_seconds;  // set when shard-I.ckpt exists
+  std::optional<ShardProgress> progress;               // set when shard-I.ckpt exists
+};
+
+struct RunStatus {
+  std::string run_dir;  // absolute
+  int shards = 0;
+  std::vector<std::string> pack_args;
+  bool pack = true;  // shards of `tilekit pack` (else `aperiodic enumerate`)
+  int done = 0, checkpointed = 0, started = 0, pending = 0;
+  std::uint64_t solutions_in_done_shards = 0;
+  // From merged.json (`db stats`): solutions stored, each once, and how many of them differ up
+  // to symmetry; unset until the merge job wrote it.
+  std::optional<std::uint64_t> merged_solutions, merged_orbits;
+  nlohmann::json submissions = nlohmann::json::array();
+  std::vector<ShardStatus> per_shard;
+};
+
+// Progress of `shard` from the checkpoint file at `path` (a pack shard's).
+ShardProgress checkpoint_progress(const std::filesystem::path& path, const ShardSpec& shard);
+
+// Attempts of shard-I.attempts: one JSON line per attempt with an integer "exit"; lines cut short
+// by a kill are skipped. Sets attempts, checkpointed_exits and last_exit, or attempts_error.
+void read_attempts(const std::filesystem::path& path, ShardStatus& status);
+
+// Shard `shard` of the run in `run_dir` (`pack`: its checkpoints are pack's).
+ShardStatus shard_status(const std::filesystem::path& run_dir, const ShardSpec& shard, bool pack);
+
+// The run in `run_dir`. Throws NotFound when it has no run.json, InputError when that is broken.
+RunStatus read_run_status(const std::string& run_dir);
+
+// What `cluster status --json` prints.
+nlohmann::json to_json(const ShardProgress& progress);
+nlohmann::json to_json(const ShardStatus& shard);
+nlohmann::json to_json(const RunStatus& run);
+
+}  // namespace tilekit::cluster
