@@ -12,7 +12,7 @@ namespace tilekit {
 
 std::optional<FoundPacking> find_packing(TileKind kind, std::uint32_t colours, const PackingSources& sources) {
   if (colours < 1 || colours > 255)
-    throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
+    throw RequestError("colours", fmt::format("`colours` must be between 1 and 255, got {}", colours));
   const int n = int(colours * colours);
   if (sources.db) {
     if (auto s = sources.db->find_solution(kind, colours, n, n)) {

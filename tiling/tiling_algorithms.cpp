@@ -24,7 +24,7 @@ constexpr AlgoName kAlgos[] = {{TilingAlgo::Scanline, "scanline"},      {TilingA
 
 void require_kind(const TileSet& set, TileKind kind, TilingAlgo algo) {
   if (set.kind() != kind)
-    throw InputError(fmt::format("--algo {} makes {} tilings, but tile set '{}' is a {} set", tiling_algo_name(algo),
+    throw RequestError("algo", fmt::format("`algo` {} makes {} tilings, but tile set '{}' is a {} set", tiling_algo_name(algo),
                                  kind_name(kind), set.name(), kind_name(set.kind())));
 }
 
@@ -34,8 +34,8 @@ void require_tiles(const TileSet& set, TilingAlgo algo, const std::vector<TileIn
   for (std::size_t k = 0; k < set.size(); ++k) have[set.index_of(k)] = true;
   for (TileIndex i : producible)
     if (i >= have.size() || !have[i])
-      throw InputError(
-          fmt::format("--algo {} can place tiles that tile set '{}' lacks ({} of the {} it can produce "
+      throw RequestError("algo", 
+          fmt::format("`algo` {} can place tiles that tile set '{}' lacks ({} of the {} it can produce "
                       "are missing); use {}",
                       tiling_algo_name(algo), set.name(),
                       std::count_if(producible.begin(), producible.end(),
@@ -100,8 +100,8 @@ Tiling generate_tiling(const TileSet& set, const TilingRequest& req) {
     case TilingAlgo::DirectCompact: {
       require_kind(set, TileKind::Wang, req.algo);
       if (ch != cv)
-        throw InputError(
-            fmt::format("--algo direct-compact needs one colour count for all edges; tile set '{}' has "
+        throw RequestError("algo", 
+            fmt::format("`algo` direct-compact needs one colour count for all edges; tile set '{}' has "
                         "{} horizontal and {} vertical",
                         set.name(), ch, cv));
       std::vector<TileIndex> producible;  // thesis sec. 3.3.2.2: N + S = E + W (mod C)

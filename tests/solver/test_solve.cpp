@@ -18,7 +18,7 @@ SearchResult run(const TilingProblem& p, SearchMode mode, int threads = 1, std::
   SearchOptions o;
   o.mode = mode;
   o.run.threads = threads;
-  o.formulation = std::move(formulation);
+  o.formulation = formulation_from_name(formulation).value();
   return solve(p, o);
 }
 
@@ -151,9 +151,9 @@ TEST(SolveErrors, ImpossibleProblemsAndOptionsThrowInputError) {
   o.run.shard = {4, 4};
   EXPECT_THROW(solve(p, o), InputError);
   o.run.shard = {0, 1};
-  o.formulation = "edges";
+  o.formulation = Formulation::Edges;
   EXPECT_THROW(solve(p, o), InputError);
-  o.formulation = "auto";
+  o.formulation = Formulation::Auto;
   p.rows = 2;
   EXPECT_THROW(solve(p, o), InputError);
   EXPECT_THROW(complete_packing_problem(TileKind::Wang, 0), InputError);
