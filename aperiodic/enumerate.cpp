@@ -293,11 +293,14 @@ std::vector<std::string> checked_sources(const EnumerateOptions& o) {
   if (o.batch < 1) throw RequestError("batch", "`batch` must be >= 1");
   if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards)
     throw RequestError("shard", fmt::format("`shard` {}/{}: expected I/N with 0 <= I < N", o.shard, o.shards));
-  if (o.lead_max_k < 1) throw RequestError("lead_max_k", fmt::format("`lead_max_k` must be >= 1, got {}", o.lead_max_k));
+  if (o.lead_max_k < 1)
+    throw RequestError("lead_max_k", fmt::format("`lead_max_k` must be >= 1, got {}", o.lead_max_k));
   if (!(o.time_limit >= 0) || !std::isfinite(o.time_limit))
-    throw RequestError("time_limit", fmt::format("`time_limit` must be a number of seconds >= 0, got {}", o.time_limit));
+    throw RequestError("time_limit",
+                       fmt::format("`time_limit` must be a number of seconds >= 0, got {}", o.time_limit));
   if (!(o.checkpoint_every >= 0) || !std::isfinite(o.checkpoint_every))
-    throw RequestError("checkpoint_every", fmt::format("`checkpoint_every` must be a number of seconds >= 0, got {}", o.checkpoint_every));
+    throw RequestError("checkpoint_every",
+                       fmt::format("`checkpoint_every` must be a number of seconds >= 0, got {}", o.checkpoint_every));
   std::vector<std::string> sources = o.sources.empty() ? published_enumeration_sources() : o.sources;
   const auto& known = published_enumeration_sources();
   for (const std::string& s : sources)

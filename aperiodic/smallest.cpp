@@ -36,17 +36,9 @@ nlohmann::json smallest_record(const std::string& command, const EnumerateResult
   std::vector<ChainLink> chain = recorded_chain(r, best->hash);
   nlohmann::json steps = nlohmann::json::array();
   for (std::size_t i = 1; i < chain.size(); ++i) steps.push_back(chain[i].step);
-  return {{"format", kRecordFormat},
-          {"command", command},
-          {"digest", r.digest},
-          {"complete", r.complete},
-          {"expanded", r.expanded},
-          {"sets", r.nodes.size()},
-          {"source", best->root},
-          {"steps", steps},
-          {"set", best->hash},
-          {"tiles", best->tiles},
-          {"colors", best->colours}};
+  return {{"format", kRecordFormat}, {"command", command},     {"digest", r.digest},     {"complete", r.complete},
+          {"expanded", r.expanded},  {"sets", r.nodes.size()}, {"source", best->root},   {"steps", steps},
+          {"set", best->hash},       {"tiles", best->tiles},   {"colors", best->colours}};
 }
 
 RecordedChain parse_smallest_record(std::string_view text, const std::string& origin) {

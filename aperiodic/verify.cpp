@@ -47,7 +47,8 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   if (opts.route != "auto" && opts.route != "transducer" && opts.route != "torus" && opts.route != "both")
     throw RequestError("route", fmt::format("`route` must be auto, transducer, torus or both, got '{}'", opts.route));
   if (!(opts.time_limit >= 0) || !std::isfinite(opts.time_limit))
-    throw RequestError("time_limit", fmt::format("`time_limit` must be a number of seconds >= 0, got {}", opts.time_limit));
+    throw RequestError("time_limit",
+                       fmt::format("`time_limit` must be a number of seconds >= 0, got {}", opts.time_limit));
   const auto t0 = Clock::now();
   const auto deadline = deadline_after(opts.time_limit, t0);
   const bool limited = deadline != Clock::time_point::max();

@@ -1,5 +1,7 @@
 // tilekit aperiodic convert: the thesis ch. 8 constructions (aperiodic/conversion.hpp), and the
 // registration of the `aperiodic` subcommands.
+#include "cli/cmd_aperiodic.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -7,7 +9,6 @@
 #include "aperiodic/requests.hpp"
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
-#include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
 #include "tilesets/tile_set_io.hpp"
 

@@ -38,9 +38,10 @@ struct EnumerateArgs {
 };
 
 nlohmann::json link_json(const ChainLink& l) {
-  return {{"set", l.hash},          {"step", l.step},         {"label", l.label},   {"tiles", l.tiles},
-          {"colors", l.colours},    {"kind", std::string(kind_name(l.kind))}, {"argument", l.argument},
-          {"check", check_command(l.derivation)}};
+  return {{"set", l.hash},          {"step", l.step},
+          {"label", l.label},       {"tiles", l.tiles},
+          {"colors", l.colours},    {"kind", std::string(kind_name(l.kind))},
+          {"argument", l.argument}, {"check", check_command(l.derivation)}};
 }
 
 nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g) {

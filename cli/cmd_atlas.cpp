@@ -47,9 +47,9 @@ void run_lookup(const LookupArgs& a, const Context& ctx) {
   // The generated C and GLSL name the command that makes them again.
   const std::string command =
       fmt::format("tilekit atlas lookup --kind {} --colors {} --format {}", kind_name(l.kind), l.colours, a.format);
-  std::string text =
-      a.format == "json" ? lookup_json_text(l) + "\n"
-      : a.format == "c"  ? lookup_c_header(l, command)
+  std::string text = a.format == "json" ? lookup_json_text(l) + "\n"
+                     : a.format == "c"
+                         ? lookup_c_header(l, command)
                          : lookup_glsl(l, DirectTiling(l.kind, l.colours, hash, a.seed),
                                        fmt::format("{} --hash {} --seed {}", command, hash_kind_name(hash), a.seed));
   if (!a.out.empty()) {

@@ -17,7 +17,9 @@ constexpr std::pair<std::string_view, std::string_view> kFlagSpelledOtherwise[] 
     {"probe_seconds", "--estimate-seconds"},
 };
 
-bool is_field_char(char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; }
+bool is_field_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
 
 }  // namespace
 

@@ -17,6 +17,8 @@ std::string flag_of_field(std::string_view field);
 std::string in_flag_terms(std::string_view message);
 
 // A RequestError's message in flag terms: what the CLI prints.
-inline std::string in_flag_terms(const RequestError& e) { return in_flag_terms(std::string_view(e.what())); }
+inline std::string in_flag_terms(const RequestError& e) {
+  return in_flag_terms(std::string_view(e.what()));
+}
 
 }  // namespace tilekit::cli

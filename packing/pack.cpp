@@ -47,7 +47,8 @@ TilingProblem window_problem(const PackRequest& a) {
   if (!a.size.empty())
     size = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "`size` RxS");
   else if (w.first != 2 || w.second != 2)
-    throw RequestError("kind", fmt::format("`kind` window `window` {} needs `size` RxS, the torus (R*S = C^(K*L))", a.window));
+    throw RequestError("kind",
+                       fmt::format("`kind` window `window` {} needs `size` RxS, the torus (R*S = C^(K*L))", a.window));
   return window_torus_problem(a.colours, int(w.first), int(w.second), int(size.first), int(size.second));
 }
 
@@ -64,13 +65,15 @@ TilingProblem make_problem(const PackRequest& a) {
       const Dimensions d = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "`size` ROWSxCOLS");
       p.rows = int(d.first), p.cols = int(d.second);
       if (std::uint64_t(d.first * d.second) != p.set.size())
-        throw RequestError("size", fmt::format("`size` {}: a packing of the {} tiles of {} needs rows*cols = {}, not {}", a.size,
-                                     p.set.size(), p.set.name(), p.set.size(), d.first * d.second));
+        throw RequestError(
+            "size", fmt::format("`size` {}: a packing of the {} tiles of {} needs rows*cols = {}, not {}", a.size,
+                                p.set.size(), p.set.name(), p.set.size(), d.first * d.second));
     } else {
       int side = 1;
       while (std::size_t(side + 1) * std::size_t(side + 1) <= p.set.size()) ++side;
       if (std::size_t(side) * std::size_t(side) != p.set.size())
-        throw RequestError("size", fmt::format("the set has {} tiles, not a square number: give `size` ROWSxCOLS", p.set.size()));
+        throw RequestError(
+            "size", fmt::format("the set has {} tiles, not a square number: give `size` ROWSxCOLS", p.set.size()));
       p.rows = p.cols = side;
     }
     return p;
@@ -92,7 +95,8 @@ SearchOptions search_options(const PackRequest& a) {
     throw RequestError("method", "`method` construct gives one packing: use it with `mode` first");
   if (a.method == "construct" && !a.set.empty())
     throw RequestError("method", "`method` construct is for the complete sets (`kind` and `colours`), not `set`");
-  if (!a.impose.empty() && a.method == "construct") throw RequestError("impose", "`impose` searches: use `method` search or auto");
+  if (!a.impose.empty() && a.method == "construct")
+    throw RequestError("impose", "`impose` searches: use `method` search or auto");
   if (!a.impose.empty() && a.plain) throw RequestError("impose", "`impose` and `plain` exclude each other");
   if (!a.lift.empty() && (!a.impose.empty() || a.method == "construct"))
     throw RequestError("lift", "`lift` searches its own subspace: drop `impose` and `method` construct");
@@ -134,7 +138,8 @@ bool uses_portfolio(const PackRequest& a, SearchMode mode, bool complete_set) {
 void check_runnable(const PackRequest& a, const TilingProblem& problem, const SearchOptions& o,
                     const PortfolioOptions& po, bool use_portfolio) {
   if (!a.candidates.empty() && !use_portfolio)
-    throw RequestError("candidates", "`candidates` needs a portfolio run (first mode, complete set, auto formulation and ordering)");
+    throw RequestError("candidates",
+                       "`candidates` needs a portfolio run (first mode, complete set, auto formulation and ordering)");
   const std::uint32_t colours = problem.set.colours();
   const std::vector<std::uint32_t> constructible = a.set.empty() && problem.set.kind() != TileKind::Window
                                                        ? constructible_colours(problem.set.kind(), colours)
@@ -251,8 +256,9 @@ void find_first_window(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int 
       return;
     }
   if (a.method == "construct")
-    throw NotFound(fmt::format("no construction is known for {}x{} windows over {} symbols on {}x{} (try `method` search)",
-                               set.window_rows(), set.window_cols(), set.horizontal_radix(), p.rows, p.cols));
+    throw NotFound(
+        fmt::format("no construction is known for {}x{} windows over {} symbols on {}x{} (try `method` search)",
+                    set.window_rows(), set.window_cols(), set.horizontal_radix(), p.rows, p.cols));
   out.method = "search";
   search();
 }
@@ -390,8 +396,10 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
   const TilingProblem problem = make_problem(a);
   SearchOptions o = search_options(a);
   if (o.mode != SearchMode::First || !is_complete_set_problem(problem) || !uses_portfolio(a, o.mode, true))
-    throw RequestError("probes", "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
-                     "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
+    throw RequestError(
+        "probes",
+        "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
+        "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
   o.run.threads = o.run.threads > 0 ? o.run.threads : default_thread_count();
   PortfolioOptions po;
   po.candidates = a.candidates;

@@ -20,9 +20,9 @@ struct Field {
   void (*set)(PackRequest&, const nlohmann::json&);
 };
 
-#define TILEKIT_FIELD(FIELD, KEY, MEMBER, TYPE)                                    \
+#define TILEKIT_FIELD(FIELD, KEY, MEMBER, TYPE)                                   \
   Field {                                                                         \
-    FIELD, KEY, [](const PackRequest& r) { return nlohmann::json(r.MEMBER); },     \
+    FIELD, KEY, [](const PackRequest& r) { return nlohmann::json(r.MEMBER); },    \
         [](PackRequest& r, const nlohmann::json& j) { r.MEMBER = j.get<TYPE>(); } \
   }
 
@@ -77,22 +77,38 @@ const std::vector<PackField>& pack_fields() {
 
 std::string_view pack_field_name(PackField f) {
   switch (f) {
-    case PackField::Kind: return "kind";
-    case PackField::Colours: return "colours";
-    case PackField::Window: return "window";
-    case PackField::Set: return "set";
-    case PackField::Size: return "size";
-    case PackField::Method: return "method";
-    case PackField::Mode: return "mode";
-    case PackField::Formulation: return "formulation";
-    case PackField::Ordering: return "ordering";
-    case PackField::Impose: return "impose";
-    case PackField::Lift: return "lift";
-    case PackField::Plain: return "plain";
-    case PackField::Candidates: return "candidates";
-    case PackField::Seed: return "seed";
-    case PackField::Shard: return "shard";
-    case PackField::TimeLimit: return "time_limit";
+    case PackField::Kind:
+      return "kind";
+    case PackField::Colours:
+      return "colours";
+    case PackField::Window:
+      return "window";
+    case PackField::Set:
+      return "set";
+    case PackField::Size:
+      return "size";
+    case PackField::Method:
+      return "method";
+    case PackField::Mode:
+      return "mode";
+    case PackField::Formulation:
+      return "formulation";
+    case PackField::Ordering:
+      return "ordering";
+    case PackField::Impose:
+      return "impose";
+    case PackField::Lift:
+      return "lift";
+    case PackField::Plain:
+      return "plain";
+    case PackField::Candidates:
+      return "candidates";
+    case PackField::Seed:
+      return "seed";
+    case PackField::Shard:
+      return "shard";
+    case PackField::TimeLimit:
+      return "time_limit";
   }
   return "?";
 }
@@ -108,8 +124,9 @@ PackRequest resume_request(const PackRequest& here, const PackFields& given, con
       const nlohmann::json mine = f.get(here);
       const std::string name(pack_field_name(f.field));
       if (mine != theirs)
-        throw RequestError(name, fmt::format("`{}` is {} here but {} in the checkpoint {} (drop it to continue that run)",
-                                             name, mine.dump(), theirs.dump(), checkpoint));
+        throw RequestError(
+            name, fmt::format("`{}` is {} here but {} in the checkpoint {} (drop it to continue that run)", name,
+                              mine.dump(), theirs.dump(), checkpoint));
       continue;
     }
     try {

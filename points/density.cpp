@@ -287,7 +287,8 @@ class ImageDensity : public DensityFunction {
 }  // namespace
 
 std::unique_ptr<DensityFunction> constant_density(double d) {
-  if (!(d > 0) || !std::isfinite(d)) throw RequestError("density", fmt::format("`density` must be positive, got {}", d));
+  if (!(d > 0) || !std::isfinite(d))
+    throw RequestError("density", fmt::format("`density` must be positive, got {}", d));
   return std::make_unique<Constant>(d);
 }
 

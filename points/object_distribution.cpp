@@ -26,7 +26,8 @@ std::vector<ObjectClass> parse_object_classes(const std::string& text) {
                                               : std::from_chars(item.data() + colon + 1, item.data() + item.size(), p);
     if (colon == 0 || colon == std::string::npos || r.ec != std::errc() || r.ptr != item.data() + item.size() ||
         !(p > 0) || !std::isfinite(p))
-      throw RequestError("objects", 
+      throw RequestError(
+          "objects",
           fmt::format("`objects`: expected NAME:PROBABILITY,... with positive probabilities, got '{}'", item));
     out.push_back({item.substr(0, colon), p});
     total += p;

@@ -68,7 +68,8 @@ ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) 
 
 FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const ImposedGroup& group) {
   const TileSet& set = problem.set;
-  if (!problem.torus) throw RequestError("impose", "`impose` needs a torus (translations do not act on a bounded grid)");
+  if (!problem.torus)
+    throw RequestError("impose", "`impose` needs a torus (translations do not act on a bounded grid)");
   if (problem.rows != group.rows() || problem.cols != group.cols())
     throw RequestError("impose", "`impose`: the group was built for another torus size");
   if (set.kind() != group.kind()) throw RequestError("impose", "`impose`: the group was built for another tile kind");
@@ -162,17 +163,17 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
       TileIndex img = group.apply(els[e], t);
       if (!in_set[img]) {
         if (m.packing)
-          throw RequestError("impose", fmt::format(
-              "`impose`: the tile set is not closed under the group: tile index {} maps to {}, which is not in the set",
-              t, img));
+          throw RequestError("impose", fmt::format("`impose`: the tile set is not closed under the group: tile index "
+                                                   "{} maps to {}, which is not in the set",
+                                                   t, img));
         usable = false;
       }
       if (e > 0 && img == t) {
         if (m.packing)
-          throw RequestError("impose", 
-              fmt::format("`impose`: tile index {} is its own image under a non-identity group element; "
-                          "a packing cannot be invariant",
-                          t));
+          throw RequestError("impose",
+                             fmt::format("`impose`: tile index {} is its own image under a non-identity group element; "
+                                         "a packing cannot be invariant",
+                                         t));
       }
       orbit.push_back(img);
     }
@@ -183,7 +184,7 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
     if (o == -2) o = -1;
   if (m.packing && std::size_t(m.num_orbits) != m.cells.size())
     throw RequestError("impose", fmt::format("`impose`: {} tile orbits but {} cell orbits; no invariant packing exists",
-                                 m.num_orbits, m.cells.size()));
+                                             m.num_orbits, m.cells.size()));
   return m;
 }
 

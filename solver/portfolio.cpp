@@ -499,7 +499,8 @@ SearchResult PortfolioResult::as_search_result(int threads) const {
 
 PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
                               const PortfolioOptions& portfolio) {
-  if (options.mode != SearchMode::First) throw RequestError("mode", "the portfolio finds one packing: use it with `mode` first");
+  if (options.mode != SearchMode::First)
+    throw RequestError("mode", "the portfolio finds one packing: use it with `mode` first");
   if (portfolio.first_slice <= 0) throw InputError("the portfolio's first slice must be positive");
   PortfolioOptions po = portfolio;
   if (po.stats_path.empty()) po.stats_path = PortfolioStats::default_path();

@@ -14,7 +14,7 @@ namespace tilekit {
 
 namespace {
 constexpr std::pair<Formulation, std::string_view> kFormulationNames[] = {
-    {Formulation::Auto, "auto"}, {Formulation::Cell, "cell"}, {Formulation::Pegs, "pegs"},
+    {Formulation::Auto, "auto"},   {Formulation::Cell, "cell"}, {Formulation::Pegs, "pegs"},
     {Formulation::Edges, "edges"}, {Formulation::Sat, "sat"},
 };
 }  // namespace
@@ -60,10 +60,11 @@ void check_searchable(const TilingProblem& p) {
                                    : std::max(set.horizontal_radix(), set.vertical_radix());
   const std::uint64_t words = 4 * labels * ((set.size() + 63) / 64);
   if (words > kMaxModelTable)
-    throw RequestError("method", fmt::format(
-        "{} is too large to search: {} tiles over {} edge labels need {} mask words (limit "
-        "{}); a construction (`method` construct) or fewer colours",
-        set.name().empty() ? std::string("the tile set") : set.name(), set.size(), labels, words, kMaxModelTable));
+    throw RequestError(
+        "method", fmt::format("{} is too large to search: {} tiles over {} edge labels need {} mask words (limit "
+                              "{}); a construction (`method` construct) or fewer colours",
+                              set.name().empty() ? std::string("the tile set") : set.name(), set.size(), labels, words,
+                              kMaxModelTable));
 }
 
 }  // namespace tilekit

@@ -155,7 +155,8 @@ SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, 
                           const SatNames& names, const std::function<const CnfBuilder&()>& build,
                           const std::function<Tiling(const std::vector<char>&)>& decode) {
   if (o.mode != SearchMode::First)
-    throw RequestError("formulation", fmt::format("`formulation` sat finds one {}: use it with `mode` first", names.finds));
+    throw RequestError("formulation",
+                       fmt::format("`formulation` sat finds one {}: use it with `mode` first", names.finds));
   if (o.run.shard.count != 1) throw RequestError("formulation", "`formulation` sat runs as one job: drop `shard`");
   if (o.resume_state && o.resume_state->fingerprint != fingerprint)
     throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");

@@ -103,11 +103,15 @@ Formulation auto_formulation(Subspace s, TileKind kind) {
     // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
     // unconstrained tilings, where most-constrained-first cell search is close and far more
     // robust on restrictive (e.g. aperiodic) sets.
-    case Subspace::Whole: return Formulation::Cell;
+    case Subspace::Whole:
+      return Formulation::Cell;
     // Under a group the model is the fundamental domain of pegs (corner) or edges (Wang).
-    case Subspace::Imposed: return kind == TileKind::Wang ? Formulation::Edges : Formulation::Pegs;
-    case Subspace::Lift: return Formulation::Pegs;
-    case Subspace::Window: return Formulation::Pegs;
+    case Subspace::Imposed:
+      return kind == TileKind::Wang ? Formulation::Edges : Formulation::Pegs;
+    case Subspace::Lift:
+      return Formulation::Pegs;
+    case Subspace::Window:
+      return Formulation::Pegs;
   }
   return Formulation::Cell;
 }
@@ -160,14 +164,17 @@ void plan_window(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
   if (!p.packing || !p.torus) throw InputError("a window torus holds every window once: a packing of a torus");
   check_window_torus_shape(set.horizontal_radix(), set.window_rows(), set.window_cols(), p.rows, p.cols);
   pl.window = true;
-  if (!o.impose.empty() && !o.lift.empty()) throw RequestError("impose", "`impose` and `lift` are separate subspaces: give one of them");
+  if (!o.impose.empty() && !o.lift.empty())
+    throw RequestError("impose", "`impose` and `lift` are separate subspaces: give one of them");
   if (!o.impose.empty()) pl.group = build_group(p, o.impose);
   if (!o.lift.empty())
     pl.window_lift = std::make_shared<const WindowLiftProblem>(make_window_lift_problem(p, o.lift));
   use_route(pl, pick_route(Subspace::Window, o.formulation, set.kind()));
   if (pl.ordering == "auto") pl.ordering = pl.route->formulation == Formulation::Sat ? "cadical" : "static";
   if (pl.ordering != "static" && pl.ordering != "cadical")
-    throw RequestError("ordering", fmt::format("window tori are searched in scanline order (`ordering` static), not '{}'", o.ordering));
+    throw RequestError(
+        "ordering",
+        fmt::format("window tori are searched in scanline order (`ordering` static), not '{}'", o.ordering));
   pl.restarts = o.mode == SearchMode::First && o.restarts != 0;
   pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count));
@@ -186,8 +193,8 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   checked_thread_count(o.run.threads);
   const ShardSpec& shard = o.run.shard;
   if (shard.count < 1 || shard.count > kMaxShards || shard.index < 0 || shard.index >= shard.count)
-    throw RequestError("shard", 
-        fmt::format("`shard` must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards, shard.index, shard.count));
+    throw RequestError("shard", fmt::format("`shard` must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards,
+                                            shard.index, shard.count));
   if (!std::isfinite(o.run.time_limit) || !std::isfinite(o.run.checkpoint_every))
     throw RequestError("time_limit", "`time_limit` and `checkpoint_every` must be finite numbers of seconds");
   if (o.run.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.run.time_limit));
@@ -213,7 +220,8 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
       if (o.mode != SearchMode::First)
         throw RequestError("mode", "the sat formulation finds one packing: use it with `mode` first");
       if (o.run.shard.count != 1 || o.save_checkpoint || o.resume_state)
-        throw RequestError("shard", "the sat formulation runs cadical once: it keeps no checkpoint and takes no `shard`");
+        throw RequestError("shard",
+                           "the sat formulation runs cadical once: it keeps no checkpoint and takes no `shard`");
     }
     if (!o.lift.empty()) throw RequestError("impose", "`impose` and `lift` are separate subspaces: give one of them");
   } else if (!o.lift.empty()) {
@@ -465,8 +473,9 @@ SearchResult run_lift_sat(const TilingProblem& p, const SearchOptions& o, Plan& 
 
 // A window torus's symbols tied by its imposed group or its lift (none: free).
 SymbolTies window_ties(const TilingProblem& p, const Plan& pl) {
-  return pl.group ? group_ties(p, pl.group->elements()) : pl.window_lift ? window_lift_ties(p, *pl.window_lift)
-                                                                         : SymbolTies{};
+  return pl.group         ? group_ties(p, pl.group->elements())
+         : pl.window_lift ? window_lift_ties(p, *pl.window_lift)
+                          : SymbolTies{};
 }
 
 // The colour lift of a window torus (the row-difference lift only ties symbols).

@@ -78,9 +78,9 @@ double mean_fetches(const RenderSource& src, const View& view, int max_aniso) {
 
 Image render_cpu(const RenderSource& src, const View& view, const RenderOptions& o) {
   if (src.method == RenderMethod::Tiles ? !src.atlas : !src.exemplar)
-    throw RequestError("method", 
-        fmt::format("`method` {} needs {}", render_method_name(src.method),
-                    src.method == RenderMethod::Tiles ? "an atlas (`atlas`)" : "an exemplar (`exemplar`)"));
+    throw RequestError(
+        "method", fmt::format("`method` {} needs {}", render_method_name(src.method),
+                              src.method == RenderMethod::Tiles ? "an atlas (`atlas`)" : "an exemplar (`exemplar`)"));
   if (o.max_aniso < 1 || o.max_aniso > kMaxAnisotropy)
     throw RequestError("max_aniso", fmt::format("`max_aniso` must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
   const int unit = src.unit_px();

@@ -27,8 +27,9 @@ void check_colour_count(std::int64_t c, const char* what) {
 
 void check_complete_set_colours(std::int64_t c, const char* what) {
   if (c < 1 || c > std::int64_t(kMaxCompleteSetColours))
-    throw_input_error(what, fmt::format("{} must be between 1 and {} for a packing or atlas of the complete set, got {}",
-                                        what, kMaxCompleteSetColours, c));
+    throw_input_error(
+        what, fmt::format("{} must be between 1 and {} for a packing or atlas of the complete set, got {}", what,
+                          kMaxCompleteSetColours, c));
 }
 
 TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string source, std::uint32_t ch,

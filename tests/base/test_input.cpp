@@ -122,8 +122,7 @@ TEST(FlagParsers, ShardsAreRefusedInsteadOfWrappingAround) {
   }
   // Named without backquotes, a plain InputError.
   EXPECT_THROW(
-      try { parse_shard("1/1", "the shard"); } catch (const RequestError&) { FAIL() << "a RequestError"; },
-      InputError);
+      try { parse_shard("1/1", "the shard"); } catch (const RequestError&) { FAIL() << "a RequestError"; }, InputError);
 }
 
 TEST(FlagParsers, DimensionsHaveBothSidesAndAnAreaBound) {
