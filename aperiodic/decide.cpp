@@ -162,8 +162,9 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
   if (!o.rows && !o.columns) throw InputError("decide: at least one of rows and columns is needed");
   if (!(o.time_limit >= 0) || !std::isfinite(o.time_limit))
-    throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", o.time_limit));
-  if (o.max_k < 0) throw InputError(fmt::format("--max-k must be >= 0, got {}", o.max_k));
+    throw RequestError("time_limit",
+                       fmt::format("`time_limit` must be a number of seconds >= 0, got {}", o.time_limit));
+  if (o.max_k < 0) throw RequestError("max_k", fmt::format("`max_k` must be >= 0, got {}", o.max_k));
   const auto t0 = Clock::now();
   std::optional<SignalCatcher> signals;
   if (o.catch_signals) signals.emplace();

@@ -288,16 +288,19 @@ void merge_children(EnumerateResult& r, const std::string& parent_hash, std::vec
 
 // The run's sources, after every option is checked (InputError naming the first bad one).
 std::vector<std::string> checked_sources(const EnumerateOptions& o) {
-  if (o.max_depth < 0) throw InputError(fmt::format("--max-depth must be >= 0, got {}", o.max_depth));
-  if (o.max_tiles < 1) throw InputError("--max-tiles must be >= 1");
-  if (o.batch < 1) throw InputError("--batch must be >= 1");
+  if (o.max_depth < 0) throw RequestError("max_depth", fmt::format("`max_depth` must be >= 0, got {}", o.max_depth));
+  if (o.max_tiles < 1) throw RequestError("max_tiles", "`max_tiles` must be >= 1");
+  if (o.batch < 1) throw RequestError("batch", "`batch` must be >= 1");
   if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards)
-    throw InputError(fmt::format("--shard {}/{}: expected I/N with 0 <= I < N", o.shard, o.shards));
-  if (o.lead_max_k < 1) throw InputError(fmt::format("--lead-max-k must be >= 1, got {}", o.lead_max_k));
+    throw RequestError("shard", fmt::format("`shard` {}/{}: expected I/N with 0 <= I < N", o.shard, o.shards));
+  if (o.lead_max_k < 1)
+    throw RequestError("lead_max_k", fmt::format("`lead_max_k` must be >= 1, got {}", o.lead_max_k));
   if (!(o.time_limit >= 0) || !std::isfinite(o.time_limit))
-    throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", o.time_limit));
+    throw RequestError("time_limit",
+                       fmt::format("`time_limit` must be a number of seconds >= 0, got {}", o.time_limit));
   if (!(o.checkpoint_every >= 0) || !std::isfinite(o.checkpoint_every))
-    throw InputError(fmt::format("--checkpoint-every must be a number of seconds >= 0, got {}", o.checkpoint_every));
+    throw RequestError("checkpoint_every",
+                       fmt::format("`checkpoint_every` must be a number of seconds >= 0, got {}", o.checkpoint_every));
   std::vector<std::string> sources = o.sources.empty() ? published_enumeration_sources() : o.sources;
   const auto& known = published_enumeration_sources();
   for (const std::string& s : sources)
@@ -437,24 +440,20 @@ std::vector<ChainLink> recorded_chain(const EnumerateResult& r, const std::strin
     const EnumNode& n = r.nodes.at(h);
     std::string argument;
     if (auto it = r.edges.find({n.parent, n.step}); it != r.edges.end()) argument = it->second.argument;
-    chain.push_back({n.hash, n.step, n.label, argument, "", n.tiles, n.colours, n.kind});
+    chain.push_back({n.hash, n.step, n.label, argument, {}, n.tiles, n.colours, n.kind});
     if (n.depth < 0) throw InputError(fmt::format("set {} has no sound chain", hash));
     h = n.parent;
   }
   std::reverse(chain.begin(), chain.end());
   const std::string source = r.nodes.at(chain.front().hash).root;
   chain.front().step = source;
-  chain.front().check = fmt::format("tilekit tileset show {} --json", source);
+  chain.front().derivation = {source, {}};
   std::vector<std::string> steps;
   for (std::size_t i = 1; i < chain.size(); ++i) {
     steps.push_back(chain[i].step);
-    chain[i].check = link_check_command(source, steps);
+    chain[i].derivation = {source, steps};
   }
   return chain;
-}
-
-std::string link_check_command(const std::string& source, const std::vector<std::string>& steps) {
-  return fmt::format("tilekit aperiodic link {} --steps {} --json", source, fmt::join(steps, ","));
 }
 
 std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps,

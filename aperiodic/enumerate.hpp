@@ -69,8 +69,16 @@ struct EnumEdge {
   std::string from, step, to, label, argument;
 };
 
+// What re-derives a link of a chain: its source and the steps from it (none: the source itself).
+// The CLI words it as the command that checks the link (`aperiodic link`, `tileset show`).
+struct LinkDerivation {
+  std::string source;
+  std::vector<std::string> steps;
+};
+
 struct ChainLink {
-  std::string hash, step, label, argument, check;
+  std::string hash, step, label, argument;
+  LinkDerivation derivation;
   std::size_t tiles = 0;
   std::uint32_t colours = 0;
   TileKind kind = TileKind::Wang;
@@ -96,9 +104,6 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& options);
 
 // The sound chain to `hash` the search recorded (parent links), source first.
 std::vector<ChainLink> recorded_chain(const EnumerateResult& r, const std::string& hash);
-
-// "tilekit aperiodic link SOURCE --steps S1,S2,... --json": re-derives a chain from its source.
-std::string link_check_command(const std::string& source, const std::vector<std::string>& steps);
 
 // Applies steps one by one from a built-in source, each to the canonical form of the last result
 // (aperiodic link). InputError for an unknown source or step, or a step that does not apply.

@@ -94,7 +94,7 @@ Soundness after_pruning(Soundness s, const PruneReport& r) {
 }
 
 PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius) {
-  if (radius < 0) throw InputError(fmt::format("--prune radius must be >= 0, got {}", radius));
+  if (radius < 0) throw RequestError("prune", fmt::format("`prune` radius must be >= 0, got {}", radius));
   PruneReport rep;
   rep.before = tiles.size();
   std::vector<std::size_t> alive(tiles.size());

@@ -19,18 +19,6 @@ namespace {
 constexpr std::string_view kRecordFormat = "tilekit-smallest-chain";
 constexpr std::string_view kEmbeddedRecord = "smallest-chain.json";
 
-// The command that reruns a search with these options (the flags that change its results).
-std::string enumerate_command(const EnumerateOptions& o) {
-  std::string cmd = "tilekit aperiodic enumerate";
-  for (const std::string& s : o.sources) cmd += " --source " + s;
-  cmd += fmt::format(" --max-depth {} --max-tiles {}", o.max_depth, o.max_tiles);
-  const EnumerateOptions d;
-  if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
-  if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
-  if (o.shards > 1) cmd += fmt::format(" --shard {}/{}", o.shard, o.shards);
-  return cmd;
-}
-
 }  // namespace
 
 const std::vector<std::string>& published_aperiodic_sets() {
@@ -38,7 +26,7 @@ const std::vector<std::string>& published_aperiodic_sets() {
   return s;
 }
 
-nlohmann::json smallest_record(const EnumerateOptions& o, const EnumerateResult& r) {
+nlohmann::json smallest_record(const std::string& command, const EnumerateResult& r) {
   const EnumNode* best = nullptr;
   for (const auto& [h, n] : r.nodes)
     if (n.depth >= 0 && n.kind == TileKind::Corner &&
@@ -48,17 +36,9 @@ nlohmann::json smallest_record(const EnumerateOptions& o, const EnumerateResult&
   std::vector<ChainLink> chain = recorded_chain(r, best->hash);
   nlohmann::json steps = nlohmann::json::array();
   for (std::size_t i = 1; i < chain.size(); ++i) steps.push_back(chain[i].step);
-  return {{"format", kRecordFormat},
-          {"command", enumerate_command(o)},
-          {"digest", r.digest},
-          {"complete", r.complete},
-          {"expanded", r.expanded},
-          {"sets", r.nodes.size()},
-          {"source", best->root},
-          {"steps", steps},
-          {"set", best->hash},
-          {"tiles", best->tiles},
-          {"colors", best->colours}};
+  return {{"format", kRecordFormat}, {"command", command},     {"digest", r.digest},     {"complete", r.complete},
+          {"expanded", r.expanded},  {"sets", r.nodes.size()}, {"source", best->root},   {"steps", steps},
+          {"set", best->hash},       {"tiles", best->tiles},   {"colors", best->colours}};
 }
 
 RecordedChain parse_smallest_record(std::string_view text, const std::string& origin) {
@@ -101,8 +81,7 @@ CornerSetCandidate rederive_chain(const RecordedChain& record) {
                                          record.source, l.step, l.label));
     if (i > 0) steps.push_back(l.step), labels.insert(l.label);
     c.chain.push_back({l.step, l.hash, l.tiles, l.colours, std::string(kind_name(l.kind)), l.label, l.argument,
-                       i == 0 ? fmt::format("tilekit tileset show {} --json", record.source)
-                              : link_check_command(record.source, steps)});
+                       LinkDerivation{record.source, steps}});
   }
   if (links.back().hash != record.set)
     throw std::logic_error(fmt::format("the recorded chain from {} ({}) now gives set {}, not the recorded {}",

@@ -26,7 +26,7 @@ struct ChainStep {
   std::string kind;      // "wang" or "corner"
   std::string label;     // "published", "conjugate", "lifts" or "prune"
   std::string argument;  // why the step keeps aperiodicity
-  std::string check;     // a command that re-derives this link (its set, label and tile count)
+  LinkDerivation derivation;  // what re-derives this link (its set, label and tile count)
 };
 
 // A chain as a search recorded it: the source and the steps, the set they must give, and the
@@ -42,9 +42,11 @@ struct RecordedChain {
   std::size_t expanded = 0, sets = 0;
 };
 
-// The record of the least sound corner set of a search (NotFound when it reached none), and
-// its parse (InputError naming the field for anything malformed).
-nlohmann::json smallest_record(const EnumerateOptions& o, const EnumerateResult& r);
+// The record of the least sound corner set of a search (NotFound when it reached none), with
+// `command`, the caller's words for rerunning the search (the CLI: `tilekit aperiodic enumerate`
+// and the options that change its results), and its parse (InputError naming the field for
+// anything malformed).
+nlohmann::json smallest_record(const std::string& command, const EnumerateResult& r);
 RecordedChain parse_smallest_record(std::string_view text, const std::string& origin);
 
 // The record embedded from aperiodic/data/smallest-chain.json.

@@ -59,12 +59,15 @@ Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_p
 // the shapes need.
 void check_torus_options(const TileSet& set, const VerifyOptions& opts) {
   if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
-  if (opts.max_period < 1) throw InputError(fmt::format("--max-period must be at least 1, got {}", opts.max_period));
-  if (opts.max_square < 0) throw InputError(fmt::format("--max-square must be at least 0, got {}", opts.max_square));
+  if (opts.max_period < 1)
+    throw RequestError("max_period", fmt::format("`max_period` must be at least 1, got {}", opts.max_period));
+  if (opts.max_square < 0)
+    throw RequestError("max_square", fmt::format("`max_square` must be at least 0, got {}", opts.max_square));
   if (std::uint64_t(opts.max_period) * std::uint64_t(opts.max_period) > (std::uint64_t(1) << 26) ||
       std::uint64_t(opts.max_square) * std::uint64_t(opts.max_square) > (std::uint64_t(1) << 28))
-    throw InputError(fmt::format("--max-period {} / --max-square {}: the shapes would not fit in memory",
-                                 opts.max_period, opts.max_square));
+    throw RequestError("max_period",
+                       fmt::format("`max_period` {} / `max_square` {}: the shapes would not fit in memory",
+                                   opts.max_period, opts.max_square));
 }
 
 using Shapes = std::vector<std::pair<int, int>>;  // (rows, cols) of torus shapes

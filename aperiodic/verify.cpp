@@ -45,9 +45,10 @@ void cross_check(const DecideResult& d, const VerifyResult& t, int max_period) {
 VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   if (set.empty()) throw InputError(fmt::format("tile set '{}' has no tiles", set.name()));
   if (opts.route != "auto" && opts.route != "transducer" && opts.route != "torus" && opts.route != "both")
-    throw InputError(fmt::format("--route must be auto, transducer, torus or both, got '{}'", opts.route));
+    throw RequestError("route", fmt::format("`route` must be auto, transducer, torus or both, got '{}'", opts.route));
   if (!(opts.time_limit >= 0) || !std::isfinite(opts.time_limit))
-    throw InputError(fmt::format("--time-limit must be a number of seconds >= 0, got {}", opts.time_limit));
+    throw RequestError("time_limit",
+                       fmt::format("`time_limit` must be a number of seconds >= 0, got {}", opts.time_limit));
   const auto t0 = Clock::now();
   const auto deadline = deadline_after(opts.time_limit, t0);
   const bool limited = deadline != Clock::time_point::max();

@@ -100,11 +100,13 @@ Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Im
 }  // namespace
 
 Image atlas_from_generated_tiles(const AtlasLookup& a, int tile_size) {
-  if (tile_size < 2 || tile_size > 1024) throw InputError(fmt::format("--tile-size must be 2..1024, got {}", tile_size));
+  if (tile_size < 2 || tile_size > 1024)
+    throw RequestError("tile_size", fmt::format("`tile_size` must be 2..1024, got {}", tile_size));
   if (std::uint64_t(a.cols) * a.rows * std::uint64_t(tile_size) * std::uint64_t(tile_size) >
       std::uint64_t(kMaxImagePixels))
-    throw InputError(fmt::format("a {}x{} atlas of {}-pixel tiles is more than {} pixels; use a smaller --tile-size",
-                                 a.rows, a.cols, tile_size, kMaxImagePixels));
+    throw RequestError("tile_size",
+                       fmt::format("a {}x{} atlas of {}-pixel tiles is more than {} pixels; use a smaller `tile_size`",
+                                   a.rows, a.cols, tile_size, kMaxImagePixels));
   std::vector<Image> tiles(a.cells.size());
   for (TileIndex i = 0; i < tiles.size(); ++i) tiles[i] = generated_tile(a.kind, a.colours, i, tile_size);
   return assemble(a, tile_size, [&](TileIndex i) -> const Image& { return tiles[i]; });

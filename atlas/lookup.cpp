@@ -55,7 +55,8 @@ AtlasLookup atlas_lookup(TileKind kind, std::uint32_t colours) {
     for (std::uint32_t c : constructible_colours(kind, 32)) list += (list.empty() ? "" : ", ") + std::to_string(c);
     throw NotFound(fmt::format(
         "no {} packing over {} colours is constructed or stored in Tilekit; constructed C up to 32: {}. Search for "
-        "one with `tilekit pack --kind {} --colors {} --method search --db FILE` and name that database with --db",
+        "one with `tilekit pack` and `kind` {} `colours` {} `method` search `db` FILE, and name that database with "
+        "`db`",
         kind_name(kind), colours, list, kind_name(kind), colours));
   }
   // Proven constructions (tilesets/construct_*.cpp), checked all the same: a C=32 corner packing,

@@ -56,8 +56,9 @@ std::vector<int> slot_index(const Picture& p) {
 void check_size(const Picture& p) {
   if (p.rows < 1 || p.cols < 1) throw InputError("nothing to draw: the picture has no tiles");
   if (p.width() > kMaxSide || p.height() > kMaxSide)
-    throw InputError(fmt::format("picture would be {}x{} pixels, more than {} per side; use a smaller --tile-size",
-                                 p.width(), p.height(), kMaxSide));
+    throw RequestError("tile_size",
+                       fmt::format("picture would be {}x{} pixels, more than {} per side; use a smaller `tile_size`",
+                                   p.width(), p.height(), kMaxSide));
 }
 
 PlacedTile place(TileKind kind, int row, int col, const std::vector<Colour>& file_colours) {

@@ -39,10 +39,11 @@ inline constexpr int kMaxThreads = 4096;
 // The thread count of a run that does not name one: OMP_NUM_THREADS, else every core.
 inline int default_thread_count() { return omp_get_max_threads(); }
 
-// Throws InputError unless 1 <= threads <= kMaxThreads.
-inline int checked_thread_count(std::int64_t threads, const char* flag = "--threads") {
+// Throws InputError unless 1 <= threads <= kMaxThreads; `what` names the value (the request
+// field `threads`: a RequestError, base/error.hpp).
+inline int checked_thread_count(std::int64_t threads, std::string_view what = "`threads`") {
   if (threads < 1 || threads > kMaxThreads)
-    throw InputError(fmt::format("{} must be between 1 and {}, got {}", flag, kMaxThreads, threads));
+    throw_input_error(what, fmt::format("{} must be between 1 and {}, got {}", what, kMaxThreads, threads));
   return int(threads);
 }
 

@@ -30,7 +30,8 @@ std::string shown(std::string_view text) {
 std::int64_t parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::string_view what) {
   std::int64_t v = 0;
   if (!strict_integer(text, v) || v < lo || v > hi)
-    throw InputError(fmt::format("{} must be an integer between {} and {}, got '{}'", what, lo, hi, shown(text)));
+    throw_input_error(what,
+                      fmt::format("{} must be an integer between {} and {}, got '{}'", what, lo, hi, shown(text)));
   return v;
 }
 
@@ -39,11 +40,14 @@ Dimensions parse_dimensions(std::string_view text, std::int64_t max_side, std::i
   Dimensions d;
   if (x == std::string_view::npos || !strict_integer(text.substr(0, x), d.first) ||
       !strict_integer(text.substr(x + 1), d.second))
-    throw InputError(fmt::format("{}: expected two positive integers such as 16x16, got '{}'", what, shown(text)));
+    throw_input_error(what,
+                      fmt::format("{}: expected two positive integers such as 16x16, got '{}'", what, shown(text)));
   if (d.first < 1 || d.second < 1 || d.first > max_side || d.second > max_side)
-    throw InputError(fmt::format("{}: each side must be between 1 and {}, got '{}'", what, max_side, shown(text)));
+    throw_input_error(what,
+                      fmt::format("{}: each side must be between 1 and {}, got '{}'", what, max_side, shown(text)));
   if (d.first * d.second > max_area)
-    throw InputError(fmt::format("{}: {} cells is more than the limit of {}", what, d.first * d.second, max_area));
+    throw_input_error(what,
+                      fmt::format("{}: {} cells is more than the limit of {}", what, d.first * d.second, max_area));
   return d;
 }
 
@@ -52,8 +56,8 @@ ShardSpec parse_shard(std::string_view text, std::string_view what) {
   std::int64_t i = 0, n = 0;
   if (slash == std::string_view::npos || !strict_integer(text.substr(0, slash), i) ||
       !strict_integer(text.substr(slash + 1), n) || n < 1 || n > kMaxShards || i < 0 || i >= n)
-    throw InputError(
-        fmt::format("{} must be I/N with 0 <= I < N <= {}, got '{}'", what, kMaxShards, shown(text)));
+    throw_input_error(what,
+                      fmt::format("{} must be I/N with 0 <= I < N <= {}, got '{}'", what, kMaxShards, shown(text)));
   return {int(i), int(n)};
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // The small parsers every command shares for flag values: bounded integers, sizes "WxH" and
 // shards "I/N". Each is strict (decimal digits only, no sign unless the range allows one, no
-// spaces, no trailing text, no overflow) and throws InputError naming the flag and the value,
-// so `--shard 4294967296/1` is refused instead of wrapping around to shard 0.
+// spaces, no trailing text, no overflow) and throws an InputError naming `what` and the value,
+// so shard 4294967296/1 is refused instead of wrapping around to shard 0. `what` is what the
+// caller calls the value: a field of a request between backquotes ("`shard`", base/error.hpp's
+// RequestError, which the CLI words as its flag) or a flag.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -13,11 +15,11 @@ namespace tilekit {
 // useful subproblem count per shard (a search splits into about a thousand subproblems).
 inline constexpr std::int64_t kMaxShards = 1'000'000;
 
-// A decimal integer in [lo, hi]; `what` names the flag ("--seed").
+// A decimal integer in [lo, hi]; `what` names it ("`seed`").
 std::int64_t parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::string_view what);
 
-// "AxB" (or "AXB") with 1 <= A, B <= max_side and A*B <= max_area; `what` names the flag and
-// its form ("--size WxH").
+// "AxB" (or "AXB") with 1 <= A, B <= max_side and A*B <= max_area; `what` names the value and
+// its form ("`size` WxH").
 struct Dimensions {
   std::int64_t first = 0, second = 0;
 };
@@ -27,7 +29,7 @@ Dimensions parse_dimensions(std::string_view text, std::int64_t max_side, std::i
 struct ShardSpec {
   int index = 0, count = 1;
 };
-ShardSpec parse_shard(std::string_view text, std::string_view what = "--shard");
+ShardSpec parse_shard(std::string_view text, std::string_view what = "`shard`");
 // "I/N", the text parse_shard() reads.
 std::string shard_text(const ShardSpec& shard);
 

@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
       pr.rows = pr.cols = p;
       pr.torus = true;
       SearchOptions so;
-      so.formulation = f;
+      so.formulation = formulation_from_name(f).value();
       so.ordering = ord;
       so.restarts = 0;
       so.run.time_limit = 60;

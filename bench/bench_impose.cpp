@@ -69,7 +69,7 @@ SearchResult run_one(const Case& c, const std::string& spec, int threads, double
   o.impose = spec;
   o.impose_patterns = k.patterns;
   o.ordering = k.static_order ? "static" : "auto";
-  o.formulation = k.sat ? "sat" : "auto";
+  o.formulation = k.sat ? Formulation::Sat : Formulation::Auto;
   o.restart_base = k.luby_unit;
   const double cpu0 = cpu_seconds();
   SearchResult r = solve(complete_packing_problem(c.kind, c.colours), o);

@@ -116,7 +116,7 @@ SearchResult run(const TilingProblem& p, SearchMode mode, int threads, const std
   SearchOptions o;
   o.mode = mode;
   o.run.threads = threads;
-  o.formulation = formulation;
+  o.formulation = formulation_from_name(formulation).value();
   o.run.seed = seed;
   o.run.time_limit = time_limit;
   return solve(p, o);
@@ -300,7 +300,7 @@ void bench_checkpoint_cost() {
     for (double every : {0.0, 1.0}) {
       SearchOptions o;
       o.mode = SearchMode::Count;
-      o.formulation = "pegs";
+      o.formulation = Formulation::Pegs;
       o.run.time_limit = 4;
       double in_ckpt = 0;
       if (every > 0) {
@@ -341,7 +341,7 @@ void bench_speedup() {
       SearchOptions o;
       o.mode = SearchMode::Count;
       o.run.threads = threads;
-      o.formulation = f;
+      o.formulation = formulation_from_name(f).value();
       o.ordering = "static";
       double t0 = now(), c0 = cpu_seconds();
       SearchResult r = solve(p, o);

@@ -66,7 +66,7 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
     o.run.seed = seed0 + std::uint64_t(r);
     o.run.time_limit = limit;
     o.lift = c.lift;
-    o.formulation = c.formulation;
+    o.formulation = formulation_from_name(c.formulation).value();
     o.restart_base = restart_base;
     SearchResult res = solve(complete_packing_problem(c.kind, c.colours), o);
     const bool ok = !res.found.empty() && validate(res.found[0]).packing;  // the independent validator

@@ -1,12 +1,14 @@
 // tilekit aperiodic convert: the thesis ch. 8 constructions (aperiodic/conversion.hpp), and the
 // registration of the `aperiodic` subcommands.
+#include "cli/cmd_aperiodic.hpp"
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "aperiodic/json.hpp"
 #include "aperiodic/requests.hpp"
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
-#include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
 #include "tilesets/tile_set_io.hpp"
 
@@ -35,6 +37,22 @@ void add_verify_flags(CLI::App* cmd, VerifyOptions& o) {
   cmd->add_option("--max-square", o.max_square, "torus: also search an N x N square (0 = none)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", o.threads, "torus: threads (default: all)")->check(CLI::Range(1, kMaxThreads));
+}
+
+std::string check_command(const LinkDerivation& d) {
+  if (d.steps.empty()) return fmt::format("tilekit tileset show {} --json", d.source);
+  return fmt::format("tilekit aperiodic link {} --steps {} --json", d.source, fmt::join(d.steps, ","));
+}
+
+std::string enumerate_command(const EnumerateOptions& o) {
+  std::string cmd = "tilekit aperiodic enumerate";
+  for (const std::string& s : o.sources) cmd += " --source " + s;
+  cmd += fmt::format(" --max-depth {} --max-tiles {}", o.max_depth, o.max_tiles);
+  const EnumerateOptions d;
+  if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
+  if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
+  if (o.shards > 1) cmd += fmt::format(" --shard {}/{}", o.shard, o.shards);
+  return cmd;
 }
 
 std::string repeated_text(const std::vector<RepeatedTile>& r) {

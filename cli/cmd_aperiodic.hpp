@@ -1,6 +1,7 @@
 #pragma once
 // The `tilekit aperiodic` subcommands (cmd_aperiodic*.cpp): flags in, printing out; the work is
 // in aperiodic/requests.hpp, aperiodic/table_checks.hpp and aperiodic/smallest.hpp.
+#include "aperiodic/enumerate.hpp"
 #include "aperiodic/verify.hpp"
 #include "cli/command.hpp"
 #include "tilesets/tile_set_io.hpp"
@@ -10,6 +11,14 @@ namespace tilekit::cli {
 // The flags every command that verifies shares: --time-limit, --route, --max-k, --max-period,
 // --max-square, --threads, --no-merge, --direction, --memory-limit.
 void add_verify_flags(CLI::App* cmd, VerifyOptions& o);
+
+// The command that checks a link of a chain: "tilekit aperiodic link SOURCE --steps S1,S2,...
+// --json", or "tilekit tileset show SOURCE --json" for the source itself.
+std::string check_command(const LinkDerivation& d);
+
+// The command that reruns a search with these options (the flags that change its results),
+// which a chain record keeps (aperiodic/smallest.hpp).
+std::string enumerate_command(const EnumerateOptions& o);
 
 // "12 repeated tiles dropped (file:3 repeats tile 1, ...)" or "".
 std::string repeated_text(const std::vector<RepeatedTile>& r);

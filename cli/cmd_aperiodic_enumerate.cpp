@@ -38,9 +38,10 @@ struct EnumerateArgs {
 };
 
 nlohmann::json link_json(const ChainLink& l) {
-  return {{"set", l.hash},          {"step", l.step},         {"label", l.label},   {"tiles", l.tiles},
-          {"colors", l.colours},    {"kind", std::string(kind_name(l.kind))}, {"argument", l.argument},
-          {"check", l.check}};
+  return {{"set", l.hash},          {"step", l.step},
+          {"label", l.label},       {"tiles", l.tiles},
+          {"colors", l.colours},    {"kind", std::string(kind_name(l.kind))},
+          {"argument", l.argument}, {"check", check_command(l.derivation)}};
 }
 
 nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g) {
@@ -56,7 +57,7 @@ nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g)
                      {"colors", s.colours},
                      {"kind", s.kind},
                      {"argument", e.argument},
-                     {"check", link_check_command(c.source, steps)}});
+                     {"check", check_command({c.source, steps})}});
   }
   return {{"source", c.source}, {"links", links}};
 }
@@ -140,7 +141,7 @@ void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
                      {"list", list},         {"verify", verdict_text(*check)}};
   }
   if (!a.record.empty() && !r.interrupted) {
-    write_file_atomic(a.record, smallest_record(o, r).dump(2) + "\n");
+    write_file_atomic(a.record, smallest_record(enumerate_command(o), r).dump(2) + "\n");
     j["record"] = a.record;
   }
   if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;

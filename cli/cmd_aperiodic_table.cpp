@@ -63,7 +63,7 @@ nlohmann::json chain_json(const CornerSetCandidate& c) {
                      {"kind", s.kind},
                      {"label", s.label},
                      {"argument", s.argument},
-                     {"check", s.check}});
+                     {"check", check_command(s.derivation)}});
   return steps;
 }
 
@@ -94,7 +94,7 @@ void print_smallest(const CornerSetCandidate& c, const VerifyResult& v) {
   fmt::print("Check: `aperiodic verify` finds {}.\n", verdict_text(v));
   fmt::print("Re-check each link: {}\n", [&] {
     std::vector<std::string> cmds;
-    for (const ChainStep& s : c.chain) cmds.push_back("`" + s.check + "`");
+    for (const ChainStep& s : c.chain) cmds.push_back("`" + check_command(s.derivation) + "`");
     return fmt::format("{}", fmt::join(cmds, "; "));
   }());
   fmt::print("For comparison: the thesis claims 44 (Fig. 8.6); Nurmi (Bridges 2016) published 30.\n\n");

@@ -44,9 +44,14 @@ struct LookupArgs {
 void run_lookup(const LookupArgs& a, const Context& ctx) {
   const HashKind hash = parse_hash_kind(a.hash);
   AtlasLookup l = lookup(a.packing);
+  // The generated C and GLSL name the command that makes them again.
+  const std::string command =
+      fmt::format("tilekit atlas lookup --kind {} --colors {} --format {}", kind_name(l.kind), l.colours, a.format);
   std::string text = a.format == "json" ? lookup_json_text(l) + "\n"
-                     : a.format == "c"  ? lookup_c_header(l)
-                                        : lookup_glsl(l, DirectTiling(l.kind, l.colours, hash, a.seed));
+                     : a.format == "c"
+                         ? lookup_c_header(l, command)
+                         : lookup_glsl(l, DirectTiling(l.kind, l.colours, hash, a.seed),
+                                       fmt::format("{} --hash {} --seed {}", command, hash_kind_name(hash), a.seed));
   if (!a.out.empty()) {
     write_file_atomic(a.out, text);
     nlohmann::json s = {{"kind", a.packing.kind},

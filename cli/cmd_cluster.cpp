@@ -29,6 +29,19 @@ struct StatusArgs {
   std::string run_dir;
 };
 
+// The flags of the shard command (`tilekit pack`) that the plan writes into the job scripts, and
+// those the job scripts set per shard (scripts/slurm/*.body.sh), which --pack-arg may not give.
+cluster::ShardCommandWords pack_shard_words() {
+  return {.kind = "--kind",
+          .colours = "--colors",
+          .method = "--method",
+          .mode = "--mode",
+          .seed = "--seed",
+          .window = "--window",
+          .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
+                        "--portfolio-stats"}};
+}
+
 // A field name with '-' for '_'.
 std::string dashed(std::string name) {
   std::replace(name.begin(), name.end(), '_', '-');
@@ -143,6 +156,7 @@ void add_submit(CLI::App& cluster, Context& ctx) {
       "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
   auto a = std::make_shared<SubmitArgs>();
   cluster::SubmitRequest& r = a->request;
+  r.words = pack_shard_words();
   cluster::ClusterPlan& plan = r.settings;
   cmd->add_option("--command", r.command, "The shard command: pack (default) or enumerate (aperiodic enumerate)");
   cmd->add_option("--kind", r.kind,

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "aperiodic/conversion_graph.hpp"
+#include "cli/cmd_aperiodic.hpp"
 #include "cli/command.hpp"
 #include "results/results_db.hpp"
 
@@ -28,8 +29,13 @@ nlohmann::json chain_json(const StoredChain& c, const ConversionGraph& g) {
   for (const GraphEdge& e : c.links) {
     steps.push_back(e.step);
     const GraphSet& s = g.sets.at(e.to);
-    links.push_back({{"set", e.to}, {"step", e.step}, {"label", e.label}, {"tiles", s.tiles}, {"colors", s.colours},
-                     {"kind", s.kind}, {"check", link_check_command(c.source, steps)}});
+    links.push_back({{"set", e.to},
+                     {"step", e.step},
+                     {"label", e.label},
+                     {"tiles", s.tiles},
+                     {"colors", s.colours},
+                     {"kind", s.kind},
+                     {"check", check_command({c.source, steps})}});
   }
   return {{"source", c.source}, {"links", links}};
 }

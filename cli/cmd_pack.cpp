@@ -10,6 +10,7 @@
 #include "base/parallel.hpp"
 #include "base/parse.hpp"
 #include "cli/command.hpp"
+#include "cli/flag_terms.hpp"
 #include "packing/pack.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -28,7 +29,17 @@ struct PackArgs {
   bool quiet = false;
   std::int64_t threads = 0;   // when --threads is not given: default_thread_count()
   std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
+  std::string formulation = "auto";  // --formulation WORD, parsed into request.formulation
 };
+
+// The formulation --formulation names (solver/problem.hpp).
+Formulation parse_formulation(const std::string& word, bool lift) {
+  if (const std::optional<Formulation> f = formulation_from_name(word)) return *f;
+  if (lift)
+    throw InputError(fmt::format(
+        "--lift searches with the engine (--formulation auto: pegs/edges, or cell) or cadical (sat), not '{}'", word));
+  throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges, sat or auto)", word));
+}
 
 // A window torus as its symbols (one digit each, tile_grid.hpp's peg form); other tilings as
 // their tile indices.
@@ -170,14 +181,14 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   PackRequest req = a.request;
   req.run.threads = cmd.count("--threads") ? checked_thread_count(a.threads) : default_thread_count();
   req.run.shard = parse_shard(a.shard);
+  req.formulation = parse_formulation(a.formulation, !req.lift.empty());
   req.run.progress = !a.quiet;
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
   if (!a.portfolio_stats.empty()) req.portfolio_stats = a.portfolio_stats.front();
   if (cmd.count("--estimate")) return print_estimate(req, a, ctx);
-  std::set<std::string> given;
-  for (const auto& flag : identity_flags())
-    if (cmd.count(flag)) given.insert(flag);
-  if (cmd.count("--time-limit")) given.insert("--time-limit");
+  PackFields given;
+  for (PackField f : pack_fields())
+    if (cmd.count(flag_of_field(pack_field_name(f)))) given.insert(f);
   PackOutcome o = run_pack(req, given);
   std::string out_file;
   if (!a.out.empty() && !o.result.found.empty()) {
@@ -217,12 +228,12 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--mode", r.mode, "first, count or all (all stores every packing)")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)");
   cmd->add_option("--seed", r.run.seed, "Seed of the value order and restarts")->capture_default_str();
-  cmd->add_option("--formulation", r.formulation,
+  cmd->add_option("--formulation", a->formulation,
                   "auto, cell, pegs (corner, window), edges (Wang) or sat (with --impose or --lift; window tori)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
   cmd->add_option("--checkpoint", r.run.checkpoint_path, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", r.run.checkpoint_every,
+  cmd->add_option("--checkpoint-every", r.checkpoint_every,
                   "Seconds between checkpoints (default 300 with --checkpoint)");
   cmd->add_option(
       "--resume", r.run.resume_path,

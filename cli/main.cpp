@@ -6,13 +6,13 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
-
 #include <string_view>
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
 #include "base/version.hpp"
 #include "cli/command.hpp"
+#include "cli/flag_terms.hpp"
 
 int main(int argc, char** argv) {
   using namespace tilekit;
@@ -54,11 +54,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::cerr << "tilekit: " << e.what() << " (see --help)" << std::endl;
     return 2;
+  } catch (const RequestError& e) {  // a library's words for a field: the flag's here
+    std::cerr << "tilekit: " << cli::in_flag_terms(e) << std::endl;
+    return 2;
   } catch (const InputError& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;
     return 2;
   } catch (const NotFound& e) {
-    std::cerr << "tilekit: " << e.what() << std::endl;
+    std::cerr << "tilekit: " << cli::in_flag_terms(std::string_view(e.what())) << std::endl;
     return 1;
   } catch (const Interrupted& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;

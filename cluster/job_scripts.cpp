@@ -44,7 +44,7 @@ std::string body(std::string_view name) {
 void common_directives(const ClusterPlan& p, std::vector<Directive>& ds) {
   if (!p.partition.empty()) ds.push_back({"partition=" + p.partition, "the partition (queue) to run in"});
   // check_plan(): each starts with "--"
-  for (const auto& a : p.sbatch_args) ds.push_back({a.substr(2), "passed through with --sbatch-arg"});
+  for (const auto& a : p.sbatch_args) ds.push_back({a.substr(2), "passed through from cluster submit"});
 }
 
 // What both sbatch scripts start with: the shebang, their header comment, the #SBATCH block

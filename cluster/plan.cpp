@@ -35,23 +35,23 @@ void set_shard_command(const SubmitRequest& r, ClusterPlan& p) {
   if (r.command != "pack") throw InputError(fmt::format("`command` must be pack or enumerate, got '{}'", r.command));
   if (r.kind != "wang" && r.kind != "corner" && r.kind != "window")
     throw InputError("`kind` must be wang, corner or window");
+  const ShardCommandWords& w = r.words;
   const bool has_window = std::any_of(r.shard_args.begin(), r.shard_args.end(),
-                                      [](const std::string& a) { return a.rfind("--window=", 0) == 0; });
+                                      [&](const std::string& a) { return a.rfind(w.window + "=", 0) == 0; });
   if (r.kind == "window" && !has_window)
-    throw InputError("`kind` window needs `shard_args`=--window=KxL (and `shard_args`=--size=RxS)");
+    throw InputError(fmt::format("`kind` window needs `shard_args`={}=KxL and the torus size", w.window));
   if (r.colors < 1) throw InputError("`colors` must be at least 1");
-  p.pack_args = {"--kind", r.kind, "--colors", std::to_string(r.colors)};
-  if (!r.method.empty()) p.pack_args.insert(p.pack_args.end(), {"--method", r.method});
-  p.pack_args.insert(p.pack_args.end(), {"--mode", r.mode});
-  if (!r.seed.empty()) p.pack_args.insert(p.pack_args.end(), {"--seed", r.seed});
+  p.pack_args = {w.kind, r.kind, w.colours, std::to_string(r.colors)};
+  if (!r.method.empty()) p.pack_args.insert(p.pack_args.end(), {w.method, r.method});
+  p.pack_args.insert(p.pack_args.end(), {w.mode, r.mode});
+  if (!r.seed.empty()) p.pack_args.insert(p.pack_args.end(), {w.seed, r.seed});
 }
 
 // The user's extra shard arguments; the ones the job script sets per shard are refused.
 void append_shard_args(const SubmitRequest& r, ClusterPlan& p) {
   for (const auto& a : r.shard_args) {
-    for (const char* own : {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
-                            "--portfolio-stats"})
-      if (a == own || a.rfind(std::string(own) + "=", 0) == 0)
+    for (const std::string& own : r.words.per_shard)
+      if (a == own || a.rfind(own + "=", 0) == 0)
         throw InputError(fmt::format("`shard_args` {}: the job script sets it per shard", a));
     p.pack_args.push_back(a);
   }

@@ -31,6 +31,15 @@ inline constexpr double kMaxCheckpointSeconds = 365.0 * 86400.0;
 // The most arguments of the shard command, and the longest one (what a run file may hold).
 inline constexpr std::size_t kMaxShardArgs = 4096, kMaxShardArgBytes = 4096;
 
+// The flags of the shard command's command line. They are the caller's (the CLI's
+// `pack_shard_words()`, cli/cmd_cluster.cpp), so that this library names no flag; the flags the job
+// scripts set per shard are written in their bodies (scripts/slurm/).
+struct ShardCommandWords {
+  std::string kind, colours, method, mode, seed;  // the flag that sets each request field
+  std::string window;                             // the flag a window run's shard_args must give
+  std::vector<std::string> per_shard;             // flags the job scripts set: refused in shard_args
+};
+
 // What `cluster submit` is asked. `settings` carries the scheduling fields as given (shards,
 // cpus_per_task, time, partition, max_requeues, checkpoint_every, sbatch_args); make_plan()
 // fills in the rest.
@@ -43,6 +52,7 @@ struct SubmitRequest {
   int signal_seconds = 0;                  // 0 = default_signal_seconds(time)
   std::string merge_time;                  // "" = time
   ClusterPlan settings;
+  ShardCommandWords words;
 };
 
 // Where make_plan() looks for the binary the jobs run: the PATH variable and this binary.

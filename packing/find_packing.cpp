@@ -18,7 +18,7 @@ namespace tilekit {
 
 std::optional<FoundPacking> find_packing(TileKind kind, std::uint32_t colours, const PackingSources& sources) {
   if (colours < 1 || colours > 255)
-    throw InputError(fmt::format("--colors must be between 1 and 255, got {}", colours));
+    throw RequestError("colours", fmt::format("`colours` must be between 1 and 255, got {}", colours));
   const int n = int(colours * colours);
   if (sources.db) {
     if (auto s = sources.db->find_solution(kind, colours, n, n)) {
@@ -61,8 +61,8 @@ std::string unavailable_message(TileKind kind, std::uint32_t colours, ResultsDb*
   for (std::uint32_t c : avail) list += (list.empty() ? "" : ", ") + std::to_string(c);
   return fmt::format(
       "no {} packing over {} colours is available (no construction, none stored{}); available C up to 32: {}. "
-      "Search for one with `tilekit pack --kind {} --colors {} --method search --db {}` (it is stored there and "
-      "`tilekit atlas lookup` finds it next time)",
+      "Search for one with `tilekit pack` and `kind` {} `colours` {} `method` search `db` {} (it is stored there "
+      "and `tilekit atlas lookup` finds it next time)",
       kind_name(kind), colours, db ? " in " + db->path() : "", list, kind_name(kind), colours,
       db_path.empty() ? "FILE" : db_path);
 }

@@ -35,25 +35,26 @@ SearchMode parse_mode(const std::string& m) {
   throw InputError(fmt::format("unknown mode '{}' (first, count or all)", m));
 }
 
-// --kind window --window KxL --colors C --size RxS: every K x L window over C symbols once on the
-// R x S torus (a de Bruijn torus); --size defaults to C^2 x C^2 for 2x2 windows (the corner case).
+// Kind window, window KxL, C colours, size RxS: every K x L window over C symbols once on the
+// R x S torus (a de Bruijn torus); the size defaults to C^2 x C^2 for 2x2 windows (the corner case).
 TilingProblem window_problem(const PackRequest& a) {
   if (a.window.empty())
-    throw InputError("--kind window needs --window KxL (e.g. --window 3x3), --colors C and --size RxS");
-  if (!a.set.empty()) throw InputError("--kind window packs every window over --colors symbols, not --set");
-  const Dimensions w = parse_dimensions(a.window, kMaxTilingSide, kMaxTilingCells, "--window KxL");
-  check_colour_count(a.colours, "--colors");
+    throw RequestError("kind", "`kind` window needs `window` KxL (e.g. `window` 3x3), `colours` C and `size` RxS");
+  if (!a.set.empty()) throw RequestError("kind", "`kind` window packs every window over `colours` symbols, not `set`");
+  const Dimensions w = parse_dimensions(a.window, kMaxTilingSide, kMaxTilingCells, "`window` KxL");
+  check_colour_count(a.colours, "`colours`");
   Dimensions size{std::int64_t(a.colours) * a.colours, std::int64_t(a.colours) * a.colours};
   if (!a.size.empty())
-    size = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "--size RxS");
+    size = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "`size` RxS");
   else if (w.first != 2 || w.second != 2)
-    throw InputError(fmt::format("--kind window --window {} needs --size RxS, the torus (R*S = C^(K*L))", a.window));
+    throw RequestError("kind",
+                       fmt::format("`kind` window `window` {} needs `size` RxS, the torus (R*S = C^(K*L))", a.window));
   return window_torus_problem(a.colours, int(w.first), int(w.second), int(size.first), int(size.second));
 }
 
 TilingProblem make_problem(const PackRequest& a) {
   if (a.kind == "window") return window_problem(a);
-  if (!a.window.empty()) throw InputError("--window is for --kind window (de Bruijn tori)");
+  if (!a.window.empty()) throw RequestError("window", "`window` is for `kind` window (de Bruijn tori)");
   if (!a.set.empty()) {
     TilingProblem p;
     p.set = resolve_tile_set(a.set);
@@ -61,22 +62,24 @@ TilingProblem make_problem(const PackRequest& a) {
     p.packing = true;
     if (!a.size.empty()) {
       // A packing holds every tile once: rows * cols must be the set's size.
-      const Dimensions d = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "--size ROWSxCOLS");
+      const Dimensions d = parse_dimensions(a.size, kMaxTilingSide, kMaxTilingCells, "`size` ROWSxCOLS");
       p.rows = int(d.first), p.cols = int(d.second);
       if (std::uint64_t(d.first * d.second) != p.set.size())
-        throw InputError(fmt::format("--size {}: a packing of the {} tiles of {} needs rows*cols = {}, not {}", a.size,
-                                     p.set.size(), p.set.name(), p.set.size(), d.first * d.second));
+        throw RequestError(
+            "size", fmt::format("`size` {}: a packing of the {} tiles of {} needs rows*cols = {}, not {}", a.size,
+                                p.set.size(), p.set.name(), p.set.size(), d.first * d.second));
     } else {
       int side = 1;
       while (std::size_t(side + 1) * std::size_t(side + 1) <= p.set.size()) ++side;
       if (std::size_t(side) * std::size_t(side) != p.set.size())
-        throw InputError(fmt::format("the set has {} tiles, not a square number: give --size ROWSxCOLS", p.set.size()));
+        throw RequestError(
+            "size", fmt::format("the set has {} tiles, not a square number: give `size` ROWSxCOLS", p.set.size()));
       p.rows = p.cols = side;
     }
     return p;
   }
   if (a.kind.empty())
-    throw InputError("pack needs --kind corner|wang|window and --colors C (or --set SET, or --resume FILE)");
+    throw RequestError("kind", "pack needs `kind` corner|wang|window and `colours` C (or `set` SET, or `resume` FILE)");
   if (a.kind != "corner" && a.kind != "wang")
     throw InputError(fmt::format("unknown tile kind '{}' (corner, wang or window)", a.kind));
   return complete_packing_problem(a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours);
@@ -89,24 +92,26 @@ SearchOptions search_options(const PackRequest& a) {
   if (a.method != "auto" && a.method != "search" && a.method != "construct")
     throw InputError(fmt::format("unknown method '{}' (auto, search or construct)", a.method));
   if (a.method == "construct" && o.mode != SearchMode::First)
-    throw InputError("--method construct gives one packing: use it with --mode first");
+    throw RequestError("method", "`method` construct gives one packing: use it with `mode` first");
   if (a.method == "construct" && !a.set.empty())
-    throw InputError("--method construct is for the complete sets (--kind and --colors), not --set");
-  if (!a.impose.empty() && a.method == "construct") throw InputError("--impose searches: use --method search or auto");
-  if (!a.impose.empty() && a.plain) throw InputError("--impose and --plain exclude each other");
+    throw RequestError("method", "`method` construct is for the complete sets (`kind` and `colours`), not `set`");
+  if (!a.impose.empty() && a.method == "construct")
+    throw RequestError("impose", "`impose` searches: use `method` search or auto");
+  if (!a.impose.empty() && a.plain) throw RequestError("impose", "`impose` and `plain` exclude each other");
   if (!a.lift.empty() && (!a.impose.empty() || a.method == "construct"))
-    throw InputError("--lift searches its own subspace: drop --impose and --method construct");
+    throw RequestError("lift", "`lift` searches its own subspace: drop `impose` and `method` construct");
   if (!a.candidates.empty() && (a.plain || !a.impose.empty() || !a.lift.empty()))
-    throw InputError("--candidate names a portfolio candidate: not with --plain, --impose or --lift");
+    throw RequestError("candidates", "`candidates` names a portfolio candidate: not with `plain`, `impose` or `lift`");
   o.formulation = a.formulation;
   o.ordering = a.ordering;
   o.impose = a.impose;
   o.lift = a.lift;
   o.run = a.run;
   if (o.run.checkpoint_path.empty()) o.run.checkpoint_path = a.run.resume_path;  // keep checkpointing to it
-  if (a.run.checkpoint_every < 0 && a.run.checkpoint_every != -1)
-    throw InputError(fmt::format("--checkpoint-every must be >= 0 seconds, got {}", a.run.checkpoint_every));
-  if (!(o.run.checkpoint_every >= 0)) o.run.checkpoint_every = o.run.checkpoint_path.empty() ? 0 : 300;  // -1 (or NaN)
+  if (a.checkpoint_every && !(*a.checkpoint_every >= 0))
+    throw RequestError("checkpoint_every",
+                       fmt::format("`checkpoint_every` must be >= 0 seconds, got {}", *a.checkpoint_every));
+  o.run.checkpoint_every = a.checkpoint_every.value_or(o.run.checkpoint_path.empty() ? 0 : 300);
   o.estimate_probes = o.run.progress && o.mode != SearchMode::First ? 200 : 0;
   return o;
 }
@@ -123,17 +128,18 @@ nlohmann::json group_json(const TilingProblem& p, const std::string& spec) {
 }
 
 // The portfolio answers first-mode searches of complete sets unless the engine is pinned by a
-// group, a lift, --plain, a formulation or an ordering.
+// group, a lift, `plain`, a formulation or an ordering.
 bool uses_portfolio(const PackRequest& a, SearchMode mode, bool complete_set) {
   return a.impose.empty() && a.lift.empty() && !a.plain && mode == SearchMode::First && a.method != "construct" &&
-         complete_set && a.formulation == "auto" && a.ordering == "auto";
+         complete_set && a.formulation == Formulation::Auto && a.ordering == "auto";
 }
 
 // Bad options, and searches that cannot fit in memory, are exit 2 before the database is touched.
 void check_runnable(const PackRequest& a, const TilingProblem& problem, const SearchOptions& o,
                     const PortfolioOptions& po, bool use_portfolio) {
   if (!a.candidates.empty() && !use_portfolio)
-    throw InputError("--candidate needs a portfolio run (first mode, complete set, auto formulation and ordering)");
+    throw RequestError("candidates",
+                       "`candidates` needs a portfolio run (first mode, complete set, auto formulation and ordering)");
   const std::uint32_t colours = problem.set.colours();
   const std::vector<std::uint32_t> constructible = a.set.empty() && problem.set.kind() != TileKind::Window
                                                        ? constructible_colours(problem.set.kind(), colours)
@@ -215,7 +221,7 @@ void find_first(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int threads
     }
   }
   if (!found && a.method == "construct")
-    throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try --method search)",
+    throw NotFound(fmt::format("no construction is known for {} packings with {} colours (try `method` search)",
                                kind_name(kind), colours));
 }
 
@@ -250,8 +256,9 @@ void find_first_window(PackOutcome& out, ResultsDb& db, SolutionSink& sink, int 
       return;
     }
   if (a.method == "construct")
-    throw NotFound(fmt::format("no construction is known for {}x{} windows over {} symbols on {}x{} (try --method search)",
-                               set.window_rows(), set.window_cols(), set.horizontal_radix(), p.rows, p.cols));
+    throw NotFound(
+        fmt::format("no construction is known for {}x{} windows over {} symbols on {}x{} (try `method` search)",
+                    set.window_rows(), set.window_cols(), set.horizontal_radix(), p.rows, p.cols));
   out.method = "search";
   search();
 }
@@ -293,7 +300,7 @@ void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSi
 
 }  // namespace
 
-PackOutcome run_pack(PackRequest request, const std::set<std::string>& given) {
+PackOutcome run_pack(PackRequest request, const PackFields& given) {
   std::optional<SignalCatcher> signals;  // from here to the outcome: a signal always ends in `interrupted`
   if (request.run.catch_signals) signals.emplace();
   if (!request.run.resume_path.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
@@ -389,8 +396,10 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
   const TilingProblem problem = make_problem(a);
   SearchOptions o = search_options(a);
   if (o.mode != SearchMode::First || !is_complete_set_problem(problem) || !uses_portfolio(a, o.mode, true))
-    throw InputError("--estimate measures the portfolio's candidates: a complete set (--kind, --colors), --mode first, "
-                     "no --impose, --lift, --plain, --formulation or --ordering");
+    throw RequestError(
+        "probes",
+        "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
+        "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
   o.run.threads = o.run.threads > 0 ? o.run.threads : default_thread_count();
   PortfolioOptions po;
   po.candidates = a.candidates;

@@ -37,10 +37,10 @@ struct PackOutcome {
   std::string not_found;  // first mode without a packing: why (exit 1)
 };
 
-// Runs the request. `given` names the flags given on the command line (for `--resume FILE`
-// alone, request.hpp). Throws InputError for bad input (before the database is touched) and
-// NotFound when --method construct has no construction.
-PackOutcome run_pack(PackRequest request, const std::set<std::string>& given = {});
+// Runs the request. `given` names the fields the caller set (for a resumed run, which takes the
+// others from its checkpoint: request.hpp). Throws InputError for bad input (before the database
+// is touched) and NotFound when the construct method has no construction.
+PackOutcome run_pack(PackRequest request, const PackFields& given = {});
 
 // The portfolio statistics of the given files added up (one file: itself; none: the default
 // file), filtered by kind ("" = all) and colours (0 = all); with `out`, the sum is also written

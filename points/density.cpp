@@ -287,7 +287,8 @@ class ImageDensity : public DensityFunction {
 }  // namespace
 
 std::unique_ptr<DensityFunction> constant_density(double d) {
-  if (!(d > 0) || !std::isfinite(d)) throw InputError(fmt::format("--density must be positive, got {}", d));
+  if (!(d > 0) || !std::isfinite(d))
+    throw RequestError("density", fmt::format("`density` must be positive, got {}", d));
   return std::make_unique<Constant>(d);
 }
 
@@ -297,7 +298,7 @@ std::unique_ptr<DensityFunction> expression_density(const std::string& text) {
 
 std::unique_ptr<DensityFunction> image_density(const std::string& path, const Window& where, double max_density,
                                                bool invert) {
-  if (!(max_density > 0)) throw InputError(fmt::format("--density must be positive, got {}", max_density));
+  if (!(max_density > 0)) throw RequestError("density", fmt::format("`density` must be positive, got {}", max_density));
   return std::make_unique<ImageDensity>(path, where, max_density, invert);
 }
 

@@ -18,7 +18,7 @@
 
 namespace tilekit::points {
 
-Window parse_window(const std::string& text, const char* flag) {
+Window parse_window(const std::string& text, const char* what) {
   static const std::regex num(R"(\s*([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)\s*)");
   std::vector<double> v;
   std::size_t pos = 0;
@@ -36,7 +36,7 @@ Window parse_window(const std::string& text, const char* flag) {
   // Finite coordinates can still give an infinite width, height or area (1e306 wide and tall).
   if (v.size() != 4 || !(v[0] < v[2]) || !(v[1] < v[3]) || !std::isfinite(v[2] - v[0]) || !std::isfinite(v[3] - v[1]) ||
       !std::isfinite((v[2] - v[0]) * (v[3] - v[1])))
-    throw InputError(fmt::format("{} must be x0,y0,x1,y1 with x0 < x1 and y0 < y1, got '{}'", flag, text));
+    throw_input_error(what, fmt::format("{} must be x0,y0,x1,y1 with x0 < x1 and y0 < y1, got '{}'", what, text));
   return {v[0], v[1], v[2], v[3]};
 }
 
@@ -50,7 +50,7 @@ struct PoissonTileGenerator::Scratch {
 PoissonTileGenerator::PoissonTileGenerator(const PoissonTileSet& set, HashKind hash, std::uint64_t seed,
                                            std::int64_t period)
     : set_(set), hash_(hash, set.lattice_colours(), seed), period_(period) {
-  if (period < 0) throw InputError("--period must be positive");
+  if (period < 0) throw RequestError("period", "`period` must be positive");
   // Edge colours from a second hash with its own seed, so that they do not repeat the lattice
   // colours (thesis sec. 3.3.2.3 hashes Wang edge colours the same way).
   if (set.edge_colours > 1) edge_hash_.emplace(hash, set.edge_colours, derive_seed(seed, 0x65646765));
@@ -65,7 +65,7 @@ PoissonTileGenerator::PoissonTileGenerator(const PoissonTileSet& set, HashKind h
 
 double PoissonTileGenerator::tile_size(double density) const {
   if (!(density > 0) || !std::isfinite(density))
-    throw InputError(fmt::format("--density must be positive, got {}", density));
+    throw RequestError("density", fmt::format("`density` must be positive, got {}", density));
   return std::sqrt(double(set_.points) / density);
 }
 

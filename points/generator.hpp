@@ -32,8 +32,9 @@ struct Window {
   double height() const { return y1 - y0; }
   double area() const { return width() * height(); }
 };
-// "x0,y0,x1,y1"; InputError naming `flag` otherwise (x0 < x1, y0 < y1, finite, a finite area).
-Window parse_window(const std::string& text, const char* flag = "--window");
+// "x0,y0,x1,y1"; InputError naming `what` otherwise (x0 < x1, y0 < y1, finite, a finite area); by
+// default the request field `window` (a RequestError, base/error.hpp).
+Window parse_window(const std::string& text, const char* what = "`window`");
 
 class PoissonTileGenerator {
  public:

@@ -26,8 +26,9 @@ std::vector<ObjectClass> parse_object_classes(const std::string& text) {
                                               : std::from_chars(item.data() + colon + 1, item.data() + item.size(), p);
     if (colon == 0 || colon == std::string::npos || r.ec != std::errc() || r.ptr != item.data() + item.size() ||
         !(p > 0) || !std::isfinite(p))
-      throw InputError(
-          fmt::format("--objects: expected NAME:PROBABILITY,... with positive probabilities, got '{}'", item));
+      throw RequestError(
+          "objects",
+          fmt::format("`objects`: expected NAME:PROBABILITY,... with positive probabilities, got '{}'", item));
     out.push_back({item.substr(0, colon), p});
     total += p;
     pos = comma + 1;
@@ -49,7 +50,7 @@ ObjectDistribution::ObjectDistribution(const PoissonTileGenerator& gen, double d
       r_(gen.set().radius * s_),
       classes_(std::move(classes)),
       seed_(seed) {
-  if (classes_.empty()) throw InputError("--objects needs at least one class");
+  if (classes_.empty()) throw RequestError("objects", "`objects` needs at least one class");
   double c = 0;
   for (const auto& k : classes_) cumulative_.push_back(c += k.probability);
   cumulative_.back() = 1;

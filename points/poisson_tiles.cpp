@@ -46,36 +46,41 @@ std::uint32_t default_tile_points(PoissonTileMethod m) {
 void check_poisson_tile_params(const PoissonTileParams& asked) {
   PoissonTileParams p = asked;
   if (p.points == 0) p.points = default_tile_points(p.method);
-  check_complete_set_colours(p.colours, "--colors");
+  check_complete_set_colours(p.colours, "`colours`");
   if (p.edge_colours < 1 || p.edge_colours > 16)
-    throw InputError(fmt::format("--edge-colors must be 1..16, got {}", p.edge_colours));
+    throw RequestError("edge_colours", fmt::format("`edge_colours` must be 1..16, got {}", p.edge_colours));
   if (p.edge_colours > 1 && p.method != PoissonTileMethod::Corner)
-    throw InputError(fmt::format("--edge-colors applies to --method corner, not {}", method_name(p.method)));
-  if (p.points < 1 || p.points > 65536) throw InputError(fmt::format("--points must be 1..65536, got {}", p.points));
-  if (!(p.rho > 0 && p.rho < 1)) throw InputError(fmt::format("--rho must be in (0, 1), got {}", p.rho));
-  if (p.lloyd < 0 || p.lloyd > 10000) throw InputError(fmt::format("--lloyd must be 0..10000, got {}", p.lloyd));
+    throw RequestError("edge_colours",
+                       fmt::format("`edge_colours` applies to `method` corner, not {}", method_name(p.method)));
+  if (p.points < 1 || p.points > 65536)
+    throw RequestError("points", fmt::format("`points` must be 1..65536, got {}", p.points));
+  if (!(p.rho > 0 && p.rho < 1)) throw RequestError("rho", fmt::format("`rho` must be in (0, 1), got {}", p.rho));
+  if (p.lloyd < 0 || p.lloyd > 10000)
+    throw RequestError("lloyd", fmt::format("`lloyd` must be 0..10000, got {}", p.lloyd));
   const double r = p.rho * max_poisson_radius(p.points) * (1 + kMargin);
   // The sampler keeps a grid of cells 2r wide over each region (up to a whole tile) and, with
   // Lloyd iterations, 10 x 10 samples per cell: bound both before anything is allocated.
   const double cells = 1 / (4 * r * r), samples = p.lloyd > 0 ? 100 * cells : 0;
   if (cells > double(1 << 24) || samples > double(1 << 26))
-    throw InputError(fmt::format(
-        "--rho {} with --points {}: the sampler would need {:.3g} grid cells{} per tile (at most 2^24 cells and 2^26 "
-        "Lloyd samples); use --rho {:.3g} or more{}",
-        p.rho, p.points, cells, p.lloyd > 0 ? fmt::format(" and {:.3g} Lloyd samples", samples) : "",
-        p.rho * std::sqrt(std::max(cells / double(1 << 24), samples / double(1 << 26))) * 1.001,
-        p.lloyd > 0 ? " (or --lloyd 0)" : ""));
+    throw RequestError(
+        "rho", fmt::format("`rho` {} with `points` {}: the sampler would need {:.3g} grid cells{} per tile (at most "
+                           "2^24 cells and 2^26 "
+                           "Lloyd samples); use `rho` {:.3g} or more{}",
+                           p.rho, p.points, cells, p.lloyd > 0 ? fmt::format(" and {:.3g} Lloyd samples", samples) : "",
+                           p.rho * std::sqrt(std::max(cells / double(1 << 24), samples / double(1 << 26))) * 1.001,
+                           p.lloyd > 0 ? " (or `lloyd` 0)" : ""));
   // Two corner regions and the 2r between edge regions must fit along an edge: 2c + 2r <= 1.
   if (2 * (1 + std::sqrt(2.0)) * r + 2 * r > 1)
-    throw InputError(fmt::format("--points {} is too few for rho {}: corner regions would overlap (N >= {} needed)",
-                                 p.points, p.rho,
-                                 int(std::ceil(std::pow(p.rho * (2 * (2 + std::sqrt(2.0))), 2) / (2 * std::sqrt(3.0)) *
-                                               (1 + kMargin) * (1 + kMargin)))));
+    throw RequestError(
+        "points",
+        fmt::format("`points` {} is too few for rho {}: corner regions would overlap (N >= {} needed)", p.points, p.rho,
+                    int(std::ceil(std::pow(p.rho * (2 * (2 + std::sqrt(2.0))), 2) / (2 * std::sqrt(3.0)) *
+                                  (1 + kMargin) * (1 + kMargin)))));
   double tiles = std::pow(double(p.colours) * p.edge_colours, 4);
   if (p.method == PoissonTileMethod::Dual) {
     tiles = std::pow(4.0 * p.colours, 4);
     if (p.points % 4 != 0)
-      throw InputError("--method dual needs --points divisible by 4 (quarter-turn symmetric tiles)");
+      throw RequestError("method", "`method` dual needs `points` divisible by 4 (quarter-turn symmetric tiles)");
   }
   if (p.method == PoissonTileMethod::Wang) tiles = std::pow(double(p.colours), 12);
   if (tiles > double(1 << 20) || tiles * p.points > double(1 << 26))

@@ -113,7 +113,8 @@ void build_base_tiles(RecursiveWangTiles& t, const RecursiveTileParams& p, Progr
   });
   for (auto& b : t.base) {
     if (b.size() < n)
-      throw InputError(fmt::format("a merged tile holds only {} of {} points; try another --seed", b.size(), n));
+      throw RequestError("seed",
+                         fmt::format("a merged tile holds only {} of {} points; try another `seed`", b.size(), n));
     b.resize(n);
   }
 }
@@ -245,9 +246,10 @@ std::vector<std::uint32_t> subdivision_ranks(const RecursiveWangTiles& t, const 
 }  // namespace
 
 RecursiveWangTiles build_recursive_tiles(const RecursiveTileParams& p) {
-  if (p.points < 8 || p.points > 65536) throw InputError(fmt::format("--points must be 8..65536, got {}", p.points));
+  if (p.points < 8 || p.points > 65536)
+    throw RequestError("points", fmt::format("`points` must be 8..65536, got {}", p.points));
   if (p.subdivision < 2 || p.subdivision > 8)
-    throw InputError(fmt::format("--subdivision must be 2..8, got {}", p.subdivision));
+    throw RequestError("subdivision", fmt::format("`subdivision` must be 2..8, got {}", p.subdivision));
   const auto start = std::chrono::steady_clock::now();
   RecursiveWangTiles t;
   t.points = p.points;

@@ -15,7 +15,7 @@ namespace tilekit::points {
 RecursiveGenerator::RecursiveGenerator(const RecursiveWangTiles& tiles, HashKind hash, std::uint64_t seed,
                                        std::int64_t period)
     : t_(tiles), hash_(hash, tiles.colours, seed), period_(period) {
-  if (period < 0) throw InputError("--period must be positive");
+  if (period < 0) throw RequestError("period", "`period` must be positive");
 }
 
 std::uint32_t RecursiveGenerator::base_type(std::int64_t tx, std::int64_t ty) const {
@@ -59,8 +59,8 @@ void RecursiveGenerator::visit(std::uint32_t type, double x0, double y0, double 
 
 std::vector<double> RecursiveGenerator::generate(const Window& w, const DensityFunction& d, double base_size,
                                                 int max_levels, int threads) const {
-  if (!(base_size > 0) || !std::isfinite(base_size)) throw InputError("--tile-size must be positive");
-  if (max_levels < 0 || max_levels > 40) throw InputError("--levels must be 0..40");
+  if (!(base_size > 0) || !std::isfinite(base_size)) throw RequestError("tile_size", "`tile_size` must be positive");
+  if (max_levels < 0 || max_levels > 40) throw RequestError("levels", "`levels` must be 0..40");
   const std::int64_t tx0 = std::int64_t(std::floor(w.x0 / base_size)), tx1 = std::int64_t(std::floor(w.x1 / base_size));
   const std::int64_t ty0 = std::int64_t(std::floor(w.y0 / base_size)), ty1 = std::int64_t(std::floor(w.y1 / base_size));
   if (double(tx1 - tx0 + 1) * double(ty1 - ty0 + 1) > 1e9) throw InputError("the window covers over 10^9 base tiles");

@@ -93,7 +93,7 @@ std::vector<double> white_noise_points(const Window& w, std::uint64_t count, std
 }
 
 std::vector<double> grid_points(const Window& w, double density, bool jitter, std::uint64_t seed) {
-  if (!(density > 0)) throw InputError(fmt::format("--density must be positive, got {}", density));
+  if (!(density > 0)) throw RequestError("density", fmt::format("`density` must be positive, got {}", density));
   const double a = 1 / std::sqrt(density);
   const long nx = long(std::ceil(w.width() / a - 1e-9)), ny = long(std::ceil(w.height() / a - 1e-9));
   if (double(nx) * double(ny) > 1e9) throw InputError("the grid would hold over 10^9 points");

@@ -301,9 +301,9 @@ SamplingResult sample_poisson_disk(const SamplingProblem& problem, const Samplin
       return result;
     }
   }
-  throw InputError(
-      fmt::format("could not place {} points at distance {:.6g} in {} tries (lower --rho or raise --points)",
-                  problem.count, options.min_distance, options.tries));
+  throw RequestError(
+      "rho", fmt::format("could not place {} points at distance {:.6g} in {} tries (lower `rho` or raise `points`)",
+                         problem.count, options.min_distance, options.tries));
 }
 
 }  // namespace tilekit::points

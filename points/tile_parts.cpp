@@ -181,8 +181,9 @@ std::vector<Point2> interior_region(const Regions& g, std::uint32_t n, const Fra
   p.free = [&g, &frame](Point2 q) { return frame.interior(g, q); };
   const std::size_t inside = inside_unit_tile(frame.points).size();
   if (inside > n)
-    throw InputError(
-        fmt::format("the corner and edge regions put {} points into a tile of {}: raise --points", inside, n));
+    throw RequestError(
+        "points",
+        fmt::format("the corner and edge regions put {} points into a tile of {}: raise `points`", inside, n));
   p.count = n - inside;
   p.symmetry_order = symmetry;
   p.centre = {0.5, 0.5};

@@ -17,7 +17,7 @@ RenderMethod parse_render_method(const std::string& name) {
   if (name == "tiles") return RenderMethod::Tiles;
   if (name == "hex") return RenderMethod::Hex;
   if (name == "hpn") return RenderMethod::Hpn;
-  throw InputError(fmt::format("--method must be tiles, hex or hpn, got '{}'", name));
+  throw RequestError("method", fmt::format("`method` must be tiles, hex or hpn, got '{}'", name));
 }
 
 const char* render_method_name(RenderMethod m) {
@@ -78,11 +78,11 @@ double mean_fetches(const RenderSource& src, const View& view, int max_aniso) {
 
 Image render_cpu(const RenderSource& src, const View& view, const RenderOptions& o) {
   if (src.method == RenderMethod::Tiles ? !src.atlas : !src.exemplar)
-    throw InputError(
-        fmt::format("--method {} needs {}", render_method_name(src.method),
-                    src.method == RenderMethod::Tiles ? "an atlas (--atlas)" : "an exemplar (--exemplar)"));
+    throw RequestError(
+        "method", fmt::format("`method` {} needs {}", render_method_name(src.method),
+                              src.method == RenderMethod::Tiles ? "an atlas (`atlas`)" : "an exemplar (`exemplar`)"));
   if (o.max_aniso < 1 || o.max_aniso > kMaxAnisotropy)
-    throw InputError(fmt::format("--aniso must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
+    throw RequestError("max_aniso", fmt::format("`max_aniso` must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
   const int unit = src.unit_px();
   const ViewRows vr = view_rows(view, unit);
   std::unique_ptr<TileSampler> tiles;

@@ -20,12 +20,13 @@ std::pair<std::int32_t, std::uint32_t> fixed(double v) {
 
 ViewRows view_rows(const View& v, int tile_px) {
   if (v.width < 1 || v.height < 1 || v.width > kMaxViewSide || v.height > kMaxViewSide)
-    throw InputError(fmt::format("--size {}x{}: width and height must be 1..{}", v.width, v.height, kMaxViewSide));
+    throw RequestError("size",
+                       fmt::format("`size` {}x{}: width and height must be 1..{}", v.width, v.height, kMaxViewSide));
   if (!std::isfinite(v.scale) || v.scale <= 0)
-    throw InputError(fmt::format("--scale must be positive, got {}", v.scale));
+    throw RequestError("scale", fmt::format("`scale` must be positive, got {}", v.scale));
   if (!std::isfinite(v.tilt) || v.tilt < 0 || v.tilt > 100)
-    throw InputError(fmt::format("--tilt must be 0..100, got {}", v.tilt));
-  if (!std::isfinite(v.origin_u) || !std::isfinite(v.origin_v)) throw InputError("--origin must be finite");
+    throw RequestError("tilt", fmt::format("`tilt` must be 0..100, got {}", v.tilt));
+  if (!std::isfinite(v.origin_u) || !std::isfinite(v.origin_v)) throw RequestError("origin", "`origin` must be finite");
   const double s = v.scale / tile_px, W = v.width, H = v.height, t = v.tilt;
   const double u0 = v.origin_u / tile_px, v0 = v.origin_v / tile_px;
   ViewRows out;
@@ -39,10 +40,10 @@ ViewRows view_rows(const View& v, int tile_px) {
     // JavaScript, whose Math.pow need not round as std::pow does.
     const double vv = v0 + s * (t == 0 ? yc : H / (3 * t) * ((1 + t) * (1 + t) * (1 + t) - q * q * q));
     if (step * kFracOne >= double(2 * kFracOne))
-      throw InputError(
-          fmt::format("--scale {} (x{:.2f} at the top of the tilted view) moves 2 or more tiles per "
-                      "pixel; use a smaller scale or larger tiles",
-                      v.scale, q));
+      throw RequestError("scale",
+                         fmt::format("`scale` {} (x{:.2f} at the top of the tilted view) moves 2 or more tiles per "
+                                     "pixel; use a smaller scale or larger tiles",
+                                     v.scale, q));
     const double last = first + (W - 1) * step;
     if (std::abs(first) > 1e9 || std::abs(last) > 1e9 || std::abs(vv) > 1e9)
       throw InputError("the view reaches beyond 10^9 tiles from the origin");

@@ -6,10 +6,15 @@
 # This script fails (exit 1, one line per problem) on an #include of a project folder that the
 # line does not name, on a folder whose README lacks the line, and on any cycle, both among the
 # folders' actual includes and among the README lines themselves. Includes inside a folder are
-# free. Usage: scripts/check-layers.sh [ROOT] (default: this repository); tests/scripts/
-# check-layers-test.sh runs it on a copy of the tree with one bad include.
+# free. It also fails on a string literal in a library (every folder but the top of the graph:
+# cli/, tests/, bench/, fuzz/, examples/, scripts/) that names a command-line flag ("--shard ..."):
+# libraries name the fields of their requests (base/error.hpp's RequestError) and the CLI words
+# them as flags. Comments may mention flags; scripts/flag-literals.pl reads the literals.
+# Usage: scripts/check-layers.sh [ROOT] (default: this repository); tests/scripts/
+# check-layers-test.sh runs it on a copy of the tree with one bad include, one flag literal, ...
 set -euo pipefail
-root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
+here=$(cd "$(dirname "$0")" && pwd)
+root=${1:-$(cd "$here/.." && pwd)}
 cd "$root"
 
 sources() { find "$1" \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) -type f; }
@@ -76,6 +81,15 @@ for d in "${folders[@]}"; do
     sed -E 's/^([^:]+):([0-9]+):.*#[[:space:]]*include[[:space:]]*[<"]([^>"]+)[>"].*/\1:\2:\3/')
 done
 
+# Flag names in the libraries' string literals: the top of the graph (the CLI, tests, benchmarks,
+# fuzzers, examples) may name flags; a library names its request's fields instead.
+for d in "${folders[@]}"; do
+  case "$d" in cli | tests | bench | fuzz | examples | scripts) continue ;; esac
+  while IFS= read -r hit; do
+    fail "$hit: a library's string literal names a command-line flag (name the request field, \`field\`, in a RequestError: base/error.hpp)"
+  done < <(sources "$d" | sort | xargs perl "$here/flag-literals.pl")
+done
+
 # Cycles: tsort names the folders on a loop.
 check_cycles() {
   local what=$1
@@ -93,4 +107,4 @@ if ((problems)); then
   echo "check-layers: FAILED, $problems problem(s) in ${#folders[@]} folders" >&2
   exit 1
 fi
-echo "check-layers: ok (${#folders[@]} folders, ${#actual_edges[@]} include arrows between them, no cycle)"
+echo "check-layers: ok (${#folders[@]} folders, ${#actual_edges[@]} include arrows between them, no cycle, no flag literal in a library)"

@@ -13,7 +13,7 @@ std::string LiftSpec::text() const {
 }
 
 LiftSpec parse_lift_spec(const std::string& text) {
-  auto fail = [&](const std::string& why) { return InputError(fmt::format("--lift '{}': {}", text, why)); };
+  auto fail = [&](const std::string& why) { return RequestError("lift", fmt::format("`lift` '{}': {}", text, why)); };
   LiftSpec spec;
   std::size_t at = 0;
   bool have_m = false;
@@ -41,14 +41,15 @@ LiftSpec parse_lift_spec(const std::string& text) {
     }
     at = end + 1;
   }
-  if (!have_m) throw fail("missing the base colour count (e.g. --lift 4 or --lift m=4,base=FILE)");
+  if (!have_m) throw fail("missing the base colour count (e.g. `lift` 4 or `lift` m=4,base=FILE)");
   return spec;
 }
 
 LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSpec& spec) {
   const std::uint32_t m = spec.base_colours;
   if (m == 0 || colours % m != 0 || colours / m < 2)
-    throw InputError(fmt::format("--lift {}: {} colours are not a multiple k*{} with k >= 2", spec.text(), colours, m));
+    throw RequestError(
+        "lift", fmt::format("`lift` {}: {} colours are not a multiple k*{} with k >= 2", spec.text(), colours, m));
   LiftProblem p;
   p.spec = spec;
   p.colours = colours;
@@ -57,22 +58,24 @@ LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSp
     try {
       p.base = read_tiling_file(spec.base_file);
     } catch (const InputError& e) {
-      throw InputError(fmt::format("--lift {}: {}", spec.text(), e.what()));
+      throw RequestError("lift", fmt::format("`lift` {}: {}", spec.text(), e.what()));
     }
     p.base_how = spec.base_file;
   } else {
     auto built = construct_packing(kind, m);
     if (!built)
-      throw InputError(fmt::format("--lift {}: no {} packing over {} colours is known to lift from (give base=FILE)",
-                                   spec.text(), kind_name(kind), m));
+      throw RequestError("lift",
+                         fmt::format("`lift` {}: no {} packing over {} colours is known to lift from (give base=FILE)",
+                                     spec.text(), kind_name(kind), m));
     p.base = std::move(built->tiling);
     p.base_how = built->how;
   }
   const int side = int(m * m);
   if (p.base.kind != kind || p.base.ch() != m || p.base.cv() != m || !p.base.torus || p.base.rows != side ||
       p.base.cols != side || !validate(p.base).packing)
-    throw InputError(fmt::format("--lift {}: the base {} is not a {} packing over {} colours on the {}x{} torus",
-                                 spec.text(), p.base_how, kind_name(kind), m, side, side));
+    throw RequestError("lift",
+                       fmt::format("`lift` {}: the base {} is not a {} packing over {} colours on the {}x{} torus",
+                                   spec.text(), p.base_how, kind_name(kind), m, side, side));
   p.period = side;
   const std::uint32_t k = p.quotient_colours;
   p.quotient.set = kind == TileKind::Wang ? complete_wang_set(k, k) : complete_corner_set(k);

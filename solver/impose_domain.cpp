@@ -68,14 +68,15 @@ ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) 
 
 FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const ImposedGroup& group) {
   const TileSet& set = problem.set;
-  if (!problem.torus) throw InputError("--impose needs a torus (translations do not act on a bounded grid)");
+  if (!problem.torus)
+    throw RequestError("impose", "`impose` needs a torus (translations do not act on a bounded grid)");
   if (problem.rows != group.rows() || problem.cols != group.cols())
-    throw InputError("--impose: the group was built for another torus size");
-  if (set.kind() != group.kind()) throw InputError("--impose: the group was built for another tile kind");
+    throw RequestError("impose", "`impose`: the group was built for another torus size");
+  if (set.kind() != group.kind()) throw RequestError("impose", "`impose`: the group was built for another tile kind");
   if (set.horizontal_radix() != group.ch() || set.vertical_radix() != group.cv())
-    throw InputError("--impose: the group was built for another number of colours");
+    throw RequestError("impose", "`impose`: the group was built for another number of colours");
   if (std::max(set.horizontal_radix(), set.vertical_radix()) > 64)
-    throw InputError("--impose: at most 64 colours per edge direction");
+    throw RequestError("impose", "`impose`: at most 64 colours per edge direction");
   if (problem.packing && std::size_t(problem.rows) * std::size_t(problem.cols) != set.size())
     throw InputError(fmt::format("a packing of {} tiles needs a torus of that area, not {}x{}", set.size(),
                                  problem.rows, problem.cols));
@@ -162,17 +163,17 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
       TileIndex img = group.apply(els[e], t);
       if (!in_set[img]) {
         if (m.packing)
-          throw InputError(fmt::format(
-              "--impose: the tile set is not closed under the group: tile index {} maps to {}, which is not in the set",
-              t, img));
+          throw RequestError("impose", fmt::format("`impose`: the tile set is not closed under the group: tile index "
+                                                   "{} maps to {}, which is not in the set",
+                                                   t, img));
         usable = false;
       }
       if (e > 0 && img == t) {
         if (m.packing)
-          throw InputError(
-              fmt::format("--impose: tile index {} is its own image under a non-identity group element; "
-                          "a packing cannot be invariant",
-                          t));
+          throw RequestError("impose",
+                             fmt::format("`impose`: tile index {} is its own image under a non-identity group element; "
+                                         "a packing cannot be invariant",
+                                         t));
       }
       orbit.push_back(img);
     }
@@ -182,8 +183,8 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
   for (auto& o : m.orbit_of)
     if (o == -2) o = -1;
   if (m.packing && std::size_t(m.num_orbits) != m.cells.size())
-    throw InputError(fmt::format("--impose: {} tile orbits but {} cell orbits; no invariant packing exists",
-                                 m.num_orbits, m.cells.size()));
+    throw RequestError("impose", fmt::format("`impose`: {} tile orbits but {} cell orbits; no invariant packing exists",
+                                             m.num_orbits, m.cells.size()));
   return m;
 }
 

@@ -34,16 +34,16 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 
 long parse_int(std::string_view s, const std::string& where) {
   s = trim(s);
-  if (s.empty()) throw InputError(fmt::format("--impose: {}: expected a number", where));
+  if (s.empty()) throw RequestError("impose", fmt::format("`impose`: {}: expected a number", where));
   bool neg = false;
   if (s.front() == '-' || s.front() == '+') {
     neg = s.front() == '-';
     s.remove_prefix(1);
   }
-  if (s.empty() || s.size() > 9) throw InputError(fmt::format("--impose: {}: bad number", where));
+  if (s.empty() || s.size() > 9) throw RequestError("impose", fmt::format("`impose`: {}: bad number", where));
   long v = 0;
   for (char ch : s) {
-    if (ch < '0' || ch > '9') throw InputError(fmt::format("--impose: {}: '{}' is not a number", where, s));
+    if (ch < '0' || ch > '9') throw RequestError("impose", fmt::format("`impose`: {}: '{}' is not a number", where, s));
     v = v * 10 + (ch - '0');
   }
   return neg ? -v : v;
@@ -56,7 +56,7 @@ std::vector<Colour> parse_numbers(std::string_view s, const std::string& where) 
   auto flush = [&] {
     if (token.empty()) return;
     long v = parse_int(token, where);
-    if (v < 0) throw InputError(fmt::format("--impose: {}: colours are not negative", where));
+    if (v < 0) throw RequestError("impose", fmt::format("`impose`: {}: colours are not negative", where));
     out.push_back(Colour(v));
     token.clear();
   };
@@ -74,15 +74,17 @@ PermutationSpec parse_permutation(std::string_view s, const std::string& where) 
   PermutationSpec p;
   p.given = true;
   s = trim(s);
-  if (s.empty()) throw InputError(fmt::format("--impose: {}: empty permutation", where));
+  if (s.empty()) throw RequestError("impose", fmt::format("`impose`: {}: empty permutation", where));
   if (s.front() == '(') {
     p.cycles = true;
     while (!s.empty()) {
-      if (s.front() != '(') throw InputError(fmt::format("--impose: {}: expected '(' in cycle notation", where));
+      if (s.front() != '(')
+        throw RequestError("impose", fmt::format("`impose`: {}: expected '(' in cycle notation", where));
       auto close = s.find(')');
-      if (close == std::string_view::npos) throw InputError(fmt::format("--impose: {}: missing ')'", where));
+      if (close == std::string_view::npos)
+        throw RequestError("impose", fmt::format("`impose`: {}: missing ')'", where));
       p.parts.push_back(parse_numbers(s.substr(1, close - 1), where));
-      if (p.parts.back().empty()) throw InputError(fmt::format("--impose: {}: empty cycle", where));
+      if (p.parts.back().empty()) throw RequestError("impose", fmt::format("`impose`: {}: empty cycle", where));
       s = trim(s.substr(close + 1));
     }
   } else {
@@ -126,12 +128,15 @@ std::vector<Colour> PermutationSpec::resolve(std::uint32_t n, const std::string&
   if (!cycles) {
     const auto& list = parts.at(0);
     if (list.size() != n)
-      throw InputError(fmt::format("--impose: {} has {} entries but there are {} colours", what, list.size(), n));
+      throw RequestError("impose",
+                         fmt::format("`impose`: {} has {} entries but there are {} colours", what, list.size(), n));
     std::vector<bool> seen(n, false);
     for (Colour c : list) {
       if (c >= n)
-        throw InputError(fmt::format("--impose: {} maps to colour {}, but colours are 0..{}", what, c, n - 1));
-      if (seen[c]) throw InputError(fmt::format("--impose: {} is not a permutation (colour {} twice)", what, c));
+        throw RequestError("impose",
+                           fmt::format("`impose`: {} maps to colour {}, but colours are 0..{}", what, c, n - 1));
+      if (seen[c])
+        throw RequestError("impose", fmt::format("`impose`: {} is not a permutation (colour {} twice)", what, c));
       seen[c] = true;
     }
     return list;
@@ -140,8 +145,10 @@ std::vector<Colour> PermutationSpec::resolve(std::uint32_t n, const std::string&
   for (const auto& cyc : parts) {
     for (std::size_t i = 0; i < cyc.size(); ++i) {
       Colour a = cyc[i], b = cyc[(i + 1) % cyc.size()];
-      if (a >= n) throw InputError(fmt::format("--impose: {} names colour {}, but colours are 0..{}", what, a, n - 1));
-      if (seen[a]) throw InputError(fmt::format("--impose: {}: colour {} is in two cycles", what, a));
+      if (a >= n)
+        throw RequestError("impose",
+                           fmt::format("`impose`: {} names colour {}, but colours are 0..{}", what, a, n - 1));
+      if (seen[a]) throw RequestError("impose", fmt::format("`impose`: {}: colour {} is in two cycles", what, a));
       seen[a] = true;
       p[a] = b;
     }
@@ -151,7 +158,7 @@ std::vector<Colour> PermutationSpec::resolve(std::uint32_t n, const std::string&
 
 GroupSpec parse_group_spec(std::string_view text) {
   GroupSpec spec;
-  if (trim(text).empty()) throw InputError("--impose: empty group spec (expected e.g. t=0,4:pi=1,2,3,0)");
+  if (trim(text).empty()) throw RequestError("impose", "`impose`: empty group spec (expected e.g. t=0,4:pi=1,2,3,0)");
   int k = 0;
   for (auto gen_text : split(text, ';')) {
     ++k;
@@ -162,27 +169,28 @@ GroupSpec parse_group_spec(std::string_view text) {
       field = trim(field);
       auto eq = field.find('=');
       if (eq == std::string_view::npos)
-        throw InputError(
-            fmt::format("--impose: {}: field '{}' is not key=value (keys: t, pi, pih, piv)", where, field));
+        throw RequestError(
+            "impose", fmt::format("`impose`: {}: field '{}' is not key=value (keys: t, pi, pih, piv)", where, field));
       auto key = trim(field.substr(0, eq));
       auto value = field.substr(eq + 1);
       if (key == "t") {
         auto parts = split(value, ',');
-        if (parts.size() != 2) throw InputError(fmt::format("--impose: {}: t needs two numbers, rows,cols", where));
+        if (parts.size() != 2)
+          throw RequestError("impose", fmt::format("`impose`: {}: t needs two numbers, rows,cols", where));
         g.dr = int(parse_int(parts[0], where));
         g.dc = int(parse_int(parts[1], where));
         have_t = true;
       } else if (key == "pi" || key == "pih" || key == "piv") {
         PermutationSpec& p = key == "pi" ? g.pi : key == "pih" ? g.pih : g.piv;
-        if (p.given) throw InputError(fmt::format("--impose: {}: {} given twice", where, key));
+        if (p.given) throw RequestError("impose", fmt::format("`impose`: {}: {} given twice", where, key));
         p = parse_permutation(value, where);
       } else {
-        throw InputError(fmt::format("--impose: {}: unknown key '{}' (keys: t, pi, pih, piv)", where, key));
+        throw RequestError("impose", fmt::format("`impose`: {}: unknown key '{}' (keys: t, pi, pih, piv)", where, key));
       }
     }
-    if (!have_t) throw InputError(fmt::format("--impose: {}: missing the translation t=DR,DC", where));
+    if (!have_t) throw RequestError("impose", fmt::format("`impose`: {}: missing the translation t=DR,DC", where));
     if (g.pi.given && (g.pih.given || g.piv.given))
-      throw InputError(fmt::format("--impose: {}: give either pi or pih/piv, not both", where));
+      throw RequestError("impose", fmt::format("`impose`: {}: give either pi or pih/piv, not both", where));
     spec.generators.push_back(std::move(g));
   }
   return spec;
@@ -213,8 +221,8 @@ std::uint64_t translation_order(int dr, int dc, int rows, int cols) {
 
 ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint32_t ch, std::uint32_t cv, int rows,
                                  int cols, bool packing) {
-  if (rows <= 0 || cols <= 0) throw InputError("--impose needs a torus with positive size");
-  if (spec.generators.empty()) throw InputError("--impose: no generators");
+  if (rows <= 0 || cols <= 0) throw RequestError("impose", "`impose` needs a torus with positive size");
+  if (spec.generators.empty()) throw RequestError("impose", "`impose`: no generators");
   if (kind == TileKind::Corner) cv = ch;
   ImposedGroup G;
   G.kind_ = kind;
@@ -231,13 +239,15 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
     std::string where = fmt::format("generator {} (t={},{})", k, gs.dr, gs.dc);
     if (kind == TileKind::Corner) {
       if (gs.pih.given || gs.piv.given)
-        throw InputError(fmt::format("--impose: {}: pih/piv are for Wang tiles; corner tiles take pi", where));
+        throw RequestError("impose",
+                           fmt::format("`impose`: {}: pih/piv are for Wang tiles; corner tiles take pi", where));
       g.ph = gs.pi.resolve(ch, where + " pi");
       g.pv = g.ph;
     } else if (gs.pi.given) {
       if (ch != cv)
-        throw InputError(
-            fmt::format("--impose: {}: the edge directions have different colour counts; use pih/piv", where));
+        throw RequestError(
+            "impose",
+            fmt::format("`impose`: {}: the edge directions have different colour counts; use pih/piv", where));
       g.ph = gs.pi.resolve(ch, where + " pi");
       g.pv = g.ph;
     } else {
@@ -247,14 +257,18 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
     std::uint64_t tord = translation_order(g.dr, g.dc, rows, cols);
     std::uint64_t pord = std::lcm(permutation_order(g.ph), permutation_order(g.pv));
     if (packing && tord != pord)
-      throw InputError(fmt::format(
-          "--impose: {}: the translation has order {} on the {}x{} torus but the colour permutation has order {}; "
-          "a packing needs them equal",
-          where, tord, rows, cols, pord));
+      throw RequestError(
+          "impose",
+          fmt::format(
+              "`impose`: {}: the translation has order {} on the {}x{} torus but the colour permutation has order {}; "
+              "a packing needs them equal",
+              where, tord, rows, cols, pord));
     if (!packing && tord % pord != 0)
-      throw InputError(fmt::format(
-          "--impose: {}: the permutation's order {} does not divide the translation's order {} on the {}x{} torus",
-          where, pord, tord, rows, cols));
+      throw RequestError(
+          "impose",
+          fmt::format(
+              "`impose`: {}: the permutation's order {} does not divide the translation's order {} on the {}x{} torus",
+              where, pord, tord, rows, cols));
     G.generators_.push_back(std::move(g));
   }
   // Close under composition: (t1, p1) then (t2, p2) is (t1 + t2, p2 o p1).
@@ -277,10 +291,12 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
       if (it != by_translation.end()) {
         const auto& old = G.elements_[it->second];
         if (old.ph != e.ph || old.pv != e.pv)
-          throw InputError(fmt::format(
-              "--impose: the generators are inconsistent: translation ({},{}) is reached with two different colour "
-              "permutations ({} and {})",
-              e.dr, e.dc, format_perm(old.ph), format_perm(e.ph)));
+          throw RequestError(
+              "impose",
+              fmt::format(
+                  "`impose`: the generators are inconsistent: translation ({},{}) is reached with two different colour "
+                  "permutations ({} and {})",
+                  e.dr, e.dc, format_perm(old.ph), format_perm(e.ph)));
         continue;
       }
       by_translation[{e.dr, e.dc}] = G.elements_.size();
@@ -301,14 +317,17 @@ ImposedGroup ImposedGroup::build(const GroupSpec& spec, TileKind kind, std::uint
                              ? "generator"
                              : "group element";
       if (kind == TileKind::Corner)
-        throw InputError(
-            fmt::format("--impose: {} t={},{}:pi={} fixes colour {}, so the tile with all corners {} is its own image; "
+        throw RequestError(
+            "impose",
+            fmt::format("`impose`: {} t={},{}:pi={} fixes colour {}, so the tile with all corners {} is its own image; "
                         "a packing needs permutations without fixed points",
                         what, e.dr, e.dc, format_perm(e.ph), fh, fh));
-      throw InputError(fmt::format(
-          "--impose: {} t={},{}:pih={}:piv={} fixes horizontal colour {} and vertical colour {}, so the tile "
-          "N={} E={} S={} W={} is its own image; a packing needs pih or piv without a fixed point",
-          what, e.dr, e.dc, format_perm(e.ph), format_perm(e.pv), fh, fv, fh, fv, fh, fv));
+      throw RequestError(
+          "impose",
+          fmt::format(
+              "`impose`: {} t={},{}:pih={}:piv={} fixes horizontal colour {} and vertical colour {}, so the tile "
+              "N={} E={} S={} W={} is its own image; a packing needs pih or piv without a fixed point",
+              what, e.dr, e.dc, format_perm(e.ph), format_perm(e.pv), fh, fv, fh, fv, fh, fv));
     }
   }
   return G;

@@ -73,10 +73,10 @@ LatticeModel::LatticeModel(const TilingProblem& p, bool break_translation, int c
   for (int d : t->digit_radix) total *= std::size_t(d);
   // One entry per tile index: (C_h C_v)^2 or C^4; the limit is C = 90.
   if (total > kMaxModelTable)
-    throw InputError(
-        fmt::format("the {} model needs a table of {} entries for these colours (limit {}); use "
-                    "--formulation cell",
-                    wang ? "edges" : "pegs", total, kMaxModelTable));
+    throw RequestError("formulation",
+                       fmt::format("the {} model needs a table of {} entries for these colours (limit {}); use "
+                                   "`formulation` cell",
+                                   wang ? "edges" : "pegs", total, kMaxModelTable));
   t->allowed.assign(total, -1);
   for (std::size_t k = 0; k < set.size(); ++k) {
     assert(set.index_of(k) < total);  // a tile's index is its digits in the radices above

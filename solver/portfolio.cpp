@@ -138,7 +138,7 @@ Candidate make_sat(const TilingProblem& problem, const std::string& name, const 
   const std::string group = build_group(problem, spec).spec_text();
   auto run = [spec](const TilingProblem& p, SearchOptions o) {
     o.impose = spec;
-    o.formulation = "sat";
+    o.formulation = Formulation::Sat;
     o.run.shard = {};  // a sat candidate runs in one shard (see run_portfolio)
     o.save_checkpoint = nullptr;
     o.resume_state.reset();
@@ -154,7 +154,7 @@ Candidate make_lift(const TilingProblem& problem, const std::string& name, const
   make_lift_problem(problem.set.kind(), problem.set.colours(), parse_lift_spec(spec));  // InputError when impossible
   auto run = [spec](const TilingProblem& p, SearchOptions o) {
     o.lift = spec;
-    o.formulation = "cell";
+    o.formulation = Formulation::Cell;
     return solve(p, o);
   };
   return {name, "lift", "", true, true, run};
@@ -164,7 +164,7 @@ Candidate make_lift_sat(const TilingProblem& problem, const std::string& name, c
   make_lift_problem(problem.set.kind(), problem.set.colours(), parse_lift_spec(spec));
   auto run = [spec](const TilingProblem& p, SearchOptions o) {
     o.lift = spec;
-    o.formulation = "sat";
+    o.formulation = Formulation::Sat;
     o.run.shard = {};  // runs in one shard (see run_portfolio)
     o.save_checkpoint = nullptr;
     o.resume_state.reset();
@@ -499,7 +499,8 @@ SearchResult PortfolioResult::as_search_result(int threads) const {
 
 PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions& options,
                               const PortfolioOptions& portfolio) {
-  if (options.mode != SearchMode::First) throw InputError("the portfolio finds one packing: use it with --mode first");
+  if (options.mode != SearchMode::First)
+    throw RequestError("mode", "the portfolio finds one packing: use it with `mode` first");
   if (portfolio.first_slice <= 0) throw InputError("the portfolio's first slice must be positive");
   PortfolioOptions po = portfolio;
   if (po.stats_path.empty()) po.stats_path = PortfolioStats::default_path();
@@ -511,9 +512,9 @@ PortfolioResult run_portfolio(const TilingProblem& problem, const SearchOptions&
 std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem, const SearchOptions& options,
                                                    const PortfolioOptions& portfolio, std::uint64_t probes,
                                                    double seconds) {
-  if (probes < 1) throw InputError("--estimate needs at least 1 probe");
+  if (probes < 1) throw RequestError("probes", "`probes` needs at least 1 probe");
   if (!(seconds > 0) || !std::isfinite(seconds))
-    throw InputError(fmt::format("--estimate-seconds must be positive, got {}", seconds));
+    throw RequestError("probe_seconds", fmt::format("`probe_seconds` must be positive, got {}", seconds));
   const std::vector<std::string> names = portfolio.candidates.empty()
                                              ? default_candidates(problem.set.kind(), problem.set.colours())
                                              : portfolio.candidates;

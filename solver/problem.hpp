@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "solver/run_settings.hpp"
@@ -16,6 +17,16 @@
 namespace tilekit {
 
 enum class SearchMode { First, Count, All };
+
+// How the engine models a search (solve.cpp's table of routes picks the model from it and the
+// subspace): a tile per cell, a colour per peg (corner; window tori: a symbol per peg) or per
+// edge (Wang), or CNF for cadical (with an imposed group, a lift or a window torus). Auto: the
+// best measured one for the subspace.
+enum class Formulation { Auto, Cell, Pegs, Edges, Sat };
+// Its word: "auto", "cell", "pegs", "edges", "sat".
+std::string_view formulation_name(Formulation f);
+// The formulation a word names; none for another word.
+std::optional<Formulation> formulation_from_name(std::string_view name);
 
 struct TilingProblem {
   TileSet set;  // the tiles that may be placed
@@ -42,17 +53,17 @@ struct SearchOptions {
   SearchMode mode = SearchMode::First;
   // Search only the solutions invariant under this group (solver/impose_group.hpp SPEC, e.g.
   // "t=0,4:pi=1,2,3,0"); "" = no group. The model is then the fundamental domain
-  // (solver/impose_model.hpp), formulation "pegs"/"edges" (or "sat": the same subspace as CNF
-  // for cadical, first mode only, no checkpoints), ordering "mrv" (default) or "static".
+  // (solver/impose_model.hpp), formulation pegs/edges (or sat: the same subspace as CNF for
+  // cadical, first mode only, no checkpoints), ordering "mrv" (default) or "static".
   std::string impose;
   unsigned impose_patterns = 4;  // partial-pattern counts under a group: bit k = size-k slot subsets
   // Colour-quotient lift SPEC (solver/colour_lift_model.hpp): search packings B + m*E of the
-  // complete set; "" = none. Formulation "auto" (the engine) or "sat" (cadical).
+  // complete set; "" = none. Formulation auto (the engine), cell (tile per cell) or sat (cadical).
   std::string lift;
   bool count_orbits = true;  // Count/All on complete sets: also count orbits
 
   // ---- the model and the engine ----
-  std::string formulation = "auto";  // "cell", "pegs" (corner), "edges" (Wang) or "auto"; "sat" with lift
+  Formulation formulation = Formulation::Auto;
   std::string ordering = "auto";     // "static", "mrv" (most constrained first) or "auto"
   int restarts = -1;                 // First mode: Luby restarts; -1 auto (on for packings), 0 off, 1 on
   std::uint64_t restart_base = 0;    // nodes per Luby unit; 0 = auto

@@ -84,7 +84,8 @@ SatRun run_cadical(const CnfBuilder& cnf, double time_limit, std::uint64_t seed,
   const auto t0 = std::chrono::steady_clock::now();
   SatRun out;
   TempCnf file(cnf.dimacs());
-  std::vector<std::string> args = {"cadical", "-q", fmt::format("--seed={}", seed % 2000000000ULL)};
+  std::vector<std::string> args = {"cadical", "-q",
+                                   fmt::format("--seed={}", seed % 2000000000ULL)};  // cadical's: not a tilekit flag
   if (time_limit > 0) args.insert(args.end(), {"-t", std::to_string(std::max(1, int(std::ceil(time_limit))))});
   args.push_back(file.path);
   for (const auto& a : args) out.command += (out.command.empty() ? "" : " ") + a;
@@ -154,8 +155,9 @@ SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, 
                           const SatNames& names, const std::function<const CnfBuilder&()>& build,
                           const std::function<Tiling(const std::vector<char>&)>& decode) {
   if (o.mode != SearchMode::First)
-    throw InputError(fmt::format("--formulation sat finds one {}: use it with --mode first", names.finds));
-  if (o.run.shard.count != 1) throw InputError("--formulation sat runs as one job: drop --shard");
+    throw RequestError("formulation",
+                       fmt::format("`formulation` sat finds one {}: use it with `mode` first", names.finds));
+  if (o.run.shard.count != 1) throw RequestError("formulation", "`formulation` sat runs as one job: drop `shard`");
   if (o.resume_state && o.resume_state->fingerprint != fingerprint)
     throw InputError("checkpoint does not match this search (different problem, lift, seed or formulation)");
   const double prior = o.resume_state ? o.resume_state->seconds : 0;

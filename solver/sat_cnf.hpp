@@ -59,7 +59,7 @@ SatRun run_cadical(const CnfBuilder& cnf, double time_limit, std::uint64_t seed,
 
 // What the messages of solve_by_sat call its results.
 struct SatNames {
-  const char* finds;     // "--formulation sat finds one FINDS" (packing, torus)
+  const char* finds;     // "sat finds one FINDS" (packing, torus)
   const char* cnf;       // the encoding: "the CNF CNF produced ..." (lift, window)
   const char* produced;  // what the decoded assignment is (tiling, torus)
   const char* invalid;   // the validator's complaint when it names none (not a packing, ...)

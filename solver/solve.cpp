@@ -38,17 +38,108 @@ namespace {
 // Luby unit under a group: nodes per site of the fundamental domain, plus a floor.
 constexpr std::uint64_t kRestartPerSite = 50, kRestartFloor = 1000;
 
+struct Route;
+
 struct Plan {
-  std::string formulation, ordering;
+  const Route* route = nullptr;  // the model that runs (kRoutes)
+  std::string formulation;       // its name (route->name), in results and fingerprints
+  std::string ordering;
   bool restarts = false;
   std::uint64_t restart_base = 0;
   std::size_t subproblems = 0;
-  std::optional<ImposedGroup> group;  // --impose
+  std::optional<ImposedGroup> group;  // options.impose
   std::optional<FundamentalDomain> domain;
-  std::shared_ptr<const LiftProblem> lift;  // --lift: the subspace searched
+  std::shared_ptr<const LiftProblem> lift;  // options.lift: the subspace searched
   bool window = false;                      // a de Bruijn torus (window set)
-  std::shared_ptr<const WindowLiftProblem> window_lift;  // --kind window --lift
+  std::shared_ptr<const WindowLiftProblem> window_lift;  // a window torus with options.lift
 };
+
+// ---- the routes: which model runs a search ------------------------------------------------
+// A search walks a subspace (all of it, the invariants of an imposed group, a colour-quotient
+// lift, or a window torus, which has subspaces of its own) in a formulation; each pair that
+// runs is one row of kRoutes, as the portfolio's candidate families are rows of its kFamilies.
+// To add a model, write its runner and add a row.
+enum class Subspace { Whole, Imposed, Lift, Window };
+
+using RouteRun = SearchResult (*)(const TilingProblem&, const SearchOptions&, Plan&);
+
+struct Route {
+  Subspace subspace;
+  Formulation formulation;
+  std::optional<TileKind> kind;  // the tile kind it needs (none: any)
+  const char* name;              // SearchResult::formulation and the fingerprint's
+  RouteRun run;
+};
+
+SearchResult run_cell(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_lattice(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_imposed(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_sat(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_lift(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_lift_cell(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_lift_sat(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_window(const TilingProblem&, const SearchOptions&, Plan&);
+SearchResult run_window_sat(const TilingProblem&, const SearchOptions&, Plan&);
+
+constexpr Route kRoutes[] = {
+    {Subspace::Whole, Formulation::Cell, std::nullopt, "cell", run_cell},
+    {Subspace::Whole, Formulation::Pegs, TileKind::Corner, "pegs", run_lattice},
+    {Subspace::Whole, Formulation::Edges, TileKind::Wang, "edges", run_lattice},
+    {Subspace::Imposed, Formulation::Pegs, TileKind::Corner, "pegs", run_imposed},
+    {Subspace::Imposed, Formulation::Edges, TileKind::Wang, "edges", run_imposed},
+    {Subspace::Imposed, Formulation::Sat, std::nullopt, "sat", run_sat},
+    {Subspace::Lift, Formulation::Pegs, std::nullopt, "lift", run_lift},  // the lift's pegs or edges
+    {Subspace::Lift, Formulation::Edges, std::nullopt, "lift", run_lift},
+    {Subspace::Lift, Formulation::Cell, std::nullopt, "lift-cell", run_lift_cell},
+    {Subspace::Lift, Formulation::Sat, std::nullopt, "sat", run_lift_sat},
+    {Subspace::Window, Formulation::Pegs, std::nullopt, "pegs", run_window},  // a symbol per peg
+    {Subspace::Window, Formulation::Sat, std::nullopt, "sat", run_window_sat},
+};
+
+// The formulation `auto` stands for.
+Formulation auto_formulation(Subspace s, TileKind kind) {
+  switch (s) {
+    // Measured (BENCHMARKS.md, bench_solver): the tile-per-cell model is fastest on every packing
+    // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
+    // unconstrained tilings, where most-constrained-first cell search is close and far more
+    // robust on restrictive (e.g. aperiodic) sets.
+    case Subspace::Whole:
+      return Formulation::Cell;
+    // Under a group the model is the fundamental domain of pegs (corner) or edges (Wang).
+    case Subspace::Imposed:
+      return kind == TileKind::Wang ? Formulation::Edges : Formulation::Pegs;
+    case Subspace::Lift:
+      return Formulation::Pegs;
+    case Subspace::Window:
+      return Formulation::Pegs;
+  }
+  return Formulation::Cell;
+}
+
+// The route of a subspace and formulation, or an InputError saying which formulations it takes.
+const Route& pick_route(Subspace s, Formulation asked, TileKind kind) {
+  const Formulation f = asked == Formulation::Auto ? auto_formulation(s, kind) : asked;
+  for (const Route& r : kRoutes)
+    if (r.subspace == s && r.formulation == f && (!r.kind || *r.kind == kind)) return r;
+  if (s == Subspace::Window)
+    throw RequestError("formulation", fmt::format("window tori are searched over their symbols (`formulation` pegs, "
+                                                  "i.e. auto) or as CNF (sat), not '{}'",
+                                                  formulation_name(asked)));
+  if (s == Subspace::Imposed && f == Formulation::Cell)
+    throw RequestError("impose",
+                       "`impose` searches the pegs (corner) or edges (Wang) of a fundamental domain, not cells");
+  if (f == Formulation::Sat)
+    throw RequestError("formulation",
+                       "the sat formulation encodes an imposed group's or a lift's subspace: give `impose` or `lift`");
+  if (f == Formulation::Pegs) throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
+  if (f == Formulation::Edges) throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
+  throw std::logic_error(fmt::format("no route for formulation '{}'", formulation_name(asked)));
+}
+
+void use_route(Plan& pl, const Route& r) {
+  pl.route = &r;
+  pl.formulation = r.name;
+}
 
 // A model's leaf stands for its translates by multiples of these steps (rows, columns; lifts:
 // the period).
@@ -67,24 +158,23 @@ const char* mode_name(SearchMode m) {
 }
 
 // Window tori (de Bruijn tori, tilesets/window_torus.hpp): the window model over the symbols
-// (formulation "pegs"), optionally a lift quotient (--lift), or the same as CNF ("sat").
+// (formulation pegs), optionally a lift quotient (options.lift), or the same as CNF (sat).
 void plan_window(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
   const TileSet& set = p.set;
   if (!p.packing || !p.torus) throw InputError("a window torus holds every window once: a packing of a torus");
   check_window_torus_shape(set.horizontal_radix(), set.window_rows(), set.window_cols(), p.rows, p.cols);
   pl.window = true;
-  if (!o.impose.empty() && !o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
+  if (!o.impose.empty() && !o.lift.empty())
+    throw RequestError("impose", "`impose` and `lift` are separate subspaces: give one of them");
   if (!o.impose.empty()) pl.group = build_group(p, o.impose);
   if (!o.lift.empty())
     pl.window_lift = std::make_shared<const WindowLiftProblem>(make_window_lift_problem(p, o.lift));
-  if (pl.formulation == "auto") pl.formulation = "pegs";
-  if (pl.formulation != "pegs" && pl.formulation != "sat")
-    throw InputError(fmt::format("window tori are searched over their symbols (--formulation pegs, i.e. auto) or as "
-                                 "CNF (sat), not '{}'",
-                                 o.formulation));
-  if (pl.ordering == "auto") pl.ordering = pl.formulation == "sat" ? "cadical" : "static";
+  use_route(pl, pick_route(Subspace::Window, o.formulation, set.kind()));
+  if (pl.ordering == "auto") pl.ordering = pl.route->formulation == Formulation::Sat ? "cadical" : "static";
   if (pl.ordering != "static" && pl.ordering != "cadical")
-    throw InputError(fmt::format("window tori are searched in scanline order (--ordering static), not '{}'", o.ordering));
+    throw RequestError(
+        "ordering",
+        fmt::format("window tori are searched in scanline order (`ordering` static), not '{}'", o.ordering));
   pl.restarts = o.mode == SearchMode::First && o.restarts != 0;
   pl.restart_base = o.restart_base ? o.restart_base : 1000 * std::uint64_t(p.rows) * std::uint64_t(p.cols);
   pl.subproblems = o.subproblems ? o.subproblems : std::max<std::size_t>(1024, 64 * std::size_t(o.run.shard.count));
@@ -103,10 +193,10 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   checked_thread_count(o.run.threads);
   const ShardSpec& shard = o.run.shard;
   if (shard.count < 1 || shard.count > kMaxShards || shard.index < 0 || shard.index >= shard.count)
-    throw InputError(
-        fmt::format("--shard must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards, shard.index, shard.count));
+    throw RequestError("shard", fmt::format("`shard` must be I/N with 0 <= I < N <= {}, got {}/{}", kMaxShards,
+                                            shard.index, shard.count));
   if (!std::isfinite(o.run.time_limit) || !std::isfinite(o.run.checkpoint_every))
-    throw InputError("--time-limit and --checkpoint-every must be finite numbers of seconds");
+    throw RequestError("time_limit", "`time_limit` and `checkpoint_every` must be finite numbers of seconds");
   if (o.run.time_limit < 0) throw InputError(fmt::format("time limit must be >= 0 seconds, got {}", o.run.time_limit));
   if (o.run.checkpoint_every < 0)
     throw InputError(fmt::format("checkpoint interval must be >= 0 seconds, got {}", o.run.checkpoint_every));
@@ -115,66 +205,43 @@ Plan plan(const TilingProblem& p, const SearchOptions& o) {
   if (!o.run.resume_path.empty() && !o.resume_state)
     throw InputError("resume_path needs checkpoint I/O: use solve_checkpointed() (checkpoints/checkpoint.hpp)");
   Plan pl;
-  const bool wang = set.kind() == TileKind::Wang;
-  pl.formulation = o.formulation;
   pl.ordering = o.ordering;
   if (set.kind() == TileKind::Window) {
     plan_window(p, o, pl);
     return pl;
   }
   if (!o.impose.empty()) {
-    // Under a group the model is the fundamental domain of pegs (corner) or edges (Wang).
     pl.group = build_group(p, o.impose);
     pl.domain = FundamentalDomain::build(p, *pl.group);
-    if (pl.formulation == "auto") pl.formulation = wang ? "edges" : "pegs";
-    if (pl.formulation == "cell")
-      throw InputError("--impose searches the pegs (corner) or edges (Wang) of a fundamental domain, not cells");
+    use_route(pl, pick_route(Subspace::Imposed, o.formulation, set.kind()));
     if (pl.ordering == "auto") pl.ordering = "mrv";  // most constrained tight site first
     if (o.impose_patterns >= 16) throw InputError("impose_patterns is a mask of bits 1..3");
-    if (pl.formulation == "sat") {
+    if (pl.route->formulation == Formulation::Sat) {
       if (o.mode != SearchMode::First)
-        throw InputError("the sat formulation finds one packing: use it with --mode first");
+        throw RequestError("mode", "the sat formulation finds one packing: use it with `mode` first");
       if (o.run.shard.count != 1 || o.save_checkpoint || o.resume_state)
-        throw InputError("the sat formulation runs cadical once: it keeps no checkpoint and takes no --shard");
+        throw RequestError("shard",
+                           "the sat formulation runs cadical once: it keeps no checkpoint and takes no `shard`");
     }
-    if (!o.lift.empty()) throw InputError("--impose and --lift are separate subspaces: give one of them");
+    if (!o.lift.empty()) throw RequestError("impose", "`impose` and `lift` are separate subspaces: give one of them");
   } else if (!o.lift.empty()) {
     const bool complete = set.size() == complete_size(set.horizontal_radix(), set.vertical_radix()) &&
                           set.horizontal_radix() == set.vertical_radix() && p.torus && p.packing &&
                           p.rows == int(set.colours() * set.colours()) && p.cols == p.rows;
-    if (!complete) throw InputError("--lift searches packings of the complete sets (--kind and --colors)");
+    if (!complete) throw RequestError("lift", "`lift` searches packings of the complete sets (`kind` and `colours`)");
     pl.lift =
         std::make_shared<const LiftProblem>(make_lift_problem(set.kind(), set.colours(), parse_lift_spec(o.lift)));
-    if (o.formulation == "auto" || o.formulation == "pegs" || o.formulation == "edges")
-      pl.formulation = "lift";
-    else if (o.formulation == "cell")
-      pl.formulation = "lift-cell";
-    else if (o.formulation != "sat")
-      throw InputError(fmt::format(
-          "--lift searches with the engine (--formulation auto: pegs/edges, or cell) or cadical (sat), not '{}'",
-          o.formulation));
-  } else if (pl.formulation == "sat") {
-    throw InputError("the sat formulation encodes an imposed group's or a lift's subspace: give --impose or --lift");
+    use_route(pl, pick_route(Subspace::Lift, o.formulation, set.kind()));
+  } else {
+    use_route(pl, pick_route(Subspace::Whole, o.formulation, set.kind()));
   }
-  // Measured (BENCHMARKS.md, bench_solver): the tile-per-cell model is fastest on every packing
-  // problem we timed (C=2 counts, C=3 first packings); pegs/edges only win on counts of
-  // unconstrained tilings, where most-constrained-first cell search is close and far more
-  // robust on restrictive (e.g. aperiodic) sets.
-  if (pl.formulation == "auto") pl.formulation = "cell";
-  if (!pl.lift && pl.formulation != "cell" && pl.formulation != "pegs" && pl.formulation != "edges" &&
-      pl.formulation != "sat")
-    throw InputError(fmt::format("unknown formulation '{}' (cell, pegs, edges, sat or auto)", o.formulation));
-  if (pl.formulation == "pegs" && wang)
-    throw InputError("the pegs formulation is for corner tiles; use edges for Wang tiles");
-  if (pl.formulation == "edges" && !wang)
-    throw InputError("the edges formulation is for Wang tiles; use pegs for corner tiles");
   // Static scanline order is cheapest per node for packings; most constrained first is
   // essential for tilings of bounded regions (culik-13 on a 20x20 square: 5 ms vs > 60 s).
   if (pl.ordering == "auto") pl.ordering = p.packing || pl.formulation != "cell" ? "static" : "mrv";
   if (pl.ordering != "static" && pl.ordering != "mrv")
     throw InputError(fmt::format("unknown ordering '{}' (static, mrv or auto)", o.ordering));
   if (pl.ordering == "mrv" && pl.formulation != "cell" && !pl.group && !pl.lift)
-    throw InputError("the mrv ordering needs the cell formulation (or --impose)");
+    throw RequestError("ordering", "the mrv ordering needs the cell formulation (or `impose`)");
   if (pl.lift) pl.ordering = pl.formulation == "sat" ? "cadical" : pl.formulation == "lift-cell" ? "mrv" : "static";
   pl.restarts = o.mode == SearchMode::First && (o.restarts < 0 ? p.packing : o.restarts > 0);
   // Nodes per Luby unit: under a group, proportional to the fundamental domain (measured on
@@ -351,7 +418,7 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
 }
 
 // The imposed group's subspace as CNF, solved by cadical (impose_sat.hpp); first mode only.
-SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan& pl) {
+SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
   SearchResult res = new_result(p, o, pl);
   res.formulation = "sat-" + std::string(p.set.kind() == TileKind::Wang ? "edges" : "pegs");
   res.threads = 1;
@@ -377,6 +444,55 @@ SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, const Plan&
   return res;
 }
 
+// ---- the routes' runners (kRoutes) ----
+SearchResult run_cell(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
+  return run_model(CellModel(p, true, ord), p, o, pl);
+}
+
+SearchResult run_lattice(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  return run_model(LatticeModel(p, true), p, o, pl);
+}
+
+SearchResult run_imposed(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  auto ord = pl.ordering == "mrv" ? ImposeModel::Ordering::MostConstrained : ImposeModel::Ordering::Static;
+  return run_model(ImposeModel(std::move(*pl.domain), ord, o.impose_patterns), p, o, pl);
+}
+
+SearchResult run_lift(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  return run_model(lift_lattice_model(*pl.lift), p, o, pl);
+}
+
+SearchResult run_lift_cell(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  return run_model(lift_cell_model(*pl.lift), p, o, pl);
+}
+
+SearchResult run_lift_sat(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  return solve_lift_sat(*pl.lift, p, o, fingerprint(p, o, pl));
+}
+
+// A window torus's symbols tied by its imposed group or its lift (none: free).
+SymbolTies window_ties(const TilingProblem& p, const Plan& pl) {
+  return pl.group         ? group_ties(p, pl.group->elements())
+         : pl.window_lift ? window_lift_ties(p, *pl.window_lift)
+                          : SymbolTies{};
+}
+
+// The colour lift of a window torus (the row-difference lift only ties symbols).
+const WindowLiftProblem* window_colour_lift(const Plan& pl) {
+  return pl.window_lift && !pl.window_lift->row_difference ? &*pl.window_lift : nullptr;
+}
+
+SearchResult run_window(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  if (const WindowLiftProblem* colour_lift = window_colour_lift(pl))
+    return run_model(WindowLiftModel(*colour_lift), p, o, pl);
+  return run_model(WindowModel(p, 0, 0, window_ties(p, pl)), p, o, pl);
+}
+
+SearchResult run_window_sat(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
+  return solve_window_sat(p, window_colour_lift(pl), window_ties(p, pl), o, fingerprint(p, o, pl));
+}
+
 }  // namespace
 
 std::string search_fingerprint(const TilingProblem& problem, const SearchOptions& options) {
@@ -387,30 +503,7 @@ SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
   Plan pl = plan(problem, options);
   std::optional<SignalCatcher> signals;
   if (options.run.catch_signals) signals.emplace();
-  if (pl.window) {
-    const SymbolTies ties = pl.group         ? group_ties(problem, pl.group->elements())
-                            : pl.window_lift ? window_lift_ties(problem, *pl.window_lift)
-                                             : SymbolTies{};
-    const WindowLiftProblem* colour_lift = pl.window_lift && !pl.window_lift->row_difference ? &*pl.window_lift : nullptr;
-    if (pl.formulation == "sat")
-      return solve_window_sat(problem, colour_lift, ties, options, fingerprint(problem, options, pl));
-    if (colour_lift) return run_model(WindowLiftModel(*colour_lift), problem, options, pl);
-    return run_model(WindowModel(problem, 0, 0, ties), problem, options, pl);
-  }
-  if (pl.lift && pl.formulation == "sat")
-    return solve_lift_sat(*pl.lift, problem, options, fingerprint(problem, options, pl));
-  if (pl.lift && pl.formulation == "lift-cell") return run_model(lift_cell_model(*pl.lift), problem, options, pl);
-  if (pl.lift) return run_model(lift_lattice_model(*pl.lift), problem, options, pl);
-  if (pl.formulation == "sat") return run_sat(problem, options, pl);
-  if (pl.domain) {
-    auto ord = pl.ordering == "mrv" ? ImposeModel::Ordering::MostConstrained : ImposeModel::Ordering::Static;
-    return run_model(ImposeModel(std::move(*pl.domain), ord, options.impose_patterns), problem, options, pl);
-  }
-  if (pl.formulation == "cell") {
-    auto ord = pl.ordering == "mrv" ? CellModel::Ordering::MostConstrained : CellModel::Ordering::Static;
-    return run_model(CellModel(problem, true, ord), problem, options, pl);
-  }
-  return run_model(LatticeModel(problem, true), problem, options, pl);
+  return pl.route->run(problem, options, pl);
 }
 
 }  // namespace tilekit

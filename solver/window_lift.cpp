@@ -14,15 +14,17 @@ WindowLiftProblem row_difference_problem(const TilingProblem& problem, const std
   WindowLiftProblem p;
   p.row_difference = true;
   p.spec.base_file = text.substr(5);
-  if (p.spec.base_file.empty()) throw InputError("--lift rows=FILE: give the file of the torus of differences");
+  if (p.spec.base_file.empty())
+    throw RequestError("lift", "`lift` rows=FILE: give the file of the torus of differences");
   try {
     p.base = read_tiling_file(p.spec.base_file);
   } catch (const InputError& e) {
-    throw InputError(fmt::format("--lift {}: {}", text, e.what()));
+    throw RequestError("lift", fmt::format("`lift` {}: {}", text, e.what()));
   }
   if (p.base.kind == TileKind::Corner && p.base.torus) p.base = window_torus_of_corner_torus(p.base);  // 2x2 windows
   p.base_how = p.spec.base_file;
-  if (!validate(p.base).packing) throw InputError(fmt::format("--lift {}: the base is not a de Bruijn torus", text));
+  if (!validate(p.base).packing)
+    throw RequestError("lift", fmt::format("`lift` {}: the base is not a de Bruijn torus", text));
   p.colours = problem.set.horizontal_radix();
   row_difference_ties(problem, p.base);  // checks that A fits (InputError)
   return p;
@@ -41,7 +43,8 @@ WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const s
   const std::uint32_t C = set.horizontal_radix(), m = spec.base_colours;
   const int K = set.window_rows(), L = set.window_cols();
   if (m == 0 || C % m != 0 || C / m < 2)
-    throw InputError(fmt::format("--lift {}: {} symbols are not a multiple k*{} with k >= 2", spec.text(), C, m));
+    throw RequestError("lift",
+                       fmt::format("`lift` {}: {} symbols are not a multiple k*{} with k >= 2", spec.text(), C, m));
   WindowLiftProblem p;
   p.spec = spec;
   p.colours = C;
@@ -54,14 +57,14 @@ WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const s
     try {
       p.base = read_tiling_file(spec.base_file);
     } catch (const InputError& e) {
-      throw InputError(fmt::format("--lift {}: {}", spec.text(), e.what()));
+      throw RequestError("lift", fmt::format("`lift` {}: {}", spec.text(), e.what()));
     }
     if (p.base.kind == TileKind::Corner && K == 2 && L == 2) p.base = window_torus_of_corner_torus(p.base);
     p.base_how = spec.base_file;
     if (!fits(p.base))
-      throw InputError(fmt::format(
-          "--lift {}: the base is not a de Bruijn torus with {}x{} windows over {} symbols whose sides divide {}x{}",
-          spec.text(), K, L, m, problem.rows, problem.cols));
+      throw RequestError("lift", fmt::format("`lift` {}: the base is not a de Bruijn torus with {}x{} windows over {} "
+                                             "symbols whose sides divide {}x{}",
+                                             spec.text(), K, L, m, problem.rows, problem.cols));
   } else {
     std::vector<Tiling> bases = stored_window_tori(m, K, L);
     if (K == 2 && L == 2)
@@ -73,10 +76,10 @@ WindowLiftProblem make_window_lift_problem(const TilingProblem& problem, const s
         break;
       }
     if (p.base.cells.empty())
-      throw InputError(fmt::format(
-          "--lift {}: no de Bruijn torus with {}x{} windows over {} symbols whose sides divide {}x{} is known to lift "
-          "from (give base=FILE)",
-          spec.text(), K, L, m, problem.rows, problem.cols));
+      throw RequestError("lift", fmt::format("`lift` {}: no de Bruijn torus with {}x{} windows over {} symbols whose "
+                                             "sides divide {}x{} is known to lift "
+                                             "from (give base=FILE)",
+                                             spec.text(), K, L, m, problem.rows, problem.cols));
   }
   p.quotient.set = complete_window_set(p.quotient_colours, K, L);
   p.quotient.rows = problem.rows;

@@ -79,7 +79,8 @@ SymbolTies row_difference_ties(const TilingProblem& p, const Tiling& a) {
 
 WindowModel::WindowModel(const TilingProblem& p, int period_rows, int period_cols, const SymbolTies& given) {
   const TileSet& set = p.set;
-  if (set.kind() != TileKind::Window) throw InputError("the window model searches window tori (--kind window)");
+  if (set.kind() != TileKind::Window)
+    throw RequestError("kind", "the window model searches window tori (`kind` window)");
   auto t = std::make_shared<Tables>();
   t->rows = p.rows, t->cols = p.cols;
   t->window_rows = set.window_rows(), t->window_cols = set.window_cols();

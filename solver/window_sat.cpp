@@ -42,9 +42,11 @@ WindowCnf build_window_cnf(const TilingProblem& q, int period_rows, int period_c
   const int cells = e.rows * e.cols, D = e.K * e.L, windows = int(set.size());
   if (period_rows == 0) period_rows = period_cols = 1;  // one class: the whole torus
   if (std::uint64_t(cells) * std::uint64_t(windows) > kMaxWindowCnfIndicators)
-    throw InputError(fmt::format("the CNF would need {} x {} window variables (limit {}): use the engine (--formulation "
-                                 "auto)",
-                                 cells, windows, kMaxWindowCnfIndicators));
+    throw RequestError(
+        "formulation",
+        fmt::format("the CNF would need {} x {} window variables (limit {}): use the engine (`formulation` "
+                    "auto)",
+                    cells, windows, kMaxWindowCnfIndicators));
   e.first_symbol_var = e.cnf.new_vars(e.C == 2 ? cells : cells * int(e.C));
   if (e.C != 2)
     for (int v = 0; v < cells; ++v) {

@@ -95,7 +95,8 @@ TextureAtlas read_texture_atlas(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(manifest, ec))
     throw InputError(fmt::format(
-        "{}: no atlas manifest (write the atlas with `tilekit texture atlas DIR --out {}.png`)", manifest, stem));
+        "{}: no atlas manifest (write the atlas with `tilekit texture atlas DIR` and the output file {}.png)", manifest,
+        stem));
   const nlohmann::json doc = read_json_file(manifest, "atlas manifest");
   const JsonIn j(doc, manifest);
   // The lookup is a tiling file (tilesets/tile_grid.hpp, checked there) that must be a packing

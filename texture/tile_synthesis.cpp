@@ -33,25 +33,28 @@ bool thin_bands(const SynthesisOptions& o, const SynthesisExemplar& x) {
 
 void check_synthesis_options(const Exemplar& e, const SynthesisOptions& o) {
   if (o.tile_px < 16 || o.tile_px > 1024 || o.tile_px % 2)
-    throw InputError(fmt::format("--tile-px must be an even number of pixels in 16..1024, got {}", o.tile_px));
-  if (o.colours < 1 || o.colours > 16) throw InputError(fmt::format("--colors must be 1..16, got {}", o.colours));
+    throw RequestError("tile_px",
+                       fmt::format("`tile_px` must be an even number of pixels in 16..1024, got {}", o.tile_px));
+  if (o.colours < 1 || o.colours > 16)
+    throw RequestError("colours", fmt::format("`colours` must be 1..16, got {}", o.colours));
   if (o.search < 0 || o.rounds < 0 || o.centre_candidates < 1 || o.centre_cuts < 1)
-    throw InputError("--search and the centre candidates must not be negative");
+    throw RequestError("search", "`search` and the centre candidates must not be negative");
   // Each round holds the candidates of one sample at once; beyond 2^16 a search costs hours per
   // round and the memory grows with it, while the exemplars have at most a few million positions.
   if (o.search > kMaxSynthesisSearch)
-    throw InputError(
-        fmt::format("--search {} is more than the {} candidates a round may try", o.search, kMaxSynthesisSearch));
+    throw RequestError("search", fmt::format("`search` {} is more than the {} candidates a round may try", o.search,
+                                             kMaxSynthesisSearch));
   const int need = o.tile_px + 16;  // a centre patch of n pixels, with room to choose where
   if (e.width() < need || e.height() < need)
-    throw InputError(
-        fmt::format("{}: a {}x{} exemplar is too small for {}-pixel tiles: the samples need at least "
-                    "{}x{} pixels (use a smaller --tile-px)",
-                    e.name, e.width(), e.height(), o.tile_px, need, need));
+    throw RequestError("tile_px",
+                       fmt::format("{}: a {}x{} exemplar is too small for {}-pixel tiles: the samples need at least "
+                                   "{}x{} pixels (use a smaller `tile_px`)",
+                                   e.name, e.width(), e.height(), o.tile_px, need, need));
   const double bytes = std::pow(double(o.colours), 4) * o.tile_px * o.tile_px * 6.0;
   if (bytes > double(1ull << 31))
-    throw InputError(fmt::format("{} tiles of {} pixels need {:.1f} GB; use fewer colours or a smaller --tile-px",
-                                 std::pow(double(o.colours), 4), o.tile_px, bytes / 1e9));
+    throw RequestError("tile_px",
+                       fmt::format("{} tiles of {} pixels need {:.1f} GB; use fewer colours or a smaller `tile_px`",
+                                   std::pow(double(o.colours), 4), o.tile_px, bytes / 1e9));
 }
 
 std::array<int, 2> random_sample_position(const Exemplar& e, int side, std::uint64_t seed) {

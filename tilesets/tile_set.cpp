@@ -22,13 +22,14 @@ std::uint32_t distinct(const std::vector<T>& tiles, auto... members) {
 }  // namespace
 
 void check_colour_count(std::int64_t c, const char* what) {
-  if (c < 1 || c > 255) throw InputError(fmt::format("{} must be between 1 and 255, got {}", what, c));
+  if (c < 1 || c > 255) throw_input_error(what, fmt::format("{} must be between 1 and 255, got {}", what, c));
 }
 
 void check_complete_set_colours(std::int64_t c, const char* what) {
   if (c < 1 || c > std::int64_t(kMaxCompleteSetColours))
-    throw InputError(fmt::format("{} must be between 1 and {} for a packing or atlas of the complete set, got {}", what,
-                                 kMaxCompleteSetColours, c));
+    throw_input_error(
+        what, fmt::format("{} must be between 1 and {} for a packing or atlas of the complete set, got {}", what,
+                          kMaxCompleteSetColours, c));
 }
 
 TileSet TileSet::wang(std::vector<WangTile> tiles, std::string name, std::string source, std::uint32_t ch,

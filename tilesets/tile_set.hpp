@@ -101,7 +101,8 @@ void check_colour_count(std::int64_t c, const char* what = "colours");
 // take. Beyond it building the set alone took minutes and gigabytes (larger C ended in
 // std::bad_alloc) before a search that could never end.
 inline constexpr std::uint32_t kMaxCompleteSetColours = 64;
-// Checks 1 <= C <= kMaxCompleteSetColours; throws InputError naming `what` ("--colors").
-void check_complete_set_colours(std::int64_t c, const char* what = "--colors");
+// Checks 1 <= C <= kMaxCompleteSetColours; throws InputError naming `what` (by default the request
+// field `colours`: a RequestError, base/error.hpp).
+void check_complete_set_colours(std::int64_t c, const char* what = "`colours`");
 
 }  // namespace tilekit

@@ -27,19 +27,21 @@ std::uint64_t window_count(std::uint32_t colours, int rows, int cols, std::uint6
 
 void check_window_torus_shape(std::uint32_t colours, int window_rows, int window_cols, int rows, int cols) {
   if (window_rows < 1 || window_cols < 1)
-    throw InputError(fmt::format("--window {}x{}: a window needs K >= 1 rows and L >= 1 columns", window_rows,
-                                 window_cols));
+    throw RequestError("window", fmt::format("`window` {}x{}: a window needs K >= 1 rows and L >= 1 columns",
+                                             window_rows, window_cols));
   if (window_rows > rows || window_cols > cols)
-    throw InputError(fmt::format("--window {}x{} is larger than the {}x{} torus (a window must fit in the torus)",
-                                 window_rows, window_cols, rows, cols));
+    throw RequestError("window",
+                       fmt::format("`window` {}x{} is larger than the {}x{} torus (a window must fit in the torus)",
+                                   window_rows, window_cols, rows, cols));
   const std::uint64_t n = window_count(colours, window_rows, window_cols, kMaxTiles);
   if (n == 0)
     throw InputError(fmt::format("{}x{} windows over {} symbols are more than {}^{} > {} windows (the limit)",
                                  window_rows, window_cols, colours, colours, window_rows * window_cols, kMaxTiles));
   if (std::uint64_t(rows) * std::uint64_t(cols) != n)
-    throw InputError(fmt::format(
-        "--size {}x{}: a torus holding each of the {}^({}*{}) = {} windows once has rows*cols = {}, not {}", rows,
-        cols, colours, window_rows, window_cols, n, n, std::uint64_t(rows) * std::uint64_t(cols)));
+    throw RequestError(
+        "size",
+        fmt::format("`size` {}x{}: a torus holding each of the {}^({}*{}) = {} windows once has rows*cols = {}, not {}",
+                    rows, cols, colours, window_rows, window_cols, n, n, std::uint64_t(rows) * std::uint64_t(cols)));
 }
 
 Tiling window_torus_from_pegs(const std::vector<Colour>& pegs, int rows, int cols, std::uint32_t colours,

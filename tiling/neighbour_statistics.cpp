@@ -111,9 +111,9 @@ NeighbourAnalysis analyze_neighbours(std::uint32_t colours, NeighbourAlgo algo, 
                                      std::uint64_t seed, HashKind hash, const std::function<void(int, int)>& progress,
                                      std::uint64_t samples) {
   check_colour_count(colours);
-  if (tilings < 1) throw InputError(fmt::format("--tilings must be at least 1, got {}", tilings));
+  if (tilings < 1) throw RequestError("tilings", fmt::format("`tilings` must be at least 1, got {}", tilings));
   if (max_size < 1 || max_size > 65536)
-    throw InputError(fmt::format("--max-size must be between 1 and 65536, got {}", max_size));
+    throw RequestError("max_size", fmt::format("`max_size` must be between 1 and 65536, got {}", max_size));
   NeighbourAnalysis out;
   out.colours = colours;
   SplitMix64 rng(seed);

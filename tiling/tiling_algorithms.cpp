@@ -24,8 +24,8 @@ constexpr AlgoName kAlgos[] = {{TilingAlgo::Scanline, "scanline"},      {TilingA
 
 void require_kind(const TileSet& set, TileKind kind, TilingAlgo algo) {
   if (set.kind() != kind)
-    throw InputError(fmt::format("--algo {} makes {} tilings, but tile set '{}' is a {} set", tiling_algo_name(algo),
-                                 kind_name(kind), set.name(), kind_name(set.kind())));
+    throw RequestError("algo", fmt::format("`algo` {} makes {} tilings, but tile set '{}' is a {} set",
+                                           tiling_algo_name(algo), kind_name(kind), set.name(), kind_name(set.kind())));
 }
 
 // Every tile the algorithm can produce must be in the set.
@@ -34,13 +34,13 @@ void require_tiles(const TileSet& set, TilingAlgo algo, const std::vector<TileIn
   for (std::size_t k = 0; k < set.size(); ++k) have[set.index_of(k)] = true;
   for (TileIndex i : producible)
     if (i >= have.size() || !have[i])
-      throw InputError(
-          fmt::format("--algo {} can place tiles that tile set '{}' lacks ({} of the {} it can produce "
-                      "are missing); use {}",
-                      tiling_algo_name(algo), set.name(),
-                      std::count_if(producible.begin(), producible.end(),
-                                    [&](TileIndex j) { return j >= have.size() || !have[j]; }),
-                      producible.size(), hint));
+      throw RequestError("algo",
+                         fmt::format("`algo` {} can place tiles that tile set '{}' lacks ({} of the {} it can produce "
+                                     "are missing); use {}",
+                                     tiling_algo_name(algo), set.name(),
+                                     std::count_if(producible.begin(), producible.end(),
+                                                   [&](TileIndex j) { return j >= have.size() || !have[j]; }),
+                                     producible.size(), hint));
 }
 
 std::vector<TileIndex> all_indices(std::uint64_t n) {
@@ -100,10 +100,10 @@ Tiling generate_tiling(const TileSet& set, const TilingRequest& req) {
     case TilingAlgo::DirectCompact: {
       require_kind(set, TileKind::Wang, req.algo);
       if (ch != cv)
-        throw InputError(
-            fmt::format("--algo direct-compact needs one colour count for all edges; tile set '{}' has "
-                        "{} horizontal and {} vertical",
-                        set.name(), ch, cv));
+        throw RequestError("algo",
+                           fmt::format("`algo` direct-compact needs one colour count for all edges; tile set '{}' has "
+                                       "{} horizontal and {} vertical",
+                                       set.name(), ch, cv));
       std::vector<TileIndex> producible;  // thesis sec. 3.3.2.2: N + S = E + W (mod C)
       for (TileIndex i = 0; i < complete; ++i) {
         const WangTile t = wang_tile(i, ch);

@@ -69,9 +69,9 @@ TEST(SmallestSet, ASearchsRecordRoundTripsAndReDerives) {
   o.max_depth = 1;
   o.max_tiles = 100;
   const EnumerateResult r = enumerate_conversions(o);
-  const RecordedChain rec = parse_smallest_record(smallest_record(o, r).dump(), "search");
+  const RecordedChain rec = parse_smallest_record(smallest_record("rerun me", r).dump(), "search");
   EXPECT_EQ(rec.source, "jeandel-rao-11-variant-2");
-  EXPECT_EQ(rec.command, "tilekit aperiodic enumerate --source jeandel-rao-11-variant-2 --max-depth 1 --max-tiles 100");
+  EXPECT_EQ(rec.command, "rerun me");
   EXPECT_EQ(rec.digest, r.digest);
   ASSERT_EQ(rec.steps.size(), 1u);
   const CornerSetCandidate c = rederive_chain(rec);
@@ -79,5 +79,5 @@ TEST(SmallestSet, ASearchsRecordRoundTripsAndReDerives) {
   EXPECT_EQ(c.tiles, rec.tiles);
   // A search that reaches no corner set has nothing to record.
   o.max_depth = 0;
-  EXPECT_THROW(smallest_record(o, enumerate_conversions(o)), NotFound);
+  EXPECT_THROW(smallest_record("rerun me", enumerate_conversions(o)), NotFound);
 }

@@ -110,9 +110,19 @@ TEST(FlagParsers, ShardsAreRefusedInsteadOfWrappingAround) {
   EXPECT_EQ(parse_shard("3/64").index, 3);
   EXPECT_EQ(parse_shard("3/64").count, 64);
   EXPECT_EQ(message_of([] { parse_shard("4294967296/1"); }),
-            "--shard must be I/N with 0 <= I < N <= 1000000, got '4294967296/1'");
+            "`shard` must be I/N with 0 <= I < N <= 1000000, got '4294967296/1'");
   for (const char* bad : {"1/1", "-1/2", "0/0", "0/1000001", "0/1/2", "a/2", "0 /2", "02"})
-    EXPECT_NE(message_of([&] { parse_shard(bad); }).find("--shard must be I/N"), std::string::npos) << bad;
+    EXPECT_NE(message_of([&] { parse_shard(bad); }).find("`shard` must be I/N"), std::string::npos) << bad;
+  // By default a RequestError about the field `shard`, which the CLI words as its flag.
+  try {
+    parse_shard("1/1");
+    ADD_FAILURE() << "accepted 1/1";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "shard");
+  }
+  // Named without backquotes, a plain InputError.
+  EXPECT_THROW(
+      try { parse_shard("1/1", "the shard"); } catch (const RequestError&) { FAIL() << "a RequestError"; }, InputError);
 }
 
 TEST(FlagParsers, DimensionsHaveBothSidesAndAnAreaBound) {
@@ -130,7 +140,7 @@ TEST(FlagParsers, DimensionsHaveBothSidesAndAnAreaBound) {
 
 TEST(FlagParsers, ThreadCountsHaveAnUpperBound) {
   EXPECT_EQ(checked_thread_count(8), 8);
-  EXPECT_EQ(message_of([] { checked_thread_count(100000); }), "--threads must be between 1 and 4096, got 100000");
-  EXPECT_EQ(message_of([] { checked_thread_count(0); }), "--threads must be between 1 and 4096, got 0");
+  EXPECT_EQ(message_of([] { checked_thread_count(100000); }), "`threads` must be between 1 and 4096, got 100000");
+  EXPECT_EQ(message_of([] { checked_thread_count(0); }), "`threads` must be between 1 and 4096, got 0");
   EXPECT_THROW(parallel_team(2147483647, [](int) {}), InputError);  // the backstop inside the one parallel helper
 }

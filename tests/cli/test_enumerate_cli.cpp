@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -224,6 +225,10 @@ TEST(EnumerateCli, ARunsRecordIsWhatSmallestReDerives) {
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["record"], rec);
+  // The record names the command that reruns the search: the flags that change its results.
+  std::ifstream in(rec);
+  EXPECT_EQ(nlohmann::json::parse(in)["command"],
+            "tilekit aperiodic enumerate --source jeandel-rao-11-variant-2 --max-depth 1 --max-tiles 100");
   CliResult s = run_cli("aperiodic smallest --record " + rec + " --max-period 4 --time-limit 1 --json");
   ASSERT_EQ(s.code, 0) << s.err;
   auto js = nlohmann::json::parse(s.out);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "tests/cluster/shard_words.hpp"
 #include "base/error.hpp"
 #include "base/parse.hpp"
 #include "cluster/plan.hpp"
@@ -22,6 +23,7 @@ using test::write_text;
 
 cluster::SubmitRequest wang2(const std::string& run_dir) {
   cluster::SubmitRequest r;
+  r.words = test::pack_shard_words();
   r.kind = "wang";
   r.colors = 2;
   r.run_dir = run_dir;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "tests/cluster/shard_words.hpp"
 #include "base/error.hpp"
 #include "base/json_input.hpp"
 #include "cluster/job_scripts.hpp"
@@ -31,6 +32,7 @@ std::string fake_sbatch(const TempDir& d) {
 
 cluster::ClusterPlan plan_in(const std::string& run_dir, int shards = 2) {
   cluster::SubmitRequest r;
+  r.words = test::pack_shard_words();
   r.kind = "corner";
   r.colors = 3;
   r.run_dir = run_dir;

@@ -30,7 +30,7 @@ PackRequest quiet(PackRequest r) {
 // the search completes; returns the last outcome and the number of slices.
 std::pair<PackOutcome, int> in_slices(PackRequest first, double slice, const std::string& checkpoint) {
   first.run.checkpoint_path = checkpoint;
-  first.run.checkpoint_every = slice / 4;
+  first.checkpoint_every = slice / 4;
   first.run.time_limit = slice;
   PackOutcome out = run_pack(quiet(first));
   int slices = 1;
@@ -38,9 +38,9 @@ std::pair<PackOutcome, int> in_slices(PackRequest first, double slice, const std
     PackRequest again;  // only the file and the run's settings: kind, colours, mode, db from it
     again.run.resume_path = checkpoint;
     again.run.time_limit = slice;
-    again.run.checkpoint_every = slice / 4;
+    again.checkpoint_every = slice / 4;
     again.run.threads = 1 + slices % 2;  // the thread count may change between slices
-    out = run_pack(quiet(again), {"--resume", "--time-limit", "--checkpoint-every", "--threads"});
+    out = run_pack(quiet(again), {PackField::TimeLimit});
     ++slices;
   }
   return {out, slices};
@@ -109,15 +109,15 @@ TEST(PackResume, AFieldThatContradictsTheCheckpointIsAnInputErrorNamingItsFlag) 
   again.run.resume_path = dir / "ck";
   again.mode = "all";
   try {
-    run_pack(quiet(again), {"--resume", "--mode"});
+    run_pack(quiet(again), {PackField::Mode});
     ADD_FAILURE() << "a contradicting --mode was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--mode is \"all\" here but \"count\" in the checkpoint"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("`mode` is \"all\" here but \"count\" in the checkpoint"), std::string::npos)
         << e.what();
   }
   // The same value, or a flag not given, is no contradiction.
   again.mode = "count";
-  EXPECT_EQ(run_pack(quiet(again), {"--resume", "--mode"}).result.solutions, 203520u);
+  EXPECT_EQ(run_pack(quiet(again), {PackField::Mode}).result.solutions, 203520u);
 }
 
 // A signal that comes before the search has begun (Slurm's requeue right after the task starts)
@@ -139,7 +139,7 @@ TEST(PackResume, ASignalBeforeTheSearchBeginsStillLeavesACheckpointToResumeFrom)
   ASSERT_TRUE(std::filesystem::exists(dir / "ck")) << "no checkpoint after a signal before the search";
   PackRequest again;
   again.run.resume_path = dir / "ck";
-  const PackOutcome resumed = run_pack(quiet(again), {"--resume"});
+  const PackOutcome resumed = run_pack(quiet(again), {});
   EXPECT_TRUE(resumed.result.complete);
   EXPECT_EQ(resumed.result.solutions, 342720u);  // the uninterrupted count of this shard (above)
 }

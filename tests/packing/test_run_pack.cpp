@@ -132,13 +132,13 @@ TEST(RunPack, BadRequestsAreInputErrorsAndTouchNoDatabase) {
   bad = r, bad.kind = "hex";
   refused(bad, "unknown tile kind 'hex'");
   bad = r, bad.method = "construct", bad.mode = "count";
-  refused(bad, "--method construct gives one packing");
+  refused(bad, "`method` construct gives one packing");
   bad = r, bad.impose = "t=0,9:pi=1,2,0", bad.plain = true;
-  refused(bad, "--impose and --plain exclude each other");
+  refused(bad, "`impose` and `plain` exclude each other");
   bad = r, bad.impose = "t=banana";
   refused(bad, "t=banana");
   bad = r, bad.kind.clear(), bad.set = "complete-corner-2", bad.size = "3x5";
   refused(bad, "needs rows*cols = 16");
-  bad = r, bad.run.checkpoint_every = -5;
-  refused(bad, "--checkpoint-every must be >= 0");
+  bad = r, bad.checkpoint_every = -5;
+  refused(bad, "`checkpoint_every` must be >= 0");
 }

@@ -177,7 +177,7 @@ TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
     ImposedGroup g = build_group(p, spec);
     SearchOptions o;
     o.run.time_limit = 60;
-    o.formulation = "sat";
+    o.formulation = Formulation::Sat;
     auto r = solve_under(p, spec, o);
     ASSERT_EQ(r.found.size(), 1u) << spec;
     EXPECT_TRUE(validate(r.found[0]).packing);
@@ -190,7 +190,7 @@ TEST(ImposeSat, CadicalSolvesTheSameSubspaceAndTheResultValidates) {
     count.mode = SearchMode::Count;
     if (solve_under(TileKind::Corner, 2, spec, count).solutions != 0) continue;
     SearchOptions sat;
-    sat.formulation = "sat";
+    sat.formulation = Formulation::Sat;
     auto r = solve_under(TileKind::Corner, 2, spec, sat);
     EXPECT_TRUE(r.complete) << spec;
     EXPECT_TRUE(r.found.empty()) << spec;

@@ -22,7 +22,7 @@ SearchResult solve_lift(TileKind kind, std::uint32_t colours, const std::string&
   SearchOptions o;
   o.mode = mode;
   o.lift = spec;
-  o.formulation = formulation;
+  o.formulation = formulation_from_name(formulation).value();
   o.run.threads = threads;  // seed 0: the natural value order first (finds C=4 in milliseconds)
   return solve(complete_packing_problem(kind, colours), o);
 }

@@ -18,7 +18,7 @@ SearchResult run(const TilingProblem& p, SearchMode mode, int threads = 1, std::
   SearchOptions o;
   o.mode = mode;
   o.run.threads = threads;
-  o.formulation = std::move(formulation);
+  o.formulation = formulation_from_name(formulation).value();
   return solve(p, o);
 }
 
@@ -151,10 +151,36 @@ TEST(SolveErrors, ImpossibleProblemsAndOptionsThrowInputError) {
   o.run.shard = {4, 4};
   EXPECT_THROW(solve(p, o), InputError);
   o.run.shard = {0, 1};
-  o.formulation = "edges";
+  o.formulation = Formulation::Edges;
   EXPECT_THROW(solve(p, o), InputError);
-  o.formulation = "auto";
+  o.formulation = Formulation::Auto;
   p.rows = 2;
   EXPECT_THROW(solve(p, o), InputError);
   EXPECT_THROW(complete_packing_problem(TileKind::Wang, 0), InputError);
+}
+
+// The formulation is an enum with one word each (the CLI parses the word); solve() picks the
+// model from its table of routes and names the route in the result.
+TEST(Formulations, EachWordNamesOneFormulationAndTheRouteIsReported) {
+  for (Formulation f : {Formulation::Auto, Formulation::Cell, Formulation::Pegs, Formulation::Edges, Formulation::Sat})
+    EXPECT_EQ(formulation_from_name(formulation_name(f)), f) << formulation_name(f);
+  EXPECT_FALSE(formulation_from_name("cellz").has_value());
+  EXPECT_FALSE(formulation_from_name("").has_value());
+  const TilingProblem corner = complete_packing_problem(TileKind::Corner, 2);
+  EXPECT_EQ(run(corner, SearchMode::Count, 1, "auto").formulation, "cell");  // the measured default
+  EXPECT_EQ(run(corner, SearchMode::Count, 1, "pegs").formulation, "pegs");
+  const TilingProblem wang = complete_packing_problem(TileKind::Wang, 2);
+  EXPECT_EQ(run(wang, SearchMode::First, 1, "edges").formulation, "edges");
+  // No route: pegs for Wang tiles, sat without a subspace that has a CNF.
+  SearchOptions o;
+  o.run.threads = 1;
+  o.formulation = Formulation::Pegs;
+  EXPECT_THROW(solve(wang, o), InputError);
+  o.formulation = Formulation::Sat;
+  try {
+    solve(corner, o);
+    ADD_FAILURE() << "sat without a group or a lift was accepted";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.field(), "formulation");
+  }
 }

@@ -21,7 +21,7 @@ SearchResult solve_window(std::uint32_t c, int k, int l, int r, int s, SearchMod
   o.run.threads = threads;
   if (extra == "impose") o.impose = value;
   if (extra == "lift") o.lift = value;
-  if (extra == "formulation") o.formulation = value;
+  if (extra == "formulation") o.formulation = formulation_from_name(value).value();
   return solve(window_torus_problem(c, k, l, r, s), o);
 }
 
