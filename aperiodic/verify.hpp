@@ -17,8 +17,8 @@
 
 #include "aperiodic/decide.hpp"
 #include "solver/search_stats.hpp"
-#include "tilesets/tile_set.hpp"
 #include "tilesets/tile_grid.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit {
 

@@ -169,7 +169,7 @@ void bench_three_colour_first() {
     for (std::string f : {"cell", k == TileKind::Wang ? "edges" : "pegs"}) {
       std::vector<double> wall, cpu;
       std::uint64_t nodes = 0, found = 0;
-      SearchStats stats;  // the five seeded runs, summed
+      SearchStats stats;                                 // the five seeded runs, summed
       for (std::uint64_t seed = 1; seed <= 5; ++seed) {  // seed 0 (natural order first) is timed below
         double t0 = now(), c0 = cpu_seconds();
         SearchResult r = run(p, SearchMode::First, 1, f, seed, 30);

@@ -83,10 +83,8 @@ void run_verify_command(const VerifyArgs& a, const Context& ctx) {
   if (rep.pruned) j["pruned"] = prune_json(*rep.pruned, req.prune);
   if (!req.db.empty()) j["run_id"] = rep.run_id, j["db"] = req.db;
   if (a.stats) j["stats"] = r.stats;
-  emit(ctx, j, [&] {
-    print_verify(rep);
-    if (a.stats) fmt::print(stderr, "{}", stats_table(r.stats));
-  });
+  emit(ctx, j, [&] { print_verify(rep); });
+  if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(r.stats));
   if (r.interrupted) {
     const std::string& ck = req.options.decide.checkpoint_path;
     throw Interrupted(fmt::format("interrupted by signal {}; {}", r.transducer ? r.transducer->signal : 0,

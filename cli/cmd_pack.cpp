@@ -190,10 +190,8 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   }
   nlohmann::json j = outcome_json(o, out_file);
   if (a.stats) j["stats"] = o.result.stats;
-  emit(ctx, j, [&] {
-    print_outcome(o);
-    if (a.stats) fmt::print(stderr, "{}", stats_table(o.result.stats));
-  });
+  emit(ctx, j, [&] { print_outcome(o); });
+  if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(o.result.stats));
   if (o.interrupted)
     throw Interrupted(
         fmt::format("interrupted by signal {}; {}", o.signal,

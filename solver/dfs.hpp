@@ -13,8 +13,8 @@
 // backtracks, leaves and empty domains in stats(), and adds the model's own counters
 // (propagations, prunes per rule) after each subtree. Plain integers: one SubtreeSearch per worker.
 #include <algorithm>
-#include <concepts>
 #include <cassert>
+#include <concepts>
 #include <cstddef>
 #include <vector>
 
@@ -48,7 +48,7 @@ class SubtreeSearch {
 
  private:
   // A model may count its propagations and prunes (a `ModelStats& stats()` member).
-  static constexpr bool kModelStats = requires(M& m) {
+  static constexpr bool kModelStats = requires(M & m) {
     { m.stats() } -> std::same_as<ModelStats&>;
   };
 

@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "solver/model.hpp"
-#include "solver/search_stats.hpp"
 #include "solver/problem.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 

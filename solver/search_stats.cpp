@@ -8,14 +8,22 @@ namespace tilekit {
 
 const char* prune_name(Prune rule) {
   switch (rule) {
-    case Prune::EmptyDomain: return "empty-domain";
-    case Prune::ForwardCheck: return "forward-check";
-    case Prune::ClassCheck: return "class-check";
-    case Prune::NoSuchTile: return "no-such-tile";
-    case Prune::TileUsed: return "tile-used";
-    case Prune::OrbitUsed: return "orbit-used";
-    case Prune::PatternCount: return "pattern-count";
-    case Prune::Count_: break;
+    case Prune::EmptyDomain:
+      return "empty-domain";
+    case Prune::ForwardCheck:
+      return "forward-check";
+    case Prune::ClassCheck:
+      return "class-check";
+    case Prune::NoSuchTile:
+      return "no-such-tile";
+    case Prune::TileUsed:
+      return "tile-used";
+    case Prune::OrbitUsed:
+      return "orbit-used";
+    case Prune::PatternCount:
+      return "pattern-count";
+    case Prune::Count_:
+      break;
   }
   return "?";
 }

@@ -30,8 +30,8 @@
 
 #include "solver/impose_group.hpp"
 #include "solver/model.hpp"
-#include "solver/search_stats.hpp"
 #include "solver/problem.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 

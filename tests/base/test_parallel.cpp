@@ -49,7 +49,8 @@ TEST(ParallelFor, AStopRequestedBeforehandRunsNothing) {
   StopToken stop;
   stop.request(StopReason::Signal);
   std::atomic<int> ran{0};
-  parallel_for(100, 4, [&](std::int64_t) { ++ran; }, &stop);
+  parallel_for(
+      100, 4, [&](std::int64_t) { ++ran; }, &stop);
   EXPECT_EQ(ran.load(), 0);
   EXPECT_EQ(stop.reason(), StopReason::Signal);  // the first reason stays
 }

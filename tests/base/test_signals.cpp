@@ -12,7 +12,9 @@ using namespace tilekit;
 namespace {
 
 volatile std::sig_atomic_t g_previous_saw = 0;
-extern "C" void previous_handler(int sig) { g_previous_saw = sig; }
+extern "C" void previous_handler(int sig) {
+  g_previous_saw = sig;
+}
 
 // Installs previous_handler for the three signals; restores the originals when destroyed.
 struct PreviousHandlers {

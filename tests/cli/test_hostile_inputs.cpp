@@ -15,9 +15,9 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-#include <nlohmann/json.hpp>
 
 #include "base/hash.hpp"
 #include "checkpoints/checkpoint.hpp"
@@ -56,7 +56,6 @@ std::string resealed(const std::string& text, const std::string& from, const std
   body.replace(at, from.size(), to);
   return body + fmt::format("fnv1a64 {:016x}\n", fnv1a64(body));
 }
-
 
 // The names in a directory (sorted).
 std::vector<std::string> files_in(const TempDir& d) {
@@ -146,9 +145,10 @@ TEST(HostileInputs, AStreamedWindowLargerThanTheDiskIsRefused) {
 
 TEST(HostileInputs, ADensityExpressionOfATrillionPointsIsRefused) {
   TempDir d;
-  expect_refused_small(
-      d, "points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 --out " + d / "p.f32 --quiet",
-      "a window of about 1e+12 points");
+  expect_refused_small(d,
+                       "points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 --out " +
+                           d / "p.f32 --quiet",
+                       "a window of about 1e+12 points");
 }
 
 TEST(HostileInputs, TheMemoryLimitIsTheEnvironmentsWhenSet) {
@@ -164,8 +164,9 @@ TEST(HostileInputs, APointTileRadiusNeedingTooManyPointsIsRefused) {
 
 TEST(HostileInputs, ATextureSearchBeyondTheRoundLimitIsRefused) {
   TempDir d;
-  expect_refused_small(d, "texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " + d / "tt",
-                       "candidates a round may try");
+  expect_refused_small(
+      d, "texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " + d / "tt",
+      "candidates a round may try");
 }
 
 namespace {
@@ -182,8 +183,9 @@ void write_png_bomb(const std::string& path) {
 TEST(HostileInputs, AnExemplarDecodingLargerThanTheImageLimitIsRefusedFromItsHeader) {
   TempDir bomb, d;
   write_png_bomb(bomb / "bomb.png");
-  expect_refused_small(d, "texture tiles --exemplar " + bomb / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb",
-                       "23000x23000 pixels is more than the 268435456 pixels an image may have");
+  expect_refused_small(
+      d, "texture tiles --exemplar " + bomb / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb",
+      "23000x23000 pixels is more than the 268435456 pixels an image may have");
 }
 
 TEST(HostileInputs, ADensityImageDecodingLargerThanTheImageLimitIsRefusedFromItsHeader) {

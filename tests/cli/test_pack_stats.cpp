@@ -10,8 +10,8 @@ using namespace tilekit::test;
 
 TEST(PackStats, JsonCarriesCountersThatMatchTheResult) {
   TempDir d;
-  const CliResult r = run_cli("pack --kind wang --colors 2 --mode count --threads 2 --stats --json --quiet --db " +
-                              d / "r.sqlite");
+  const CliResult r =
+      run_cli("pack --kind wang --colors 2 --mode count --threads 2 --stats --json --quiet --db " + d / "r.sqlite");
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = r.json();
   ASSERT_TRUE(j.contains("stats")) << r.out;
@@ -31,8 +31,8 @@ TEST(PackStats, JsonCarriesCountersThatMatchTheResult) {
 
 TEST(PackStats, HumanOutputPrintsATableOnStderr) {
   TempDir d;
-  const CliResult r = run_cli("pack --kind corner --colors 2 --mode count --threads 1 --stats --quiet --db " +
-                              d / "r.sqlite");
+  const CliResult r =
+      run_cli("pack --kind corner --colors 2 --mode count --threads 1 --stats --quiet --db " + d / "r.sqlite");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("statistics:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("prune tile-used"), std::string::npos) << r.err;

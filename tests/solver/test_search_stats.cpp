@@ -15,7 +15,7 @@ using namespace tilekit;
 namespace {
 
 SearchResult count_search(const TilingProblem& p, int threads, const std::string& formulation = "auto",
-                   const std::string& impose = "") {
+                          const std::string& impose = "") {
   SearchOptions o;
   o.mode = SearchMode::Count;
   o.run.threads = threads;
@@ -121,8 +121,8 @@ TEST(SearchStats, JsonAndTableNameEveryCounter) {
   EXPECT_EQ(j["solutions"], 32);
   EXPECT_EQ(j["nodes"], r.nodes);
   EXPECT_EQ(j["prunes"].size(), kPruneRules);
-  for (const char* rule : {"empty-domain", "forward-check", "class-check", "no-such-tile", "tile-used", "orbit-used",
-                           "pattern-count"})
+  for (const char* rule :
+       {"empty-domain", "forward-check", "class-check", "no-such-tile", "tile-used", "orbit-used", "pattern-count"})
     EXPECT_TRUE(j["prunes"].contains(rule)) << rule;
   for (const char* phase : {"setup", "split", "estimate", "search", "checkpoint"})
     EXPECT_TRUE(j["seconds"].contains(phase)) << phase;
