@@ -50,3 +50,22 @@ TEST(VerifyStats, TheTorusSearchesStatisticsAreSummed) {
   EXPECT_GT(j["shapes_searched"].get<int>(), 0);
   EXPECT_EQ(j["stats"]["solutions"], 0) << "culik-13 tiles no torus";
 }
+
+TEST(PackStats, APortfolioRunSumsItsSlices) {
+  TempDir d;
+  const CliResult r = run_cli(
+      "pack --kind corner --colors 3 --mode first --method search --threads 1 --stats --json "
+      "--quiet --db " +
+      d / "r.sqlite");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = r.json();
+  ASSERT_EQ(j["formulation"], "portfolio") << r.out;
+  const nlohmann::json& s = j["stats"];
+  // A slice that resumes its candidate's engine reports the nodes of the earlier slices too; the
+  // statistics count each slice's own.
+  EXPECT_GT(s["nodes"].get<std::uint64_t>(), 0u);
+  EXPECT_LE(s["nodes"].get<std::uint64_t>(), j["nodes"].get<std::uint64_t>());
+  EXPECT_GE(s["searches"].get<std::uint64_t>(), 1u);  // one per slice
+  EXPECT_EQ(s["solutions"], 1);
+  EXPECT_EQ(s["leaves"], 1);
+}
