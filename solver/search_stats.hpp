@@ -1,8 +1,8 @@
 #pragma once
 // Engine statistics (CaDiCaL's `stats`): what a search did, so that every run can explain
 // itself. Each worker counts in its own plain integers (its SubtreeSearch and its copy of the
-// model) and the counts are summed once per subproblem or dive, under the lock the engine
-// already takes there: counting needs no atomics in the search loop.
+// model, whose counters join the worker's after each subproblem or dive) and a worker's counts
+// join the run's total once, when it leaves: counting needs no atomics in the search loop.
 //
 // The counters:
 //   nodes        search nodes entered (the engine's node count, the subproblem split included)
@@ -13,7 +13,9 @@
 //   propagations domains a model revised by forward checking after an assignment
 //   prunes[rule] dead ends per rule (Prune below); the assign() rules sum to `conflicts`
 // and the time per phase: setup (the plan and the model build), split (subproblems),
-// estimate (Knuth probes), search (the workers), checkpoint writes.
+// estimate (Knuth probes), search (the workers, periodic checkpoints included), checkpoint
+// writes (all of them). A subproblem's prefix (and a resumed path) is replayed by assign()
+// alone: it adds propagations, but no nodes or decisions.
 #include <array>
 #include <cstddef>
 #include <cstdint>
