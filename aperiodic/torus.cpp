@@ -23,6 +23,7 @@ namespace {
 struct Outcome {
   bool found = false, complete = false;
   std::uint64_t nodes = 0;
+  SearchStats stats;
   std::optional<Tiling> tiling;
 };
 
@@ -49,6 +50,7 @@ Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_p
   o.restarts = 0;  // exhaustive: a failure must be a proof
   SearchResult r = solve(p, o);
   out.nodes = r.nodes;
+  out.stats = r.stats;
   out.found = !r.found.empty();
   out.complete = out.found || r.complete;
   if (out.found) out.tiling = r.found.front();
@@ -81,6 +83,8 @@ struct TorusRun {
   VerifyResult& res;
   StopToken stop;
   std::atomic<std::uint64_t> nodes{0};
+  std::mutex stats_mu;  // guards stats: the shapes' engine statistics, summed
+  SearchStats stats;
   Shapes shapes;  // the searched shapes of the deciding phase
   std::vector<Outcome> outcomes;
   std::size_t best_index = 0;
@@ -110,6 +114,10 @@ struct TorusRun {
           try {
             outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
             nodes += outcomes[k].nodes;
+            {
+              std::lock_guard lock(stats_mu);
+              stats += outcomes[k].stats;
+            }
             if (outcomes[k].found) {
               std::size_t cur = best.load();
               while (k < cur && !best.compare_exchange_weak(cur, k)) {
@@ -196,6 +204,7 @@ struct TorusRun {
     for (int n = opts.max_square; n >= 1; --n) {
       Outcome o = search(set, n, n, false, deadline);
       res.nodes += o.nodes;
+      res.stats += o.stats;
       if (o.found) {
         ValidationReport rep = validate(*o.tiling, &set);
         if (!rep.valid) throw std::runtime_error("solver returned an invalid square tiling: " + rep.errors.front());
@@ -244,6 +253,7 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
       res.shapes_incomplete += rest.size();
   }
   res.nodes = run.nodes.load();
+  res.stats = run.stats;
   if (found) run.report_witness();
 
   bool square_incomplete = false;

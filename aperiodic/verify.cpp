@@ -78,6 +78,7 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     } else {
       res.torus_verdict = t.torus_verdict;
       res.nodes = t.nodes;
+      res.stats = t.stats;
       res.shapes_searched = t.shapes_searched;
       res.shapes_incomplete = t.shapes_incomplete;
       res.shapes_excluded = t.shapes_excluded;

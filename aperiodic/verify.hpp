@@ -16,8 +16,9 @@
 #include <vector>
 
 #include "aperiodic/decide.hpp"
-#include "tilesets/tile_set.hpp"
+#include "solver/search_stats.hpp"
 #include "tilesets/tile_grid.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit {
 
@@ -49,6 +50,7 @@ struct VerifyResult {
   int largest_square = -1;  // largest n <= max_square with an n x n tiling (-1: not searched)
   bool square_tileable = false;
   std::uint64_t nodes = 0;
+  SearchStats stats;  // the torus searches' engine statistics, summed (solver/search_stats.hpp)
   std::size_t shapes_searched = 0, shapes_incomplete = 0;
   // Shapes ruled out without search by the transducer filter (aperiodic/rows.hpp): no
   // tiling has horizontal period q for q in excluded_cols, nor vertical period p in excluded_rows.

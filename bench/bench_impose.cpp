@@ -81,6 +81,7 @@ nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int th
                         std::uint64_t seed0, const Knobs& k) {
   std::vector<double> secs, cpus, nodes;
   int found = 0;
+  SearchStats stats;  // every run, summed
   for (int r = 0; r < reps; ++r) {
     double cpu = 0;
     const auto t0 = std::chrono::steady_clock::now();
@@ -89,6 +90,7 @@ nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int th
     secs.push_back(wall);
     cpus.push_back(cpu);
     nodes.push_back(double(res.nodes));
+    stats += res.stats;
     found += res.solutions ? 1 : 0;
   }
   return {{"spec", spec},
@@ -99,7 +101,8 @@ nlohmann::json run_case(const Case& c, const std::string& spec, int reps, int th
           {"cpu_seconds", cpus},
           {"median_nodes", median(nodes)},
           {"nodes", nodes},
-          {"time_limit", limit}};
+          {"time_limit", limit},
+          {"stats", stats}};
 }
 
 }  // namespace

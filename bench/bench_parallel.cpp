@@ -35,6 +35,7 @@ namespace {
 struct Run {
   double cpu = 0, wall = 0, load_before = 0, load_after = 0;
   std::uint64_t nodes = 0, solutions = 0;
+  SearchStats stats;
 };
 
 Run run_count(const TilingProblem& p, const std::string& spec, int threads, int shard, int shards) {
@@ -55,6 +56,7 @@ Run run_count(const TilingProblem& p, const std::string& spec, int threads, int 
   if (!res.complete) throw std::runtime_error("the count did not complete");
   r.nodes = res.nodes;
   r.solutions = res.solutions;
+  r.stats = res.stats;
   return r;
 }
 
@@ -115,6 +117,7 @@ int main(int argc, char** argv) {
                         {"reps", reps},
                         {"nodes", one.front().nodes},
                         {"solutions", one.front().solutions},
+                        {"stats", one.front().stats},  // the engine's counters (a count: the same every run)
                         {"cpu_seconds_1", field(one, &Run::cpu)},
                         {"cpu_seconds_n", field(many, &Run::cpu)},
                         {"wall_seconds_1", field(one, &Run::wall)},

@@ -133,6 +133,7 @@ void bench_two_colour_counts() {
   for (TileKind k : {TileKind::Wang, TileKind::Corner}) {
     TilingProblem p = complete_packing_problem(k, 2);
     std::uint64_t base_count = 0, base_nodes = 0, count = 0, nodes = 0;
+    SearchStats stats;  // of the last timed run (every run counts the same)
     Timing base = median_time(5, [&] {
       PlainDfs d(p.set, 4);
       base_count = d.dfs(0);
@@ -141,7 +142,7 @@ void bench_two_colour_counts() {
     for (std::string f : {"cell", k == TileKind::Wang ? "edges" : "pegs"}) {
       Timing t = median_time(7, [&] {
         SearchResult r = run(p, SearchMode::Count, 1, f);
-        count = r.solutions, nodes = r.nodes;
+        count = r.solutions, nodes = r.nodes, stats = r.stats;
       });
       line({{"case", "c2_count"},
             {"kind", kind_name(k)},
@@ -156,7 +157,8 @@ void bench_two_colour_counts() {
             {"speedup_vs_baseline_cpu", base.cpu / std::max(t.cpu, 1e-9)},
             {"nodes", nodes},
             {"nodes_per_cpu_s", double(nodes) / std::max(t.cpu, 1e-9)},
-            {"baseline_nodes", base_nodes}});
+            {"baseline_nodes", base_nodes},
+            {"stats", stats}});
     }
   }
 }
@@ -167,12 +169,14 @@ void bench_three_colour_first() {
     for (std::string f : {"cell", k == TileKind::Wang ? "edges" : "pegs"}) {
       std::vector<double> wall, cpu;
       std::uint64_t nodes = 0, found = 0;
+      SearchStats stats;                                 // the five seeded runs, summed
       for (std::uint64_t seed = 1; seed <= 5; ++seed) {  // seed 0 (natural order first) is timed below
         double t0 = now(), c0 = cpu_seconds();
         SearchResult r = run(p, SearchMode::First, 1, f, seed, 30);
         wall.push_back(now() - t0);
         cpu.push_back(cpu_seconds() - c0);
         nodes += r.nodes;
+        stats += r.stats;
         found += !r.found.empty() && validate(r.found[0], &p.set).packing;
       }
       std::sort(wall.begin(), wall.end());
@@ -202,7 +206,8 @@ void bench_three_colour_first() {
             {"baseline_found", bfound > 0},
             {"baseline_nodes", d.nodes},
             {"baseline_seconds", now() - t0},
-            {"baseline_cpu_seconds", cpu_seconds() - c0}});
+            {"baseline_cpu_seconds", cpu_seconds() - c0},
+            {"stats", stats}});
     }
   }
 }
@@ -227,7 +232,8 @@ void bench_formulation_counts() {
             {"nodes", r.nodes},
             {"seconds", t.wall},
             {"cpu_seconds", t.cpu},
-            {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)}});
+            {"nodes_per_cpu_s", double(r.nodes) / std::max(t.cpu, 1e-9)},
+            {"stats", r.stats}});
     }
   }
 }
@@ -355,6 +361,7 @@ void bench_speedup() {
             {"seconds", wall},
             {"cpu_seconds", cpu_seconds() - c0},
             {"speedup", base / wall},
+            {"stats", r.stats},
             {"load_average_1min", [] {
                double l[1];
                return getloadavg(l, 1) == 1 ? l[0] : -1;
@@ -379,7 +386,8 @@ void bench_c4(double seconds) {
             {"seconds", r.seconds},
             {"cpu_seconds", cpu_seconds() - c0},
             {"nodes", r.nodes},
-            {"restarts", r.restarts}});
+            {"restarts", r.restarts},
+            {"stats", r.stats}});
     }
 }
 

@@ -60,6 +60,7 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
                         std::uint64_t restart_base) {
   std::vector<double> secs, nodes;
   int found = 0;
+  SearchStats stats;  // every run, summed
   for (int r = 0; r < reps; ++r) {
     SearchOptions o;
     o.run.threads = threads;
@@ -72,6 +73,7 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
     const bool ok = !res.found.empty() && validate(res.found[0]).packing;  // the independent validator
     secs.push_back(ok ? res.seconds : limit);
     nodes.push_back(double(res.nodes));
+    stats += res.stats;
     found += ok;
   }
   return {{"lift", c.lift.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.lift)},
@@ -81,7 +83,8 @@ nlohmann::json run_case(const Case& c, int reps, int threads, double limit, std:
           {"seeds", fmt::format("{}..{}", seed0, seed0 + std::uint64_t(reps) - 1)},
           {"median_seconds", median(secs)},
           {"median_nodes", median(nodes)},
-          {"time_limit", limit}};
+          {"time_limit", limit},
+          {"stats", stats}};
 }
 
 void bench_construct(const std::vector<std::uint32_t>& colours, int reps) {

@@ -14,6 +14,7 @@ namespace {
 struct VerifyArgs {
   VerifyRequest req;
   bool quiet = false;
+  bool stats = false;  // --stats: the torus searches' engine counters
 };
 
 void print_verify(const VerifyReport& rep) {
@@ -81,7 +82,9 @@ void run_verify_command(const VerifyArgs& a, const Context& ctx) {
   }
   if (rep.pruned) j["pruned"] = prune_json(*rep.pruned, req.prune);
   if (!req.db.empty()) j["run_id"] = rep.run_id, j["db"] = req.db;
+  if (a.stats) j["stats"] = r.stats;
   emit(ctx, j, [&] { print_verify(rep); });
+  if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(r.stats));
   if (r.interrupted) {
     const std::string& ck = req.options.decide.checkpoint_path;
     throw Interrupted(fmt::format("interrupted by signal {}; {}", r.transducer ? r.transducer->signal : 0,
@@ -108,6 +111,9 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   cmd->add_option("--resume", a->req.options.decide.resume_path, "transducer: continue the run this checkpoint holds");
   cmd->add_option("--db", a->req.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
+  cmd->add_flag("--stats", a->stats,
+                "Print the torus searches' engine statistics (nodes, decisions, propagations, prunes per rule, time "
+                "per phase): a table on stderr, or a \"stats\" object with --json");
   add_json_flag(cmd, ctx);
   cmd->footer(
       "Exit codes: 0 ok (whatever the verdict), 2 bad input or checkpoint, 3 interrupted (checkpoint written with "

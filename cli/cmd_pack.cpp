@@ -27,6 +27,7 @@ struct PackArgs {
   std::int64_t estimate = 0;      // --estimate PROBES: the candidates' distances instead of a search
   double estimate_seconds = 5;    // the slice that measures each candidate's node rate
   bool quiet = false;
+  bool stats = false;         // --stats: the engine's counters (solver/search_stats.hpp)
   std::int64_t threads = 0;   // when --threads is not given: default_thread_count()
   std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
   std::string formulation = "auto";  // --formulation WORD, parsed into request.formulation
@@ -198,7 +199,10 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
                                  "\n");
     out_file = a.out;
   }
-  emit(ctx, outcome_json(o, out_file), [&] { print_outcome(o); });
+  nlohmann::json j = outcome_json(o, out_file);
+  if (a.stats) j["stats"] = o.result.stats;
+  emit(ctx, j, [&] { print_outcome(o); });
+  if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(o.result.stats));
   if (o.interrupted)
     throw Interrupted(
         fmt::format("interrupted by signal {}; {}", o.signal,
@@ -266,6 +270,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "Portfolio statistics file (default $TILEKIT_PORTFOLIO_STATS or ~/.local/share/tilekit/"
                   "portfolio-stats.json); with --portfolio-report repeatable: the files are added up");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
+  cmd->add_flag("--stats", a->stats,
+                "Print the engine's statistics (nodes, decisions, propagations, prunes per rule, backtracks, "
+                "restarts, time per phase): a table on stderr, or a \"stats\" object with --json");
   add_json_flag(cmd, ctx);
   cmd->footer(
       "`tilekit pack --resume FILE [--db DB]` alone continues the run FILE describes.\n"

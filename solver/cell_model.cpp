@@ -258,12 +258,22 @@ bool CellModel::assign(int cell, int v) {
   const int* n = &t.nb[std::size_t(cell) * 4];
   for (int d = 0; d < 4; ++d) {
     int o = n[d];
-    if (o >= 0 && tile_[std::size_t(o)] < 0 && domain_empty(o)) return false;
+    if (o < 0 || tile_[std::size_t(o)] >= 0) continue;
+    ++stats_.propagations;
+    if (domain_empty(o)) {
+      stats_.prune(Prune::ForwardCheck);
+      return false;
+    }
   }
   if (classes_ > 1)  // the tile is gone from the rest of its class too
     for (int i = t.class_start[std::size_t(k)]; i < t.class_start[std::size_t(k) + 1]; ++i) {
       const int o = t.class_cells[std::size_t(i)];
-      if (tile_[std::size_t(o)] < 0 && domain_empty(o)) return false;
+      if (tile_[std::size_t(o)] >= 0) continue;
+      ++stats_.propagations;
+      if (domain_empty(o)) {
+        stats_.prune(Prune::ClassCheck);
+        return false;
+      }
     }
   return true;
 }

@@ -25,6 +25,7 @@
 
 #include "solver/model.hpp"
 #include "solver/problem.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 
@@ -39,6 +40,10 @@ class CellModel {
   void set_value_seed(std::uint64_t seed);
   Tiling tiling() const;
   std::uint64_t multiplicity() const { return break_translation_ ? std::uint64_t(cells_ / classes_) : 1; }
+
+  // Propagations (free domains checked by forward checking) and prunes (forward-check,
+  // class-check); solver/search_stats.hpp.
+  ModelStats& stats() { return stats_; }
 
   int cells() const { return cells_; }
   int tiles() const { return tiles_; }
@@ -69,6 +74,7 @@ class CellModel {
   std::set<std::pair<int, int>> frontier_;
   std::vector<int> frontier_key_;
   mutable std::vector<std::uint64_t> scratch_;
+  ModelStats stats_;
 };
 
 static_assert(SearchModel<CellModel>);

@@ -62,6 +62,7 @@ class LiftModelOf {
   Tiling tiling() const { return colour_lift(*base_, e_.tiling()); }  // A = B + m*E
   Tiling quotient() const { return e_.tiling(); }
   std::uint64_t multiplicity() const { return e_.multiplicity(); }
+  ModelStats& stats() { return e_.stats(); }
   // A leaf's other solutions are its translates by multiples of the period (solve.cpp).
   int translation_step() const { return period_; }
 

@@ -8,14 +8,20 @@
 //        called on entering every node, before it is counted; false stops the search (the
 //        node at `path` is then the first one not yet explored)
 //   void leaf(const M& model, SearchCounters& counted)   at every solution
+//
+// Statistics (solver/search_stats.hpp): the search counts nodes, decisions, conflicts,
+// backtracks, leaves and empty domains in stats(), and adds the model's own counters
+// (propagations, prunes per rule) after each subtree. Plain integers: one SubtreeSearch per worker.
 #include <algorithm>
 #include <cassert>
+#include <concepts>
 #include <cstddef>
 #include <vector>
 
 #include "base/error.hpp"
 #include "solver/model.hpp"
 #include "solver/search_state.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 
@@ -31,6 +37,24 @@ class SubtreeSearch {
   template <class Control>
   SubtreeOutcome run(M& m, const std::vector<Decision>& prefix, const std::vector<Decision>& resume,
                      SearchCounters& counted, Control& ctl) {
+    if constexpr (kModelStats) m.stats() = {};
+    const SubtreeOutcome o = explore(m, prefix, resume, counted, ctl);
+    if constexpr (kModelStats) stats_.model += m.stats();
+    return o;
+  }
+
+  // What this search counted over every subtree it ran (the caller merges workers).
+  const SearchStats& stats() const { return stats_; }
+
+ private:
+  // A model may count its propagations and prunes (a `ModelStats& stats()` member).
+  static constexpr bool kModelStats = requires(M & m) {
+    { m.stats() } -> std::same_as<ModelStats&>;
+  };
+
+  template <class Control>
+  SubtreeOutcome explore(M& m, const std::vector<Decision>& prefix, const std::vector<Decision>& resume,
+                         SearchCounters& counted, Control& ctl) {
     path_.clear();
     for (const Decision& d : prefix) {
       path_.push_back(d);
@@ -58,17 +82,21 @@ class SubtreeSearch {
       if (entering) {
         if (!ctl.at_node(path_, counted)) return SubtreeOutcome::Stopped;
         ++counted.nodes;
+        ++stats_.nodes;
         ensure(d);
         int var = m.branch(values_[d]);
         if (var < 0) {
+          ++stats_.leaves;
           ctl.leaf(m, counted);
           if (d == 0) return SubtreeOutcome::Exhausted;
           --d;
+          ++stats_.backtracks;
           Decision x = path_.back();
           path_.pop_back();
           m.unassign(x.var, x.value);
         } else {
           frames_[d] = {var, 0};
+          if (values_[d].empty()) stats_.model.prune(Prune::EmptyDomain);
         }
       }
       Frame& f = frames_[d];
@@ -77,10 +105,12 @@ class SubtreeSearch {
       while (f.next < vals.size()) {
         int v = vals[f.next++];
         path_.push_back({f.var, v});
+        ++stats_.decisions;
         if (m.assign(f.var, v)) {
           entering = true;
           break;
         }
+        ++stats_.conflicts;
         m.unassign(f.var, v);
         path_.pop_back();
       }
@@ -90,13 +120,13 @@ class SubtreeSearch {
       }
       if (d == 0) return SubtreeOutcome::Exhausted;
       --d;
+      ++stats_.backtracks;
       Decision x = path_.back();
       path_.pop_back();
       m.unassign(x.var, x.value);
     }
   }
 
- private:
   struct Frame {
     int var = 0;
     std::size_t next = 0;
@@ -110,6 +140,7 @@ class SubtreeSearch {
   std::vector<std::vector<int>> values_;
   std::vector<Frame> frames_;
   std::vector<Decision> path_;
+  SearchStats stats_;
 };
 
 }  // namespace tilekit

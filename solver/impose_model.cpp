@@ -160,11 +160,19 @@ bool ImposeModel::assign(int site, int value) {
     if (cu_[std::size_t(o.cell)] == o.mult) {
       // This occurrence completes the cell: its tile orbit must be usable and unused.
       const int orbit = t.domain.orbit_of[tile_with(o, value)];
-      ok = orbit >= 0 && !(t.domain.packing && used_[std::size_t(orbit)]);
+      if (orbit < 0) {
+        ok = false;
+        stats_.prune(Prune::NoSuchTile);
+      } else if (t.domain.packing && used_[std::size_t(orbit)]) {
+        ok = false;
+        stats_.prune(Prune::OrbitUsed);
+      }
     }
+    if (ok) ++stats_.propagations;  // the cell's pattern counts are revised
     if (ok && !apply_occurrence(o, site, value)) {
       revert_occurrence(o, site);
       ok = false;
+      stats_.prune(Prune::PatternCount);
     }
     if (!ok) {  // undo what this assignment did; the engine's unassign() is then a no-op
       revert_site(site, k);

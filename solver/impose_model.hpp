@@ -20,6 +20,7 @@
 
 #include "solver/impose_domain.hpp"
 #include "solver/model.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 
@@ -36,6 +37,8 @@ class ImposeModel {
   void set_value_seed(std::uint64_t seed) { value_seed_ = seed; }
   Tiling tiling() const;
   std::uint64_t multiplicity() const { return 1; }
+  // Propagations and prunes (no-such-tile, orbit-used, pattern-count); solver/search_stats.hpp.
+  ModelStats& stats() { return stats_; }
 
   const FundamentalDomain& domain() const { return t_->domain; }
   int sites() const { return t_->domain.num_sites; }
@@ -43,6 +46,7 @@ class ImposeModel {
   bool check_state() const;
 
  private:
+  ModelStats stats_;
   struct Occurrence {
     int cell;
     int mult;  // slots of that cell held by the site

@@ -195,16 +195,26 @@ bool LatticeModel::assign(int var, int x) {
     if (--missing_[std::size_t(*c)] != 0 || !ok) continue;
     int k = t.allowed[std::size_t(cell_index(*c))];
     if (k >= 0) k += t.used_base[std::size_t(*c)];
-    if (k < 0 || (packing_ && used_[std::size_t(k)])) {
+    if (k < 0) {
       ok = false;
+      stats_.prune(Prune::NoSuchTile);
+    } else if (packing_ && used_[std::size_t(k)]) {
+      ok = false;
+      stats_.prune(Prune::TileUsed);
     } else if (packing_) {
       used_[std::size_t(k)] = 1;
       marked_[std::size_t(*c)] = 1;
     }
   }
   if (!ok) return false;
-  for (const int* c = b; c != e; ++c)  // forward checking
-    if (missing_[std::size_t(*c)] == 1 && !cell_has_option(*c)) return false;
+  for (const int* c = b; c != e; ++c) {  // forward checking
+    if (missing_[std::size_t(*c)] != 1) continue;
+    ++stats_.propagations;
+    if (!cell_has_option(*c)) {
+      stats_.prune(Prune::ForwardCheck);
+      return false;
+    }
+  }
   return true;
 }
 

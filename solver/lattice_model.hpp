@@ -22,6 +22,7 @@
 
 #include "solver/model.hpp"
 #include "solver/problem.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 
@@ -35,9 +36,12 @@ class LatticeModel {
   void set_value_seed(std::uint64_t seed);
   Tiling tiling() const;
   std::uint64_t multiplicity() const { return break_translation_ ? std::uint64_t(cells_ / classes_) : 1; }
+  // Propagations and prunes (no-such-tile, tile-used, forward-check); solver/search_stats.hpp.
+  ModelStats& stats() { return stats_; }
   int class_period() const { return class_period_; }
 
  private:
+  ModelStats stats_;
   struct Tables;
   int cell_index(int cell) const;        // all four colours assigned
   bool cell_has_option(int cell) const;  // exactly one colour free

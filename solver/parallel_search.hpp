@@ -15,6 +15,8 @@
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
 //    The first checkpoint is written before any work, so a run killed at once can resume.
+//  - statistics (search_stats.hpp): each worker's SubtreeSearch counts in plain integers; a
+//    worker adds them to the run's total once, when it leaves (under stats_mu_).
 //
 // Over 400 lines on purpose: ParallelSearch is one class template whose workers, monitor,
 // progress and checkpoint writer share its state (counters, the subproblem cursor, the stop
@@ -76,6 +78,7 @@ struct ParallelOutcome {
   std::uint64_t subproblems = 0, shard_subproblems = 0, subproblems_done = 0, restarts = 0;
   std::size_t checkpoints_written = 0;
   TreeEstimate estimate;
+  SearchStats stats;  // this run: counters, restarts, time per phase (not setup: solve() adds it)
 };
 
 template <SearchModel M>
@@ -91,7 +94,10 @@ class ParallelSearch {
   ParallelOutcome run() {
     start_ = std::chrono::steady_clock::now();
     ParallelOutcome out;
-    if (cfg_.estimate_probes) out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed);
+    if (cfg_.estimate_probes) {
+      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed);
+      stats_.estimate_seconds = elapsed();
+    }
     estimate_ = out.estimate.nodes;
     prior_seconds_ = cfg_.resume ? cfg_.resume->seconds : 0;
     if (cfg_.mode == SearchMode::First && cfg_.restarts) {
@@ -104,6 +110,9 @@ class ParallelSearch {
     out.found = found_.load();
     out.checkpoints_written = checkpoints_;
     out.signal = signal_;
+    out.stats = stats_;
+    out.stats.restarts = out.restarts;
+    out.stats.checkpoints = checkpoints_;
     return out;
   }
 
@@ -175,7 +184,10 @@ class ParallelSearch {
     // time limit is looked at once it is done and the first checkpoint is written, so that a run
     // stopped at any moment, even before its search began, leaves a checkpoint to resume from, and
     // even slices shorter than the split get past it.
+    const double split_start = elapsed();
     subs_ = split_subproblems(root_, cfg_.subproblem_target, split_nodes);
+    stats_.split_seconds = elapsed() - split_start;
+    stats_.nodes += split_nodes;
     std::uint64_t hash = hash_subproblems(subs_);
     out.subproblems = subs_.size();
     finished_.assign(subs_.size(), false);
@@ -238,6 +250,7 @@ class ParallelSearch {
   void worker_subproblems(int tid) {
     Slot& slot = *slots_[std::size_t(tid)];
     SubtreeSearch<M> dfs;
+    MergeStats merge{*this, dfs};
     for (;;) {
       Job job;
       {
@@ -289,6 +302,7 @@ class ParallelSearch {
   void worker_restarts(int tid) {
     Slot& slot = *slots_[std::size_t(tid)];
     SubtreeSearch<M> dfs;
+    MergeStats merge{*this, dfs};
     while (!stop_.requested()) {
       // The k-th dive of this shard is dive r of the whole run: its seed depends on r, its
       // node limit on k (every shard follows the Luby sequence).
@@ -321,9 +335,25 @@ class ParallelSearch {
     return k;
   }
 
-  // ---- shared machinery: threads, monitor, checkpoints ----
+  // ---- shared machinery: threads, monitor, checkpoints, statistics ----
+  // A worker's counters join the run's total when it leaves, whichever way it leaves.
+  struct MergeStats {
+    ParallelSearch& s;
+    const SubtreeSearch<M>& dfs;
+    ~MergeStats() {
+      std::lock_guard lock(s.stats_mu_);
+      s.stats_ += dfs.stats();
+    }
+  };
+
   template <class Work>
   void run_workers(Work work) {
+    const double search_start = elapsed();
+    struct Timed {  // the search phase ends when the workers and the monitor are done
+      ParallelSearch& s;
+      double start;
+      ~Timed() { s.stats_.search_seconds += s.elapsed() - start; }
+    } timed{*this, search_start};
     int threads = cfg_.run.threads;
     slots_.clear();
     for (int i = 0; i < threads; ++i) slots_.push_back(std::make_unique<Slot>());
@@ -445,9 +475,12 @@ class ParallelSearch {
     st.restarts = first_unfinished_dive();
     st.restart_nodes = restart_nodes_.load();
     st.seconds = prior_seconds_ + elapsed();
+    const double write_start = elapsed();
     if (cfg_.flush) cfg_.flush();
     cfg_.save(st);
     ++checkpoints_;
+    std::lock_guard lock(stats_mu_);  // workers may be merging their counters meanwhile
+    stats_.checkpoint_seconds += elapsed() - write_start;
   }
 
   void finalize(ParallelOutcome& out, bool exhausted) {
@@ -469,6 +502,8 @@ class ParallelSearch {
   std::atomic<std::uint64_t> epoch_{0};
   int signal_ = 0;
   std::size_t checkpoints_ = 0;
+  std::mutex stats_mu_;  // guards stats_ while workers merge into it
+  SearchStats stats_;
 
   std::mutex mu_;  // guards jobs_, next_job_, finished_, finished_counts_ (taken before a slot's mutex)
   std::vector<std::vector<Decision>> subs_;

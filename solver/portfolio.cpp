@@ -348,6 +348,7 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
   cs.slices += 1;
   cs.nodes += r.nodes;
   cs.seconds += r.seconds;
+  out_.stats += r.stats;
   // A slice cut short by a signal or by the other lane's solution says nothing about the candidate.
   if (!r.interrupted && (success || !cancel_.load()))
     fresh_.record(p_.set.kind(), p_.set.colours(), cand.name, success, r.seconds);
@@ -491,6 +492,7 @@ SearchResult PortfolioResult::as_search_result(int threads) const {
   r.timed_out = timed_out;
   r.checkpoints = checkpoints;
   r.formulation = "portfolio";
+  r.stats = stats;
   bool plain_ran = false;
   for (const auto& row : runs) plain_ran = plain_ran || row["group"] == kPlainSearch;
   r.complete = complete && plain_ran;

@@ -82,6 +82,7 @@ struct PortfolioResult {
   std::uint64_t nodes = 0;  // all slices, this run and the ones it resumed
   double seconds = 0, total_seconds = 0;
   std::size_t checkpoints = 0;
+  SearchStats stats;                              // every slice of this run, summed (solver/search_stats.hpp)
   nlohmann::json runs = nlohmann::json::array();  // per candidate: slices, nodes, seconds, found, empty
 
   // The run as one search of the whole problem: the winning slice's result (its packing and

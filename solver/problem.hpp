@@ -11,6 +11,7 @@
 
 #include "solver/run_settings.hpp"
 #include "solver/search_state.hpp"
+#include "solver/search_stats.hpp"
 #include "tilesets/tile_grid.hpp"
 #include "tilesets/tile_set.hpp"
 
@@ -119,6 +120,7 @@ struct SearchResult {
   double estimated_nodes = 0;   // Knuth estimate (when estimate_probes > 0; infinite beyond double's range)
   double estimated_log10_nodes = 0;  // the same as a logarithm
   std::size_t checkpoints = 0;  // checkpoints written by this run
+  SearchStats stats;            // this run's counters and time per phase (solver/search_stats.hpp)
 };
 
 }  // namespace tilekit

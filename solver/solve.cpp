@@ -52,6 +52,7 @@ struct Plan {
   std::shared_ptr<const LiftProblem> lift;  // options.lift: the subspace searched
   bool window = false;                      // a de Bruijn torus (window set)
   std::shared_ptr<const WindowLiftProblem> window_lift;  // a window torus with options.lift
+  std::chrono::steady_clock::time_point started;         // when solve() began (the setup phase)
 };
 
 // ---- the routes: which model runs a search ------------------------------------------------
@@ -396,7 +397,10 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
   M start = root;
   if (o.run.seed && !pl.restarts) start.set_value_seed(o.run.seed);
   ParallelSearch<M> search(start, cfg, leaf);
+  const double setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - pl.started).count();
   ParallelOutcome out = search.run();
+  res.stats = out.stats;
+  res.stats.setup_seconds = setup_seconds;
 
   res.complete = out.complete;
   res.interrupted = out.interrupted;
@@ -499,11 +503,25 @@ std::string search_fingerprint(const TilingProblem& problem, const SearchOptions
   return fingerprint(problem, options, plan(problem, options));
 }
 
-SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
-  Plan pl = plan(problem, options);
+namespace {
+
+SearchResult solve_planned(const TilingProblem& problem, const SearchOptions& options, Plan& pl) {
   std::optional<SignalCatcher> signals;
   if (options.run.catch_signals) signals.emplace();
   return pl.route->run(problem, options, pl);
+}
+
+}  // namespace
+
+SearchResult solve(const TilingProblem& problem, const SearchOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  Plan pl = plan(problem, options);
+  pl.started = started;
+  SearchResult res = solve_planned(problem, options, pl);
+  res.stats.searches = 1;
+  res.stats.solutions = res.solutions;
+  if (res.stats.search_seconds == 0) res.stats.search_seconds = res.seconds;  // the cadical routes
+  return res;
 }
 
 }  // namespace tilekit

@@ -51,6 +51,7 @@ class WindowLiftModel {
   void set_value_seed(std::uint64_t seed) { e_.set_value_seed(seed); }
   Tiling tiling() const { return window_colour_lift(*base_, e_.tiling()); }  // A = B + m*E
   std::uint64_t multiplicity() const { return e_.multiplicity(); }
+  ModelStats& stats() { return e_.stats(); }
   std::pair<int, int> translation_steps() const { return e_.translation_steps(); }
 
  private:

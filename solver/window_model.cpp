@@ -241,6 +241,7 @@ bool WindowModel::set_symbol(int var, int x, bool ok) {
     const std::uint32_t k = t.used_base[std::size_t(cell)] + window_of(cell);
     if (used_[k]) {
       ok = false;
+      stats_.prune(Prune::TileUsed);  // the window is already on the torus
     } else {
       used_[k] = 1;
       marked_[std::size_t(cell)] = 1;
@@ -266,8 +267,14 @@ bool WindowModel::assign(int var, int x) {
     const int v = t.orbit[std::size_t(k)].first;
     const auto* b = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(v)])];
     const auto* e = &t.var_cells[std::size_t(t.var_cells_start[std::size_t(v) + 1])];
-    for (const auto* h = b; h != e; ++h)
-      if (missing_[std::size_t(h->first)] == 1 && !cell_has_option(h->first)) return false;
+    for (const auto* h = b; h != e; ++h) {
+      if (missing_[std::size_t(h->first)] != 1) continue;
+      ++stats_.propagations;
+      if (!cell_has_option(h->first)) {
+        stats_.prune(Prune::ForwardCheck);
+        return false;
+      }
+    }
   }
   return true;
 }

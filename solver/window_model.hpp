@@ -31,6 +31,7 @@
 #include "solver/impose_group.hpp"
 #include "solver/model.hpp"
 #include "solver/problem.hpp"
+#include "solver/search_stats.hpp"
 
 namespace tilekit {
 
@@ -70,10 +71,13 @@ class WindowModel {
   void set_value_seed(std::uint64_t seed);
   Tiling tiling() const;
   std::uint64_t multiplicity() const { return break_translations_ ? std::uint64_t(cells_ / classes_) : 1; }
+  // Propagations and prunes (tile-used: a window twice, forward-check); solver/search_stats.hpp.
+  ModelStats& stats() { return stats_; }
   // A leaf's translates: by every cell (1, 1), or by multiples of the class periods.
   std::pair<int, int> translation_steps() const { return {period_rows_, period_cols_}; }
 
  private:
+  ModelStats stats_;
   struct Tables;
   std::uint32_t window_of(int cell) const;  // all its symbols assigned
   bool cell_has_option(int cell) const;     // exactly one symbol free

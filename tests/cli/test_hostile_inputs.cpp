@@ -6,12 +6,18 @@
 // bad_alloc after seconds of work.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "base/hash.hpp"
 #include "checkpoints/checkpoint.hpp"
@@ -51,6 +57,47 @@ std::string resealed(const std::string& text, const std::string& from, const std
   return body + fmt::format("fnv1a64 {:016x}\n", fnv1a64(body));
 }
 
+// The names in a directory (sorted).
+std::vector<std::string> files_in(const TempDir& d) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(d.path)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+struct MeasuredRun {
+  CliResult result;
+  long peak_kib = 0;  // the peak resident memory of the largest process the run started
+};
+
+// run_cli in a child process of its own, so that getrusage(RUSAGE_CHILDREN) there sees only this
+// run's processes (the shell and tilekit) and none of the test binary's earlier ones.
+MeasuredRun run_cli_measured(const std::string& prefix, const std::string& args) {
+  TempDir io;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const CliResult r = run_cli_prefixed(prefix, args);
+    struct rusage u {};
+    ::getrusage(RUSAGE_CHILDREN, &u);
+    write_text(io / "code", std::to_string(r.code));
+    write_text(io / "out", r.out);
+    write_text(io / "err", r.err);
+    write_text(io / "peak", std::to_string(u.ru_maxrss));
+    ::_exit(0);
+  }
+  MeasuredRun m;
+  int status = 0;
+  if (child < 0 || ::waitpid(child, &status, 0) != child || !WIFEXITED(status)) {
+    ADD_FAILURE() << "the measuring child failed";
+    return m;
+  }
+  m.result.code = std::stoi(slurp(io / "code"));
+  m.result.out = slurp(io / "out");
+  m.result.err = slurp(io / "err");
+  m.peak_kib = std::stol(slurp(io / "peak"));
+  return m;
+}
+
 }  // namespace
 
 TEST(HostileInputs, DeeplyNestedDensityExpressionsAreRefusedNotACrash) {
@@ -66,43 +113,88 @@ TEST(HostileInputs, DeeplyNestedDensityExpressionsAreRefusedNotACrash) {
                  "more than the 4096 an expression may have");
 }
 
-TEST(HostileInputs, RequestsLargerThanMemoryAreRefusedBeforeTheWork) {
+namespace {
+
+// The requests larger than memory, one test each. "Refused before the work" is asserted as sizes,
+// not as a wall-clock bound: nothing is written (no output, no temp file) and the process's peak
+// memory stays far below what the request needs (kRefusedPeakKib; each request needs gigabytes).
+constexpr long kRefusedPeakKib = 512 * 1024;
+
+void expect_refused_small(const TempDir& d, const std::string& args, const std::string& fragment,
+                          const std::string& prefix = "") {
+  const MeasuredRun m = run_cli_measured(prefix, args);
+  expect_refused_saying(m.result, fragment);
+  EXPECT_GT(m.peak_kib, 0);  // the measure itself works
+  EXPECT_LT(m.peak_kib, kRefusedPeakKib) << "peak resident memory of a refused request";
+  EXPECT_EQ(files_in(d), std::vector<std::string>{}) << "a refused request writes nothing";
+}
+
+}  // namespace
+
+TEST(HostileInputs, AnImageWindowLargerThanMemoryIsRefused) {
   TempDir d;
-  double s = seconds_of([&] {
-    expect_refused_saying(run_cli("points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.png --quiet"),
-                   "set TILEKIT_MEMORY");
-    // Streamed to a point file, the disk bounds the window instead.
-    expect_refused_saying(run_cli("points generate --window 0,0,1000000,1000000 --density 1000 --out " + d / "p.f64 --quiet"),
-                   "on disk, more than the");
-    expect_refused_saying(run_cli("points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 "
-                           "--out " +
-                           d / "p.f32 --quiet"),
-                   "a window of about 1e+12 points");
-    // The limit is the environment's when set: a window that fits the machine is refused under 1 MB.
-    expect_refused_saying(run_cli_prefixed("env TILEKIT_MEMORY=1M ",
-                                    "points generate --window 0,0,100,100 --density 10 "
-                                    "--out " +
-                                        d / "p.png --quiet"),
-                   "more than the limit of 0.000977 GiB (TILEKIT_MEMORY");
-    expect_refused_saying(run_cli("points tiles --rho 1e-6 --no-db --quiet --out " + d / "t.ptiles"), "use --rho");
-    expect_refused_saying(
-        run_cli("texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " + d / "tt"),
-        "candidates a round may try");
-  });
-  EXPECT_FALSE(fs::exists(d / "p.f32"));
-  EXPECT_FALSE(fs::exists(d / "p.f64"));
-  EXPECT_FALSE(fs::exists(d / "p.png"));
-  EXPECT_LT(s, 20) << "refused before any work";
-  // An image that decodes to 23000 x 23000 grey pixels (529 MB) is refused from its header.
+  expect_refused_small(d, "points generate --window 0,0,11000,11000 --density 16 --out " + d / "p.png --quiet",
+                       "set TILEKIT_MEMORY");
+}
+
+TEST(HostileInputs, AStreamedWindowLargerThanTheDiskIsRefused) {
+  TempDir d;  // streamed to a point file, the disk bounds the window instead
+  expect_refused_small(d, "points generate --window 0,0,1000000,1000000 --density 1000 --out " + d / "p.f64 --quiet",
+                       "on disk, more than the");
+}
+
+TEST(HostileInputs, ADensityExpressionOfATrillionPointsIsRefused) {
+  TempDir d;
+  expect_refused_small(d,
+                       "points generate --method recursive --density-expr 1e12 --window 0,0,1,1 --density 100 --out " +
+                           d / "p.f32 --quiet",
+                       "a window of about 1e+12 points");
+}
+
+TEST(HostileInputs, TheMemoryLimitIsTheEnvironmentsWhenSet) {
+  TempDir d;  // a window that fits the machine is refused under 1 MB
+  expect_refused_small(d, "points generate --window 0,0,100,100 --density 10 --out " + d / "p.png --quiet",
+                       "more than the limit of 0.000977 GiB (TILEKIT_MEMORY", "env TILEKIT_MEMORY=1M ");
+}
+
+TEST(HostileInputs, APointTileRadiusNeedingTooManyPointsIsRefused) {
+  TempDir d;
+  expect_refused_small(d, "points tiles --rho 1e-6 --no-db --quiet --out " + d / "t.ptiles", "use --rho");
+}
+
+TEST(HostileInputs, ATextureSearchBeyondTheRoundLimitIsRefused) {
+  TempDir d;
+  expect_refused_small(
+      d, "texture tiles --exemplar brick --colors 2 --tile-px 16 --search 2000000000 --quiet --out " + d / "tt",
+      "candidates a round may try");
+}
+
+namespace {
+
+// An image that decodes to 23000 x 23000 grey pixels (529 MB) is refused from its header.
+void write_png_bomb(const std::string& path) {
   std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x59\xd8\0\0\x59\xd8\x08\0\0\0\0\0\0\0\0", 33);
   png += std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
-  write_text(d / "bomb.png", png);
-  expect_refused_saying(
-      run_cli("texture tiles --exemplar " + d / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb"),
+  write_text(path, png);
+}
+
+}  // namespace
+
+TEST(HostileInputs, AnExemplarDecodingLargerThanTheImageLimitIsRefusedFromItsHeader) {
+  TempDir bomb, d;
+  write_png_bomb(bomb / "bomb.png");
+  expect_refused_small(
+      d, "texture tiles --exemplar " + bomb / "bomb.png --colors 2 --tile-px 16 --quiet --out " + d / "tb",
       "23000x23000 pixels is more than the 268435456 pixels an image may have");
-  expect_refused_saying(run_cli("points generate --method recursive --density-image " + d / "bomb.png" +
-                         " --window 0,0,1,1 --density 100 --quiet"),
-                 "23000x23000 pixels");
+}
+
+TEST(HostileInputs, ADensityImageDecodingLargerThanTheImageLimitIsRefusedFromItsHeader) {
+  TempDir bomb, d;
+  write_png_bomb(bomb / "bomb.png");
+  expect_refused_small(d,
+                       "points generate --method recursive --density-image " + bomb / "bomb.png" +
+                           " --window 0,0,1,1 --density 100 --quiet --out " + d / "p.f32",
+                       "23000x23000 pixels");
 }
 
 TEST(HostileInputs, TimeLimitsHoldInFarShardsAndAHugeLimitMeansNone) {
