@@ -11,7 +11,8 @@ PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt
       unzip        # scripts/fetch-textures.sh reads OpenArena's pk3 (a zip)
       jq dpkg-dev  # the install and Debian package tests (tests/install/install-test.sh)
       ninja-build  # the build (scripts/build.sh)
-      chromium)    # the browser test of `texture preview`
+      chromium     # the browser test of `texture preview`
+      tiled libpugixml-dev)  # tilemap/: Tiled's XML reader, and Tiled 1.8 + tmxrasterizer for tests/tilemap
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
