@@ -28,6 +28,8 @@ std::string file_stem(const std::string& name) {
 
 namespace {
 
+constexpr int kMaxSheetSide = 8192;  // atlas/render.hpp's largest picture side
+
 // Everything a tileset request makes, in memory, before any file is written.
 struct TilesetFiles {
   TiledSheet sheet;
@@ -56,6 +58,11 @@ TilesetFiles make_tileset(const TilesetRequest& req) {
   if (req.tiles_dir.empty()) {
     if (req.tile_px < 2 || req.tile_px > 512)
       throw InputError(fmt::format("--tile-px must be 2..512, got {}", req.tile_px));
+    if (std::int64_t(f.sheet.packing.cols) * req.tile_px > kMaxSheetSide)
+      throw InputError(
+          fmt::format("a sheet of {}x{} tiles of {} pixels is more than {} pixels wide; use --tile-px {} "
+                      "or less",
+                      o.cols, o.rows, req.tile_px, kMaxSheetSide, kMaxSheetSide / o.cols));
     o.tile_px = req.tile_px;
     f.png = atlas::to_png(atlas::draw_tiling(f.sheet.packing, {req.tile_px, false}));
   } else {

@@ -50,9 +50,9 @@ TEST(TiledCli, BadInputExits2WithOneLineAndWritesNothing) {
            "tiled tileset --kind hex --colors 2" + out, "tiled tileset --kind corner --colors 0" + out,
            "tiled tileset --kind corner --colors 2 --tiles " + q(d / "missing") + out,
            "tiled tileset --kind corner --colors 2 --tile-px 1" + out, "tiled tileset --colors 2",
-           "tiled map --kind corner --colors 2 --size 0x4" + out, "tiled map --kind corner --colors 2 --size 4" + out,
-           "tiled map --kind wang --colors 2 --size 70000x1" + out, "tiled import " + q(d / "mixed.tsx"),
-           "tiled import " + q(d / "none.tsx"), "tiled import " + q(d / "out")}) {
+           "tiled tileset --kind corner --colors 17" + out, "tiled map --kind corner --colors 2 --size 0x4" + out,
+           "tiled map --kind corner --colors 2 --size 4" + out, "tiled map --kind wang --colors 2 --size 70000x1" + out,
+           "tiled import " + q(d / "mixed.tsx"), "tiled import " + q(d / "none.tsx"), "tiled import " + q(d / "out")}) {
     const CliResult r = run_cli(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;

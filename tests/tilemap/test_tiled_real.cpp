@@ -10,6 +10,7 @@
 #include "image/image.hpp"
 #include "tests/tilemap/tiled_checker.hpp"
 #include "tilemap/tiled_files.hpp"
+#include "tilemap/tsx_reader.hpp"
 
 namespace tilekit::test {
 namespace {
@@ -112,6 +113,27 @@ TEST(TiledReal, DrawnTilesLandInTheCellsOfTheirTiles) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) differ += img.get(x, y) != tile_rgb(o.map.at(y / 6, x / 6), x % 6, y % 6);
   EXPECT_EQ(differ, 0);
+}
+
+// The reader against Tiled's own writer: a tileset that Tiled saved again (`--export-tileset tsx`)
+// reads back as the complete set, its user-supplied name (markup characters included) intact.
+TEST(TiledReal, ImportReadsTheTilesetsTiledSavesAgain) {
+  if (!tiled::installed()) GTEST_SKIP() << tiled::kSkip;
+  TempDir d;
+  for (const auto kind : {TileKind::Corner, TileKind::Wang}) {
+    tilemap::TilesetRequest req = request(kind, 3, d / "ts");
+    req.name = "grass <&> \"sand\" 'n'";
+    const auto o = tilemap::write_tiled_tileset(req);
+    EXPECT_EQ(tiled::run_qt("tiled", "--export-tileset tsx " + q(o.tsx_path) + " " + q(d / "again.tsx")), 0);
+    const nlohmann::json j = exported("tileset", d / "again.tsx", d / "again.json");
+    EXPECT_EQ(j.at("name").get<std::string>(), req.name);
+    const tilemap::ImportedWangSet w = tilemap::read_tiled_wang_set(d / "again.tsx");
+    EXPECT_EQ(w.set.kind(), kind);
+    EXPECT_EQ(w.set.name(), req.name);
+    EXPECT_EQ(w.set.size(), 81u);
+    EXPECT_EQ(w.wang_tiles, 81u);
+    EXPECT_EQ(w.type, kind == TileKind::Corner ? "corner" : "edge");
+  }
 }
 
 // The checker can fail: two tiles of a packed sheet swapped break the torus at both places.
