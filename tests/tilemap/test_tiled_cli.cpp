@@ -80,6 +80,35 @@ TEST(TiledCli, ImportPrintsTheSetLikeTilesetShow) {
   EXPECT_NE(human.out.find("81 corner tiles"), std::string::npos) << human.out;
 }
 
+// Texture tiles (`texture tiles --out DIR` names them tile-NNNN.png by index) make a tileset as
+// drawn tiles do: the tile at each Tiled tile id of the sheet is the image of that tile's index.
+TEST(TiledCli, TextureTilesMakeASheetWithEachTileAtItsTiledId) {
+  TempDir d;
+  const std::string exemplar = std::string(TILEKIT_SOURCE_DIR) + "/docs/images/texture-grid-gravel.png";
+  ASSERT_EQ(run_cli("texture tiles --exemplar " + q(exemplar) + " --kind wang --colors 2 --tile-px 16 --threads 1 " +
+                    "--out " + q(d / "tex"))
+                .code,
+            0);
+  ASSERT_EQ(run_cli("tiled tileset --kind wang --colors 2 --tiles " + q(d / "tex") + " --out " + q(d / "ts")).code, 0);
+  const CliResult r = run_cli("tiled import --json " + q(d / "ts/wang-2.tsx"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = r.json();
+  const Image sheet = read_image(d / "ts/wang-2.png");
+  ASSERT_EQ(sheet.width, 4 * 16);
+  ASSERT_EQ(j.at("list").size(), 16u);
+  for (std::size_t k = 0; k < 16; ++k) {
+    const auto c = j.at("list").at(k).get<std::vector<int>>();    // n s w e
+    const int index = ((c[0] * 2 + c[3]) * 2 + c[1]) * 2 + c[2];  // thesis eq. 2.2
+    const Image tile =
+        read_image(d / ("tex/tile-" + std::string(index < 10 ? "000" : "00") + std::to_string(index) + ".png"));
+    const int id = j.at("tile_ids").at(k).get<int>(), x0 = id % 4 * 16, y0 = id / 4 * 16;
+    int differ = 0;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) differ += sheet.get(x0 + x, y0 + y) != tile.get(x, y);
+    EXPECT_EQ(differ, 0) << "tile " << index << " at Tiled id " << id;
+  }
+}
+
 TEST(TiledCli, TmxrasterizerDrawsTheMapAsTileAlgoDirectDoes) {
   if (!tiled::installed()) GTEST_SKIP() << tiled::kSkip;
   TempDir d;
