@@ -24,8 +24,8 @@ inline constexpr const char* kSkip = "Tiled is not installed (apt-get install ti
 
 // Runs `tiled ARGS` or another Qt tool headless; its exit code.
 inline int run_qt(const std::string& program, const std::string& args) {
-  const std::string cmd = "QT_QPA_PLATFORM=offscreen timeout 120 " + program + " " + args +
-                          " >/dev/null 2>&1 </dev/null";
+  const std::string cmd =
+      "QT_QPA_PLATFORM=offscreen timeout 120 " + program + " " + args + " >/dev/null 2>&1 </dev/null";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
 }
