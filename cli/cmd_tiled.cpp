@@ -91,6 +91,8 @@ void run_import(const TiledImportArgs& a, const Context& ctx) {
                             {"tiles", s.size()},
                             {"wang_tiles", w.wang_tiles},
                             {"colors", w.colour_names.size()},
+                            {"horizontal_colors", s.horizontal_colours()},
+                            {"vertical_colors", s.vertical_colours()},
                             {"colour_names", w.colour_names},
                             {"source", s.source()},
                             {"format", s.kind() == TileKind::Wang ? "n s w e" : "nw ne sw se"},
