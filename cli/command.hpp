@@ -39,5 +39,6 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx);
 void add_cluster_commands(CLI::App& app, Context& ctx);
 void add_points_commands(CLI::App& app, Context& ctx);
 void add_texture_commands(CLI::App& app, Context& ctx);
+void add_tiled_commands(CLI::App& app, Context& ctx);  // cmd_tiled.cpp: `tiled tileset|map|import`
 
 }  // namespace tilekit::cli

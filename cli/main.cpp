@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   cli::add_cluster_commands(app, ctx);
   cli::add_points_commands(app, ctx);
   cli::add_texture_commands(app, ctx);
+  cli::add_tiled_commands(app, ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -8,6 +8,7 @@ PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt
       libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
       glslang-tools cadical libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
       clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev  # fuzzing and the sanitizer builds
+      tiled libpugixml-dev  # tilemap/: Tiled's XML reader; Tiled 1.8 and tmxrasterizer for tests/tilemap
       unzip        # scripts/fetch-textures.sh reads OpenArena's pk3 (a zip)
       jq dpkg-dev  # the install and Debian package tests (tests/install/install-test.sh)
       ninja-build  # the build (scripts/build.sh)
