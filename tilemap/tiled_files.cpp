@@ -38,7 +38,7 @@ struct TilesetFiles {
 };
 
 void make_out_dir(const std::string& dir) {
-  if (dir.empty()) throw InputError("--out: a folder is needed");
+  if (dir.empty()) throw RequestError("out", "`out`: a folder is needed");
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
@@ -57,11 +57,11 @@ TilesetFiles make_tileset(const TilesetRequest& req) {
   o.tiles = f.sheet.packing.cells.size();
   if (req.tiles_dir.empty()) {
     if (req.tile_px < 2 || req.tile_px > 512)
-      throw InputError(fmt::format("--tile-px must be 2..512, got {}", req.tile_px));
+      throw RequestError("tile_px", fmt::format("`tile_px` must be 2..512, got {}", req.tile_px));
     if (std::int64_t(f.sheet.packing.cols) * req.tile_px > kMaxSheetSide)
-      throw InputError(
-          fmt::format("a sheet of {}x{} tiles of {} pixels is more than {} pixels wide; use --tile-px {} "
-                      "or less",
+      throw RequestError(
+          "tile_px", fmt::format("a sheet of {}x{} tiles of {} pixels is more than {} pixels wide; use `tile_px` {} "
+                                 "or less",
                       o.cols, o.rows, req.tile_px, kMaxSheetSide, kMaxSheetSide / o.cols));
     o.tile_px = req.tile_px;
     f.png = atlas::to_png(atlas::draw_tiling(f.sheet.packing, {req.tile_px, false}));

@@ -14,7 +14,8 @@ namespace tilekit::tilemap {
 TiledSheet sheet_layout(TileKind kind, std::uint32_t colours) {
   wang_type_name(kind);  // corner or Wang only
   if (colours < 1 || colours > kMaxSheetColours)
-    throw InputError(fmt::format("--colors must be 1..{} for a Tiled sheet, got {}", kMaxSheetColours, colours));
+    throw RequestError(
+        "colours", fmt::format("`colours` must be 1..{} for a Tiled sheet, got {}", kMaxSheetColours, colours));
   auto made = construct_packing(kind, colours);
   if (!made) throw InputError(fmt::format("no construction of a {} packing over {} colours", kind_name(kind), colours));
   const ValidationReport rep = validate(made->tiling);
