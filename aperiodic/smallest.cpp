@@ -27,7 +27,7 @@ std::string enumerate_command(const EnumerateOptions& o) {
   const EnumerateOptions d;
   if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
   if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
-  if (o.shards > 1) cmd += fmt::format(" --shard {}/{}", o.shard, o.shards);
+  if (o.shard.count > 1) cmd += fmt::format(" --shard {}/{}", o.shard.index, o.shard.count);
   return cmd;
 }
 

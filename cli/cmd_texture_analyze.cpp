@@ -67,7 +67,7 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
     const std::vector<double> v = parse_numbers(a.offset, 2, "--offset");
     l.offset = {v[0], v[1]};
   }
-  const int threads = a.threads == 0 ? default_thread_count() : checked_thread_count(a.threads);
+  const int threads = resolve_threads(a.threads);
   const Image img = read_image(a.image);
   std::optional<Image> exemplar, labels;
   std::string exemplar_name;

@@ -89,8 +89,10 @@ class ParallelSearch {
 
   ParallelOutcome run() {
     start_ = std::chrono::steady_clock::now();
+    deadline_ = Deadline(cfg_.run.time_limit, start_);
     ParallelOutcome out;
-    if (cfg_.estimate_probes) out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed);
+    if (cfg_.estimate_probes)
+      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed, [this] { return poll_stop(); });
     estimate_ = out.estimate.nodes;
     prior_seconds_ = cfg_.resume ? cfg_.resume->seconds : 0;
     if (cfg_.mode == SearchMode::First && cfg_.restarts) {
@@ -227,7 +229,7 @@ class ParallelSearch {
   }
 
   bool mine(std::uint64_t i) const {
-    return i % std::uint64_t(cfg_.run.shard.count) == std::uint64_t(cfg_.run.shard.index);
+    return cfg_.run.shard.owns(i);
   }
 
   std::uint64_t done_in_shard() const {
@@ -375,7 +377,7 @@ class ParallelSearch {
       signal_ = SignalCatcher::caught();
       stop_.request(StopReason::Signal);
     }
-    if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
+    if (deadline_.expired()) stop_.request(StopReason::TimeLimit);
     if (cfg_.run.cancelled()) stop_.request(StopReason::Cancelled);
     return stop_.requested();
   }
@@ -464,6 +466,7 @@ class ParallelSearch {
   ParallelConfig cfg_;
   Leaf leaf_;
   std::chrono::steady_clock::time_point start_;
+  Deadline deadline_;  // run.time_limit from start_ (base/run_control.hpp)
   double prior_seconds_ = 0, estimate_ = 0;
   StopToken stop_;
   std::atomic<bool> found_{false};
