@@ -101,10 +101,14 @@ std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const s
 }
 
 std::string fingerprint(const EnumerateOptions& o, const std::vector<std::string>& sources) {
-  return nlohmann::json{
-      {"format", "tilekit-enumerate"}, {"sources", sources},        {"max_depth", o.max_depth},
-      {"max_tiles", o.max_tiles},      {"batch", o.batch},          {"shard", fmt::format("{}/{}", o.shard.index, o.shard.count)},
-      {"lead_max_k", o.lead_max_k},    {"steps", step_operations()}}
+  return nlohmann::json{{"format", "tilekit-enumerate"},
+                        {"sources", sources},
+                        {"max_depth", o.max_depth},
+                        {"max_tiles", o.max_tiles},
+                        {"batch", o.batch},
+                        {"shard", fmt::format("{}/{}", o.shard.index, o.shard.count)},
+                        {"lead_max_k", o.lead_max_k},
+                        {"steps", step_operations()}}
       .dump();
 }
 

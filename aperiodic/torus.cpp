@@ -142,7 +142,7 @@ struct TorusRun {
           P, res.threads,
           [&](std::int64_t i) {  // longest period first
             const int q = P - int(i);
-            if (!out_of_time()) info[std::size_t(q)] = periodic_rows(as_wang, q, rows, 2'000'000, deadline);
+            if (!out_of_time()) info[std::size_t(q)] = periodic_rows(as_wang, q, rows, 2'000'000, deadline, signals());
           },
           &stop);
     };

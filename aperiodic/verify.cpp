@@ -60,14 +60,17 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
   if (opts.route != "torus") {
     DecideOptions d = opts.decide;
     // "both" leaves the torus route half of the time at least.
-    d.time_limit = opts.route == "both" && deadline.limited() ? opts.time_limit / 2 : deadline.limited() ? opts.time_limit : 0;
+    d.time_limit = opts.route == "both" && deadline.limited() ? opts.time_limit / 2
+                   : deadline.limited()                       ? opts.time_limit
+                                                              : 0;
     d.progress = opts.progress;
     decision = decide_tile_set(set, d);
     take_decision(res, *decision);
     if (res.interrupted) res.signal = decision->signal;
   }
-  const bool run_torus = !res.interrupted && (opts.route == "torus" || opts.route == "both" ||
-                                              (opts.route == "auto" && res.verdict == "unknown" && !deadline.expired()));
+  const bool run_torus =
+      !res.interrupted && (opts.route == "torus" || opts.route == "both" ||
+                           (opts.route == "auto" && res.verdict == "unknown" && !deadline.expired()));
   if (run_torus) {
     VerifyResult t = torus_route(set, opts, deadline);
     if (decision) cross_check(*decision, t, opts.max_period);

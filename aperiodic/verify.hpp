@@ -17,8 +17,8 @@
 
 #include "aperiodic/decide.hpp"
 #include "base/run_control.hpp"
-#include "tilesets/tile_set.hpp"
 #include "tilesets/tile_grid.hpp"
+#include "tilesets/tile_set.hpp"
 
 namespace tilekit {
 

@@ -19,8 +19,7 @@ int checked_thread_count(std::int64_t threads, const char* flag) {
 int resolve_threads(std::int64_t requested, const char* flag) {
   if (requested == 0) return omp_get_max_threads();
   if (requested < 0 || requested > kMaxThreads)
-    throw InputError(
-        fmt::format("{} must be between 0 (every core) and {}, got {}", flag, kMaxThreads, requested));
+    throw InputError(fmt::format("{} must be between 0 (every core) and {}, got {}", flag, kMaxThreads, requested));
   return int(requested);
 }
 

@@ -1,10 +1,10 @@
 #include "base/signals.hpp"
 
+#include <fmt/format.h>
+
 #include <atomic>
 #include <csignal>
 #include <new>
-
-#include <fmt/format.h>
 
 #include "base/error.hpp"
 
@@ -49,10 +49,14 @@ int SignalCatcher::caught() {
 
 std::string signal_name(int sig) {
   switch (sig) {
-    case SIGTERM: return "SIGTERM";
-    case SIGINT: return "SIGINT";
-    case SIGUSR1: return "SIGUSR1";
-    default: return fmt::format("signal {}", sig);
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGINT:
+      return "SIGINT";
+    case SIGUSR1:
+      return "SIGUSR1";
+    default:
+      return fmt::format("signal {}", sig);
   }
 }
 

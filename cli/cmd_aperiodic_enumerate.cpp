@@ -92,29 +92,40 @@ nlohmann::json smallest_json(const SmallestFound& s) {
   for (const ChainLink& l : s.chain) links.push_back(link_json(l));
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t k = 0; k < s.set.size(); ++k) list.push_back(s.set.file_colours(k));
-  return {{"set", s.node.hash},   {"tiles", s.node.tiles}, {"colors", s.node.colours},
-          {"source", s.node.root}, {"chain", links},        {"format", "nw ne sw se"},
-          {"list", list},          {"verify", verdict_text(s.check)}};
+  return {{"set", s.node.hash},
+          {"tiles", s.node.tiles},
+          {"colors", s.node.colours},
+          {"source", s.node.root},
+          {"chain", links},
+          {"format", "nw ne sw se"},
+          {"list", list},
+          {"verify", verdict_text(s.check)}};
 }
 
 nlohmann::json enumerate_json(const EnumerateOptions& o, const EnumerateResult& r, const EnumerateReport& rep) {
   nlohmann::json per_depth = nlohmann::json::array(), per_source = nlohmann::json::array(),
                  leads = nlohmann::json::array();
-  for (const auto& [d, c] : rep.depth) per_depth.push_back({{"depth", d}, {"reached", c.first}, {"expanded", c.second}});
+  for (const auto& [d, c] : rep.depth)
+    per_depth.push_back({{"depth", d}, {"reached", c.first}, {"expanded", c.second}});
   for (const SourceBest& s : rep.per_source)
-    per_source.push_back({{"source", s.source},
-                          {"reachable", s.reachable},
-                          {"expanded", rep.expanded_by_source.count(s.source) ? rep.expanded_by_source.at(s.source) : 0},
-                          {"smallest_corner", {{"set", s.best.hash}, {"tiles", s.best.tiles}, {"colors", s.best.colours}}},
-                          {"chain", stored_chain_json(s.chain, rep.graph)}});
+    per_source.push_back(
+        {{"source", s.source},
+         {"reachable", s.reachable},
+         {"expanded", rep.expanded_by_source.count(s.source) ? rep.expanded_by_source.at(s.source) : 0},
+         {"smallest_corner", {{"set", s.best.hash}, {"tiles", s.best.tiles}, {"colors", s.best.colours}}},
+         {"chain", stored_chain_json(s.chain, rep.graph)}});
   for (const EnumNode& n : rep.leads)
-    leads.push_back({{"set", n.hash}, {"tiles", n.tiles}, {"kind", std::string(kind_name(n.kind))}, {"decision", n.lead}});
-  nlohmann::json j = {{"complete", r.complete},   {"interrupted", r.interrupted}, {"timed_out", r.timed_out},
-                      {"resumed", r.resumed},     {"max_depth", o.max_depth},     {"max_tiles", o.max_tiles},
-                      {"batches", r.batches},     {"expanded", r.expanded},       {"sets", r.nodes.size()},
-                      {"edges", r.edges.size()},  {"digest", r.digest},           {"per_depth", per_depth},
-                      {"per_source", per_source}, {"over_max_tiles", r.over_limit}, {"leads", leads},
-                      {"checkpoints", r.checkpoints}, {"seconds", r.seconds},     {"total_seconds", r.total_seconds}};
+    leads.push_back(
+        {{"set", n.hash}, {"tiles", n.tiles}, {"kind", std::string(kind_name(n.kind))}, {"decision", n.lead}});
+  nlohmann::json j = {{"complete", r.complete},   {"interrupted", r.interrupted},
+                      {"timed_out", r.timed_out}, {"resumed", r.resumed},
+                      {"max_depth", o.max_depth}, {"max_tiles", o.max_tiles},
+                      {"batches", r.batches},     {"expanded", r.expanded},
+                      {"sets", r.nodes.size()},   {"edges", r.edges.size()},
+                      {"digest", r.digest},       {"per_depth", per_depth},
+                      {"per_source", per_source}, {"over_max_tiles", r.over_limit},
+                      {"leads", leads},           {"checkpoints", r.checkpoints},
+                      {"seconds", r.seconds},     {"total_seconds", r.total_seconds}};
   j["sources"] = o.sources.empty() ? published_enumeration_sources() : o.sources;
   j["shard"] = shard_text(o.shard);
   if (rep.smallest) j["smallest"] = smallest_json(*rep.smallest);
@@ -127,8 +138,10 @@ void print_enumerate(const EnumerateOptions& o, const EnumerateResult& r, const 
                      const nlohmann::json& j) {
   fmt::print("enumerate: {} sets ({} expanded) and {} edges in {} batches, {}, {:.1f} s (digest {})\n", r.nodes.size(),
              r.expanded, r.edges.size(), r.batches,
-             r.complete ? "complete" : r.interrupted ? "interrupted" : "stopped at the time limit", r.total_seconds,
-             r.digest);
+             r.complete      ? "complete"
+             : r.interrupted ? "interrupted"
+                             : "stopped at the time limit",
+             r.total_seconds, r.digest);
   for (const auto& [d, c] : rep.depth) fmt::print("  depth {}: {} sets reached, {} expanded\n", d, c.first, c.second);
   for (const SourceBest& s : rep.per_source)
     fmt::print("  {}: {} sets reachable, smallest corner set {} tiles\n", s.source, s.reachable, s.best.tiles);
@@ -159,8 +172,8 @@ void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
   if (r.interrupted)
     throw Interrupted(interrupted_message(
         r.signal, o.checkpoint_path.empty() ? std::string("nothing kept (use --checkpoint F to resume later)")
-                                            : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " +
-                                                  o.checkpoint_path + ")"));
+                                            : "checkpoint written to " + o.checkpoint_path +
+                                                  " (continue with --resume " + o.checkpoint_path + ")"));
 }
 
 struct LinkArgs {
@@ -215,12 +228,13 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   cmd->add_option("--batch", a->batch, "Sets expanded per batch (default 8; part of the run's identity)");
   // Results never depend on the threads; the shard I/N continues only from the first steps whose
   // hash is I mod N; the time limit stops the run between batches.
-  add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::TimeLimit | RunOptionFlags::Checkpoint |
-                           RunOptionFlags::Shard,
-                  a->run);
+  add_run_options(
+      cmd, RunOptionFlags::Threads | RunOptionFlags::TimeLimit | RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
+      a->run);
   cmd->add_option("--lead-max-k", a->o.lead_max_k, "Decision of unverified results: strips up to k (default 6)");
   cmd->add_option("--db", a->o.db, "Store every set and conversion in this results database");
-  cmd->add_option("--verify-period", a->smallest.verify_period, "Torus periods searched on the smallest set (default 6)")
+  cmd->add_option("--verify-period", a->smallest.verify_period,
+                  "Torus periods searched on the smallest set (default 6)")
       ->check(CLI::Range(1, 16));
   cmd->add_option("--record", a->record,
                   "Write the least sound corner set's chain and this run's command and digest here (JSON, atomically): "

@@ -222,8 +222,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "auto, cell, pegs (corner, window), edges (Wang) or sat (with --impose or --lift; window tori)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
-  add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed | RunOptionFlags::TimeLimit |
-                           RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
+  add_run_options(cmd,
+                  RunOptionFlags::Threads | RunOptionFlags::Seed | RunOptionFlags::TimeLimit |
+                      RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
                   a->run);
   cmd->add_option("--db", r.db, "Results database");
   cmd->add_option("--out", a->out,

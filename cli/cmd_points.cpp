@@ -117,12 +117,14 @@ void write_tiles_picture(const PoissonTileSet& set, const std::string& path) {
 }
 
 void print_tiles(const PoissonTileSet& set, const nlohmann::json& j) {
-  fmt::print("{} Poisson disk tiles: C={} E={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} s\n",
-             method_name(set.method), set.colours, set.edge_colours, set.points, set.rho, set.tiles.size(),
-             set.corner_regions, set.edge_regions, set.interiors, set.seconds);
+  fmt::print(
+      "{} Poisson disk tiles: C={} E={} N={} rho={}: {} tiles ({} corner, {} edge regions, {} interiors) in {:.2f} s\n",
+      method_name(set.method), set.colours, set.edge_colours, set.points, set.rho, set.tiles.size(), set.corner_regions,
+      set.edge_regions, set.interiors, set.seconds);
   if (j.contains("check"))
-    fmt::print("  check: rho {:.4f} inside tiles, {:.4f} across borders ({} {})\n", j["check"]["rho_within"].get<double>(),
-               j["check"]["rho_across"].get<double>(), j["check"]["pairs_checked"].get<std::uint64_t>(),
+    fmt::print("  check: rho {:.4f} inside tiles, {:.4f} across borders ({} {})\n",
+               j["check"]["rho_within"].get<double>(), j["check"]["rho_across"].get<double>(),
+               j["check"]["pairs_checked"].get<std::uint64_t>(),
                j["check"]["exhaustive"].get<bool>() ? "neighbour pairs, all" : "random tilings");
   if (j.contains("out")) fmt::print("  -> {}\n", j["out"].get<std::string>());
   if (j.contains("tileset_id"))

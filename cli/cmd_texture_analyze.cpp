@@ -50,7 +50,8 @@ struct AnalyzeArgs {
   int tile_px = 0, threads = 0;
 };
 
-void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
+// The tile lattice from --tile-px or --lattice, with --offset.
+Lattice analysis_lattice(const AnalyzeArgs& a) {
   if ((a.tile_px > 0) == !a.lattice.empty())
     throw InputError("give the lattice as either --tile-px T or --lattice AX,AY,BX,BY");
   Lattice l;
@@ -67,6 +68,11 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
     const std::vector<double> v = parse_numbers(a.offset, 2, "--offset");
     l.offset = {v[0], v[1]};
   }
+  return l;
+}
+
+void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
+  const Lattice l = analysis_lattice(a);
   const int threads = resolve_threads(a.threads);
   const Image img = read_image(a.image);
   std::optional<Image> exemplar, labels;

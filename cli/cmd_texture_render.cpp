@@ -51,6 +51,22 @@ double seconds_of(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+void print_render(const RenderArgs& a, const View& view, const RenderSource& src, const RenderOptions& o,
+                  const nlohmann::json& j) {
+  fmt::print("{}: {}x{} window ({} method, scale {}, tilt {}, anisotropy {}x), {} renderer{}\n", a.out, view.width,
+             view.height, render_method_name(src.method), view.scale, view.tilt, o.max_aniso,
+             j["renderer"].get<std::string>(),
+             j.contains("gl_renderer") ? " on " + j["gl_renderer"].get<std::string>() : "");
+  fmt::print("{:.2f} texture fetches per pixel, {:.1f} MiB of texture memory\n", j["fetches_per_pixel"].get<double>(),
+             double(src.memory_bytes()) / (1 << 20));
+  if (j.contains("cpu_seconds"))
+    fmt::print("CPU reference: {:.3f} s, {:.1f} Mpixel/s on {} threads\n", j["cpu_seconds"].get<double>(),
+               j["cpu_mpixels_per_second"].get<double>(), o.threads);
+  if (a.compare)
+    fmt::print("GLSL vs CPU: largest difference {}/255, mean {:.4f}/255\n", j["max_difference"].get<int>(),
+               j["mean_difference"].get<double>());
+}
+
 void run_render(const RenderArgs& a, const Context& ctx) {
   View view = parse_view(a.size, a.scale, a.origin, a.tilt);
   const std::unique_ptr<LoadedSource> loaded = load_source(a.source);
@@ -100,20 +116,7 @@ void run_render(const RenderArgs& a, const Context& ctx) {
   }
   j["renderer"] = a.glsl || a.compare ? "glsl" : "cpu";
   write_png(a.out, img);
-  emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} window ({} method, scale {}, tilt {}, anisotropy {}x), {} renderer{}\n", a.out, view.width,
-               view.height, render_method_name(src.method), view.scale, view.tilt, o.max_aniso,
-               j["renderer"].get<std::string>(),
-               j.contains("gl_renderer") ? " on " + j["gl_renderer"].get<std::string>() : "");
-    fmt::print("{:.2f} texture fetches per pixel, {:.1f} MiB of texture memory\n", j["fetches_per_pixel"].get<double>(),
-               double(src.memory_bytes()) / (1 << 20));
-    if (j.contains("cpu_seconds"))
-      fmt::print("CPU reference: {:.3f} s, {:.1f} Mpixel/s on {} threads\n", j["cpu_seconds"].get<double>(),
-                 j["cpu_mpixels_per_second"].get<double>(), o.threads);
-    if (a.compare)
-      fmt::print("GLSL vs CPU: largest difference {}/255, mean {:.4f}/255\n", j["max_difference"].get<int>(),
-                 j["mean_difference"].get<double>());
-  });
+  emit(ctx, j, [&] { print_render(a, view, src, o, j); });
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
-
 #include <string_view>
 
 #include "base/error.hpp"

@@ -10,7 +10,9 @@
 
 namespace tilekit::cli {
 
-ShardSpec RunOptions::shard_spec() const { return parse_shard(shard); }
+ShardSpec RunOptions::shard_spec() const {
+  return parse_shard(shard);
+}
 
 void RunOptions::check_seconds() const {
   for (auto [value, flag] : {std::pair{time_limit, "--time-limit"}, std::pair{checkpoint_every, "--checkpoint-every"}})

@@ -15,7 +15,9 @@ enum class RunOptionFlags : unsigned { Threads = 1, Seed = 2, TimeLimit = 4, Che
 constexpr RunOptionFlags operator|(RunOptionFlags a, RunOptionFlags b) {
   return RunOptionFlags(unsigned(a) | unsigned(b));
 }
-constexpr bool has(RunOptionFlags set, RunOptionFlags f) { return (unsigned(set) & unsigned(f)) != 0; }
+constexpr bool has(RunOptionFlags set, RunOptionFlags f) {
+  return (unsigned(set) & unsigned(f)) != 0;
+}
 
 // The values of the run options. A command sets its own defaults (a seed of 1, a time limit of
 // 10 s, a checkpoint every 60 s) before add_run_options(), which shows them in --help.

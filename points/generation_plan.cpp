@@ -41,7 +41,8 @@ GenerationPlan plan_generation(const GenerationRequest& r, const DensityFunction
   if (point_file && !fn) check_point_file(r.out, p.largest_coordinate, 1 / std::sqrt(r.density));
   if (p.stream) {
     const double per_point = r.out.ends_with(".csv") ? 40 : r.out.ends_with(".f64") ? 16 : 8;
-    require_disk(r.out, p.expected_points * per_point, fmt::format("a window of about {:.3g} points", p.expected_points));
+    require_disk(r.out, p.expected_points * per_point,
+                 fmt::format("a window of about {:.3g} points", p.expected_points));
   } else {
     require_window_memory(w, r.density, fn);
   }

@@ -13,15 +13,15 @@ namespace tilekit::points {
 
 struct GenerationRequest {
   Window window;
-  double density = 0;      // points per unit area (the scale of the base tiles under a function)
-  bool tile_set = false;   // the points come from a Poisson tile set (corner, wang, dual)
-  std::string out;         // the output path ("" = none)
-  bool analyze = false;    // the radius analysis needs the points in memory
+  double density = 0;     // points per unit area (the scale of the base tiles under a function)
+  bool tile_set = false;  // the points come from a Poisson tile set (corner, wang, dual)
+  std::string out;        // the output path ("" = none)
+  bool analyze = false;   // the radius analysis needs the points in memory
 };
 
 struct GenerationPlan {
-  bool stream = false;           // row by row straight into the point file `out`
-  double expected_points = 0;    // area x density
+  bool stream = false;            // row by row straight into the point file `out`
+  double expected_points = 0;     // area x density
   double largest_coordinate = 0;  // what a point file must hold
 };
 

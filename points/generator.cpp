@@ -10,10 +10,10 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
-#include "base/signals.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
 #include "base/resources.hpp"
+#include "base/signals.hpp"
 #include "points/tile_parts.hpp"
 #include "tiling/lattice_tiling.hpp"
 

@@ -9,9 +9,9 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
-#include "base/signals.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/poisson_tiles.hpp"
 #include "points/tile_parts.hpp"
 

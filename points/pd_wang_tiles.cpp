@@ -4,9 +4,9 @@
 #include <fmt/format.h>
 
 #include "base/parallel.hpp"
-#include "base/signals.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/poisson_tiles.hpp"
 #include "points/tile_parts.hpp"
 

@@ -10,8 +10,8 @@
 
 #include "base/error.hpp"
 #include "base/parallel.hpp"
-#include "base/signals.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/tile_parts.hpp"
 #include "tilesets/tile_set.hpp"
 

@@ -23,8 +23,8 @@ struct TreeEstimate {
 // `stop()` is asked before every probe (the time limit, a signal): the estimate then rests on the
 // probes made so far (est.probes), so no probe count runs without bound.
 template <SearchModel M, class Stop = bool (*)()>
-TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t seed,
-                            Stop stop = [] { return false; }) {
+TreeEstimate knuth_estimate(
+    const M& root, std::uint64_t probes, std::uint64_t seed, Stop stop = [] { return false; }) {
   SplitMix64 rng(mix_seed(seed ^ 0x6b6e757468ull));
   TreeEstimate est;
   std::vector<int> values, ok;

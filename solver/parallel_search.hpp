@@ -228,9 +228,7 @@ class ParallelSearch {
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
-  bool mine(std::uint64_t i) const {
-    return cfg_.run.shard.owns(i);
-  }
+  bool mine(std::uint64_t i) const { return cfg_.run.shard.owns(i); }
 
   std::uint64_t done_in_shard() const {
     std::uint64_t n = 0;

@@ -15,8 +15,8 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
-#include "base/signals.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "texture/graph_cut.hpp"
 
 namespace tilekit {

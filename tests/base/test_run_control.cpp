@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 namespace {
 
 template <class F>
-std::string message_of(F&& f) {
+std::string run_control_refusal(F&& f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -51,8 +51,9 @@ TEST(RunControl, ZeroThreadsIsEveryCoreAndOtherCountsAreCheckedOnce) {
   EXPECT_EQ(resolve_threads(0), omp_get_max_threads());
   EXPECT_EQ(resolve_threads(3), 3);
   EXPECT_EQ(resolve_threads(kMaxThreads), kMaxThreads);
-  EXPECT_EQ(message_of([] { resolve_threads(-1); }), "--threads must be between 0 (every core) and 4096, got -1");
-  EXPECT_EQ(message_of([] { resolve_threads(kMaxThreads + 1, "--jobs"); }),
+  EXPECT_EQ(run_control_refusal([] { resolve_threads(-1); }),
+            "--threads must be between 0 (every core) and 4096, got -1");
+  EXPECT_EQ(run_control_refusal([] { resolve_threads(kMaxThreads + 1, "--jobs"); }),
             "--jobs must be between 0 (every core) and 4096, got 4097");
 }
 
@@ -94,8 +95,8 @@ TEST(RunControl, EveryPieceBelongsToExactlyOneShard) {
       EXPECT_EQ(owners, 1) << i << " of " << count;
     }
   }
-  EXPECT_TRUE(ShardSpec{2, 3}.owns(5));
-  EXPECT_FALSE(ShardSpec{2, 3}.owns(6));
+  EXPECT_TRUE((ShardSpec{2, 3}.owns(5)));
+  EXPECT_FALSE((ShardSpec{2, 3}.owns(6)));
   EXPECT_TRUE((ShardSpec{0, 1}.valid()));
   EXPECT_FALSE((ShardSpec{3, 3}.valid()));
   EXPECT_FALSE((ShardSpec{-1, 3}.valid()));
@@ -115,7 +116,8 @@ TEST(CheckpointEnvelope, RoundTripsAndRefusesTruncatedCorruptOversizedAndForeign
 
   auto refused = [&](const std::string& contents, const std::string& message, std::uint64_t max = kMaxCheckpointBytes) {
     test::write_text(path, contents);
-    const std::string m = message_of([&] { read_checkpoint_envelope(path, "TILEKIT-TEST", 2, 2, nullptr, max); });
+    const std::string m =
+        run_control_refusal([&] { read_checkpoint_envelope(path, "TILEKIT-TEST", 2, 2, nullptr, max); });
     EXPECT_NE(m.find(message), std::string::npos) << m;
   };
   refused(text.substr(0, text.size() - 3), "truncated (" + std::to_string(body.size() - 3) + " of");
@@ -127,9 +129,11 @@ TEST(CheckpointEnvelope, RoundTripsAndRefusesTruncatedCorruptOversizedAndForeign
   refused(seal_checkpoint("TILEKIT-OTHER", 2, body), "not a Tilekit checkpoint file of this kind (TILEKIT-TEST)");
   refused(text, "more than the limit of 16 bytes", 16);
   refused("", "not a Tilekit checkpoint file");
-  EXPECT_EQ(message_of([&] { read_checkpoint_envelope(d / "missing", "TILEKIT-TEST", 2, 2); }),
+  EXPECT_EQ(run_control_refusal([&] { read_checkpoint_envelope(d / "missing", "TILEKIT-TEST", 2, 2); }),
             d / "missing" + ": no such checkpoint");
-  EXPECT_NE(message_of([&] { read_checkpoint_envelope(d.path.string(), "TILEKIT-TEST", 2, 2); }).find("not a regular file"),
+  EXPECT_NE(run_control_refusal([&] {
+              read_checkpoint_envelope(d.path.string(), "TILEKIT-TEST", 2, 2);
+            }).find("not a regular file"),
             std::string::npos);
 }
 
@@ -185,7 +189,7 @@ TEST(TempFiles, AnAtomicFolderReplacesTheOldFolderWholeOrLeavesItAsItWas) {
   EXPECT_FALSE(fs::exists(out + "/tile-0001.png"));
   EXPECT_TRUE(hidden_entries(d.path).empty());
   test::write_text(d / "file", "x");
-  EXPECT_NE(message_of([&] { AtomicFolder f(d / "file"); }).find("is not a folder"), std::string::npos);
+  EXPECT_NE(run_control_refusal([&] { AtomicFolder f(d / "file"); }).find("is not a folder"), std::string::npos);
 }
 
 TEST(Signals, ACaughtSignalIsOneInterruptedLineAndEndsWithItsCatcher) {
