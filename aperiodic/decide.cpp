@@ -185,7 +185,7 @@ DecideResult decide_tile_set(const TileSet& set, const DecideOptions& o) {
   Budget budget;
   budget.stop = o.stop;
   budget.catch_signals = o.catch_signals;
-  budget.deadline = deadline_after(o.time_limit, t0);
+  budget.deadline = Deadline(o.time_limit, t0);
   const std::size_t memory = o.memory_limit > 0 ? o.memory_limit : memory_limit();
   ProgressReporter progress(fmt::format("decide {}", set.name()), o.time_limit, o.progress);
   auto last_checkpoint = Clock::now();

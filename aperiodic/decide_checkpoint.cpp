@@ -5,14 +5,13 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/input.hpp"
 #include "checkpoints/checkpoint.hpp"
 
 namespace tilekit {
@@ -193,15 +192,12 @@ DecideCheckpoint decode_decide_checkpoint(std::string_view text, const std::vect
 }
 
 void write_decide_checkpoint(const std::string& path, const DecideCheckpoint& c) {
-  write_file_atomic(path, encode_decide_checkpoint(c));
+  write_file_atomic(path, encode_decide_checkpoint(c));  // sealed in the envelope by the encoder
 }
 
 DecideCheckpoint read_decide_checkpoint(const std::string& path, const std::vector<WangTile>& tiles) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("checkpoint {}: cannot read: {}", path, std::strerror(errno)));
-  std::stringstream b;
-  b << in.rdbuf();
-  return decode_decide_checkpoint(b.str(), tiles, path);
+  // A regular file of at most kMaxCheckpointBytes; the envelope is checked as it is decoded.
+  return decode_decide_checkpoint(read_input_file(path, "checkpoint", kMaxCheckpointBytes), tiles, path);
 }
 
 }  // namespace tilekit

@@ -17,7 +17,7 @@
 #include "aperiodic/decide.hpp"
 #include "aperiodic/steps.hpp"
 #include "aperiodic/store.hpp"
-#include "base/atomic_file.hpp"
+#include "base/checkpoint_envelope.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/json_input.hpp"
@@ -101,10 +101,14 @@ std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const s
 }
 
 std::string fingerprint(const EnumerateOptions& o, const std::vector<std::string>& sources) {
-  return nlohmann::json{
-      {"format", "tilekit-enumerate"}, {"sources", sources},        {"max_depth", o.max_depth},
-      {"max_tiles", o.max_tiles},      {"batch", o.batch},          {"shard", fmt::format("{}/{}", o.shard, o.shards)},
-      {"lead_max_k", o.lead_max_k},    {"steps", step_operations()}}
+  return nlohmann::json{{"format", "tilekit-enumerate"},
+                        {"sources", sources},
+                        {"max_depth", o.max_depth},
+                        {"max_tiles", o.max_tiles},
+                        {"batch", o.batch},
+                        {"shard", fmt::format("{}/{}", o.shard.index, o.shard.count)},
+                        {"lead_max_k", o.lead_max_k},
+                        {"steps", step_operations()}}
       .dump();
 }
 
@@ -128,8 +132,8 @@ nlohmann::json encode_state(const State& s) {
           {"over_limit", s.r.over_limit}, {"nodes", nodes},       {"edges", edges}};
 }
 
-State decode_state(std::string_view text, const std::string& origin) {
-  std::string_view body = open_checkpoint(text, kMagic, kVersion, kVersion, origin);
+// The body of a checkpoint, after base/checkpoint_envelope.hpp checked the envelope.
+State decode_state(std::string_view body, const std::string& origin) {
   State s;
   try {
     const nlohmann::json doc = parse_json_input(body, origin);
@@ -181,11 +185,7 @@ State decode_state(std::string_view text, const std::string& origin) {
 }
 
 State read_state(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("checkpoint {}: cannot read: {}", path, std::strerror(errno)));
-  std::stringstream b;
-  b << in.rdbuf();
-  return decode_state(b.str(), path);
+  return decode_state(read_checkpoint_envelope(path, kMagic, kVersion, kVersion), path);
 }
 
 std::string digest_of(const EnumerateResult& r) {
@@ -279,7 +279,7 @@ void merge_children(EnumerateResult& r, const std::string& parent_hash, std::vec
       n.root = parent.root;
       n.lead.clear();
     }
-    const bool owned = !from_root || hash_value(f.hash) % std::uint64_t(o.shards) == std::uint64_t(o.shard);
+    const bool owned = !from_root || o.shard.owns(hash_value(f.hash));
     if (owned && parent.owned_depth >= 0 && (n.owned_depth < 0 || parent.owned_depth + 1 < n.owned_depth))
       n.owned_depth = parent.owned_depth + 1;
     if (n.kind == TileKind::Corner && (best_corner == 0 || n.tiles < best_corner)) best_corner = n.tiles;
@@ -291,8 +291,9 @@ std::vector<std::string> checked_sources(const EnumerateOptions& o) {
   if (o.max_depth < 0) throw RequestError("max_depth", fmt::format("`max_depth` must be >= 0, got {}", o.max_depth));
   if (o.max_tiles < 1) throw RequestError("max_tiles", "`max_tiles` must be >= 1");
   if (o.batch < 1) throw RequestError("batch", "`batch` must be >= 1");
-  if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards)
-    throw RequestError("shard", fmt::format("`shard` {}/{}: expected I/N with 0 <= I < N", o.shard, o.shards));
+  if (!o.shard.valid())
+    throw RequestError("shard",
+                       fmt::format("`shard` {}/{}: expected I/N with 0 <= I < N", o.shard.index, o.shard.count));
   if (o.lead_max_k < 1)
     throw RequestError("lead_max_k", fmt::format("`lead_max_k` must be >= 1, got {}", o.lead_max_k));
   if (!(o.time_limit >= 0) || !std::isfinite(o.time_limit))
@@ -321,9 +322,10 @@ const std::vector<std::string>& published_enumeration_sources() {
 
 EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
   const std::vector<std::string> sources = checked_sources(o);
-  const int threads = o.threads > 0 ? checked_thread_count(o.threads) : default_thread_count();
+  const int threads = resolve_threads(o.threads);
 
   const auto t0 = Clock::now();
+  const Deadline deadline(o.time_limit, t0);
   std::optional<SignalCatcher> signals;
   if (o.catch_signals) signals.emplace();
   State st;
@@ -370,7 +372,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     }
     if (o.checkpoint_path.empty()) return;
     st.seconds = before + elapsed();
-    write_file_atomic(o.checkpoint_path, seal_checkpoint(kMagic, kVersion, encode_state(st).dump()));
+    write_checkpoint_envelope(o.checkpoint_path, kMagic, kVersion, encode_state(st).dump());
     ++r.checkpoints;
     last_checkpoint = Clock::now();
   };
@@ -388,8 +390,8 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       break;
     }
     // Each run finishes one batch at least, so that a short limit still makes progress.
-    const bool may_time_out = o.time_limit > 0 && batches_here > 0;
-    if (may_time_out && elapsed() >= o.time_limit) {
+    const Deadline limit = batches_here > 0 ? deadline : Deadline();
+    if (limit.expired()) {
       r.timed_out = true;
       break;
     }
@@ -402,11 +404,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     // A signal or the time limit in the middle of a batch drops the batch: the state stays that of
     // the last batch boundary, which the checkpoint below records.
     StopToken stop;
-    auto stopping = [&] {
-      if (o.catch_signals && SignalCatcher::caught()) stop.request(StopReason::Signal);
-      if (may_time_out && elapsed() >= o.time_limit) stop.request(StopReason::TimeLimit);
-      return stop.requested();
-    };
+    auto stopping = [&] { return poll_stop(stop, limit, o.catch_signals); };
     parallel_for(
         std::int64_t(batch.size()), threads,
         [&](std::int64_t i) { children[std::size_t(i)] = expand(*batch_sets[std::size_t(i)], o, stopping); }, &stop);

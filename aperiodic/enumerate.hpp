@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "base/run_control.hpp"
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {
@@ -42,8 +43,8 @@ struct EnumerateOptions {
   int max_depth = 3;                 // longest chain expanded (steps from a source)
   std::size_t max_tiles = 60;        // larger results are counted, not kept
   std::size_t batch = 8;             // sets expanded per batch (fixed: results never depend on threads)
-  int threads = 0;                   // 0: OMP default
-  int shard = 0, shards = 1;
+  int threads = 0;                   // 0: every core (base/run_control.hpp resolve_threads)
+  ShardSpec shard;                   // this run's shard (base/run_control.hpp)
   int lead_max_k = 6;                // the decision of a lead builds T_1..T_k per direction
   double time_limit = 0;             // seconds for this run; 0: none (stops between batches)
   std::string checkpoint_path, resume_path;

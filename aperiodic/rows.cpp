@@ -73,8 +73,8 @@ struct RowGraph {
 // rotating all rows, so its recurrent part is empty iff the recurrent part of this quotient
 // (vertices = words up to rotation) is empty: a bi-infinite path in the quotient lifts by rotating
 // each row into place. nullopt past max_rows rows or the deadline.
-std::optional<RowGraph> enumerate_rows(RowTransducer& t, int q, std::size_t max_rows,
-                                       std::chrono::steady_clock::time_point deadline) {
+std::optional<RowGraph> enumerate_rows(RowTransducer& t, int q, std::size_t max_rows, const Deadline& deadline,
+                                       bool catch_signals) {
   const std::vector<WangTile>& w = t.tiles;
   const bool narrow = std::all_of(w.begin(), w.end(), [](const WangTile& x) { return x.n < 256 && x.s < 256; });
   std::unordered_map<std::string, std::size_t> word_id;
@@ -86,9 +86,9 @@ std::optional<RowGraph> enumerate_rows(RowTransducer& t, int q, std::size_t max_
   std::vector<Colour> north(len), south(len);
   std::vector<std::size_t> choice(len, 0), states(len + 1);
   std::size_t steps = 0;
+  StopToken stop;
   auto past_deadline = [&] {
-    return deadline != std::chrono::steady_clock::time_point::max() && (++steps & 1023) == 0 &&
-           std::chrono::steady_clock::now() >= deadline;
+    return (deadline.limited() || catch_signals) && (++steps & 1023) == 0 && poll_stop(stop, deadline, catch_signals);
   };
   for (std::size_t first = 0; first < w.size(); ++first) {
     const std::size_t home = t.state[w[first].w], after = t.state[w[first].e];
@@ -165,11 +165,11 @@ std::size_t recurrent_rows(const RowGraph& g) {
 }  // namespace
 
 PeriodicRows periodic_rows(const std::vector<WangTile>& input, int q, bool rows, std::size_t max_rows,
-                           std::chrono::steady_clock::time_point deadline) {
+                           const Deadline& deadline, bool catch_signals) {
   PeriodicRows res;
   if (q < 1) return res;
   RowTransducer t(input, q, rows);
-  std::optional<RowGraph> g = enumerate_rows(t, q, max_rows, deadline);
+  std::optional<RowGraph> g = enumerate_rows(t, q, max_rows, deadline, catch_signals);
   if (!g) return res;  // too many rows, or the deadline passed: nothing is known
   res.enumerated = true;
   res.rows = g->edges.size();

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "base/run_control.hpp"
 #include "tilesets/tile.hpp"
 
 namespace tilekit {
@@ -24,8 +25,8 @@ struct PeriodicRows {
 
 // q-periodic rows of a Wang set (rows = true) or columns (rows = false: the transposed set).
 // Past `deadline` the enumeration stops with enumerated = false.
-PeriodicRows periodic_rows(
-    const std::vector<WangTile>& tiles, int q, bool rows, std::size_t max_rows = 2'000'000,
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+// With `catch_signals`, a caught signal (base/signals.hpp) stops it the same way.
+PeriodicRows periodic_rows(const std::vector<WangTile>& tiles, int q, bool rows, std::size_t max_rows = 2'000'000,
+                           const Deadline& deadline = {}, bool catch_signals = false);
 
 }  // namespace tilekit

@@ -13,6 +13,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
+#include "base/signals.hpp"
 #include "solver/solve.hpp"
 #include "tilesets/validator.hpp"
 
@@ -29,14 +30,10 @@ struct Outcome {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_left(Clock::time_point deadline) {
-  return deadline == Clock::time_point::max() ? 0.0 : std::chrono::duration<double>(deadline - Clock::now()).count();
-}
-
-Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_point deadline) {
+// One shape by the solver, within the deadline; a caught signal stops it (with catch_signals).
+Outcome search(const TileSet& set, int rows, int cols, bool torus, const Deadline& deadline, bool catch_signals) {
   Outcome out;
-  double time_limit = seconds_left(deadline);
-  if (deadline != Clock::time_point::max() && time_limit <= 0) return out;  // not searched: incomplete
+  if (deadline.expired() || (catch_signals && SignalCatcher::caught())) return out;  // not searched: incomplete
   TilingProblem p;
   p.set = set;
   p.rows = rows;
@@ -46,7 +43,8 @@ Outcome search(const TileSet& set, int rows, int cols, bool torus, Clock::time_p
   SearchOptions o;
   o.mode = SearchMode::First;
   o.run.threads = 1;
-  o.run.time_limit = time_limit;
+  o.run.time_limit = deadline.limited() ? std::max(1e-3, deadline.seconds_left()) : 0;
+  o.run.catch_signals = catch_signals;
   o.restarts = 0;  // exhaustive: a failure must be a proof
   SearchResult r = solve(p, o);
   out.nodes = r.nodes;
@@ -79,7 +77,7 @@ using Shapes = std::vector<std::pair<int, int>>;  // (rows, cols) of torus shape
 struct TorusRun {
   const TileSet& set;
   const VerifyOptions& opts;
-  Clock::time_point deadline;
+  Deadline deadline;
   VerifyResult& res;
   StopToken stop;
   std::atomic<std::uint64_t> nodes{0};
@@ -89,13 +87,12 @@ struct TorusRun {
   std::vector<Outcome> outcomes;
   std::size_t best_index = 0;
 
-  TorusRun(const TileSet& s, const VerifyOptions& o, Clock::time_point d, VerifyResult& r)
+  TorusRun(const TileSet& s, const VerifyOptions& o, const Deadline& d, VerifyResult& r)
       : set(s), opts(o), deadline(d), res(r) {}
 
-  bool out_of_time() {
-    if (deadline != Clock::time_point::max() && Clock::now() >= deadline) stop.request(StopReason::TimeLimit);
-    return stop.requested();
-  }
+  bool signals() const { return opts.decide.catch_signals; }
+  // The time limit or a caught signal (with the transducer route's catch_signals): stop.
+  bool out_of_time() { return poll_stop(stop, deadline, signals()); }
 
   // Searches `list` in parallel, in order; true when some shape has a witness (the earliest
   // in `list` is shapes[best_index]). Shapes after a known witness are skipped.
@@ -112,7 +109,7 @@ struct TorusRun {
           const std::size_t k = std::size_t(i);
           if (k > best.load() || out_of_time()) return;  // a smaller witness is known, or time is up
           try {
-            outcomes[k] = search(set, list[k].first, list[k].second, true, deadline);
+            outcomes[k] = search(set, list[k].first, list[k].second, true, deadline, signals());
             nodes += outcomes[k].nodes;
             {
               std::lock_guard lock(stats_mu);
@@ -137,7 +134,8 @@ struct TorusRun {
       ++res.shapes_searched;
       if (!outcomes[k].complete && k < best_index) ++res.shapes_incomplete;
     }
-    if (stop.reason() == StopReason::TimeLimit && best_index == list.size()) ++res.shapes_incomplete;
+    if ((stop.reason() == StopReason::TimeLimit || stop.reason() == StopReason::Signal) && best_index == list.size())
+      ++res.shapes_incomplete;
     return best_index < list.size();
   }
 
@@ -155,7 +153,7 @@ struct TorusRun {
           P, res.threads,
           [&](std::int64_t i) {  // longest period first
             const int q = P - int(i);
-            if (!out_of_time()) info[std::size_t(q)] = periodic_rows(as_wang, q, rows, 2'000'000, deadline);
+            if (!out_of_time()) info[std::size_t(q)] = periodic_rows(as_wang, q, rows, 2'000'000, deadline, signals());
           },
           &stop);
     };
@@ -202,7 +200,7 @@ struct TorusRun {
   // it); true when a search was cut short.
   bool search_squares() {
     for (int n = opts.max_square; n >= 1; --n) {
-      Outcome o = search(set, n, n, false, deadline);
+      Outcome o = search(set, n, n, false, deadline, signals());
       res.nodes += o.nodes;
       res.stats += o.stats;
       if (o.found) {
@@ -233,11 +231,11 @@ std::pair<Shapes, Shapes> torus_shapes(int P) {
 
 }  // namespace
 
-VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::time_point deadline) {
+VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, const Deadline& deadline) {
   check_torus_options(set, opts);
   auto t0 = Clock::now();
   VerifyResult res;
-  res.threads = opts.threads > 0 ? checked_thread_count(opts.threads) : default_thread_count();
+  res.threads = resolve_threads(opts.threads);
   TorusRun run(set, opts, deadline, res);
 
   // Phase A sends the small shapes straight to the solver: periodic sets usually show a small
@@ -269,6 +267,11 @@ VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, Clock::t
       res.verdict = "inconclusive";
     else
       res.verdict = fmt::format("no-period-up-to {}", opts.max_period);
+  }
+  if (run.signals() && SignalCatcher::caught() && res.verdict != "periodic") {
+    res.interrupted = true;  // a signal cut the searches short: nothing is proved beyond the witness
+    res.signal = SignalCatcher::caught();
+    if (res.verdict == "finite" || res.verdict.rfind("no-period-up-to", 0) == 0) res.verdict = "inconclusive";
   }
   res.route = res.verdict == "periodic" || res.verdict == "finite" ? "torus" : "";
   res.torus_verdict = res.verdict;

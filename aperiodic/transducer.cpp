@@ -17,7 +17,7 @@ namespace tilekit {
 StopReason Budget::check() const {
   if (stop && stop->requested()) return stop->reason() == StopReason::Signal ? StopReason::Signal : StopReason::Found;
   if (catch_signals && SignalCatcher::caught()) return StopReason::Signal;
-  if (std::chrono::steady_clock::now() >= deadline) return StopReason::TimeLimit;
+  if (deadline.expired()) return StopReason::TimeLimit;
   return StopReason::None;
 }
 

@@ -50,7 +50,7 @@ struct Transducer {
 // caller), a deadline, caught signals, or a memory budget for the transducers being built.
 struct Budget {
   const StopToken* stop = nullptr;
-  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  Deadline deadline;
   bool catch_signals = false;  // SignalCatcher::caught() stops the run (StopReason::Signal)
   std::size_t max_bytes = 0;   // 0: no budget
   // The reason to stop now (StopReason::None to go on).

@@ -7,7 +7,8 @@
 #include <stdexcept>
 
 #include "base/error.hpp"
-#include "base/resources.hpp"
+#include "base/run_control.hpp"
+#include "base/signals.hpp"
 
 namespace tilekit {
 
@@ -50,30 +51,32 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
     throw RequestError("time_limit",
                        fmt::format("`time_limit` must be a number of seconds >= 0, got {}", opts.time_limit));
   const auto t0 = Clock::now();
-  const auto deadline = deadline_after(opts.time_limit, t0);
-  const bool limited = deadline != Clock::time_point::max();
-  auto left = [&] {
-    return limited ? std::max(1e-3, std::chrono::duration<double>(deadline - Clock::now()).count()) : 0.0;
-  };
+  const Deadline deadline(opts.time_limit, t0);
+  // One signal stops every route: the catcher spans the whole run, and a route it interrupted
+  // starts no other.
+  std::optional<SignalCatcher> signals;
+  if (opts.decide.catch_signals) signals.emplace();
   VerifyResult res;
   std::optional<DecideResult> decision;
   if (opts.route != "torus") {
     DecideOptions d = opts.decide;
     // "both" leaves the torus route half of the time at least.
-    d.time_limit = opts.route == "both" && limited ? opts.time_limit / 2 : limited ? opts.time_limit : 0;
+    d.time_limit = opts.route == "both" && deadline.limited() ? opts.time_limit / 2
+                   : deadline.limited()                       ? opts.time_limit
+                                                              : 0;
     d.progress = opts.progress;
     decision = decide_tile_set(set, d);
     take_decision(res, *decision);
+    if (res.interrupted) res.signal = decision->signal;
   }
-  const bool time_left = !limited || Clock::now() < deadline;
-  const bool run_torus = opts.route == "torus" || opts.route == "both" ||
-                         (opts.route == "auto" && res.verdict == "unknown" && time_left && !res.interrupted);
+  const bool run_torus =
+      !res.interrupted && (opts.route == "torus" || opts.route == "both" ||
+                           (opts.route == "auto" && res.verdict == "unknown" && !deadline.expired()));
   if (run_torus) {
-    VerifyResult t = torus_route(set, opts, limited ? deadline_after(left()) : Clock::time_point::max());
+    VerifyResult t = torus_route(set, opts, deadline);
     if (decision) cross_check(*decision, t, opts.max_period);
     if (!decision || res.route.empty()) {
       t.transducer = decision;
-      t.interrupted = res.interrupted;
       res = std::move(t);
     } else {
       res.torus_verdict = t.torus_verdict;
@@ -84,6 +87,8 @@ VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts) {
       res.shapes_excluded = t.shapes_excluded;
       res.largest_square = t.largest_square;
       res.threads = t.threads;
+      res.interrupted = t.interrupted;
+      res.signal = t.signal;
     }
   }
   if (decision && !res.transducer) res.transducer = decision;

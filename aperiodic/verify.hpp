@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "aperiodic/decide.hpp"
+#include "base/run_control.hpp"
 #include "solver/search_stats.hpp"
 #include "tilesets/tile_grid.hpp"
 #include "tilesets/tile_set.hpp"
@@ -58,13 +59,14 @@ struct VerifyResult {
   std::vector<int> excluded_cols, excluded_rows;
   std::vector<std::size_t> periodic_rows, periodic_cols;  // [q-1]: q-periodic rows/columns (0: over the limit)
   int threads = 1;
-  bool interrupted = false;  // a signal stopped the transducer route (after its checkpoint)
+  bool interrupted = false;  // a signal stopped the run (every route; the transducer's after its checkpoint)
+  int signal = 0;            // the signal caught, when interrupted
   double seconds = 0;
 };
 
 VerifyResult verify_tile_set(const TileSet& set, const VerifyOptions& opts);
 
 // The torus route alone, until `deadline` (aperiodic/torus.cpp).
-VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, std::chrono::steady_clock::time_point deadline);
+VerifyResult torus_route(const TileSet& set, const VerifyOptions& opts, const Deadline& deadline);
 
 }  // namespace tilekit

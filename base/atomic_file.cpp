@@ -6,11 +6,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <utility>
 
 #include "base/error.hpp"
+#include "base/temp_files.hpp"
 
 namespace tilekit {
 
@@ -25,8 +27,15 @@ void rename_into_place(const std::string& tmp, const std::string& path) {
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
     int err = errno;
     ::unlink(tmp.c_str());
+    TempFiles::forget(tmp);
     throw InputError(fmt::format("{}: cannot rename into place: {}", path, std::strerror(err)));
   }
+  TempFiles::forget(tmp);
+}
+
+void remove_temp(const std::string& tmp) {
+  ::unlink(tmp.c_str());
+  TempFiles::forget(tmp);
 }
 
 // The rename itself survives a power cut only once the directory entry is on disk.
@@ -45,11 +54,12 @@ AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   tmp_ = (directory_of(path_) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
   fd_ = ::mkstemp(tmp_.data());
   if (fd_ < 0) throw InputError(fmt::format("{}: cannot write: {}", path_, std::strerror(errno)));
+  TempFiles::add(tmp_);
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
   if (fd_ >= 0) ::close(fd_);
-  if (!tmp_.empty()) ::unlink(tmp_.c_str());
+  if (!tmp_.empty()) remove_temp(tmp_);
 }
 
 void AtomicFileWriter::write(std::string_view bytes) {
@@ -110,7 +120,59 @@ void AtomicFileSet::commit() {
 
 AtomicFileSet::~AtomicFileSet() {
   for (const auto& [tmp, path] : staged_)
-    if (!tmp.empty()) ::unlink(tmp.c_str());
+    if (!tmp.empty()) remove_temp(tmp);
+}
+
+AtomicFolder::AtomicFolder(std::string path) : path_(std::move(path)) {
+  std::error_code ec;
+  // "out/", "./out" and "." name the folder itself: its temp sibling lives in its parent.
+  path_ = std::filesystem::absolute(path_, ec).lexically_normal().string();
+  while (path_.size() > 1 && path_.back() == '/') path_.pop_back();
+  const std::filesystem::path target(path_);
+  if (std::filesystem::exists(target, ec) && !std::filesystem::is_directory(target, ec))
+    throw InputError(fmt::format("{}: cannot write: it exists and is not a folder", path_));
+  std::filesystem::create_directories(directory_of(path_), ec);
+  tmp_ = (directory_of(path_) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  if (!::mkdtemp(tmp_.data())) {
+    const int err = errno;
+    tmp_.clear();
+    throw InputError(fmt::format("{}: cannot create the folder: {}", path_, std::strerror(err)));
+  }
+  TempFiles::add(tmp_);
+}
+
+AtomicFolder::~AtomicFolder() {
+  if (tmp_.empty()) return;
+  std::error_code ec;
+  std::filesystem::remove_all(tmp_, ec);
+  TempFiles::forget(tmp_);
+}
+
+void AtomicFolder::commit() {
+  ::chmod(tmp_.c_str(), 0755);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path_, ec)) {
+    // Swap the old folder and the new one in one step; the old one, now at the temp name, goes.
+    if (::renameat2(AT_FDCWD, tmp_.c_str(), AT_FDCWD, path_.c_str(), RENAME_EXCHANGE) != 0) {
+      // No exchange on this file system: move the old one aside first.
+      const std::string old = tmp_ + ".old";
+      if (::rename(path_.c_str(), old.c_str()) != 0)
+        throw InputError(fmt::format("{}: cannot replace the folder: {}", path_, std::strerror(errno)));
+      if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+        const int err = errno;
+        ::rename(old.c_str(), path_.c_str());
+        throw InputError(fmt::format("{}: cannot replace the folder: {}", path_, std::strerror(err)));
+      }
+      std::filesystem::remove_all(old, ec);
+    } else {
+      std::filesystem::remove_all(tmp_, ec);  // the old folder
+    }
+  } else if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    throw InputError(fmt::format("{}: cannot rename into place: {}", path_, std::strerror(errno)));
+  }
+  TempFiles::forget(tmp_);
+  tmp_.clear();
+  sync_directory(path_);
 }
 
 }  // namespace tilekit

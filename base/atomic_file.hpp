@@ -51,4 +51,22 @@ class AtomicFileSet {
   std::vector<std::pair<std::string, std::string>> staged_;  // (temp file, target)
 };
 
+// A folder of files that belong together (a texture tile set: tiles, sheet, labels, manifest),
+// written into a temp folder `.NAME.tmpXXXXXX` beside `path` and put in place whole by
+// commit(), which replaces an old folder at `path` entirely (no stale file of a larger old set
+// stays). Destroyed before commit() (an error, a signal), it removes the temp folder and `path`
+// stays as it was. Registered with TempFiles (base/temp_files.hpp) while it exists.
+class AtomicFolder {
+ public:
+  explicit AtomicFolder(std::string path);
+  AtomicFolder(const AtomicFolder&) = delete;
+  AtomicFolder& operator=(const AtomicFolder&) = delete;
+  ~AtomicFolder();
+  const std::string& temp_path() const { return tmp_; }  // write the files here
+  void commit();
+
+ private:
+  std::string path_, tmp_;
+};
+
 }  // namespace tilekit

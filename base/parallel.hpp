@@ -1,8 +1,9 @@
 #pragma once
-// One way to run work on threads (pbrt-v4's ParallelFor, OpenMP underneath) and one way to
-// stop it: a StopToken that records why a run stops (found, signal, time limit, error), the
-// first reason winning. Long loops check `stop.requested()`; signals reach a run through the
-// monitor that polls SignalCatcher (base/signals.hpp) and requests StopReason::Signal.
+// One way to run work on threads (pbrt-v4's ParallelFor, OpenMP underneath), stopped through
+// the run control's StopToken (base/run_control.hpp: why a run stops, the first reason winning).
+// Long loops check `stop.requested()`; signals reach a run through the monitor that polls
+// SignalCatcher (base/signals.hpp) and requests StopReason::Signal, or through
+// throw_if_interrupted() in a loop body, which ends the loop like any exception.
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -13,39 +14,9 @@
 #include <mutex>
 
 #include "base/error.hpp"
+#include "base/run_control.hpp"
 
 namespace tilekit {
-
-enum class StopReason : int { None = 0, Found, Signal, TimeLimit, Error, Exhausted, Cancelled };
-
-class StopToken {
- public:
-  bool requested() const noexcept { return reason_.load(std::memory_order_relaxed) != 0; }
-  StopReason reason() const noexcept { return StopReason(reason_.load()); }
-  // Sets the reason unless one is set already; true when this call set it.
-  bool request(StopReason why) noexcept {
-    int expected = 0;
-    return reason_.compare_exchange_strong(expected, int(why));
-  }
-
- private:
-  std::atomic<int> reason_{0};
-};
-
-// The most threads any command accepts: far above any machine Tilekit runs on, far below what
-// makes the OpenMP runtime fail to create a team (100000 threads crash libgomp).
-inline constexpr int kMaxThreads = 4096;
-
-// The thread count of a run that does not name one: OMP_NUM_THREADS, else every core.
-inline int default_thread_count() { return omp_get_max_threads(); }
-
-// Throws InputError unless 1 <= threads <= kMaxThreads; `what` names the value (the request
-// field `threads`: a RequestError, base/error.hpp).
-inline int checked_thread_count(std::int64_t threads, std::string_view what = "`threads`") {
-  if (threads < 1 || threads > kMaxThreads)
-    throw_input_error(what, fmt::format("{} must be between 1 and {}, got {}", what, kMaxThreads, threads));
-  return int(threads);
-}
 
 // Ends the idle OpenMP threads of the calling thread's pool. OpenMP keeps a team's threads for
 // the next parallel region, and libgomp's default wait policy has each of them spin first (300,000

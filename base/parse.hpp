@@ -9,11 +9,9 @@
 #include <string>
 #include <string_view>
 
-namespace tilekit {
+#include "base/run_control.hpp"  // ShardSpec
 
-// The most shards a run may split into: far above Slurm's usual MaxArraySize (1001) and any
-// useful subproblem count per shard (a search splits into about a thousand subproblems).
-inline constexpr std::int64_t kMaxShards = 1'000'000;
+namespace tilekit {
 
 // A decimal integer in [lo, hi]; `what` names it ("`seed`").
 std::int64_t parse_integer(std::string_view text, std::int64_t lo, std::int64_t hi, std::string_view what);
@@ -26,9 +24,6 @@ struct Dimensions {
 Dimensions parse_dimensions(std::string_view text, std::int64_t max_side, std::int64_t max_area, std::string_view what);
 
 // "I/N" with 0 <= I < N <= kMaxShards.
-struct ShardSpec {
-  int index = 0, count = 1;
-};
 ShardSpec parse_shard(std::string_view text, std::string_view what = "`shard`");
 // "I/N", the text parse_shard() reads.
 std::string shard_text(const ShardSpec& shard);

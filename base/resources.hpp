@@ -1,5 +1,5 @@
 #pragma once
-// The two resources every long command budgets: memory and time.
+// The resources every long command budgets: memory and disk.
 //
 // Memory: commands estimate what a request needs before they start (points of a window, pixels
 // of an image, states of a search) and refuse what cannot fit with exit 2 and a message naming
@@ -8,9 +8,7 @@
 // suffix) when set, else half of the memory this process can have: the machine's physical
 // memory, or the cgroup's memory.max (a Slurm job, a container) when that is lower.
 //
-// Time: a time limit of 0 means none, and so does a limit beyond kMaxTimeLimitSeconds (about
-// 31 years): a deadline that far ahead would overflow the clock's 64-bit nanoseconds and
-// fall in the past.
+// Time: the Deadline of base/run_control.hpp.
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -36,15 +34,5 @@ void require_disk(const std::string& path, double bytes, std::string_view what);
 // faults instead of one per 4 KiB, which is most of the cost of writing it once. Only advice:
 // does nothing below 8 MiB, on other systems, or where the kernel declines.
 void advise_huge_pages(void* p, std::size_t bytes);
-
-inline constexpr double kMaxTimeLimitSeconds = 1e9;
-
-// now + seconds on the steady clock, or time_point::max() for no limit (0 or beyond the bound).
-inline std::chrono::steady_clock::time_point deadline_after(double seconds,
-                                                            std::chrono::steady_clock::time_point from =
-                                                                std::chrono::steady_clock::now()) {
-  if (!(seconds > 0) || seconds > kMaxTimeLimitSeconds) return std::chrono::steady_clock::time_point::max();
-  return from + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
-}
 
 }  // namespace tilekit

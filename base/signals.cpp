@@ -1,8 +1,12 @@
 #include "base/signals.hpp"
 
+#include <fmt/format.h>
+
 #include <atomic>
 #include <csignal>
 #include <new>
+
+#include "base/error.hpp"
 
 namespace tilekit {
 
@@ -29,6 +33,7 @@ SignalCatcher::SignalCatcher() {
 SignalCatcher::~SignalCatcher() {
   if (--g_depth > 0) return;
   for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &g_previous[i], nullptr);
+  g_caught.store(0);  // the run it belonged to is over: no later loop may read it as its own
 }
 
 void SignalCatcher::catch_for_process() {
@@ -40,6 +45,27 @@ void SignalCatcher::catch_for_process() {
 
 int SignalCatcher::caught() {
   return g_caught.load(std::memory_order_relaxed);
+}
+
+std::string signal_name(int sig) {
+  switch (sig) {
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGINT:
+      return "SIGINT";
+    case SIGUSR1:
+      return "SIGUSR1";
+    default:
+      return fmt::format("signal {}", sig);
+  }
+}
+
+std::string interrupted_message(int sig, std::string_view kept) {
+  return fmt::format("interrupted by {}: {}", signal_name(sig), kept);
+}
+
+void throw_if_interrupted() {
+  if (const int sig = SignalCatcher::caught()) throw Interrupted(interrupted_message(sig, "nothing kept"));
 }
 
 }  // namespace tilekit

@@ -2,6 +2,14 @@
 // SIGTERM, SIGINT and SIGUSR1 (Slurm's warning before the wall-time kill) ask a long search
 // to stop, write its checkpoint and exit with code 3. A signal handler can only set a flag;
 // this flag is the one piece of process-wide state in Tilekit, and it is only read.
+//
+// Every long job stops the same way (base/run_control.hpp): it polls caught() (or calls
+// throw_if_interrupted() at its safe points), writes its checkpoint where it has one, lets its
+// temporary files go (base/temp_files.hpp) and throws Interrupted with interrupted_message(),
+// the one line on stderr before exit code 3.
+#include <string>
+#include <string_view>
+
 namespace tilekit {
 
 class SignalCatcher {
@@ -9,7 +17,7 @@ class SignalCatcher {
   // Installs the handlers and clears the flag; a catcher made while another is alive (e.g.
   // solve() inside a command that catches signals itself) only joins it.
   SignalCatcher();
-  ~SignalCatcher();  // the outermost one restores the previous handlers
+  ~SignalCatcher();  // the outermost one restores the previous handlers and clears the flag
   SignalCatcher(const SignalCatcher&) = delete;
   SignalCatcher& operator=(const SignalCatcher&) = delete;
   // The signal number caught since construction, or 0.
@@ -19,5 +27,17 @@ class SignalCatcher {
   // signal at any moment, exit included, is caught rather than killing the process.
   static void catch_for_process();
 };
+
+// "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
+std::string signal_name(int sig);
+
+// The one line an interrupted job ends with: "interrupted by SIGTERM: KEPT", where `kept` says
+// what stays on disk ("checkpoint written to F (continue with --resume F)", "nothing kept").
+std::string interrupted_message(int sig, std::string_view kept);
+
+// Throws Interrupted(interrupted_message(sig, "nothing kept")) once a signal was caught: the safe
+// point of a job without a checkpoint (a point set, a tile set), whose temporary files are then
+// removed as the exception unwinds. Inside parallel_for it ends the loop (base/parallel.hpp).
+void throw_if_interrupted();
 
 }  // namespace tilekit

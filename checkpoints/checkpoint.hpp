@@ -29,6 +29,7 @@
 #include <string>
 #include <string_view>
 
+#include "base/checkpoint_envelope.hpp"
 #include "solver/portfolio.hpp"
 #include "solver/problem.hpp"
 #include "solver/search_state.hpp"
@@ -37,13 +38,7 @@ namespace tilekit {
 
 inline constexpr int kCheckpointVersion = 3;
 
-// The envelope every Tilekit checkpoint file shares (above, with its own magic and version):
-// seal_checkpoint() wraps a body; open_checkpoint() returns the body after checking magic, a
-// version in [oldest, newest] (stored in *version_read), length and checksum, or throws
-// InputError naming `origin` and the problem.
-std::string seal_checkpoint(std::string_view magic, int version, std::string_view body);
-std::string_view open_checkpoint(std::string_view text, std::string_view magic, int oldest, int newest,
-                                 const std::string& origin, int* version_read = nullptr);
+// The envelope (seal_checkpoint, open_checkpoint) is base/checkpoint_envelope.hpp.
 
 struct CheckpointFile {
   nlohmann::json request;             // the run's request (packing/request.hpp); null if unknown

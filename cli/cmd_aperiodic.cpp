@@ -14,9 +14,15 @@
 
 namespace tilekit::cli {
 
-void add_verify_flags(CLI::App* cmd, VerifyOptions& o) {
-  // Checked by verify_tile_set (also for library callers): a negative or non-finite limit is exit 2.
-  cmd->add_option("--time-limit", o.time_limit, "Seconds for the whole run, every route (default 10; 0 = none)");
+void add_verify_flags(CLI::App* cmd, VerifyOptions& o, RunOptions& run, bool checkpoints) {
+  // The time limit is checked by verify_tile_set (also for library callers): a negative or
+  // non-finite limit is exit 2.
+  run.time_limit = o.time_limit;
+  run.checkpoint_every = o.decide.checkpoint_every;
+  add_run_options(cmd,
+                  checkpoints ? RunOptionFlags::Threads | RunOptionFlags::TimeLimit | RunOptionFlags::Checkpoint
+                              : RunOptionFlags::Threads | RunOptionFlags::TimeLimit,
+                  run);
   cmd->add_option("--route", o.route,
                   "auto (transducer, then torus if time is left) | transducer | torus | both (cross-checked)");
   cmd->add_option("--max-k", o.decide.max_k, "transducer: stop after T^k in each direction (default: no bound)")
@@ -36,7 +42,15 @@ void add_verify_flags(CLI::App* cmd, VerifyOptions& o) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-square", o.max_square, "torus: also search an N x N square (0 = none)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--threads", o.threads, "torus: threads (default: all)")->check(CLI::Range(1, kMaxThreads));
+}
+
+void apply_verify_run(const RunOptions& run, VerifyOptions& o) {
+  run.check_seconds();
+  o.threads = run.resolved_threads();
+  o.time_limit = run.time_limit;
+  o.decide.checkpoint_path = run.checkpoint;
+  o.decide.checkpoint_every = run.checkpoint_every;
+  o.decide.resume_path = run.resume;
 }
 
 std::string check_command(const LinkDerivation& d) {
@@ -51,7 +65,7 @@ std::string enumerate_command(const EnumerateOptions& o) {
   const EnumerateOptions d;
   if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
   if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
-  if (o.shards > 1) cmd += fmt::format(" --shard {}/{}", o.shard, o.shards);
+  if (o.shard.count > 1) cmd += fmt::format(" --shard {}/{}", o.shard.index, o.shard.count);
   return cmd;
 }
 
@@ -71,6 +85,7 @@ struct ConvertArgs {
   int verify = 0;
   bool merge_centres = false, star_edge = false, list = false;
   VerifyOptions vo;
+  RunOptions run;
 };
 
 void run_convert_command(const ConvertArgs& a, const Context& ctx) {
@@ -79,6 +94,7 @@ void run_convert_command(const ConvertArgs& a, const Context& ctx) {
   req.spec = {parse_method(a.method), {a.merge_centres, a.star_edge}, a.prune};
   req.verify = a.verify > 0;
   req.verify_options = a.vo;
+  apply_verify_run(a.run, req.verify_options);
   if (a.verify > 0) req.verify_options.max_period = a.verify;
   req.db = a.db;
   ConvertReport rep = run_convert(req);
@@ -133,7 +149,7 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
                    "Also verify the result (label periodic if a witness turns up); the value is the torus route's "
                    "--max-period")
       ->check(CLI::PositiveNumber);
-  add_verify_flags(conv, a->vo);
+  add_verify_flags(conv, a->vo, a->run, false);
   conv->add_option("--db", a->db, "Store source, result and conversion in this results database");
   add_json_flag(conv, ctx);
   conv->callback([a, &ctx] { run_convert_command(*a, ctx); });

@@ -4,13 +4,18 @@
 #include "aperiodic/enumerate.hpp"
 #include "aperiodic/verify.hpp"
 #include "cli/command.hpp"
+#include "cli/run_options.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
 
-// The flags every command that verifies shares: --time-limit, --route, --max-k, --max-period,
-// --max-square, --threads, --no-merge, --direction, --memory-limit.
-void add_verify_flags(CLI::App* cmd, VerifyOptions& o);
+// The flags every command that verifies shares: --route, --max-k, --max-period, --max-square,
+// --no-merge, --direction, --memory-limit, and the run options --time-limit (default 10 s, the
+// whole run, every route) and --threads (cli/run_options.hpp; with `checkpoints` also
+// --checkpoint, --checkpoint-every, --resume of the transducer route) into `run`.
+void add_verify_flags(CLI::App* cmd, VerifyOptions& o, RunOptions& run, bool checkpoints);
+// The run options into `o` (after parsing).
+void apply_verify_run(const RunOptions& run, VerifyOptions& o);
 
 // The command that checks a link of a chain: "tilekit aperiodic link SOURCE --steps S1,S2,...
 // --json", or "tilekit tileset show SOURCE --json" for the source itself.

@@ -8,6 +8,7 @@
 #include "aperiodic/canonical.hpp"
 #include "aperiodic/conversion_graph.hpp"
 #include "aperiodic/enumerate.hpp"
+#include "aperiodic/enumerate_report.hpp"
 #include "aperiodic/json.hpp"
 #include "aperiodic/smallest.hpp"
 #include "aperiodic/steps.hpp"
@@ -15,7 +16,9 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/parse.hpp"
+#include "base/signals.hpp"
 #include "cli/cmd_aperiodic.hpp"
+#include "cli/run_options.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -30,10 +33,14 @@ double cpu_seconds() {
 
 struct EnumerateArgs {
   EnumerateOptions o;
-  std::string shard = "0/1";
+  RunOptions run = [] {  // threads, shard, time limit and checkpoints, into `o`
+    RunOptions r;
+    r.checkpoint_every = 60;
+    return r;
+  }();
   std::int64_t max_tiles = 60, batch = 8;  // checked here: CLI11 would wrap a negative size_t
   bool quiet = false;
-  int verify_period = 6;
+  SmallestCheckOptions smallest;
   std::string record;  // --record FILE
 };
 
@@ -62,115 +69,112 @@ nlohmann::json stored_chain_json(const StoredChain& c, const ConversionGraph& g)
   return {{"source", c.source}, {"links", links}};
 }
 
-void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
+// The run's options from the flags (the sizes checked here: CLI11 would wrap a negative size_t).
+EnumerateOptions enumerate_options(const EnumerateArgs& a) {
   if (a.max_tiles < 1) throw InputError(fmt::format("--max-tiles must be >= 1, got {}", a.max_tiles));
   if (a.batch < 1 || a.batch > 1000000) throw InputError(fmt::format("--batch must be between 1 and 1000000, got {}", a.batch));
+  a.run.check_seconds();
   EnumerateOptions o = a.o;
   o.max_tiles = std::size_t(a.max_tiles);
   o.batch = std::size_t(a.batch);
-  const ShardSpec sh = parse_shard(a.shard);
-  o.shard = sh.index;
-  o.shards = sh.count;
+  o.threads = int(a.run.resolved_threads());
+  o.shard = a.run.shard_spec();
+  o.time_limit = a.run.time_limit;
+  o.checkpoint_path = a.run.checkpoint;
+  o.checkpoint_every = a.run.checkpoint_every;
+  o.resume_path = a.run.resume;
   o.progress = !a.quiet;
   o.catch_signals = true;
-  const double cpu0 = cpu_seconds();
-  EnumerateResult r = enumerate_conversions(o);
-  const ConversionGraph g = conversion_graph(r);
+  return o;
+}
 
-  // Sets by depth and by source; the least sound corner set overall.
-  std::map<int, std::pair<std::size_t, std::size_t>> depth;  // reached, expanded
-  std::map<std::string, std::size_t> expanded_by_source;
-  const EnumNode* best = nullptr;
-  nlohmann::json leads = nlohmann::json::array();
-  for (const auto& [h, n] : r.nodes) {
-    if (n.depth >= 0) {
-      ++depth[n.depth].first;
-      if (n.expanded >= 0) ++depth[n.depth].second, ++expanded_by_source[n.root];
-      if (n.kind == TileKind::Corner &&
-          (!best || std::tuple(n.tiles, n.colours, n.hash) < std::tuple(best->tiles, best->colours, best->hash)))
-        best = &n;
-    } else if (n.lead.rfind("unknown", 0) == 0) {
-      leads.push_back({{"set", h}, {"tiles", n.tiles}, {"kind", std::string(kind_name(n.kind))}, {"decision", n.lead}});
-    }
+nlohmann::json smallest_json(const SmallestFound& s) {
+  nlohmann::json links = nlohmann::json::array();
+  for (const ChainLink& l : s.chain) links.push_back(link_json(l));
+  nlohmann::json list = nlohmann::json::array();
+  for (std::size_t k = 0; k < s.set.size(); ++k) list.push_back(s.set.file_colours(k));
+  return {{"set", s.node.hash},
+          {"tiles", s.node.tiles},
+          {"colors", s.node.colours},
+          {"source", s.node.root},
+          {"chain", links},
+          {"format", "nw ne sw se"},
+          {"list", list},
+          {"verify", verdict_text(s.check)}};
+}
+
+nlohmann::json enumerate_json(const EnumerateOptions& o, const EnumerateResult& r, const EnumerateReport& rep) {
+  nlohmann::json per_depth = nlohmann::json::array(), per_source = nlohmann::json::array(),
+                 leads = nlohmann::json::array();
+  for (const auto& [d, c] : rep.depth)
+    per_depth.push_back({{"depth", d}, {"reached", c.first}, {"expanded", c.second}});
+  for (const SourceBest& s : rep.per_source)
+    per_source.push_back(
+        {{"source", s.source},
+         {"reachable", s.reachable},
+         {"expanded", rep.expanded_by_source.count(s.source) ? rep.expanded_by_source.at(s.source) : 0},
+         {"smallest_corner", {{"set", s.best.hash}, {"tiles", s.best.tiles}, {"colors", s.best.colours}}},
+         {"chain", stored_chain_json(s.chain, rep.graph)}});
+  for (const EnumNode& n : rep.leads)
+    leads.push_back(
+        {{"set", n.hash}, {"tiles", n.tiles}, {"kind", std::string(kind_name(n.kind))}, {"decision", n.lead}});
+  nlohmann::json j = {{"complete", r.complete},   {"interrupted", r.interrupted},
+                      {"timed_out", r.timed_out}, {"resumed", r.resumed},
+                      {"max_depth", o.max_depth}, {"max_tiles", o.max_tiles},
+                      {"batches", r.batches},     {"expanded", r.expanded},
+                      {"sets", r.nodes.size()},   {"edges", r.edges.size()},
+                      {"digest", r.digest},       {"per_depth", per_depth},
+                      {"per_source", per_source}, {"over_max_tiles", r.over_limit},
+                      {"leads", leads},           {"checkpoints", r.checkpoints},
+                      {"seconds", r.seconds},     {"total_seconds", r.total_seconds}};
+  j["sources"] = o.sources.empty() ? published_enumeration_sources() : o.sources;
+  j["shard"] = shard_text(o.shard);
+  if (rep.smallest) j["smallest"] = smallest_json(*rep.smallest);
+  if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
+  if (!o.db.empty()) j["db"] = o.db;
+  return j;
+}
+
+void print_enumerate(const EnumerateOptions& o, const EnumerateResult& r, const EnumerateReport& rep,
+                     const nlohmann::json& j) {
+  fmt::print("enumerate: {} sets ({} expanded) and {} edges in {} batches, {}, {:.1f} s (digest {})\n", r.nodes.size(),
+             r.expanded, r.edges.size(), r.batches,
+             r.complete      ? "complete"
+             : r.interrupted ? "interrupted"
+                             : "stopped at the time limit",
+             r.total_seconds, r.digest);
+  for (const auto& [d, c] : rep.depth) fmt::print("  depth {}: {} sets reached, {} expanded\n", d, c.first, c.second);
+  for (const SourceBest& s : rep.per_source)
+    fmt::print("  {}: {} sets reachable, smallest corner set {} tiles\n", s.source, s.reachable, s.best.tiles);
+  for (const auto& [op, n] : r.over_limit) fmt::print("  {} results over --max-tiles {}: {}\n", op, o.max_tiles, n);
+  if (const auto& s = rep.smallest) {
+    fmt::print("smallest corner set with a sound chain: {} tiles, {} colours ({}), verify: {}\n", s->node.tiles,
+               s->node.colours, s->node.hash, verdict_text(s->check));
+    for (const auto& l : j["smallest"]["chain"])
+      fmt::print("  {} -> {} {} tiles [{}]: {}\n", l["step"].get<std::string>(), l["kind"].get<std::string>(),
+                 l["tiles"].get<std::size_t>(), l["label"].get<std::string>(), l["check"].get<std::string>());
   }
-  nlohmann::json per_depth = nlohmann::json::array();
-  for (const auto& [d, c] : depth) per_depth.push_back({{"depth", d}, {"reached", c.first}, {"expanded", c.second}});
-  nlohmann::json per_source = nlohmann::json::array();
-  for (const SourceBest& s : smallest_per_source(g))
-    per_source.push_back({{"source", s.source},
-                          {"reachable", s.reachable},
-                          {"expanded", expanded_by_source[s.source]},
-                          {"smallest_corner", {{"set", s.best.hash}, {"tiles", s.best.tiles}, {"colors", s.best.colours}}},
-                          {"chain", stored_chain_json(s.chain, g)}});
-  nlohmann::json j = {{"complete", r.complete},
-                      {"interrupted", r.interrupted},
-                      {"timed_out", r.timed_out},
-                      {"resumed", r.resumed},
-                      {"sources", o.sources.empty() ? published_enumeration_sources() : o.sources},
-                      {"max_depth", o.max_depth},
-                      {"max_tiles", o.max_tiles},
-                      {"shard", a.shard},
-                      {"batches", r.batches},
-                      {"expanded", r.expanded},
-                      {"sets", r.nodes.size()},
-                      {"edges", r.edges.size()},
-                      {"digest", r.digest},
-                      {"per_depth", per_depth},
-                      {"per_source", per_source},
-                      {"over_max_tiles", r.over_limit},
-                      {"leads", leads},
-                      {"checkpoints", r.checkpoints},
-                      {"seconds", r.seconds},
-                      {"total_seconds", r.total_seconds},
-                      {"cpu_seconds", cpu_seconds() - cpu0}};
-  std::optional<VerifyResult> check;
-  if (best) {
-    std::vector<ChainLink> chain = recorded_chain(r, best->hash);
-    nlohmann::json links = nlohmann::json::array();
-    for (const ChainLink& l : chain) links.push_back(link_json(l));
-    TileSet set = set_from_canonical_text(best->text, "enumerate");
-    nlohmann::json list = nlohmann::json::array();
-    for (std::size_t k = 0; k < set.size(); ++k) list.push_back(set.file_colours(k));
-    // An independent look at the result: no periodic tiling with small periods (the torus route).
-    VerifyOptions vo;
-    vo.time_limit = 10;
-    vo.max_period = a.verify_period;
-    check = verify_for_table(set, vo, false);
-    j["smallest"] = {{"set", best->hash},   {"tiles", best->tiles},          {"colors", best->colours},
-                     {"source", best->root}, {"chain", links},                {"format", "nw ne sw se"},
-                     {"list", list},         {"verify", verdict_text(*check)}};
-  }
+  if (!rep.leads.empty())
+    fmt::print("{} leads (unverified, not periodic or finite at k={})\n", rep.leads.size(), o.lead_max_k);
+}
+
+void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
+  const EnumerateOptions o = enumerate_options(a);
+  const double cpu0 = cpu_seconds();
+  const EnumerateResult r = enumerate_conversions(o);
+  const EnumerateReport rep = enumerate_report(r, a.smallest);
+  nlohmann::json j = enumerate_json(o, r, rep);
+  j["cpu_seconds"] = cpu_seconds() - cpu0;
   if (!a.record.empty() && !r.interrupted) {
     write_file_atomic(a.record, smallest_record(enumerate_command(o), r).dump(2) + "\n");
     j["record"] = a.record;
   }
-  if (!o.checkpoint_path.empty()) j["checkpoint"] = o.checkpoint_path;
-  if (!o.db.empty()) j["db"] = o.db;
-  emit(ctx, j, [&] {
-    fmt::print("enumerate: {} sets ({} expanded) and {} edges in {} batches, {}, {:.1f} s (digest {})\n",
-               r.nodes.size(), r.expanded, r.edges.size(), r.batches,
-               r.complete ? "complete" : r.interrupted ? "interrupted" : "stopped at the time limit", r.total_seconds,
-               r.digest);
-    for (const auto& [d, c] : depth) fmt::print("  depth {}: {} sets reached, {} expanded\n", d, c.first, c.second);
-    for (const auto& s : per_source)
-      fmt::print("  {}: {} sets reachable, smallest corner set {} tiles\n", s["source"].get<std::string>(),
-                 s["reachable"].get<std::size_t>(), s["smallest_corner"]["tiles"].get<std::size_t>());
-    for (const auto& [op, n] : r.over_limit) fmt::print("  {} results over --max-tiles {}: {}\n", op, o.max_tiles, n);
-    if (best) {
-      fmt::print("smallest corner set with a sound chain: {} tiles, {} colours ({}), verify: {}\n", best->tiles,
-                 best->colours, best->hash, verdict_text(*check));
-      for (const auto& l : j["smallest"]["chain"])
-        fmt::print("  {} -> {} {} tiles [{}]: {}\n", l["step"].get<std::string>(), l["kind"].get<std::string>(),
-                   l["tiles"].get<std::size_t>(), l["label"].get<std::string>(), l["check"].get<std::string>());
-    }
-    if (!leads.empty()) fmt::print("{} leads (unverified, not periodic or finite at k={})\n", leads.size(), o.lead_max_k);
-  });
+  emit(ctx, j, [&] { print_enumerate(o, r, rep, j); });
   if (r.interrupted)
-    throw Interrupted(fmt::format("interrupted by signal {}; {}", r.signal,
-                                  o.checkpoint_path.empty()
-                                      ? std::string("no checkpoint (use --checkpoint F to resume later)")
-                                      : "checkpoint written to " + o.checkpoint_path + " (continue with --resume " +
-                                            o.checkpoint_path + ")"));
+    throw Interrupted(interrupted_message(
+        r.signal, o.checkpoint_path.empty() ? std::string("nothing kept (use --checkpoint F to resume later)")
+                                            : "checkpoint written to " + o.checkpoint_path +
+                                                  " (continue with --resume " + o.checkpoint_path + ")"));
 }
 
 struct LinkArgs {
@@ -223,16 +227,15 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   cmd->add_option("--max-depth", a->o.max_depth, "Longest chain expanded, in steps (default 3)");
   cmd->add_option("--max-tiles", a->max_tiles, "Sets with more tiles are counted, not kept (default 60)");
   cmd->add_option("--batch", a->batch, "Sets expanded per batch (default 8; part of the run's identity)");
-  cmd->add_option("--threads", a->o.threads, "Threads (default: all; results never depend on it)")
-      ->check(CLI::Range(1, kMaxThreads));
-  cmd->add_option("--shard", a->shard, "I/N: continue only from the first steps whose hash is I mod N");
+  // Results never depend on the threads; the shard I/N continues only from the first steps whose
+  // hash is I mod N; the time limit stops the run between batches.
+  add_run_options(
+      cmd, RunOptionFlags::Threads | RunOptionFlags::TimeLimit | RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
+      a->run);
   cmd->add_option("--lead-max-k", a->o.lead_max_k, "Decision of unverified results: strips up to k (default 6)");
-  cmd->add_option("--time-limit", a->o.time_limit, "Seconds for this run; it stops between batches (0 = none)");
-  cmd->add_option("--checkpoint", a->o.checkpoint_path, "Write checkpoints here (atomically)");
-  cmd->add_option("--checkpoint-every", a->o.checkpoint_every, "Seconds between checkpoints (default 60; 0: every batch)");
-  cmd->add_option("--resume", a->o.resume_path, "Continue the run this checkpoint holds");
   cmd->add_option("--db", a->o.db, "Store every set and conversion in this results database");
-  cmd->add_option("--verify-period", a->verify_period, "Torus periods searched on the smallest set (default 6)")
+  cmd->add_option("--verify-period", a->smallest.verify_period,
+                  "Torus periods searched on the smallest set (default 6)")
       ->check(CLI::Range(1, 16));
   cmd->add_option("--record", a->record,
                   "Write the least sound corner set's chain and this run's command and digest here (JSON, atomically): "

@@ -5,6 +5,7 @@
 #include "aperiodic/json.hpp"
 #include "aperiodic/requests.hpp"
 #include "base/error.hpp"
+#include "base/signals.hpp"
 #include "cli/cmd_aperiodic.hpp"
 
 namespace tilekit::cli {
@@ -13,6 +14,7 @@ namespace {
 
 struct VerifyArgs {
   VerifyRequest req;
+  RunOptions run;
   bool quiet = false;
   bool stats = false;  // --stats: the torus searches' engine counters
 };
@@ -63,6 +65,7 @@ void print_verify(const VerifyReport& rep) {
 
 void run_verify_command(const VerifyArgs& a, const Context& ctx) {
   VerifyRequest req = a.req;
+  apply_verify_run(a.run, req.options);
   req.options.progress = !a.quiet;
   req.options.decide.catch_signals = true;
   VerifyReport rep = run_verify(req);
@@ -87,9 +90,11 @@ void run_verify_command(const VerifyArgs& a, const Context& ctx) {
   if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(r.stats));
   if (r.interrupted) {
     const std::string& ck = req.options.decide.checkpoint_path;
-    throw Interrupted(fmt::format("interrupted by signal {}; {}", r.transducer ? r.transducer->signal : 0,
-                                  ck.empty() ? std::string("no checkpoint (use --checkpoint F to resume later)")
-                                             : "checkpoint written to " + ck + " (continue with --resume " + ck + ")"));
+    const bool kept = r.transducer && r.transducer->checkpoints > 0;
+    throw Interrupted(interrupted_message(
+        r.signal, kept ? "checkpoint written to " + ck + " (continue with --resume " + ck + ")"
+                       : std::string(ck.empty() ? "nothing kept (use --checkpoint F to resume the transducer route)"
+                                                : "nothing kept (the torus route keeps no checkpoint)")));
   }
 }
 
@@ -101,14 +106,8 @@ void add_aperiodic_verify_command(CLI::App* ap, Context& ctx) {
   auto a = std::make_shared<VerifyArgs>();
   cmd->add_option("SET", a->req.set, "Built-in name or tile-set file (Wang or corner; repeated tiles are dropped)")
       ->required();
-  add_verify_flags(cmd, a->req.options);
+  add_verify_flags(cmd, a->req.options, a->run, true);  // checkpoints: the transducer route's
   cmd->add_option("--prune", a->req.prune, "Verify the set pruned to radius R (aperiodic/prune.hpp)");
-  cmd->add_option("--checkpoint", a->req.options.decide.checkpoint_path,
-                  "transducer: write checkpoints here (every --checkpoint-every s, at the end, on SIGTERM/SIGUSR1)");
-  cmd->add_option("--checkpoint-every", a->req.options.decide.checkpoint_every,
-                  "Seconds between checkpoints (default 300)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--resume", a->req.options.decide.resume_path, "transducer: continue the run this checkpoint holds");
   cmd->add_option("--db", a->req.db, "Store the run, the tile set and the witness in this results database");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   cmd->add_flag("--stats", a->stats,

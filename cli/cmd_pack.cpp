@@ -7,10 +7,11 @@
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
-#include "base/parallel.hpp"
 #include "base/parse.hpp"
+#include "base/signals.hpp"
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
+#include "cli/run_options.hpp"
 #include "packing/pack.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -28,9 +29,12 @@ struct PackArgs {
   double estimate_seconds = 5;    // the slice that measures each candidate's node rate
   bool quiet = false;
   bool stats = false;         // --stats: the engine's counters (solver/search_stats.hpp)
-  std::int64_t threads = 0;   // when --threads is not given: default_thread_count()
-  std::string shard = "0/1";  // --shard I/N, parsed into request.run.shard
   std::string formulation = "auto";  // --formulation WORD, parsed into request.formulation
+  RunOptions run = [] {  // into request.run
+    RunOptions r;
+    r.checkpoint_every = 300;  // shown in --help; packing/ applies it when --checkpoint-every is not given
+    return r;
+  }();
 };
 
 // The formulation --formulation names (solver/problem.hpp).
@@ -103,6 +107,7 @@ void print_estimate(const PackRequest& req, const PackArgs& a, const Context& ct
                  r["found"].get<bool>() ? "yes" : "no");
     }
   });
+  if (j["interrupted"].get<bool>()) throw Interrupted(interrupted_message(j["signal"].get<int>(), "nothing kept"));
 }
 
 nlohmann::json outcome_json(const PackOutcome& o, const std::string& out_file) {
@@ -180,8 +185,8 @@ void print_outcome(const PackOutcome& o) {
 void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx) {
   if (a.portfolio_report) return print_portfolio_report(a, ctx);
   PackRequest req = a.request;
-  req.run.threads = cmd.count("--threads") ? checked_thread_count(a.threads) : default_thread_count();
-  req.run.shard = parse_shard(a.shard);
+  a.run.apply(req.run, cmd);
+  if (cmd.count("--checkpoint-every")) req.checkpoint_every = a.run.checkpoint_every;
   req.formulation = parse_formulation(a.formulation, !req.lift.empty());
   req.run.progress = !a.quiet;
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
@@ -204,11 +209,10 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   emit(ctx, j, [&] { print_outcome(o); });
   if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(o.result.stats));
   if (o.interrupted)
-    throw Interrupted(
-        fmt::format("interrupted by signal {}; {}", o.signal,
-                    o.checkpoint.empty()
-                        ? std::string("no checkpoint (use --checkpoint F to resume later)")
-                        : "checkpoint written to " + o.checkpoint + " (continue with --resume " + o.checkpoint + ")"));
+    throw Interrupted(interrupted_message(
+        o.signal, o.checkpoint.empty()
+                      ? std::string("nothing kept (use --checkpoint F to resume later)")
+                      : "checkpoint written to " + o.checkpoint + " (continue with --resume " + o.checkpoint + ")"));
   if (!o.not_found.empty()) throw NotFound(o.not_found);
 }
 
@@ -230,21 +234,15 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--method", r.method, "auto (database, construction, search), search or construct")
       ->capture_default_str();
   cmd->add_option("--mode", r.mode, "first, count or all (all stores every packing)")->capture_default_str();
-  cmd->add_option("--threads", a->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)");
-  cmd->add_option("--seed", r.run.seed, "Seed of the value order and restarts")->capture_default_str();
   cmd->add_option("--formulation", a->formulation,
                   "auto, cell, pegs (corner, window), edges (Wang) or sat (with --impose or --lift; window tori)")
       ->capture_default_str();
   cmd->add_option("--ordering", r.ordering, "auto, static or mrv (most constrained first)")->capture_default_str();
-  cmd->add_option("--checkpoint", r.run.checkpoint_path, "Write checkpoints to this file");
-  cmd->add_option("--checkpoint-every", r.checkpoint_every,
-                  "Seconds between checkpoints (default 300 with --checkpoint)");
-  cmd->add_option(
-      "--resume", r.run.resume_path,
-      "Resume from this checkpoint (and keep checkpointing to it); alone, it continues the run it describes");
+  add_run_options(cmd,
+                  RunOptionFlags::Threads | RunOptionFlags::Seed | RunOptionFlags::TimeLimit |
+                      RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
+                  a->run);
   cmd->add_option("--db", r.db, "Results database");
-  cmd->add_option("--shard", a->shard, "Run shard I of N (I/N, 0-based)")->capture_default_str();
-  cmd->add_option("--time-limit", r.run.time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
   cmd->add_option("--out", a->out,
                   "Write the packing found to this JSON file (with --portfolio-report: the summed statistics)");
   cmd->add_option("--impose", r.impose,

@@ -62,11 +62,6 @@ class Source {
   std::optional<points::RecursiveWangTiles> recursive_;
 };
 
-// InputError (exit 2, naming the memory limit and TILEKIT_MEMORY) unless the points of `w` at
-// `density` (or following `fn`, sampled) fit in memory: every command that makes points calls it
-// before any work (Source::points does too).
-void require_window_memory(const points::Window& w, double density, const points::DensityFunction* fn);
-
 // The subcommands of `tilekit points`, by file.
 void add_tiles_command(CLI::App* points, Context& ctx);       // cmd_points.cpp
 void add_generate_command(CLI::App* points, Context& ctx);    // cmd_points.cpp

@@ -127,7 +127,7 @@ void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
   check_extension(a.spectrum, {".png"}, "--spectrum");
   check_extension(a.plot, {".png", ".svg"}, "--plot");
   check_extension(a.zoneplate, {".png"}, "--zoneplate");
-  const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  const int threads = resolve_threads(a.threads);
   const auto xy = read_points(a.file);
   if (xy.size() < 4) throw InputError(fmt::format("{}: needs at least two points", a.file));
   const Window w = a.window.empty() ? bounding_window(xy) : parse_window(a.window);
@@ -211,7 +211,7 @@ void run_spectrum(const SpectrumArgs& a, const Context& ctx) {
   // Before any tile set is built: a layout of whole tiles holds at least a quarter of the target
   // (layout_for rounds the period), so a quarter that is already too many is refused here.
   if (periodogram_reach(a.set_points / 4) < 2) refuse_reach(a.set_points, a.set_points);
-  const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  const int threads = resolve_threads(a.threads);
   std::vector<std::string> methods = {a.source.method};
   std::stringstream list(a.compare);
   for (std::string m; std::getline(list, m, ',');)
@@ -282,7 +282,7 @@ void add_spectrum(CLI::App* points, Context& ctx) {
 
 void run_zoneplate(const ZoneplateArgs& a, const Context& ctx) {
   check_extension(a.out, {".png"}, "--out");
-  const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  const int threads = resolve_threads(a.threads);
   const Source src(a.source, threads, !a.quiet);
   const SetLayout l = layout_for(src, a.set_points);
   const auto xy = src.points(l.window, l.density, a.seed, threads, 0, false);

@@ -44,7 +44,7 @@ void run_recursive(const RecursiveArgs& a, const Context& ctx) {
   p.points = a.points;
   p.subdivision = a.subdivision;
   p.seed = a.seed;
-  p.threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  p.threads = resolve_threads(a.threads);
   p.progress = !a.quiet;
   const RecursiveWangTiles t = build_recursive_tiles(p);
   const std::string text = recursive_tiles_to_text(t);
@@ -101,7 +101,7 @@ void run_objects(const ObjectsArgs& a, const Context& ctx) {
   check_extension(a.out, {".csv", ".svg"}, "--out");
   check_extension(a.texture, {".png"}, "--texture");
   auto classes = parse_object_classes(a.objects);
-  const int threads = a.threads ? checked_thread_count(a.threads) : default_thread_count();
+  const int threads = resolve_threads(a.threads);
   const Source src(a.source, threads, !a.quiet);
   if (!src.tiles()) throw InputError("--method must be corner, wang or dual for objects (a Poisson disk tile set)");
   const PoissonTileGenerator gen(*src.tiles(), parse_hash_kind(a.source.hash), a.seed);

@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "base/resources.hpp"
 #include "cli/cmd_points.hpp"
+#include "points/generation_plan.hpp"
 #include "points/reference_sets.hpp"
 #include "points/tile_set_file.hpp"
 #include "tilesets/tile_set.hpp"
@@ -94,22 +95,6 @@ double Source::tile_size(double density) const {
   if (tiles_) return std::sqrt(double(tiles_->points) / density);
   if (recursive_) return a_.base_tile > 0 ? a_.base_tile : std::sqrt(2.5 * recursive_->points / density);
   return 0;
-}
-
-void require_window_memory(const Window& w, double density, const DensityFunction* fn) {
-  // The points (16 bytes each, twice while rows are joined, and the analysis' index) must fit in
-  // memory: estimated before any is made. A density function is sampled on a 64 x 64 grid over
-  // the window (its largest value, or its own bound where it knows one, times the area).
-  double peak = density;
-  if (fn) {
-    peak = 0;
-    for (int j = 0; j < 64; ++j)
-      for (int i = 0; i < 64; ++i)
-        peak = std::max(peak, (*fn)(w.x0 + (i + 0.5) * w.width() / 64, w.y0 + (j + 0.5) * w.height() / 64));
-    peak = std::min(std::max(peak, density), fn->upper_bound(w.x0, w.y0, w.x1, w.y1));
-  }
-  const double expected = peak * w.area();
-  require_memory(expected * 40, fmt::format("a window of about {:.3g} points", expected));
 }
 
 std::vector<double> Source::points(const Window& w, double density, std::uint64_t seed, int threads, std::int64_t period,

@@ -9,9 +9,9 @@
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
-#include "base/parallel.hpp"
 #include "cli/command.hpp"
 #include "cli/packing_lookup.hpp"
+#include "cli/run_options.hpp"
 #include "render/glsl_sampler.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -22,25 +22,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int threads_or_default(int threads) {
-  return threads == 0 ? default_thread_count() : checked_thread_count(threads);
-}
-
 HashKind hash_option(const std::string& name) {
   return parse_hash_kind(name);
 }
 
 struct TilesArgs {
   std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto";
-  SynthesisOptions synthesis;  // kind, threads, progress and keep_period come from the fields here
-  int threads = 0;
+  SynthesisOptions synthesis;  // kind, threads, seed, progress and keep_period come from the fields here
+  RunOptions run = [] {
+    RunOptions r;
+    r.seed = SynthesisOptions{}.seed;
+    return r;
+  }();
   bool tileable = false, quiet = false;
 };
 
 void run_tiles(const TilesArgs& a, const Context& ctx) {
   SynthesisOptions o = a.synthesis;
   o.kind = a.kind == "wang" ? TileKind::Wang : TileKind::Corner;
-  o.threads = threads_or_default(a.threads);
+  o.threads = a.run.resolved_threads();
+  o.seed = a.run.seed;
   o.progress = !a.quiet;
   o.keep_period = a.period == "auto";
   o.rectify = a.perspective == "auto";
@@ -88,9 +89,7 @@ void add_tiles(CLI::App& texture, Context& ctx) {
   cmd->add_option("--tile-px", a->synthesis.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")
       ->required();
-  cmd->add_option("--seed", a->synthesis.seed, "Seed: the same seed gives the same tiles on any thread count")
-      ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "Threads (default: every core)");
+  add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed, a->run);
   cmd->add_option("--search", a->synthesis.search,
                   "Candidate shared samples per sample and round (0: the first random draw, no search)")
       ->capture_default_str();

@@ -129,7 +129,7 @@ void print_analysis(const AnalyzeArgs& a, const Lattice& l, const TextureAnalysi
 
 void run_analyze(const AnalyzeArgs& a, const Context& ctx) {
   const Lattice l = analysis_lattice(a);
-  const int threads = a.threads == 0 ? default_thread_count() : checked_thread_count(a.threads);
+  const int threads = resolve_threads(a.threads);
   const Image img = read_image(a.image);
   std::optional<Image> exemplar, labels;
   std::string exemplar_name;

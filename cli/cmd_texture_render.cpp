@@ -99,7 +99,7 @@ void run_render(const RenderArgs& a, const Context& ctx) {
   const std::unique_ptr<LoadedSource> loaded = load_source(a.source);
   const RenderSource& src = loaded->source;
   RenderOptions o = loaded->options;
-  o.threads = a.threads == 0 ? default_thread_count() : checked_thread_count(a.threads);
+  o.threads = resolve_threads(a.threads);
   o.progress = !a.quiet;
   view_rows(view, src.unit_px());  // bad views are exit 2 before anything runs
   if ((a.glsl || a.compare) && !std::getenv("LP_NUM_THREADS"))

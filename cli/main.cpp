@@ -10,18 +10,37 @@
 
 #include "base/error.hpp"
 #include "base/signals.hpp"
+#include "base/temp_files.hpp"
 #include "base/version.hpp"
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
 
+namespace {
+
+// The long jobs, which run on the run control (base/run_control.hpp, base/signals.hpp): on
+// SIGTERM, SIGINT or SIGUSR1 each writes its checkpoint where it has one, removes its temporary
+// files and exits 3 with one line saying what was kept.
+bool is_long_job(std::string_view cmd, std::string_view sub) {
+  return cmd == "pack" || (cmd == "aperiodic" && (sub == "enumerate" || sub == "verify")) ||
+         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles");
+}
+
+// Ends with `code` after removing the temporary files a failed or interrupted job left registered.
+int fail(int code) {
+  tilekit::TempFiles::remove_all();
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace tilekit;
-  // `pack` and `aperiodic enumerate` checkpoint on SIGTERM/SIGINT/SIGUSR1 and exit 3: catch them
-  // before anything else, so that no signal finds the default handler, however early or late it comes.
+  // Signals are caught before anything else, so that no signal finds the default handler,
+  // however early or late it comes.
   for (int i = 1; i < argc; ++i)
     if (argv[i][0] != '-') {
       const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
-      if (cmd == "pack" || (cmd == "aperiodic" && sub == "enumerate")) SignalCatcher::catch_for_process();
+      if (is_long_job(cmd, sub)) SignalCatcher::catch_for_process();
       break;
     }
   cli::Context ctx;
@@ -51,7 +70,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const cli::Exit& e) {
-    return e.code;
+    return fail(e.code);
   } catch (const CLI::ParseError& e) {
     std::cerr << "tilekit: " << e.what() << " (see --help)" << std::endl;
     return 2;
@@ -60,21 +79,21 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const InputError& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;
-    return 2;
+    return fail(2);
   } catch (const NotFound& e) {
     std::cerr << "tilekit: " << cli::in_flag_terms(std::string_view(e.what())) << std::endl;
-    return 1;
+    return fail(1);
   } catch (const Interrupted& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;
-    return 3;
+    return fail(3);
   } catch (const std::filesystem::filesystem_error& e) {
     // A file or folder the system refuses (permissions, a link loop, a full disk): the user's to
     // fix, like any other bad input.
     std::cerr << "tilekit: " << e.what() << std::endl;
-    return 2;
+    return fail(2);
   } catch (const std::exception& e) {
     std::cerr << "tilekit: internal error: " << e.what() << std::endl;
-    return 4;
+    return fail(4);
   }
   return 0;
 }

@@ -11,7 +11,7 @@
 #include "base/json_input.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "cluster/run_directory.hpp"
-#include "solver/shard.hpp"
+#include "base/run_control.hpp"
 
 namespace tilekit::cluster {
 namespace fs = std::filesystem;
@@ -68,7 +68,7 @@ ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard) 
     return p;
   }
   for (std::uint64_t k = 0; k < st.subproblem_count; ++k) {
-    if (!shard_owns(shard, k)) continue;
+    if (!shard.owns(k)) continue;
     ++p.subproblems;
     if (k < st.finished.size() && st.finished[k]) ++p.subproblems_done;
   }

@@ -12,7 +12,7 @@
 
 namespace tilekit::cluster {
 
-// A shard's progress from its checkpoint: of the subproblems it owns (shard_owns, solver/shard.hpp, the
+// A shard's progress from its checkpoint: of the subproblems it owns (ShardSpec::owns, base/run_control.hpp, the
 // engine's definition), how many are done; the counts of the finished ones plus what the
 // in-flight ones counted so far. `error` instead when the checkpoint cannot be read.
 struct ShardProgress {

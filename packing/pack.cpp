@@ -400,7 +400,7 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
         "probes",
         "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
         "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
-  o.run.threads = o.run.threads > 0 ? o.run.threads : default_thread_count();
+  o.run.threads = resolve_threads(o.run.threads);
   PortfolioOptions po;
   po.candidates = a.candidates;
   nlohmann::json rows = nlohmann::json::array();
@@ -409,6 +409,7 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
     if (e.estimable) {
       const double cpu = e.seconds * o.run.threads, rate = cpu > 0 ? double(e.nodes) / cpu : 0;
       r["log10_tree_nodes"] = e.log10_tree_nodes;
+      r["probes"] = e.probes;
       r["nodes"] = e.nodes;
       r["seconds"] = e.seconds;
       r["nodes_per_cpu_second"] = rate;
@@ -418,9 +419,13 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
     }
     rows.push_back(r);
   }
+  // A signal ends the estimate with the candidates measured so far (the CLI exits 3).
+  const int signal = o.run.catch_signals ? SignalCatcher::caught() : 0;
   return {{"kind", std::string(kind_name(problem.set.kind()))},
           {"colors", problem.set.colours()},
           {"threads", o.run.threads},
+          {"interrupted", signal != 0},
+          {"signal", signal},
           {"probes", probes},
           {"slice_seconds", slice_seconds},
           {"candidates", rows}};

@@ -13,6 +13,7 @@
 #include "base/progress.hpp"
 #include "base/random.hpp"
 #include "base/resources.hpp"
+#include "base/signals.hpp"
 #include "points/tile_parts.hpp"
 #include "tiling/lattice_tiling.hpp"
 
@@ -212,6 +213,7 @@ void PoissonTileGenerator::generate_into(std::vector<double>& out, const Window&
     }
     Scratch sc;
     for (std::int64_t ty = ty0; ty <= ty1; ++ty) {
+      throw_if_interrupted();  // a caught signal ends a long window (base/signals.hpp)
       row(ty, tx0, tx1, w, s, sc, out);
       if (progress) progress->add(1);
     }
@@ -219,6 +221,7 @@ void PoissonTileGenerator::generate_into(std::vector<double>& out, const Window&
   }
   std::vector<std::vector<double>> rows_out(static_cast<std::size_t>(rows));
   parallel_for(rows, threads, [&](std::int64_t r) {
+    throw_if_interrupted();
     thread_local Scratch sc;
     row(ty0 + r, tx0, tx1, w, s, sc, rows_out[std::size_t(r)]);
     if (progress) progress->add(1);
@@ -249,6 +252,7 @@ void PoissonTileGenerator::generate_rows(const Window& w, double density,
   std::vector<std::vector<double>> out(static_cast<std::size_t>(batch));
   Scratch one;
   for (std::int64_t first = 0; first < rows; first += batch) {
+    throw_if_interrupted();  // the sink's file is then removed as the exception unwinds
     const std::int64_t n = std::min(batch, rows - first);
     for (std::int64_t i = 0; i < n; ++i) out[std::size_t(i)].clear();
     if (n == 1) {

@@ -11,6 +11,7 @@
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/poisson_tiles.hpp"
 #include "points/tile_parts.hpp"
 
@@ -53,10 +54,12 @@ struct CornerScheme {
   }
 };
 
-// Runs body(i) for i < n on the set's threads, one progress unit each.
+// Runs body(i) for i < n on the set's threads, one progress unit each; a caught signal ends the
+// loop (Interrupted: the set is not finished, nothing is written).
 template <class F>
 void for_each_task(std::size_t n, int threads, ProgressReporter& progress, F&& body) {
   parallel_for(std::int64_t(n), threads, [&](std::int64_t i) {
+    throw_if_interrupted();
     body(std::size_t(i));
     progress.add(1);
   });

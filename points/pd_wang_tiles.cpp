@@ -6,6 +6,7 @@
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/poisson_tiles.hpp"
 #include "points/tile_parts.hpp"
 
@@ -81,6 +82,7 @@ PoissonTileSet build_wang_poisson_tiles(const PoissonTileParams& p, const Region
   const auto seed_of = [&](std::uint64_t step, std::uint64_t i) { return derive_seed(derive_seed(p.seed, step), i); };
   auto run = [&](std::size_t count, auto&& body) {
     parallel_for(std::int64_t(count), p.threads, [&](std::int64_t i) {
+      throw_if_interrupted();  // a caught signal ends the build (base/signals.hpp)
       body(std::size_t(i));
       progress.add(1);
     });

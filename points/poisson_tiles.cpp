@@ -11,6 +11,7 @@
 #include "base/error.hpp"
 #include "base/parallel.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "points/tile_parts.hpp"
 #include "tilesets/tile_set.hpp"
 
@@ -209,6 +210,7 @@ TileSetCheck check_poisson_tiles(const PoissonTileSet& set, int threads) {
     };
     std::mutex mu;
     parallel_for(std::int64_t(set.tiles.size()), threads, [&](std::int64_t ti) {
+      throw_if_interrupted();
       const auto k = parts::corners_of(std::uint64_t(ti) % l4, l);
       const std::uint64_t edges = std::uint64_t(ti) / l4;  // ((N E + E) E + S) E + W
       const std::uint32_t es = std::uint32_t(edges / ec % ec), ee = std::uint32_t(edges / ec / ec % ec);

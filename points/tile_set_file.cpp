@@ -98,7 +98,7 @@ PoissonTileSet poisson_tiles_from_text(const std::string& text, const std::strin
   if (!(std::abs(set.radius - radius) <= 1e-9 * radius))
     throw InputError(fmt::format("{}: radius {} does not belong to rho {} with {} points (it is {})", source,
                                  set.radius, set.rho, set.points, radius));
-  const TileSetCheck c = check_poisson_tiles(set, default_thread_count());
+  const TileSetCheck c = check_poisson_tiles(set, resolve_threads(0));
   if (c.points_off_count || !(c.rho_within >= set.rho) || !(c.rho_across >= set.rho))
     throw InputError(fmt::format(
         "{}: the points do not keep rho {}: {:.4g} inside tiles, {:.4g} across tile borders ({} tiles without {} points)",

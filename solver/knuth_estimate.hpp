@@ -20,15 +20,19 @@ struct TreeEstimate {
   std::uint64_t probes = 0;
 };
 
-template <SearchModel M>
-TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t seed) {
+// `stop()` is asked before every probe (the time limit, a signal): the estimate then rests on the
+// probes made so far (est.probes), so no probe count runs without bound.
+template <SearchModel M, class Stop = bool (*)()>
+TreeEstimate knuth_estimate(
+    const M& root, std::uint64_t probes, std::uint64_t seed, Stop stop = [] { return false; }) {
   SplitMix64 rng(mix_seed(seed ^ 0x6b6e757468ull));
   TreeEstimate est;
   std::vector<int> values, ok;
   // log(a + b) from log a and log b
   auto log_add = [](double a, double b) { return std::max(a, b) + std::log1p(std::exp(-std::abs(a - b))); };
   double log_sum = -INFINITY;  // log of the sum of the probes' totals
-  for (std::uint64_t p = 0; p < probes; ++p) {
+  std::uint64_t made = 0;
+  for (; made < probes && !stop(); ++made) {
     M m = root;
     double weight = 1, total = 1, log_weight = 0, log_total = 0;
     for (;;) {
@@ -53,12 +57,12 @@ TreeEstimate knuth_estimate(const M& root, std::uint64_t probes, std::uint64_t s
     est.nodes += total;
     log_sum = log_add(log_sum, log_total);
   }
-  if (probes) {
-    est.nodes /= double(probes);
-    est.leaves /= double(probes);
-    est.log10_nodes = (log_sum - std::log(double(probes))) / std::log(10.0);
+  if (made) {
+    est.nodes /= double(made);
+    est.leaves /= double(made);
+    est.log10_nodes = (log_sum - std::log(double(made))) / std::log(10.0);
   }
-  est.probes = probes;
+  est.probes = made;
   return est;
 }
 

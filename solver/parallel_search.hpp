@@ -47,7 +47,6 @@
 #include "solver/model.hpp"
 #include "solver/problem.hpp"
 #include "solver/search_state.hpp"
-#include "solver/shard.hpp"
 #include "solver/subproblems.hpp"
 
 namespace tilekit {
@@ -93,9 +92,10 @@ class ParallelSearch {
 
   ParallelOutcome run() {
     start_ = std::chrono::steady_clock::now();
+    deadline_ = Deadline(cfg_.run.time_limit, start_);
     ParallelOutcome out;
     if (cfg_.estimate_probes) {
-      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed);
+      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed, [this] { return poll_stop(); });
       stats_.estimate_seconds = elapsed();
     }
     estimate_ = out.estimate.nodes;
@@ -239,7 +239,7 @@ class ParallelSearch {
     finalize(out, out.subproblems_done == out.shard_subproblems);
   }
 
-  bool mine(std::uint64_t i) const { return shard_owns(cfg_.run.shard, i); }
+  bool mine(std::uint64_t i) const { return cfg_.run.shard.owns(i); }
 
   std::uint64_t done_in_shard() const {
     std::uint64_t n = 0;
@@ -404,7 +404,7 @@ class ParallelSearch {
       signal_ = SignalCatcher::caught();
       stop_.request(StopReason::Signal);
     }
-    if (cfg_.run.time_limit > 0 && elapsed() >= cfg_.run.time_limit) stop_.request(StopReason::TimeLimit);
+    if (deadline_.expired()) stop_.request(StopReason::TimeLimit);
     if (cfg_.run.cancelled()) stop_.request(StopReason::Cancelled);
     return stop_.requested();
   }
@@ -496,6 +496,7 @@ class ParallelSearch {
   ParallelConfig cfg_;
   Leaf leaf_;
   std::chrono::steady_clock::time_point start_;
+  Deadline deadline_;  // run.time_limit from start_ (base/run_control.hpp)
   double prior_seconds_ = 0, estimate_ = 0;
   StopToken stop_;
   std::atomic<bool> found_{false};

@@ -240,7 +240,7 @@ class Scheduler {
   double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
   void start();
   bool mine(std::size_t i) const {  // a candidate that cannot be split runs in one shard
-    return candidates_[i].splittable || i % std::size_t(o_.run.shard.count) == std::size_t(o_.run.shard.index);
+    return candidates_[i].splittable || o_.run.shard.owns(i);
   }
   bool on_side(std::size_t i) const { return side_lane_ && !candidates_[i].resumable; }
   bool live(std::size_t i) const { return mine(i) && !state_.candidates[i].empty; }  // holds mu_
@@ -521,7 +521,10 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
                                              ? default_candidates(problem.set.kind(), problem.set.colours())
                                              : portfolio.candidates;
   std::vector<CandidateEstimate> out;
+  // The run's own time limit bounds every probe and slice together; a signal ends the list.
+  const Deadline deadline(options.run.time_limit);
   for (const std::string& name : names) {
+    if (deadline.expired() || (options.run.catch_signals && SignalCatcher::caught())) break;
     const Candidate c = make_candidate(problem, name);
     CandidateEstimate e;
     e.name = c.name;
@@ -530,7 +533,7 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
     if (e.estimable) {
       SearchOptions o = options;
       o.mode = SearchMode::First;
-      o.run.time_limit = seconds;
+      o.run.time_limit = std::max(1e-3, std::min(seconds, deadline.seconds_left()));
       o.run.checkpoint_path.clear();
       o.run.checkpoint_every = 0;
       o.estimate_probes = probes;
@@ -539,7 +542,7 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
       o.title = fmt::format("estimate {}", c.name);
       const SearchResult r = c.run(problem, o);
       e.log10_tree_nodes = r.estimated_log10_nodes;
-      e.probes = probes;
+      e.probes = r.estimated_probes;
       e.nodes = r.nodes;
       e.seconds = r.seconds;
       e.found = !r.found.empty();

@@ -119,6 +119,7 @@ struct SearchResult {
   std::uint64_t restarts = 0;   // First mode with restarts
   double estimated_nodes = 0;   // Knuth estimate (when estimate_probes > 0; infinite beyond double's range)
   double estimated_log10_nodes = 0;  // the same as a logarithm
+  std::uint64_t estimated_probes = 0;  // the probes made (fewer than asked when the time limit or a signal came)
   std::size_t checkpoints = 0;  // checkpoints written by this run
   SearchStats stats;            // this run's counters and time per phase (solver/search_stats.hpp)
 };

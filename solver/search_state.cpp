@@ -6,7 +6,7 @@
 #include <unordered_set>
 
 #include "base/error.hpp"
-#include "solver/shard.hpp"
+#include "base/run_control.hpp"
 
 namespace tilekit {
 
@@ -33,7 +33,7 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
   for (std::uint64_t i = 0; i < st.subproblem_count; ++i) {
     if (!st.finished[i]) continue;
     ++finished;
-    if (subproblems > 0 && shard_count > 0 && !shard_owns({shard_index, shard_count}, i))
+    if (subproblems > 0 && shard_count > 0 && !ShardSpec{shard_index, shard_count}.owns(i))
       throw InputError(fmt::format("finished subproblem {} is not in shard {}/{}", i, shard_index, shard_count));
   }
   if (st.finished_each.size() != finished)
@@ -59,7 +59,7 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
                                    st.subproblem_count));
     if (st.finished[f.index]) throw InputError(fmt::format("in-flight subproblem {} is also finished", f.index));
     if (!seen.insert(f.index).second) throw InputError(fmt::format("in-flight subproblem {} is listed twice", f.index));
-    if (subproblems > 0 && shard_count > 0 && !shard_owns({shard_index, shard_count}, f.index))
+    if (subproblems > 0 && shard_count > 0 && !ShardSpec{shard_index, shard_count}.owns(f.index))
       throw InputError(fmt::format("in-flight subproblem {} is not in shard {}/{}", f.index, shard_index, shard_count));
     if (f.path.size() > kMaxDecisionPath)
       throw InputError(fmt::format("in-flight subproblem {} has a path of {} decisions", f.index, f.path.size()));

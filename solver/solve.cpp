@@ -417,6 +417,7 @@ SearchResult run_model(const M& root, const TilingProblem& p, const SearchOption
   res.restarts = out.restarts;
   res.estimated_nodes = out.estimate.nodes;
   res.estimated_log10_nodes = out.estimate.log10_nodes;
+  res.estimated_probes = out.estimate.probes;
   res.checkpoints = out.checkpoints_written;
   return res;
 }
@@ -427,11 +428,10 @@ SearchResult run_sat(const TilingProblem& p, const SearchOptions& o, Plan& pl) {
   res.formulation = "sat-" + std::string(p.set.kind() == TileKind::Wang ? "edges" : "pegs");
   res.threads = 1;
   const double limit = o.run.time_limit > 0 ? o.run.time_limit : 1e6;
-  const auto t0 = std::chrono::steady_clock::now();
-  auto stop = [&] {  // cadical's own -t counts whole seconds: the limit is also watched here
-    if (o.run.catch_signals && SignalCatcher::caught() != 0) return true;
-    return o.run.cancelled() || std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= limit;
-  };
+  const Deadline deadline(o.run.time_limit);
+  StopToken token;
+  // cadical's own -t counts whole seconds: the limit is also watched here
+  auto stop = [&] { return o.run.cancelled() || poll_stop(token, deadline, o.run.catch_signals); };
   SatOutcome sat = solve_symmetric_sat(*pl.domain, limit, o.run.seed, stop);
   if (sat.status == SatOutcome::Status::Satisfiable) {
     Tiling t = pl.domain->to_tiling(sat.values);

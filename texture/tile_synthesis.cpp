@@ -16,6 +16,7 @@
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/random.hpp"
+#include "base/signals.hpp"
 #include "texture/graph_cut.hpp"
 
 namespace tilekit {
@@ -299,6 +300,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
   using Scored = std::pair<double, std::array<int, 2>>;
   std::vector<std::vector<Scored>> ranked(count);
   parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
+    throw_if_interrupted();  // a caught signal ends the synthesis: nothing is written (base/signals.hpp)
     const std::size_t t = std::size_t(ti);
     const Image& img = s.tiles[t];
     for (int k = 0; k < candidates; ++k) {
@@ -344,6 +346,7 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
   std::vector<double> cost(count);
   s.centres.assign(count, {0, 0});
   parallel_for(std::int64_t(count), o.threads, [&](std::int64_t ti) {
+    throw_if_interrupted();
     const std::size_t t = std::size_t(ti);
     Image& img = s.tiles[t];
     Image patch{n, n, std::vector<std::uint8_t>(px * 4)}, best_patch;
@@ -448,13 +451,18 @@ Image source_labels(const TextureTileSet& s, TileIndex t) {
   return img;
 }
 
-void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar) {
+// The set goes to a temp folder beside `out` that replaces the old folder whole (base/atomic_file.hpp
+// AtomicFolder): a signal, a full disk or an error leaves the old set as it was, never a mix of old
+// and new tiles, and a larger old set leaves no stale tile behind.
+void write_tile_set(const TextureTileSet& s, const std::string& out, const std::string& exemplar) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("{}: cannot create the folder", dir));
-  for (std::size_t t = 0; t < s.tiles.size(); ++t)
+  AtomicFolder folder(out);
+  const std::string& dir = folder.temp_path();
+  for (std::size_t t = 0; t < s.tiles.size(); ++t) {
+    throw_if_interrupted();
     write_png((fs::path(dir) / fmt::format("tile-{:04d}.png", t)).string(), s.tiles[t]);
+  }
   write_png((fs::path(dir) / "tileset.png").string(), tile_set_sheet(s));
   if (s.sampled.width > 0) write_png((fs::path(dir) / "exemplar.png").string(), s.sampled);
   nlohmann::json j = tile_set_json(s);
@@ -468,6 +476,8 @@ void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::
   jl["files"] = "tile-NNNN.png: the sample each pixel was copied from, one colour per sample (texture_analysis.hpp)";
   write_file_atomic((labels / "tiles.json").string(), jl.dump(2) + "\n");
   write_file_atomic((fs::path(dir) / "tiles.json").string(), j.dump(2) + "\n");
+  throw_if_interrupted();
+  folder.commit();
 }
 
 }  // namespace tilekit

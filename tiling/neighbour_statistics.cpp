@@ -127,7 +127,7 @@ NeighbourAnalysis analyze_neighbours(std::uint32_t colours, NeighbourAlgo algo, 
   }
   std::mutex mutex;
   int done = 0;
-  parallel_for(tilings, default_thread_count(), [&](std::int64_t t) {
+  parallel_for(tilings, resolve_threads(0), [&](std::int64_t t) {
     const int tx = out.resolutions[std::size_t(t)][0], ty = out.resolutions[std::size_t(t)][1];
     std::vector<std::uint16_t> lattice;
     if (algo == NeighbourAlgo::Direct)

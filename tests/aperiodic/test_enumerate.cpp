@@ -171,8 +171,7 @@ TEST(Enumerate, ShardsMergeToTheWholeRun) {
   EnumerateResult whole = enumerate_conversions(o);
   std::set<std::string> sets, edges;
   for (int i = 0; i < 3; ++i) {
-    o.shard = i;
-    o.shards = 3;
+    o.shard = {i, 3};
     EnumerateResult part = enumerate_conversions(o);
     for (const auto& [h, n] : part.nodes) sets.insert(h);
     for (const std::string& e : edge_keys(part)) edges.insert(e);
@@ -226,7 +225,7 @@ TEST(Enumerate, BadOptionsAreInputErrors) {
   o.max_depth = -1;
   EXPECT_THROW(enumerate_conversions(o), InputError);
   o = small_run();
-  o.shard = 3, o.shards = 3;
+  o.shard = {3, 3};
   EXPECT_THROW(enumerate_conversions(o), InputError);
   o = small_run();
   o.time_limit = -1;

@@ -76,8 +76,9 @@ TEST(PackCli, BadFlagsAreExit2WithAClearMessage) {
     const char* message;
   };
   for (Case c :
-       {Case{"--kind wang --colors 0", "--colors must be between 1 and 64 for a packing or atlas of the complete set, got 0"},
-        Case{"--kind wang --colors 2 --threads 0", "--threads must be between 1 and 4096, got 0"},
+       {Case{"--kind wang --colors 0",
+             "--colors must be between 1 and 64 for a packing or atlas of the complete set, got 0"},
+        Case{"--kind wang --colors 2 --threads 5000", "--threads must be between 0 (every core) and 4096, got 5000"},
         Case{"--kind hexagon --colors 2", "unknown tile kind 'hexagon' (corner, wang or window)"},
         Case{"--kind wang --colors 2 --mode most", "unknown mode 'most'"},
         Case{"--kind wang --colors 2 --shard 4/4", "--shard must be I/N with 0 <= I < N <= 1000000, got '4/4'"},

@@ -1,5 +1,5 @@
 // The status of a run from a fabricated run directory: each shard's attempts, state, result and
-// checkpoint progress over the subproblems it owns (the engine's shard_owns), and files
+// checkpoint progress over the subproblems it owns (the engine's ShardSpec::owns), and files
 // that are not what a job script writes (a FIFO, a link to /dev/urandom, a huge file) reported
 // without ever being waited on.
 #include <fmt/format.h>
@@ -16,7 +16,7 @@
 #include "checkpoints/checkpoint.hpp"
 #include "cluster/run_directory.hpp"
 #include "cluster/status.hpp"
-#include "solver/shard.hpp"
+#include "base/run_control.hpp"
 #include "solver/solve.hpp"
 #include "tests/cli_runner.hpp"
 
@@ -159,7 +159,7 @@ TEST(ClusterRunStatus, ShardOwnershipIsTheEnginesOwn) {
     ASSERT_EQ(st.subproblem_count, r.subproblems);
     ASSERT_GT(r.subproblems, std::uint64_t(shards));
     for (std::uint64_t k = 0; k < st.subproblem_count; ++k)
-      EXPECT_EQ(bool(st.finished[k]), shard_owns({i, shards}, k)) << "subproblem " << k << ", shard " << i;
+      EXPECT_EQ(bool(st.finished[k]), (ShardSpec{i, shards}.owns(k))) << "subproblem " << k << ", shard " << i;
     const cluster::ShardProgress p = cluster::checkpoint_progress(o.run.checkpoint_path, {i, shards});
     EXPECT_EQ(p.subproblems, r.shard_subproblems);
     EXPECT_EQ(p.subproblems_done, r.shard_subproblems);
