@@ -14,7 +14,7 @@ using namespace tilekit;
 
 namespace {
 
-SearchResult count_search(const TilingProblem& p, int threads, const std::string& formulation = "auto",
+SearchResult count_search(const TilingProblem& p, int threads, Formulation formulation = Formulation::Auto,
                           const std::string& impose = "") {
   SearchOptions o;
   o.mode = SearchMode::Count;
@@ -82,7 +82,7 @@ TEST(SearchStats, CountsDoNotDependOnTheThreadCount) {
 }
 
 TEST(SearchStats, TheEdgesFormulationPrunesUsedTiles) {
-  const SearchResult r = count_search(complete_packing_problem(TileKind::Wang, 2), 2, "edges");
+  const SearchResult r = count_search(complete_packing_problem(TileKind::Wang, 2), 2, Formulation::Edges);
   ASSERT_EQ(r.solutions, 203520u);
   expect_consistent(r);
   EXPECT_GT(r.stats.prunes(Prune::TileUsed), 0u);
@@ -91,7 +91,7 @@ TEST(SearchStats, TheEdgesFormulationPrunesUsedTiles) {
 }
 
 TEST(SearchStats, AnImposedGroupPrunesByOrbits) {
-  const SearchResult r = count_search(complete_packing_problem(TileKind::Wang, 2), 1, "auto", "t=0,2:pi=1,0");
+  const SearchResult r = count_search(complete_packing_problem(TileKind::Wang, 2), 1, Formulation::Auto, "t=0,2:pi=1,0");
   ASSERT_EQ(r.solutions, 1536u);  // tests/solver/test_impose_counts.cpp
   expect_consistent(r);
   EXPECT_GT(r.stats.prunes(Prune::OrbitUsed) + r.stats.prunes(Prune::PatternCount), 0u);
@@ -105,7 +105,7 @@ TEST(SearchStats, ATilingOfABoundedRegionPrunesMissingTiles) {
   p.torus = false;
   SearchOptions o;
   o.mode = SearchMode::Count;
-  o.formulation = "edges";
+  o.formulation = Formulation::Edges;
   o.subproblems = 64;
   o.run.threads = 1;
   const SearchResult r = solve(p, o);
