@@ -1,6 +1,6 @@
 // tilekit: Wang tiles and corner tiles, tile packings, aperiodic sets.
-// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a
-// checkpoint.
+// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted by a signal
+// (after its checkpoint, where the job has one).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -46,8 +46,10 @@ int main(int argc, char** argv) {
   CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
   app.set_version_flag("--version", "tilekit " + version_line());
   app.require_subcommand(1);
-  app.footer("Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.\n"
-             "Run `tilekit COMMAND --help` for a command's options.");
+  app.footer(
+      "Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted by SIGTERM, SIGINT or SIGUSR1 (after its "
+      "checkpoint, where the job has one).\n"
+      "Run `tilekit COMMAND --help` for a command's options.");
   cli::add_tileset_commands(app, ctx);
   cli::add_check_command(app, ctx);
   cli::add_pack_command(app, ctx);

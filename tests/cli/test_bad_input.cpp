@@ -152,7 +152,8 @@ TEST(BadInput, ThreadCountsBeyondTheBoundAreRefused) {
         std::string("--threads must be between 0 (every core) and 4096, got ") + t);
   EXPECT_FALSE(fs::exists(d / "db.sqlite"));
   // 0 is every core, the same for every command (base/run_control.hpp resolve_threads).
-  CliResult all = run_cli("pack --kind wang --colors 2 --mode count --quiet --json --threads 0 --db " + d / "all.sqlite");
+  CliResult all =
+      run_cli("pack --kind wang --colors 2 --mode count --quiet --json --threads 0 --db " + d / "all.sqlite");
   ASSERT_EQ(all.code, 0) << all.err;
   EXPECT_EQ(all.json()["threads"], omp_get_max_threads());
   CliResult pts = run_cli("points generate --window 0,0,4,4 --density 10 --threads 0 --quiet --json");

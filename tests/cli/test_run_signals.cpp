@@ -212,24 +212,9 @@ TEST_P(RunSignals, AperiodicEnumerateCheckpointsAndTheResumeEndsTheSame) {
   TempDir d;
   const std::string ck = d / "ck";
   auto args = [&](bool resume) {
-    std::vector<std::string> a{"aperiodic",
-                               "enumerate",
-                               "--source",
-                               "labbe-19",
-                               "--max-depth",
-                               "2",
-                               "--max-tiles",
-                               "40",
-                               "--batch",
-                               "1",
-                               "--threads",
-                               "2",
-                               "--checkpoint-every",
-                               "0",
-                               "--checkpoint",
-                               ck,
-                               "--quiet",
-                               "--json"};
+    std::vector<std::string> a{"aperiodic",          "enumerate", "--source",     "labbe-19", "--max-depth", "2",
+                               "--max-tiles",        "40",        "--batch",      "1",        "--threads",   "2",
+                               "--checkpoint-every", "0",         "--checkpoint", ck,         "--quiet",     "--json"};
     if (resume) a.insert(a.end(), {"--resume", ck});
     return a;
   };
