@@ -24,6 +24,17 @@ bool is_long_job(std::string_view cmd, std::string_view sub) {
          (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles");
 }
 
+// Signals are caught before anything else, so that no signal finds the default handler,
+// however early or late it comes.
+void catch_signals_of_long_jobs(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-') {
+      const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
+      if (is_long_job(cmd, sub)) tilekit::SignalCatcher::catch_for_process();
+      return;
+    }
+}
+
 // Ends with `code` after removing the temporary files a failed or interrupted job left registered.
 int fail(int code) {
   tilekit::TempFiles::remove_all();
@@ -34,14 +45,7 @@ int fail(int code) {
 
 int main(int argc, char** argv) {
   using namespace tilekit;
-  // Signals are caught before anything else, so that no signal finds the default handler,
-  // however early or late it comes.
-  for (int i = 1; i < argc; ++i)
-    if (argv[i][0] != '-') {
-      const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
-      if (is_long_job(cmd, sub)) SignalCatcher::catch_for_process();
-      break;
-    }
+  catch_signals_of_long_jobs(argc, argv);
   cli::Context ctx;
   CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
   app.set_version_flag("--version", "tilekit " + version_line());
