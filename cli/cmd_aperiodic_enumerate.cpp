@@ -243,8 +243,8 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer(
-      "Exit codes: 0 ok (done: complete or time limit), 2 bad input or checkpoint, 3 interrupted after a "
-      "checkpoint.");
+      "Exit codes: 0 ok (done: complete or time limit), 2 bad input or checkpoint, 3 interrupted (checkpoint written "
+      "with --checkpoint).");
   cmd->callback([a, &ctx] { run_enumerate(*a, ctx); });
 
   auto link = std::make_shared<LinkArgs>();

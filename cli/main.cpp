@@ -1,6 +1,6 @@
 // tilekit: Wang tiles and corner tiles, tile packings, aperiodic sets.
-// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted after a
-// checkpoint.
+// Exit codes (docs/ARCHITECTURE.md): 0 ok, 1 not found, 2 bad input, 3 interrupted by a signal
+// (after its checkpoint, where the job has one).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -25,6 +25,17 @@ bool is_long_job(std::string_view cmd, std::string_view sub) {
          (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles");
 }
 
+// Signals are caught before anything else, so that no signal finds the default handler,
+// however early or late it comes.
+void catch_signals_of_long_jobs(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-') {
+      const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
+      if (is_long_job(cmd, sub)) tilekit::SignalCatcher::catch_for_process();
+      return;
+    }
+}
+
 // Ends with `code` after removing the temporary files a failed or interrupted job left registered.
 int fail(int code) {
   tilekit::TempFiles::remove_all();
@@ -35,20 +46,15 @@ int fail(int code) {
 
 int main(int argc, char** argv) {
   using namespace tilekit;
-  // Signals are caught before anything else, so that no signal finds the default handler,
-  // however early or late it comes.
-  for (int i = 1; i < argc; ++i)
-    if (argv[i][0] != '-') {
-      const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
-      if (is_long_job(cmd, sub)) SignalCatcher::catch_for_process();
-      break;
-    }
+  catch_signals_of_long_jobs(argc, argv);
   cli::Context ctx;
   CLI::App app{"tilekit: Wang and corner tiles, tile packings, tilings and aperiodic tile sets", "tilekit"};
   app.set_version_flag("--version", "tilekit " + version_line());
   app.require_subcommand(1);
-  app.footer("Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted after a checkpoint.\n"
-             "Run `tilekit COMMAND --help` for a command's options.");
+  app.footer(
+      "Exit codes: 0 ok, 1 not found, 2 bad input, 3 interrupted by SIGTERM, SIGINT or SIGUSR1 (after its "
+      "checkpoint, where the job has one).\n"
+      "Run `tilekit COMMAND --help` for a command's options.");
   cli::add_tileset_commands(app, ctx);
   cli::add_check_command(app, ctx);
   cli::add_pack_command(app, ctx);

@@ -247,7 +247,7 @@ class Scheduler {
   // The length of a slice in `round`, cut to the time left; 0 when the time limit has passed.
   double slice_seconds(std::uint64_t round) const {
     double seconds = po_.first_slice * double(std::uint64_t(1) << std::min<std::uint64_t>(round, 20));
-    if (o_.run.time_limit > 0) seconds = std::min(seconds, o_.run.time_limit - elapsed());
+    seconds = std::min(seconds, Deadline(o_.run.time_limit, t0_).seconds_left());
     return std::max(seconds, 0.0);
   }
   bool stopping() const {

@@ -169,12 +169,10 @@ SearchResult solve_by_sat(const TilingProblem& problem, const SearchOptions& o, 
   res.threads = 1;
   res.fingerprint = fingerprint;
   const CnfBuilder& cnf = build();
-  auto stop = [&] {
-    if (o.run.catch_signals && SignalCatcher::caught()) return true;
-    return o.run.cancelled() || (o.run.time_limit > 0 && elapsed() >= o.run.time_limit);
-  };
-  SatRun run =
-      run_cadical(cnf, o.run.time_limit > 0 ? std::max(1.0, o.run.time_limit - elapsed()) : 0, o.run.seed, stop);
+  const Deadline deadline(o.run.time_limit, t0);
+  StopToken token;
+  auto stop = [&] { return o.run.cancelled() || poll_stop(token, deadline, o.run.catch_signals); };
+  SatRun run = run_cadical(cnf, deadline.limited() ? std::max(1.0, deadline.seconds_left()) : 0, o.run.seed, stop);
   if (run.status == SatRun::Status::Satisfiable) {
     Tiling a = decode(run.value);
     ValidationReport rep = validate(a, &problem.set);

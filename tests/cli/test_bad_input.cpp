@@ -3,6 +3,7 @@
 // crashes, hangs or leaks an internal error. Valid inputs that used to crash (a 30 KB comment)
 // now succeed.
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <sqlite3.h>
 
 #include <filesystem>
@@ -145,11 +146,19 @@ TEST(BadInput, ALongCommentLineIsReadNotARegexStackOverflow) {
 
 TEST(BadInput, ThreadCountsBeyondTheBoundAreRefused) {
   TempDir d;
-  for (const char* t : {"100000", "2147483647", "0"})
+  for (const char* t : {"100000", "2147483647", "-1"})
     expect_refused(
         run_cli(std::string("pack --kind wang --colors 2 --mode count --threads ") + t + " --db " + d / "db.sqlite"),
-        std::string("--threads must be between 1 and 4096, got ") + t);
+        std::string("--threads must be between 0 (every core) and 4096, got ") + t);
   EXPECT_FALSE(fs::exists(d / "db.sqlite"));
+  // 0 is every core, the same for every command (base/run_control.hpp resolve_threads).
+  CliResult all =
+      run_cli("pack --kind wang --colors 2 --mode count --quiet --json --threads 0 --db " + d / "all.sqlite");
+  ASSERT_EQ(all.code, 0) << all.err;
+  EXPECT_EQ(all.json()["threads"], omp_get_max_threads());
+  CliResult pts = run_cli("points generate --window 0,0,4,4 --density 10 --threads 0 --quiet --json");
+  ASSERT_EQ(pts.code, 0) << pts.err;
+  EXPECT_EQ(pts.json()["threads"], omp_get_max_threads());
 }
 
 TEST(BadInput, ShardsBeyondIntAreRefusedNotWrappedToShardZero) {

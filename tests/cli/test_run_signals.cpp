@@ -98,17 +98,17 @@ TEST_P(RunSignals, PointsTilesStopsAndWritesNothing) {
   EXPECT_EQ(hidden_leftovers(d.path), std::vector<std::string>{});
 }
 
-// A 3-colour texture tile set (81 tiles) over an old 2-colour set in the same folder: the old
+// A 6-colour texture tile set (1296 tiles of 64 px, seconds) over an old 2-colour set in the same folder: the old
 // set stays whole, no temp folder stays.
 TEST_P(RunSignals, TextureTilesLeavesTheOldSetWhole) {
   TempDir d;
   tilekit::Image ex{96, 96, std::vector<std::uint8_t>(96 * 96 * 4)};
   for (std::size_t i = 0; i < ex.pixels.size(); ++i) ex.pixels[i] = std::uint8_t((i * 2654435761u) >> 13);
   tilekit::write_png(d / "ex.png", ex);
-  const std::vector<std::string> base{"texture",   "tiles", "--exemplar", d / "ex.png", "--tile-px", "32",
+  const std::vector<std::string> base{"texture",   "tiles", "--exemplar", d / "ex.png", "--tile-px", "64",
                                       "--threads", "2",     "--out",      d / "set",    "--quiet"};
   std::vector<std::string> large = base;
-  large.insert(large.end(), {"--colors", "3", "--search", "64"});
+  large.insert(large.end(), {"--colors", "6", "--search", "64"});
   ASSERT_EQ(run_cli("texture tiles --exemplar " + (d / "ex.png") +
                     " --tile-px 32 --colors 2 --search 2 --quiet --out " + (d / "set"))
                 .code,
@@ -119,7 +119,7 @@ TEST_P(RunSignals, TextureTilesLeavesTheOldSetWhole) {
   EXPECT_LT(s.seconds, 10);
   EXPECT_EQ(slurp(d / "set/tiles.json"), manifest);
   EXPECT_TRUE(fs::exists(d / "set/tile-0015.png"));
-  EXPECT_FALSE(fs::exists(d / "set/tile-0016.png"));  // no tile of the 81-tile set
+  EXPECT_FALSE(fs::exists(d / "set/tile-0016.png"));  // no tile of the 1296-tile set
   EXPECT_EQ(hidden_leftovers(d.path), std::vector<std::string>{});
 }
 
@@ -212,24 +212,9 @@ TEST_P(RunSignals, AperiodicEnumerateCheckpointsAndTheResumeEndsTheSame) {
   TempDir d;
   const std::string ck = d / "ck";
   auto args = [&](bool resume) {
-    std::vector<std::string> a{"aperiodic",
-                               "enumerate",
-                               "--source",
-                               "labbe-19",
-                               "--max-depth",
-                               "2",
-                               "--max-tiles",
-                               "40",
-                               "--batch",
-                               "1",
-                               "--threads",
-                               "2",
-                               "--checkpoint-every",
-                               "0",
-                               "--checkpoint",
-                               ck,
-                               "--quiet",
-                               "--json"};
+    std::vector<std::string> a{"aperiodic",          "enumerate", "--source",     "labbe-19", "--max-depth", "2",
+                               "--max-tiles",        "40",        "--batch",      "1",        "--threads",   "2",
+                               "--checkpoint-every", "0",         "--checkpoint", ck,         "--quiet",     "--json"};
     if (resume) a.insert(a.end(), {"--resume", ck});
     return a;
   };

@@ -196,6 +196,21 @@ TEST(Shards, FourShardsTogetherEqualTheWholeCount) {
   EXPECT_EQ(orbits, *whole.orbits);
 }
 
+// `pack --estimate 2147483648` ran without bound: the stop asked before every probe (the time
+// limit, a signal) ends the estimate on the probes made so far.
+TEST(KnuthEstimate, AStopEndsTheProbesAndTheEstimateRestsOnThoseMade) {
+  auto p = complete_packing_problem(TileKind::Wang, 2);
+  CellModel m(p, true, CellModel::Ordering::Static);
+  int asked = 0;
+  const TreeEstimate e = knuth_estimate(m, std::uint64_t(1) << 40, 1, [&] { return ++asked > 50; });
+  EXPECT_EQ(e.probes, 50u);
+  EXPECT_EQ(asked, 51);
+  EXPECT_GT(e.nodes, 0);
+  const TreeEstimate none = knuth_estimate(m, 1000, 1, [] { return true; });
+  EXPECT_EQ(none.probes, 0u);
+  EXPECT_EQ(none.nodes, 0);
+}
+
 TEST(KnuthEstimate, IsWithinAFactorOfTwoOfTheExactTreeSize) {
   auto p = complete_packing_problem(TileKind::Wang, 2);
   CellModel m(p, true, CellModel::Ordering::Static);
