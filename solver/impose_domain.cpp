@@ -66,7 +66,10 @@ ImposedGroup build_group(const TilingProblem& problem, const std::string& spec) 
                              problem.set.vertical_radix(), problem.rows, problem.cols, problem.packing);
 }
 
-FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const ImposedGroup& group) {
+namespace {
+
+// Refuses a group that was not built for the problem's torus, tile kind and colours.
+void check_group_fits(const TilingProblem& problem, const ImposedGroup& group) {
   const TileSet& set = problem.set;
   if (!problem.torus)
     throw RequestError("impose", "`impose` needs a torus (translations do not act on a bounded grid)");
@@ -80,6 +83,13 @@ FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const I
   if (problem.packing && std::size_t(problem.rows) * std::size_t(problem.cols) != set.size())
     throw InputError(fmt::format("a packing of {} tiles needs a torus of that area, not {}x{}", set.size(),
                                  problem.rows, problem.cols));
+}
+
+}  // namespace
+
+FundamentalDomain FundamentalDomain::build(const TilingProblem& problem, const ImposedGroup& group) {
+  const TileSet& set = problem.set;
+  check_group_fits(problem, group);
 
   FundamentalDomain m;
   m.kind = set.kind();

@@ -52,7 +52,7 @@ TEST(RunControl, ZeroThreadsIsEveryCoreAndOtherCountsAreCheckedOnce) {
   EXPECT_EQ(resolve_threads(3), 3);
   EXPECT_EQ(resolve_threads(kMaxThreads), kMaxThreads);
   EXPECT_EQ(run_control_refusal([] { resolve_threads(-1); }),
-            "--threads must be between 0 (every core) and 4096, got -1");
+            "`threads` must be between 0 (every core) and 4096, got -1");
   EXPECT_EQ(run_control_refusal([] { resolve_threads(kMaxThreads + 1, "--jobs"); }),
             "--jobs must be between 0 (every core) and 4096, got 4097");
 }
