@@ -10,6 +10,7 @@ set's files). Usage: scripts/compare-builds.py OLD_TILEKIT NEW_TILEKIT [REPS (de
 import hashlib
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -22,7 +23,7 @@ def cases(work):
     """(name, args, what must agree between the binaries: a function of the JSON and the folder)"""
     return [
         ("pack wang C=2 count, 1 thread",
-         ["pack", "--kind", "wang", "--colors", "2", "--mode", "count", "--threads", "1", "--quiet", "--json",
+         ["pack", "--kind", "wang", "--colors", "2", "--mode", "count", "--method", "search", "--threads", "1", "--quiet", "--json",
           "--db", os.path.join(work, "p.sqlite")],
          lambda j, d: (j["solutions"], j["orbits"], j["nodes"])),
         ("tile corner C=4 direct 2048x2048",
@@ -53,10 +54,10 @@ def run(binary, args):
 
 
 def cpu_of(binary, args):
-    before = os.times()
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     j = run(binary, args)
-    after = os.times()
-    return j, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return j, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main():
