@@ -10,6 +10,7 @@
 #include "tests/cli_runner.hpp"
 
 using namespace tilekit;
+using namespace tilekit::test;
 
 TEST(FlagTerms, AFieldsFlagIsItsNameUnlessSpelledOtherwise) {
   EXPECT_EQ(cli::flag_of_field("shard"), "--shard");
