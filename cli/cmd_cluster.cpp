@@ -12,6 +12,7 @@
 #include "cli/command.hpp"
 #include "cluster/job_scripts.hpp"
 #include "cluster/plan.hpp"
+#include "cli/shard_words.hpp"
 #include "cluster/status.hpp"
 #include "cluster/submit.hpp"
 
@@ -28,19 +29,6 @@ struct SubmitArgs {
 struct StatusArgs {
   std::string run_dir;
 };
-
-// The flags of the shard command (`tilekit pack`) that the plan writes into the job scripts, and
-// those the job scripts set per shard (scripts/slurm/*.body.sh), which --pack-arg may not give.
-cluster::ShardCommandWords pack_shard_words() {
-  return {.kind = "--kind",
-          .colours = "--colors",
-          .method = "--method",
-          .mode = "--mode",
-          .seed = "--seed",
-          .window = "--window",
-          .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
-                        "--portfolio-stats"}};
-}
 
 // A field name with '-' for '_'.
 std::string dashed(std::string name) {
@@ -198,6 +186,17 @@ void add_status(CLI::App& cluster, Context& ctx) {
 }
 
 }  // namespace
+
+cluster::ShardCommandWords pack_shard_words() {
+  return {.kind = "--kind",
+          .colours = "--colors",
+          .method = "--method",
+          .mode = "--mode",
+          .seed = "--seed",
+          .window = "--window",
+          .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
+                        "--portfolio-stats"}};
+}
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {
   auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array");

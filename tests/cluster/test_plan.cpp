@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "tests/cluster/shard_words.hpp"
 #include "base/error.hpp"
 #include "base/parse.hpp"
+#include "cli/shard_words.hpp"
 #include "cluster/plan.hpp"
 #include "cluster/slurm_time.hpp"
 #include "tests/build_paths.hpp"
@@ -23,7 +23,7 @@ using test::write_text;
 
 cluster::SubmitRequest wang2(const std::string& run_dir) {
   cluster::SubmitRequest r;
-  r.words = test::pack_shard_words();
+  r.words = cli::pack_shard_words();
   r.kind = "wang";
   r.colors = 2;
   r.run_dir = run_dir;

@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "tests/cluster/shard_words.hpp"
 #include "base/error.hpp"
 #include "base/json_input.hpp"
 #include "cluster/job_scripts.hpp"
+#include "cli/shard_words.hpp"
 #include "cluster/plan.hpp"
 #include "cluster/run_directory.hpp"
 #include "cluster/submit.hpp"
@@ -32,7 +32,7 @@ std::string fake_sbatch(const TempDir& d) {
 
 cluster::ClusterPlan plan_in(const std::string& run_dir, int shards = 2) {
   cluster::SubmitRequest r;
-  r.words = test::pack_shard_words();
+  r.words = cli::pack_shard_words();
   r.kind = "corner";
   r.colors = 3;
   r.run_dir = run_dir;
