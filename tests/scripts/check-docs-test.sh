@@ -8,8 +8,7 @@ set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
+. "$root/tests/scripts/expect_check.sh"
 # the files git tracks or would track (not build trees, nor outputs it ignores such as out/),
 # copied once; each case starts from a fresh copy of that
 (cd "$root" && git ls-files -z --cached --others --exclude-standard | while IFS= read -r -d '' f; do
@@ -18,20 +17,8 @@ done | xargs -0 cp --parents -t "$(mkdir -p "$tmp/pristine" && echo "$tmp/pristi
 copy_tree() {
   rm -rf "$tmp/tree" && cp -a "$tmp/pristine" "$tmp/tree"
 }
-# expect RC PATTERN NAME: the check on the copy exits RC and its output matches PATTERN.
-expect() {
-  local rc=$1 pattern=$2 name=$3 out got
-  out=$(bash "$root/scripts/check-docs.sh" "$tmp/tree" 2>&1)
-  got=$?
-  if [ "$got" = "$rc" ] && grep -qE -- "$pattern" <<<"$out"; then
-    passed=$((passed + 1))
-    echo "ok: $name"
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name (exit $got, wanted $rc and /$pattern/):"
-    echo "$out"
-  fi
-}
+# expect RC PATTERN NAME: check-docs.sh on the copy exits RC and its output matches PATTERN.
+expect() { expect_check "$root/scripts/check-docs.sh" "$@"; }
 
 copy_tree
 expect 0 '^check-docs: ok' "the tree as it is passes"
@@ -77,5 +64,4 @@ copy_tree
 printf '\nMeasured on branch `texture-goals` for issue 12.\n' >>"$tmp/tree/BENCHMARKS.md"
 expect 1 'BENCHMARKS.md:[0-9]+: an issue, branch or commit stamp' "a branch or issue stamp in BENCHMARKS.md fails"
 
-echo "$passed passed, $failed failed"
-[ "$failed" = 0 ]
+finish_checks

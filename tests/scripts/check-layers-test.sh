@@ -8,28 +8,15 @@ set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
+. "$root/tests/scripts/expect_check.sh"
 copy_tree() {
   rm -rf "$tmp/tree" && mkdir "$tmp/tree"
   # the files git tracks or would track (not build trees, nor outputs it ignores such as out/)
   (cd "$root" && git ls-files -z --cached --others --exclude-standard -- '*.cpp' '*.hpp' '*.h' '*README.md' |
     xargs -0 cp --parents -t "$tmp/tree")
 }
-# expect RC PATTERN: the check on the copy exits RC and its output matches PATTERN.
-expect() {
-  local rc=$1 pattern=$2 name=$3 out got
-  out=$(bash "$root/scripts/check-layers.sh" "$tmp/tree" 2>&1)
-  got=$?
-  if [ "$got" = "$rc" ] && grep -qE -- "$pattern" <<<"$out"; then
-    passed=$((passed + 1))
-    echo "ok: $name"
-  else
-    failed=$((failed + 1))
-    echo "FAIL: $name (exit $got, wanted $rc and /$pattern/):"
-    echo "$out"
-  fi
-}
+# expect RC PATTERN NAME: check-layers.sh on the copy exits RC and its output matches PATTERN.
+expect() { expect_check "$root/scripts/check-layers.sh" "$@"; }
 
 group=${1:-all}
 copy_tree
@@ -80,5 +67,4 @@ printf 'constexpr long kBig = 1'"'"'000'"'"'000;\nconst char* kFlag = "x --color
 expect 1 "base/separator_flag.hpp:2: \"x --colors\"" "a flag after a digit separator fails"
 fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" = 0 ]
+finish_checks
