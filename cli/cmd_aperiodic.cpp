@@ -157,6 +157,7 @@ void add_aperiodic_commands(CLI::App& app, Context& ctx) {
   add_aperiodic_table_command(ap, ctx);
   add_aperiodic_verify_command(ap, ctx);
   add_aperiodic_enumerate_commands(ap, ctx);
+  add_aperiodic_certificate_commands(ap, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -31,5 +31,7 @@ std::string repeated_text(const std::vector<RepeatedTile>& r);
 void add_aperiodic_table_command(CLI::App* aperiodic, Context& ctx);
 void add_aperiodic_verify_command(CLI::App* aperiodic, Context& ctx);
 void add_aperiodic_enumerate_commands(CLI::App* aperiodic, Context& ctx);
+// `aperiodic certify` and `aperiodic check-certificate` (cmd_aperiodic_certificate.cpp).
+void add_aperiodic_certificate_commands(CLI::App* aperiodic, Context& ctx);
 
 }  // namespace tilekit::cli
