@@ -74,14 +74,38 @@ char digit(Colour c) { return c < 10 ? char('0' + c) : char('a' + (c - 10)); }
 
 // ---- translation ----
 
-// The tiles of `current` that are the centre of no 3x3 patch of `current`.
-std::vector<CornerTile> unsurroundable(const std::vector<CornerTile>& current) {
+// The tiles of `current` that are the centre of no (2r+1) x (2r+1) patch of `current`.
+std::vector<CornerTile> unsurroundable(const std::vector<CornerTile>& current, int r) {
   std::set<CornerTile> centres;
-  for_each_grid(current, 4, 4, [&](const Grid& g) { centres.insert({g[1][2], g[2][2], g[2][1], g[1][1]}); });
+  const auto c = std::size_t(r);
+  for_each_grid(current, 2 * r + 2, 2 * r + 2,
+                [&](const Grid& g) { centres.insert({g[c][c + 1], g[c + 1][c + 1], g[c + 1][c], g[c][c]}); });
   std::vector<CornerTile> out;
   for (const CornerTile& t : current)
     if (!centres.count(t)) out.push_back(t);
   return out;
+}
+
+// The rounds that prune `start` down to `target`: 3x3 patches until they remove nothing, then 5x5
+// ones, again and again. InputError when they stop above `target` (an SCC filter removed more).
+Json prune_rounds(std::vector<CornerTile> current, const std::vector<CornerTile>& target_tiles) {
+  const std::set<CornerTile> target(target_tiles.begin(), target_tiles.end());
+  Json rounds = Json::array();
+  while (current.size() > target.size()) {
+    int r = 1;
+    std::vector<CornerTile> removed = unsurroundable(current, r);
+    if (removed.empty()) removed = unsurroundable(current, r = 2);
+    if (removed.empty()) break;
+    for (const CornerTile& t : removed)
+      if (target.count(t)) throw std::logic_error("certify: the surround rounds remove a tile of the pruned set");
+    rounds.push_back({{"radius", r}, {"removed", corner_list_json(removed)}});
+    std::set<CornerTile> gone(removed.begin(), removed.end());
+    std::erase_if(current, [&](const CornerTile& t) { return gone.count(t) > 0; });
+  }
+  if (std::set<CornerTile>(current.begin(), current.end()) != target)
+    throw InputError("certify: the pruning removed tiles that surround rounds (3x3, 5x5) do not (the SCC filter): "
+                     "no certificate form for it");
+  return rounds;
 }
 
 // Edge indices of `edges` that lie on a bi-infinite path.
@@ -105,22 +129,8 @@ Json translation_link(const TileSet& a, const TileSet& b, const CertifyOptions& 
   std::vector<Colour> peg_colours(c.colours, Conversion::kNoColour);
   for (Colour x = 0; x < c.hmap.size(); ++x)
     if (c.hmap[x] != Conversion::kNoColour) peg_colours[c.hmap[x]] = x;
-  // Prune rounds (3x3 surround) down to b.
   const std::set<CornerTile> target(b.corner_tiles().begin(), b.corner_tiles().end());
-  std::vector<CornerTile> current = c.corner;
-  Json rounds = Json::array();
-  while (current.size() > target.size()) {
-    std::vector<CornerTile> removed = unsurroundable(current);
-    if (removed.empty()) break;
-    for (const CornerTile& t : removed)
-      if (target.count(t)) throw std::logic_error("certify: the surround rounds remove a tile of the pruned set");
-    rounds.push_back({{"radius", 1}, {"removed", corner_list_json(removed)}});
-    std::set<CornerTile> gone(removed.begin(), removed.end());
-    std::erase_if(current, [&](const CornerTile& t) { return gone.count(t) > 0; });
-  }
-  if (std::set<CornerTile>(current.begin(), current.end()) != target)
-    throw InputError("certify: the translation's pruning removed tiles that surround rounds do not (the SCC filter): "
-                     "no certificate form for it");
+  const Json rounds = prune_rounds(c.corner, b.corner_tiles());
   // The lift table at the least radius whose Wang windows give their centre back.
   std::vector<std::pair<Colour, Colour>> edges;
   for (const WangTile& t : w) edges.emplace_back(t.w, t.e);
@@ -262,19 +272,25 @@ Json certify_chain(const RecordedChain& record, const CertifyOptions& o) {
         wt.push_back({h[{t.nw, t.ne}], v[{t.ne, t.se}], h[{t.sw, t.se}], v[{t.nw, t.sw}]});
       next = TileSet::wang(std::move(wt));
       links.push_back({{"op", "to-wang"}, {"horizontal_pairs", hp}, {"vertical_pairs", vp}, {"to", set_json(next)}});
-    } else if (op == "horizontal+prune" || op == "horizontal") {
+    } else if (op == "prune" || op == "prune5") {
+      std::optional<StepResult> r = apply_step(current, op);
+      if (!r || current.kind() != TileKind::Corner) throw InputError("certify: " + op + " of a Wang set has no form");
+      next = r->set;
+      links.push_back({{"op", "prune"}, {"prune", prune_rounds(current.corner_tiles(), next.corner_tiles())},
+                       {"to", set_json(next)}});
+    } else if (op == "horizontal+prune" || op == "horizontal+prune5" || op == "horizontal") {
       std::optional<StepResult> r = apply_step(current, op);
       if (!r || r->label != "conjugate") throw InputError("certify: the translation is not conjugate");
       next = r->set;
       links.push_back(translation_link(current, next, o));
-    } else if (op == "merge-colours") {
-      const MergeSearch m = least_colour_merge(current.corner_tiles(), false, 1, 1);
+    } else if (op == "merge-colours" || op == "merge-colours2") {
+      const MergeSearch m = least_colour_merge(current.corner_tiles(), false, op == "merge-colours2" ? 2 : 1, 1);
       if (m.merges.empty() || !m.conjugate) throw InputError("certify: merge-colours gives no conjugate merge");
       next = TileSet::corner(m.tiles);
       links.push_back(merge_link(current, next, m, o));
     } else {
       throw InputError(fmt::format("certify: no certificate form for step '{}' (blocks, to-wang, horizontal, "
-                                   "horizontal+prune, merge-colours)",
+                                   "horizontal+prune, horizontal+prune5, prune, prune5, merge-colours, merge-colours2)",
                                    step));
     }
     current = to_canonical_orientation(next);

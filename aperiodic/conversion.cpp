@@ -27,7 +27,7 @@ LabelledConversion build_conversion(const TileSet& source, const ConversionSpec&
   c.argument = c.conversion.argument;
   if (spec.prune < 0) return c;
   PruneReport rep;
-  c.set = prune(c.set, spec.prune, &rep);
+  c.set = prune(c.set, spec.prune, &rep, spec.prune_patch);
   c.set.set_name(fmt::format("{}-pruned{}", name, spec.prune));
   assert(rep.after == c.set.size() && rep.after <= rep.before);
   c.pruned = rep;

@@ -18,6 +18,7 @@ struct ConversionSpec {
   ConversionMethod method = ConversionMethod::Diagonal;
   SubdivisionOptions subdivision;
   int prune = -1;  // surround radius of the pruning; -1: no pruning
+  int prune_patch = 1;  // > 1: then patches of that radius too, to a fixed point (prune_wang)
 };
 
 struct LabelledConversion {

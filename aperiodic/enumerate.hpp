@@ -46,6 +46,7 @@ struct EnumerateOptions {
   int threads = 0;                   // 0: every core (base/run_control.hpp resolve_threads)
   ShardSpec shard;                   // this run's shard (base/run_control.hpp)
   int lead_max_k = 6;                // the decision of a lead builds T_1..T_k per direction
+  std::vector<std::string> operations;  // the step operations tried; empty: step_operations() (aperiodic/steps.hpp)
   double time_limit = 0;             // seconds for this run; 0: none (stops between batches)
   std::string checkpoint_path, resume_path;
   double checkpoint_every = 60;      // seconds; 0: after every batch
@@ -99,6 +100,8 @@ struct EnumerateResult {
   double seconds = 0, total_seconds = 0;
 };
 
+// The published Wang sets whose aperiodicity is proved (jeandel-rao-11 is Fig. 4 of Jeandel and Rao,
+// jeandel-rao-11-variant-2 their Fig. 3; variant 3, Fig. 10, is not among them: tilesets/data/README.md).
 const std::vector<std::string>& published_enumeration_sources();
 
 EnumerateResult enumerate_conversions(const EnumerateOptions& options);

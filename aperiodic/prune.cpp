@@ -1,5 +1,9 @@
 #include "aperiodic/prune.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/strong_components.hpp>
 #include <fmt/format.h>
@@ -72,6 +76,44 @@ std::vector<std::size_t> surroundable(const std::vector<WangTile>& w) {
   return out;
 }
 
+std::vector<std::size_t> surroundable(const std::vector<WangTile>& w, int patch_radius) {
+  if (patch_radius <= 1) return surroundable(w);
+  // A backtracking search per tile for a (2R+1) x (2R+1) patch with the tile in the middle; cells
+  // are filled nearest the middle first, each against the neighbours already placed.
+  const int side = 2 * patch_radius + 1;
+  std::vector<std::pair<int, int>> order;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) order.emplace_back(y, x);
+  const int c = patch_radius;
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) {
+    return std::max(std::abs(a.first - c), std::abs(a.second - c)) < std::max(std::abs(b.first - c), std::abs(b.second - c));
+  });
+  std::vector<std::size_t> out;
+  std::vector<int> grid(std::size_t(side * side), -1);
+  std::function<bool(std::size_t)> place = [&](std::size_t i) {
+    if (i == order.size()) return true;
+    const auto [y, x] = order[i];
+    auto at = [&](int yy, int xx) { return yy < 0 || xx < 0 || yy >= side || xx >= side ? -1 : grid[std::size_t(yy * side + xx)]; };
+    const int n = at(y - 1, x), s = at(y + 1, x), we = at(y, x - 1), e = at(y, x + 1);
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      const WangTile& t = w[k];
+      if ((n >= 0 && w[std::size_t(n)].s != t.n) || (s >= 0 && w[std::size_t(s)].n != t.s) ||
+          (we >= 0 && w[std::size_t(we)].e != t.w) || (e >= 0 && w[std::size_t(e)].w != t.e))
+        continue;
+      grid[std::size_t(y * side + x)] = int(k);
+      if (place(i + 1)) return true;
+    }
+    grid[std::size_t(y * side + x)] = -1;
+    return false;
+  };
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    std::fill(grid.begin(), grid.end(), -1);
+    grid[std::size_t(c * side + c)] = int(k);
+    if (place(1)) out.push_back(k);
+  }
+  return out;
+}
+
 std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& w, bool rows) {
   using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS>;
   std::map<Colour, std::size_t> state;
@@ -93,7 +135,7 @@ Soundness after_pruning(Soundness s, const PruneReport& r) {
   return s == Soundness::Conjugate && r.removed_by_scc > 0 ? Soundness::Lifts : s;
 }
 
-PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius) {
+PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius, int patch_radius) {
   if (radius < 0) throw RequestError("prune", fmt::format("`prune` radius must be >= 0, got {}", radius));
   PruneReport rep;
   rep.before = tiles.size();
@@ -108,6 +150,15 @@ PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius) {
       rep.removed_by_surround += alive.size() - keep.size();
       alive = pick(alive, keep);
       changed = true;
+    }
+    if (patch_radius > 1 && !changed) {
+      // The larger patches once the 3x3 rounds are done (their search is the costly one).
+      auto keep = surroundable(pick(tiles, alive), patch_radius);
+      if (keep.size() != alive.size()) {
+        rep.removed_by_surround += alive.size() - keep.size();
+        alive = pick(alive, keep);
+        changed = true;
+      }
     }
     for (bool rows : {true, false}) {
       auto keep = in_transducer_scc(pick(tiles, alive), rows);
@@ -139,9 +190,9 @@ TileSet prune_via_wang(const TileSet& set,
   return out;
 }
 
-TileSet prune(const TileSet& set, int radius, PruneReport* report) {
+TileSet prune(const TileSet& set, int radius, PruneReport* report, int patch_radius) {
   return prune_via_wang(
-      set, [&](const std::vector<WangTile>& tiles) { return prune_wang(tiles, radius); }, report);
+      set, [&](const std::vector<WangTile>& tiles) { return prune_wang(tiles, radius, patch_radius); }, report);
 }
 
 }  // namespace tilekit

@@ -35,6 +35,8 @@ struct PruneReport {
 
 // Tiles of `tiles` that are the centre of some 3x3 patch of `tiles` (positions).
 std::vector<std::size_t> surroundable(const std::vector<WangTile>& tiles);
+// ... of some (2R+1) x (2R+1) patch (R = patch_radius; a backtracking search per tile).
+std::vector<std::size_t> surroundable(const std::vector<WangTile>& tiles, int patch_radius);
 // Tiles whose edge lies in a strongly connected component of the row transducer graph
 // (rows = true) or of the column transducer graph (rows = false).
 std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& tiles, bool rows);
@@ -44,7 +46,10 @@ std::vector<std::size_t> in_transducer_scc(const std::vector<WangTile>& tiles, b
 // so a conjugate result becomes `lifts` (its tilings still lift to the source).
 Soundness after_pruning(Soundness s, const PruneReport& r);
 
-PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius);
+// patch_radius > 1: once the 3x3 rounds change nothing, tiles that are the centre of no
+// (2 patch_radius + 1)-square patch of survivors go too, and everything repeats to a fixed point
+// (the 92-tile set of the 25-set's chain loses 3 tiles at patch radius 2).
+PruneReport prune_wang(const std::vector<WangTile>& tiles, int radius, int patch_radius = 1);
 
 // Strip pruning (aperiodic/strip_prune.cpp), the transducer-SCC filter for strips of k rows: a
 // tile survives when it lies in the top row (bottom row, leftmost or rightmost column) of a
@@ -60,7 +65,7 @@ std::vector<std::size_t> in_periodic_strips(const std::vector<WangTile>& tiles, 
 PruneReport prune_strips_wang(const std::vector<WangTile>& tiles, int max_k, std::size_t max_transitions = 2000000);
 TileSet prune_strips(const TileSet& set, int max_k, PruneReport* report = nullptr);
 // Prunes a Wang or corner set; the result keeps the surviving tiles in their order.
-TileSet prune(const TileSet& set, int radius, PruneReport* report = nullptr);
+TileSet prune(const TileSet& set, int radius, PruneReport* report = nullptr, int patch_radius = 1);
 // Prunes a Wang set with `prune_wang_tiles`, a corner set through its equivalent Wang set (thesis
 // 2.9: the same tilings, tile for tile); the result keeps the surviving tiles in their order.
 TileSet prune_via_wang(const TileSet& set,

@@ -79,6 +79,7 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
   if (op == "diagonal") return convert_with({ConversionMethod::Diagonal, {}, -1});
   if (op == "horizontal") return convert_with({ConversionMethod::Horizontal, {}, -1});
   if (op == "horizontal+prune") return convert_with({ConversionMethod::Horizontal, {}, 3});
+  if (op == "horizontal+prune5") return convert_with({ConversionMethod::Horizontal, {}, 3, 2});
   if (op == "rotation") return convert_with({ConversionMethod::Rotation, {}, -1});
   if (op == "subdivision") return convert_with({ConversionMethod::Subdivision, {}, -1});
   if (op == "subdivision+merge-centres") return convert_with({ConversionMethod::Subdivision, {true, false}, -1});
@@ -100,28 +101,42 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
     return StepResult{fuse(set.wang_tiles()), "lifts",
                       "dominoes as tiles: a tiling by them cuts into one of the source, periodic into periodic"};
   }
-  if (op == "merge-colours" || op == "merge-colours-lifts") {
+  if (op == "merge-colours" || op == "merge-colours-lifts" || op == "merge-colours2") {
     if (wang) return std::nullopt;
-    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", 1, 1);
+    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", op == "merge-colours2" ? 2 : 1, 1);
     if (m.merges.empty()) return std::nullopt;
     return StepResult{TileSet::corner(m.tiles, set.name(), set.source()), m.conjugate ? "conjugate" : "lifts",
                       m.argument()};
   }
-  if (op == "prune" || op == "prune-strips") {
+  if (op == "prune" || op == "prune-strips" || op == "prune5") {
     PruneReport rep;
-    TileSet out = op == "prune" ? prune(set, 3, &rep) : prune_strips(set, 3, &rep);
+    TileSet out = op == "prune-strips" ? prune_strips(set, 3, &rep) : prune(set, 3, &rep, op == "prune5" ? 2 : 1);
     if (rep.after == rep.before || out.empty()) return std::nullopt;
     return StepResult{out, "prune",
                       fmt::format("{} -> {} tiles ({} by surround, {} outside the strongly connected components of "
                                   "{}): keeps tileability and every periodic tiling",
                                   rep.before, rep.after, rep.removed_by_surround, rep.removed_by_scc,
-                                  op == "prune" ? "the row/column transducers" : "the strip transducers, k <= 3")};
+                                  op == "prune-strips" ? "the strip transducers, k <= 3" : "the row/column transducers")};
   }
   throw InputError(
-      fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(step_operations(), ", ")));
+      fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(all_step_operations(), ", ")));
 }
 
 }  // namespace
+
+const std::vector<std::string>& stronger_step_operations() {
+  static const std::vector<std::string> ops = {"prune5", "horizontal+prune5", "merge-colours2"};
+  return ops;
+}
+
+const std::vector<std::string>& all_step_operations() {
+  static const std::vector<std::string> ops = [] {
+    std::vector<std::string> all = step_operations();
+    for (const std::string& op : stronger_step_operations()) all.push_back(op);
+    return all;
+  }();
+  return ops;
+}
 
 const std::vector<std::string>& step_operations() {
   static const std::vector<std::string> ops = {"prune",
@@ -141,7 +156,7 @@ const std::vector<std::string>& step_operations() {
 }
 
 std::vector<std::string> symmetries_for(const std::string& op) {
-  if (op == "horizontal" || op == "horizontal+prune" || op == "fuse") return {"id", "rot90"};
+  if (op == "horizontal" || op == "horizontal+prune" || op == "horizontal+prune5" || op == "fuse") return {"id", "rot90"};
   if (op == "subdivision+merge-centres") {
     std::vector<std::string> all;
     for (const Dihedral& g : Dihedral::all()) all.push_back(g.name());
@@ -154,7 +169,7 @@ std::optional<StepResult> apply_step(const TileSet& set, const std::string& step
   const auto colon = step.find(':');
   const Dihedral g = colon == std::string::npos ? Dihedral{} : Dihedral::parse(step.substr(0, colon));
   const std::string op = colon == std::string::npos ? step : step.substr(colon + 1);
-  const auto& ops = step_operations();
+  const auto& ops = all_step_operations();
   if (std::find(ops.begin(), ops.end(), op) == ops.end())
     throw InputError(fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(ops, ", ")));
   try {

@@ -35,8 +35,14 @@ struct StepResult {
   std::string argument;  // one line: why this label
 };
 
-// Every operation name, in the order the search tries them.
+// Every operation name, in the order the search tries them by default.
 const std::vector<std::string>& step_operations();
+// The stronger operations (issue 40), tried when a search names them (`enumerate --operations`)
+// and by `aperiodic link`: prune5 and horizontal+prune5 prune to a fixed point with 5x5 patches
+// too (prune_wang's patch radius 2); merge-colours2 checks each merge up to recovery radius 2.
+const std::vector<std::string>& stronger_step_operations();
+// step_operations() then stronger_step_operations(): every name apply_step knows.
+const std::vector<std::string>& all_step_operations();
 
 // The symmetries worth applying before an operation: the operations that commute with every
 // symmetry of the square (diagonal, rotation, subdivision, to-wang, the prunes) need only the

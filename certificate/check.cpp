@@ -22,6 +22,8 @@
 //   the two overlapping column windows are in the table and lift to tiles that match east to west
 //   and carry the columns' colours north and south (the lift of a tiling of B is a tiling of A, and
 //   the map gives B's tiling back, a corner tile being its four pegs).
+// prune (corner A -> corner B): B is A less the tiles of the recorded rounds, each as in a
+//   translation's prune: the identity on tilings of the plane.
 // merge (corner A -> corner B): B = A with each colour replaced by its class. The recovery table
 //   gives, for a (2r+1) x (2r+1) neighbourhood of B's pegs, the colour of A at its centre. Checked:
 //   (1) every valid peg patch of A, 2 (r + margin) + 1 wide, maps its middle neighbourhood to a table
@@ -313,6 +315,39 @@ void for_each_path(const std::vector<std::pair<State, State>>& edges, const std:
     }
 }
 
+// The prune rounds of a link applied to `current`: every removed tile is there and is the centre
+// of no (2r+1) x (2r+1) patch of the tiles still there (so no tiling of the plane holds it).
+std::size_t check_prune_rounds(std::set<Tile>& current, const nlohmann::json& link, const std::string& where) {
+  const nlohmann::json& rounds = array_field(link, "prune", where);
+  std::size_t removed_total = 0;
+  for (std::size_t k = 0; k < rounds.size(); ++k) {
+    const std::string w = fmt::format("{}.prune[{}]", where, k);
+    const int r = int(read_uint(field(rounds[k], "radius", w), w + ".radius", 4));
+    if (r < 1) throw Reject(w + ".radius: at least 1");
+    const Set removed = read_set({{"kind", "corner"}, {"tiles", field(rounds[k], "removed", w)}}, w);
+    const std::set<Tile> centres = surroundable({current.begin(), current.end()}, r);
+    for (const Tile& t : removed.tiles) {
+      if (!current.count(t)) throw Reject(w + ": removes a tile that is not there");
+      if (centres.count(t))
+        throw Reject(fmt::format("{}: a removed tile is the centre of a {}x{} patch", w, 2 * r + 1, 2 * r + 1));
+    }
+    for (const Tile& t : removed.tiles) current.erase(t);
+    removed_total += removed.tiles.size();
+  }
+  return removed_total;
+}
+
+LinkReport check_prune(const Set& a, const Set& b, const nlohmann::json& link, const std::string& where) {
+  require_kind(a, "corner", where + " (from)");
+  require_kind(b, "corner", where + " (to)");
+  std::set<Tile> current = as_set(a.tiles);
+  const std::size_t removed = check_prune_rounds(current, link, where);
+  if (current != as_set(b.tiles)) throw Reject(where + ": the set less the pruned tiles is not the pruned set");
+  return {"prune", a.tiles.size(), b.tiles.size(),
+          fmt::format("{} tiles removed in {} rounds, each the centre of no patch of the tiles before it", removed,
+                      array_field(link, "prune", where).size())};
+}
+
 LinkReport check_translation(const Set& a, const Set& b, const nlohmann::json& link, const std::string& where) {
   require_kind(a, "wang", where + " (from)");
   require_kind(b, "corner", where + " (to)");
@@ -333,22 +368,8 @@ LinkReport check_translation(const Set& a, const Set& b, const nlohmann::json& l
     for (const Tile& q : a.tiles)
       if (p[1] == q[3]) current.insert({peg(p[0]), peg(q[0]), peg(p[2]), peg(q[2])});
   const std::size_t pairs = current.size();
+  const std::size_t removed_total = check_prune_rounds(current, link, where);
   const nlohmann::json& rounds = array_field(link, "prune", where);
-  std::size_t removed_total = 0;
-  for (std::size_t k = 0; k < rounds.size(); ++k) {
-    const std::string w = fmt::format("{}.prune[{}]", where, k);
-    const int r = int(read_uint(field(rounds[k], "radius", w), w + ".radius", 4));
-    if (r < 1) throw Reject(w + ".radius: at least 1");
-    const Set removed = read_set({{"kind", "corner"}, {"tiles", field(rounds[k], "removed", w)}}, w);
-    const std::set<Tile> centres = surroundable({current.begin(), current.end()}, r);
-    for (const Tile& t : removed.tiles) {
-      if (!current.count(t)) throw Reject(w + ": removes a tile that is not there");
-      if (centres.count(t))
-        throw Reject(fmt::format("{}: a removed tile is the centre of a {}x{} patch", w, 2 * r + 1, 2 * r + 1));
-    }
-    for (const Tile& t : removed.tiles) current.erase(t);
-    removed_total += removed.tiles.size();
-  }
   if (current != as_set(b.tiles))
     throw Reject(fmt::format("{}: the pair tiles less the pruned ones ({}) are not the corner set ({})", where,
                              current.size(), b.tiles.size()));
@@ -533,6 +554,7 @@ Report check(const nlohmann::json& cert, const std::vector<Tile>& reference) {
       else if (op == "to-wang") rep.links.push_back(check_to_wang(current, next, links[i], where));
       else if (op == "translation") rep.links.push_back(check_translation(current, next, links[i], where));
       else if (op == "merge") rep.links.push_back(check_merge(current, next, links[i], where));
+      else if (op == "prune") rep.links.push_back(check_prune(current, next, links[i], where));
       else throw Reject(where + ".op: unknown link '" + op + "'");
       current = std::move(next);
     }

@@ -66,6 +66,7 @@ std::string enumerate_command(const EnumerateOptions& o) {
   if (o.batch != d.batch) cmd += fmt::format(" --batch {}", o.batch);
   if (o.lead_max_k != d.lead_max_k) cmd += fmt::format(" --lead-max-k {}", o.lead_max_k);
   if (o.shard.count > 1) cmd += fmt::format(" --shard {}/{}", o.shard.index, o.shard.count);
+  if (!o.operations.empty()) cmd += fmt::format(" --operations {}", fmt::join(o.operations, ","));
   return cmd;
 }
 

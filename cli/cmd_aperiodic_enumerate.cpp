@@ -233,6 +233,10 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
       cmd, RunOptionFlags::Threads | RunOptionFlags::TimeLimit | RunOptionFlags::Checkpoint | RunOptionFlags::Shard,
       a->run);
   cmd->add_option("--lead-max-k", a->o.lead_max_k, "Decision of unverified results: strips up to k (default 6)");
+  cmd->add_option("--operations", a->o.operations,
+                  "Step operations tried, comma-separated (default: the standard ones; prune5, horizontal+prune5 and "
+                  "merge-colours2 are the stronger prune and merges, aperiodic/steps.hpp)")
+      ->delimiter(',');
   cmd->add_option("--db", a->o.db, "Store every set and conversion in this results database");
   cmd->add_option("--verify-period", a->smallest.verify_period,
                   "Torus periods searched on the smallest set (default 6)")
