@@ -23,8 +23,8 @@ namespace {
 
 using tilekit::certificate::Tile;
 
-nlohmann::json smallest_certificate() {
-  std::ifstream in(std::string(tilekit::test::source_dir()) + "/certificate/data/smallest-25.json");
+nlohmann::json smallest_certificate(const std::string& name = "smallest-25.json") {
+  std::ifstream in(std::string(tilekit::test::source_dir()) + "/certificate/data/" + name);
   std::stringstream s;
   s << in.rdbuf();
   return nlohmann::json::parse(s.str());
@@ -63,6 +63,14 @@ TEST(CertificateCheck, AcceptsTheSmallestSetsCertificate) {
     if (l.op != "symmetry") ops.push_back(l.op);
   EXPECT_EQ(ops, (std::vector<std::string>{"blocks", "to-wang", "translation", "merge"}));
   EXPECT_EQ(merge_link(cert)["radius"], 2);
+}
+
+// The 24-tile set: the 25-set's chain, then to-wang, horizontal+prune5 and merge-colours again.
+TEST(CertificateCheck, AcceptsTheTwentyFourSetsCertificate) {
+  const auto r = tilekit::certificate::check(smallest_certificate("smallest-24.json"), source_tiles());
+  ASSERT_TRUE(r.accepted) << r.error;
+  EXPECT_EQ(r.result_tiles, 24u);
+  EXPECT_EQ(r.result_colours, 4u);
 }
 
 TEST(CertificateCheck, RejectsOneRecoveryEntryChanged) {
