@@ -33,7 +33,9 @@ Json tiles_json(const TileSet& s) {
     for (const CornerTile& c : s.corner_tiles()) t.push_back({c.nw, c.ne, c.sw, c.se});
   return t;
 }
-Json set_json(const TileSet& s) { return {{"kind", kind_name(s.kind())}, {"tiles", tiles_json(s)}}; }
+Json set_json(const TileSet& s) {
+  return {{"kind", kind_name(s.kind())}, {"tiles", tiles_json(s)}};
+}
 
 Json corner_list_json(const std::vector<CornerTile>& v) {
   Json t = Json::array();
@@ -70,7 +72,9 @@ void for_each_grid(const std::vector<CornerTile>& tiles, int h, int w, const std
   go(0);
 }
 
-char digit(Colour c) { return c < 10 ? char('0' + c) : char('a' + (c - 10)); }
+char digit(Colour c) {
+  return c < 10 ? char('0' + c) : char('a' + (c - 10));
+}
 
 // ---- translation ----
 
@@ -78,8 +82,9 @@ char digit(Colour c) { return c < 10 ? char('0' + c) : char('a' + (c - 10)); }
 std::vector<CornerTile> unsurroundable(const std::vector<CornerTile>& current, int r) {
   std::set<CornerTile> centres;
   const auto c = std::size_t(r);
-  for_each_grid(current, 2 * r + 2, 2 * r + 2,
-                [&](const Grid& g) { centres.insert({g[c][c + 1], g[c + 1][c + 1], g[c + 1][c], g[c][c]}); });
+  for_each_grid(current, 2 * r + 2, 2 * r + 2, [&](const Grid& g) {
+    centres.insert({g[c][c + 1], g[c + 1][c + 1], g[c + 1][c], g[c][c]});
+  });
   std::vector<CornerTile> out;
   for (const CornerTile& t : current)
     if (!centres.count(t)) out.push_back(t);
@@ -103,8 +108,9 @@ Json prune_rounds(std::vector<CornerTile> current, const std::vector<CornerTile>
     std::erase_if(current, [&](const CornerTile& t) { return gone.count(t) > 0; });
   }
   if (std::set<CornerTile>(current.begin(), current.end()) != target)
-    throw InputError("certify: the pruning removed tiles that surround rounds (3x3, 5x5) do not (the SCC filter): "
-                     "no certificate form for it");
+    throw InputError(
+        "certify: the pruning removed tiles that surround rounds (3x3, 5x5) do not (the SCC filter): "
+        "no certificate form for it");
   return rounds;
 }
 
@@ -218,12 +224,13 @@ Json merge_link(const TileSet& a, const TileSet& b, const MergeSearch& m, const 
       Json classes = Json::array(), table = Json::array();
       for (const auto& [x, y] : cls) classes.push_back({x, y});
       for (const auto& [k, c] : sorted) table.push_back({k, c});
-      return {{"op", "merge"},     {"merges", m.merges.size()}, {"classes", classes}, {"radius", r},
-              {"margin", mg},      {"merged_margin", mb}, {"recovery", table},         {"to", set_json(b)}};
+      return {{"op", "merge"}, {"merges", m.merges.size()}, {"classes", classes}, {"radius", r},
+              {"margin", mg},  {"merged_margin", mb},       {"recovery", table},  {"to", set_json(b)}};
     }
-  throw InputError(fmt::format("certify: no recovery table of radius {}..{}, margin <= {} (merged set: {} more) is a "
-                               "conjugacy",
-                               o.min_merge_radius, o.max_merge_radius, o.max_merge_margin, o.max_merged_margin));
+  throw InputError(
+      fmt::format("certify: no recovery table of radius {}..{}, margin <= {} (merged set: {} more) is a "
+                  "conjugacy",
+                  o.min_merge_radius, o.max_merge_radius, o.max_merge_margin, o.max_merged_margin));
 }
 
 }  // namespace
@@ -276,7 +283,8 @@ Json certify_chain(const RecordedChain& record, const CertifyOptions& o) {
       std::optional<StepResult> r = apply_step(current, op);
       if (!r || current.kind() != TileKind::Corner) throw InputError("certify: " + op + " of a Wang set has no form");
       next = r->set;
-      links.push_back({{"op", "prune"}, {"prune", prune_rounds(current.corner_tiles(), next.corner_tiles())},
+      links.push_back({{"op", "prune"},
+                       {"prune", prune_rounds(current.corner_tiles(), next.corner_tiles())},
                        {"to", set_json(next)}});
     } else if (op == "horizontal+prune" || op == "horizontal+prune5" || op == "horizontal") {
       std::optional<StepResult> r = apply_step(current, op);
@@ -289,9 +297,10 @@ Json certify_chain(const RecordedChain& record, const CertifyOptions& o) {
       next = TileSet::corner(m.tiles);
       links.push_back(merge_link(current, next, m, o));
     } else {
-      throw InputError(fmt::format("certify: no certificate form for step '{}' (blocks, to-wang, horizontal, "
-                                   "horizontal+prune, horizontal+prune5, prune, prune5, merge-colours, merge-colours2)",
-                                   step));
+      throw InputError(
+          fmt::format("certify: no certificate form for step '{}' (blocks, to-wang, horizontal, "
+                      "horizontal+prune, horizontal+prune5, prune, prune5, merge-colours, merge-colours2)",
+                      step));
     }
     current = to_canonical_orientation(next);
   }
@@ -304,8 +313,8 @@ Json certify_chain(const RecordedChain& record, const CertifyOptions& o) {
                                 "Wang set '{}' does: every link is a conjugacy",
                                 current.size(), record.source)},
           {"chain", {{"source", record.source}, {"steps", record.steps}, {"set", record.set}}},
-          {"source", {{"name", record.source}, {"provenance", source.source()}, {"kind", "wang"},
-                      {"tiles", tiles_json(source)}}},
+          {"source",
+           {{"name", record.source}, {"provenance", source.source()}, {"kind", "wang"}, {"tiles", tiles_json(source)}}},
           {"links", links},
           {"result", set_json(current)}};
 }

@@ -18,9 +18,8 @@
 //                pegs wider than the recovery of one cell reads must have its neighbourhoods there.
 // Only links that the checker can check are written; another step is an InputError naming it.
 #include <cstddef>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "aperiodic/smallest.hpp"
 

@@ -86,14 +86,17 @@ std::vector<std::size_t> surroundable(const std::vector<WangTile>& w, int patch_
     for (int x = 0; x < side; ++x) order.emplace_back(y, x);
   const int c = patch_radius;
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) {
-    return std::max(std::abs(a.first - c), std::abs(a.second - c)) < std::max(std::abs(b.first - c), std::abs(b.second - c));
+    const int da = std::max(std::abs(a.first - c), std::abs(a.second - c));
+    return da < std::max(std::abs(b.first - c), std::abs(b.second - c));
   });
   std::vector<std::size_t> out;
   std::vector<int> grid(std::size_t(side * side), -1);
   std::function<bool(std::size_t)> place = [&](std::size_t i) {
     if (i == order.size()) return true;
     const auto [y, x] = order[i];
-    auto at = [&](int yy, int xx) { return yy < 0 || xx < 0 || yy >= side || xx >= side ? -1 : grid[std::size_t(yy * side + xx)]; };
+    auto at = [&](int yy, int xx) {
+      return yy < 0 || xx < 0 || yy >= side || xx >= side ? -1 : grid[std::size_t(yy * side + xx)];
+    };
     const int n = at(y - 1, x), s = at(y + 1, x), we = at(y, x - 1), e = at(y, x + 1);
     for (std::size_t k = 0; k < w.size(); ++k) {
       const WangTile& t = w[k];

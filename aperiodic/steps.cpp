@@ -103,20 +103,22 @@ std::optional<StepResult> operation(const TileSet& set, const std::string& op) {
   }
   if (op == "merge-colours" || op == "merge-colours-lifts" || op == "merge-colours2") {
     if (wang) return std::nullopt;
-    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", op == "merge-colours2" ? 2 : 1, 1);
+    const int radius = op == "merge-colours2" ? 2 : 1;
+    const MergeSearch m = least_colour_merge(set.corner_tiles(), op == "merge-colours-lifts", radius, 1);
     if (m.merges.empty()) return std::nullopt;
     return StepResult{TileSet::corner(m.tiles, set.name(), set.source()), m.conjugate ? "conjugate" : "lifts",
                       m.argument()};
   }
   if (op == "prune" || op == "prune-strips" || op == "prune5") {
     PruneReport rep;
-    TileSet out = op == "prune-strips" ? prune_strips(set, 3, &rep) : prune(set, 3, &rep, op == "prune5" ? 2 : 1);
+    const bool strips = op == "prune-strips";
+    TileSet out = strips ? prune_strips(set, 3, &rep) : prune(set, 3, &rep, op == "prune5" ? 2 : 1);
     if (rep.after == rep.before || out.empty()) return std::nullopt;
     return StepResult{out, "prune",
                       fmt::format("{} -> {} tiles ({} by surround, {} outside the strongly connected components of "
                                   "{}): keeps tileability and every periodic tiling",
                                   rep.before, rep.after, rep.removed_by_surround, rep.removed_by_scc,
-                                  op == "prune-strips" ? "the strip transducers, k <= 3" : "the row/column transducers")};
+                                  strips ? "the strip transducers, k <= 3" : "the row/column transducers")};
   }
   throw InputError(
       fmt::format("unknown step operation '{}' (expected one of: {})", op, fmt::join(all_step_operations(), ", ")));
@@ -156,7 +158,8 @@ const std::vector<std::string>& step_operations() {
 }
 
 std::vector<std::string> symmetries_for(const std::string& op) {
-  if (op == "horizontal" || op == "horizontal+prune" || op == "horizontal+prune5" || op == "fuse") return {"id", "rot90"};
+  if (op == "horizontal" || op == "horizontal+prune" || op == "horizontal+prune5" || op == "fuse")
+    return {"id", "rot90"};
   if (op == "subdivision+merge-centres") {
     std::vector<std::string> all;
     for (const Dihedral& g : Dihedral::all()) all.push_back(g.name());

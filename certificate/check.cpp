@@ -34,14 +34,14 @@
 //   recovery of a tiling of B is a tiling of A).
 #include "certificate/check.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 namespace tilekit::certificate {
 
@@ -88,7 +88,8 @@ Set read_set(const nlohmann::json& j, const std::string& where) {
   s.kind = string_field(j, "kind", where);
   if (s.kind != "wang" && s.kind != "corner") throw Reject(where + ".kind: expected wang or corner");
   const nlohmann::json& tiles = array_field(j, "tiles", where);
-  if (tiles.empty() || tiles.size() > kMaxTiles) throw Reject(where + ".tiles: expected 1.." + std::to_string(kMaxTiles));
+  if (tiles.empty() || tiles.size() > kMaxTiles)
+    throw Reject(where + ".tiles: expected 1.." + std::to_string(kMaxTiles));
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const std::string w = fmt::format("{}.tiles[{}]", where, i);
     if (!tiles[i].is_array() || tiles[i].size() != 4) throw Reject(w + ": expected four colours");
@@ -105,7 +106,9 @@ void require_kind(const Set& s, const char* kind, const std::string& where) {
   if (s.kind != kind) throw Reject(fmt::format("{}: expected a {} set, found {}", where, kind, s.kind));
 }
 
-std::set<Tile> as_set(const std::vector<Tile>& v) { return {v.begin(), v.end()}; }
+std::set<Tile> as_set(const std::vector<Tile>& v) {
+  return {v.begin(), v.end()};
+}
 
 std::uint32_t colours_of(const Set& s) {
   std::set<std::uint32_t> c;
@@ -203,7 +206,7 @@ LinkReport check_blocks(const Set& a, const Set& b, const std::string& where) {
                       a.tiles.size())};
 }
 
-Tile rotate(const std::string& kind, const Tile& t) {  // a quarter turn clockwise
+Tile rotate(const std::string& kind, const Tile& t) {   // a quarter turn clockwise
   if (kind == "wang") return {t[3], t[0], t[1], t[2]};  // n <- w, e <- n, s <- e, w <- s
   return {t[2], t[0], t[3], t[1]};                      // nw <- sw, ne <- nw, sw <- se, se <- ne
 }
@@ -220,7 +223,8 @@ LinkReport check_symmetry(const Set& a, const Set& b, const nlohmann::json& link
   std::string rest = name;
   if (rest.rfind("mirror", 0) == 0) {
     m = true;
-    rest = rest == "mirror" ? "id" : rest.substr(rest.find('+') == std::string::npos ? rest.size() : rest.find('+') + 1);
+    rest =
+        rest == "mirror" ? "id" : rest.substr(rest.find('+') == std::string::npos ? rest.size() : rest.find('+') + 1);
   }
   const auto it = std::find(turns.begin(), turns.end(), rest);
   if (it == turns.end() || rest.empty()) throw Reject(where + ".symmetry: unknown symmetry '" + name + "'");
@@ -230,7 +234,8 @@ LinkReport check_symmetry(const Set& a, const Set& b, const nlohmann::json& link
     Tile t = a.tiles[i];
     if (m) t = mirror(a.kind, t);
     for (int k = 0; k < q; ++k) t = rotate(a.kind, t);
-    if (t != b.tiles[i]) throw Reject(fmt::format("{}: tile {} is not the image of the source tile under {}", where, i, name));
+    if (t != b.tiles[i])
+      throw Reject(fmt::format("{}: tile {} is not the image of the source tile under {}", where, i, name));
   }
   return {"symmetry", a.tiles.size(), b.tiles.size(), "every tile is the image of the source tile under " + name};
 }
@@ -262,7 +267,8 @@ LinkReport check_to_wang(const Set& a, const Set& b, const nlohmann::json& link,
   for (std::size_t i = 0; i < a.tiles.size(); ++i) {
     const Tile& c = a.tiles[i];  // nw ne sw se
     const Tile w = {code(hp, c[0], c[1], i), code(vp, c[1], c[3], i), code(hp, c[2], c[3], i), code(vp, c[0], c[2], i)};
-    if (w != b.tiles[i]) throw Reject(fmt::format("{}: Wang tile {} does not carry the pair colours of corner tile {}", where, i, i));
+    if (w != b.tiles[i])
+      throw Reject(fmt::format("{}: Wang tile {} does not carry the pair colours of corner tile {}", where, i, i));
   }
   return {"to-wang", a.tiles.size(), b.tiles.size(),
           fmt::format("tile for tile, {} horizontal and {} vertical pair colours, both numberings injective", hp.size(),
@@ -280,7 +286,8 @@ std::vector<bool> on_biinfinite_paths(const std::vector<std::pair<State, State>>
     for (std::size_t i = 0; i < edges.size(); ++i)
       if (alive[i]) has_out.insert(edges[i].first), has_in.insert(edges[i].second);
     for (std::size_t i = 0; i < edges.size(); ++i)
-      if (alive[i] && (!has_in.count(edges[i].first) || !has_out.count(edges[i].second))) alive[i] = false, changed = true;
+      if (alive[i] && (!has_in.count(edges[i].first) || !has_out.count(edges[i].second)))
+        alive[i] = false, changed = true;
   }
   return alive;
 }
@@ -381,7 +388,8 @@ LinkReport check_translation(const Set& a, const Set& b, const nlohmann::json& l
   const nlohmann::json& entries = array_field(lift, "table", where + ".lift");
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const std::string w = fmt::format("{}.lift.table[{}]", where, i);
-    if (!entries[i].is_array() || entries[i].size() != 2 || !entries[i][0].is_array() || entries[i][0].size() != 2 * width)
+    if (!entries[i].is_array() || entries[i].size() != 2 || !entries[i][0].is_array() ||
+        entries[i][0].size() != 2 * width)
       throw Reject(fmt::format("{}: expected [[{} colours], tile]", w, 2 * width));
     std::vector<std::uint32_t> key;
     for (const auto& c : entries[i][0]) key.push_back(read_uint(c, w));
@@ -391,7 +399,8 @@ LinkReport check_translation(const Set& a, const Set& b, const nlohmann::json& l
   }
   auto lookup = [&](const std::vector<std::uint32_t>& key, const char* what) {
     const auto it = table.find(key);
-    if (it == table.end()) throw Reject(fmt::format("{}: {}: a window of columns has no entry in the lift table", where, what));
+    if (it == table.end())
+      throw Reject(fmt::format("{}: {}: a window of columns has no entry in the lift table", where, what));
     return it->second;
   };
   // (1) map then lift: A's row windows that map into B.
@@ -399,40 +408,43 @@ LinkReport check_translation(const Set& a, const Set& b, const nlohmann::json& l
   for (const Tile& t : a.tiles) wang_edges.emplace_back(t[3], t[1]);
   std::size_t wang_windows = 0;
   const std::set<Tile> bset = as_set(b.tiles);
-  for_each_path<std::uint32_t>(wang_edges, on_biinfinite_paths(wang_edges), int(width), [&](const std::vector<std::size_t>& p) {
-    for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-      const Tile& x = a.tiles[p[i]];
-      const Tile& y = a.tiles[p[i + 1]];
-      if (!bset.count({peg(x[0]), peg(y[0]), peg(x[2]), peg(y[2])})) return;  // in no tiling of the plane
-    }
-    std::vector<std::uint32_t> key;
-    for (std::size_t e : p) key.push_back(peg(a.tiles[e][0])), key.push_back(peg(a.tiles[e][2]));
-    if (lookup(key, "lift after map") != p[std::size_t(n)])
-      throw Reject(fmt::format("{}: lift after map: a window of tiles does not give its centre tile back", where));
-    ++wang_windows;
-  });
+  for_each_path<std::uint32_t>(
+      wang_edges, on_biinfinite_paths(wang_edges), int(width), [&](const std::vector<std::size_t>& p) {
+        for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+          const Tile& x = a.tiles[p[i]];
+          const Tile& y = a.tiles[p[i + 1]];
+          if (!bset.count({peg(x[0]), peg(y[0]), peg(x[2]), peg(y[2])})) return;  // in no tiling of the plane
+        }
+        std::vector<std::uint32_t> key;
+        for (std::size_t e : p) key.push_back(peg(a.tiles[e][0])), key.push_back(peg(a.tiles[e][2]));
+        if (lookup(key, "lift after map") != p[std::size_t(n)])
+          throw Reject(fmt::format("{}: lift after map: a window of tiles does not give its centre tile back", where));
+        ++wang_windows;
+      });
   // (2) lift then map: B's row windows of 2N+1 tiles.
   using Column = std::pair<std::uint32_t, std::uint32_t>;
   std::vector<std::pair<Column, Column>> corner_edges;  // (nw, sw) -> (ne, se)
   for (const Tile& t : b.tiles) corner_edges.push_back({{t[0], t[2]}, {t[1], t[3]}});
   std::size_t corner_windows = 0;
-  for_each_path<Column>(corner_edges, on_biinfinite_paths(corner_edges), int(width), [&](const std::vector<std::size_t>& p) {
-    std::vector<Column> cols;
-    for (std::size_t e : p) cols.push_back(corner_edges[e].first);
-    cols.push_back(corner_edges[p.back()].second);
-    std::vector<std::uint32_t> k1, k2;
-    for (std::size_t i = 0; i < width; ++i) {
-      k1.push_back(cols[i].first), k1.push_back(cols[i].second);
-      k2.push_back(cols[i + 1].first), k2.push_back(cols[i + 1].second);
-    }
-    const Tile& t1 = a.tiles[lookup(k1, "map after lift")];
-    const Tile& t2 = a.tiles[lookup(k2, "map after lift")];
-    const Column c1 = cols[std::size_t(n)], c2 = cols[std::size_t(n) + 1];
-    if (t1[1] != t2[3] || peg(t1[0]) != c1.first || peg(t1[2]) != c1.second || peg(t2[0]) != c2.first ||
-        peg(t2[2]) != c2.second)
-      throw Reject(fmt::format("{}: map after lift: two lifted neighbours do not match or miss their columns", where));
-    ++corner_windows;
-  });
+  for_each_path<Column>(
+      corner_edges, on_biinfinite_paths(corner_edges), int(width), [&](const std::vector<std::size_t>& p) {
+        std::vector<Column> cols;
+        for (std::size_t e : p) cols.push_back(corner_edges[e].first);
+        cols.push_back(corner_edges[p.back()].second);
+        std::vector<std::uint32_t> k1, k2;
+        for (std::size_t i = 0; i < width; ++i) {
+          k1.push_back(cols[i].first), k1.push_back(cols[i].second);
+          k2.push_back(cols[i + 1].first), k2.push_back(cols[i + 1].second);
+        }
+        const Tile& t1 = a.tiles[lookup(k1, "map after lift")];
+        const Tile& t2 = a.tiles[lookup(k2, "map after lift")];
+        const Column c1 = cols[std::size_t(n)], c2 = cols[std::size_t(n) + 1];
+        if (t1[1] != t2[3] || peg(t1[0]) != c1.first || peg(t1[2]) != c1.second || peg(t2[0]) != c2.first ||
+            peg(t2[2]) != c2.second)
+          throw Reject(
+              fmt::format("{}: map after lift: two lifted neighbours do not match or miss their columns", where));
+        ++corner_windows;
+      });
   return {"translation", a.tiles.size(), b.tiles.size(),
           fmt::format("{} pair tiles, {} removed in {} prune rounds; lift radius {} ({} entries): {} Wang row windows "
                       "give their centre back, {} corner row windows lift to matching tiles",
@@ -444,7 +456,9 @@ int digit(char c) {
   if (c >= 'a' && c <= 'z') return c - 'a' + 10;
   return -1;
 }
-char to_digit(std::uint32_t v) { return v < 10 ? char('0' + v) : char('a' + v - 10); }
+char to_digit(std::uint32_t v) {
+  return v < 10 ? char('0' + v) : char('a' + v - 10);
+}
 
 LinkReport check_merge(const Set& a, const Set& b, const nlohmann::json& link, const std::string& where) {
   require_kind(a, "corner", where + " (from)");
@@ -539,8 +553,8 @@ Report check(const nlohmann::json& cert, const std::vector<Tile>& reference) {
     Set current = read_set(src, "source");
     require_kind(current, "wang", "source");
     rep.source_tiles = current.tiles.size();
-    rep.source_matches_reference = !reference.empty() && as_set(reference) == as_set(current.tiles) &&
-                                   reference.size() == current.tiles.size();
+    rep.source_matches_reference =
+        !reference.empty() && as_set(reference) == as_set(current.tiles) && reference.size() == current.tiles.size();
     if (!rep.source_matches_reference)
       throw Reject("source: the stated tiles are not the published set's (" + rep.source + ")");
     const nlohmann::json& links = array_field(cert, "links", "certificate");
@@ -549,13 +563,20 @@ Report check(const nlohmann::json& cert, const std::vector<Tile>& reference) {
       const std::string where = fmt::format("links[{}]", i);
       const std::string op = string_field(links[i], "op", where);
       Set next = read_set(field(links[i], "to", where), where + ".to");
-      if (op == "blocks") rep.links.push_back(check_blocks(current, next, where));
-      else if (op == "symmetry") rep.links.push_back(check_symmetry(current, next, links[i], where));
-      else if (op == "to-wang") rep.links.push_back(check_to_wang(current, next, links[i], where));
-      else if (op == "translation") rep.links.push_back(check_translation(current, next, links[i], where));
-      else if (op == "merge") rep.links.push_back(check_merge(current, next, links[i], where));
-      else if (op == "prune") rep.links.push_back(check_prune(current, next, links[i], where));
-      else throw Reject(where + ".op: unknown link '" + op + "'");
+      if (op == "blocks")
+        rep.links.push_back(check_blocks(current, next, where));
+      else if (op == "symmetry")
+        rep.links.push_back(check_symmetry(current, next, links[i], where));
+      else if (op == "to-wang")
+        rep.links.push_back(check_to_wang(current, next, links[i], where));
+      else if (op == "translation")
+        rep.links.push_back(check_translation(current, next, links[i], where));
+      else if (op == "merge")
+        rep.links.push_back(check_merge(current, next, links[i], where));
+      else if (op == "prune")
+        rep.links.push_back(check_prune(current, next, links[i], where));
+      else
+        throw Reject(where + ".op: unknown link '" + op + "'");
       current = std::move(next);
     }
     const Set result = read_set(field(cert, "result", "certificate"), "result");

@@ -10,10 +10,9 @@
 // last set is aperiodic exactly when the source is. The format is in certificate/README.md.
 #include <array>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace tilekit::certificate {
 
@@ -21,7 +20,7 @@ namespace tilekit::certificate {
 using Tile = std::array<std::uint32_t, 4>;
 
 struct LinkReport {
-  std::string op;      // blocks, symmetry, to-wang, translation, merge
+  std::string op;  // blocks, symmetry, to-wang, translation, merge
   std::size_t from_tiles = 0, to_tiles = 0;
   std::string checked;  // what was enumerated and compared, in words
 };

@@ -46,10 +46,14 @@ nlohmann::json report_json(const certificate::Report& r) {
   nlohmann::json links = nlohmann::json::array();
   for (const auto& l : r.links)
     links.push_back({{"op", l.op}, {"from_tiles", l.from_tiles}, {"to_tiles", l.to_tiles}, {"checked", l.checked}});
-  nlohmann::json j = {{"accepted", r.accepted}, {"source", r.source},
-                      {"source_matches_published", r.source_matches_reference}, {"links", links}};
-  if (r.accepted) j["result_tiles"] = r.result_tiles, j["result_colors"] = r.result_colours;
-  else j["error"] = r.error;
+  nlohmann::json j = {{"accepted", r.accepted},
+                      {"source", r.source},
+                      {"source_matches_published", r.source_matches_reference},
+                      {"links", links}};
+  if (r.accepted)
+    j["result_tiles"] = r.result_tiles, j["result_colors"] = r.result_colours;
+  else
+    j["error"] = r.error;
   return j;
 }
 
@@ -58,8 +62,9 @@ void print_report(const certificate::Report& r) {
     fmt::print("link {} {} ({} -> {} tiles): {}\n", i + 1, r.links[i].op, r.links[i].from_tiles, r.links[i].to_tiles,
                r.links[i].checked);
   if (r.accepted)
-    fmt::print("accepted: the {} corner tiles ({} colours) are aperiodic if {} is (source tiles match the published set)\n",
-               r.result_tiles, r.result_colours, r.source);
+    fmt::print(
+        "accepted: the {} corner tiles ({} colours) are aperiodic if {} is (source tiles match the published set)\n",
+        r.result_tiles, r.result_colours, r.source);
   else
     fmt::print("rejected: {}\n", r.error);
 }
