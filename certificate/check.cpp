@@ -52,8 +52,8 @@ struct Reject : std::runtime_error {
 };
 
 constexpr std::size_t kMaxTiles = 1000000;
-constexpr std::uint32_t kMaxColour = 1u << 20;
-constexpr std::size_t kMaxPatches = 50000000;  // patches enumerated per link, at most
+constexpr std::uint32_t kMaxColour = (1u << 20) - 1;  // two or three colours make one 64-bit key
+constexpr std::size_t kMaxPatches = 50000000;         // patches enumerated per link, at most
 
 struct Set {
   std::string kind;  // wang or corner
@@ -122,12 +122,17 @@ std::uint32_t colours_of(const Set& s) {
 // y = 0 the top row. Corner tile [nw, ne, sw, se].
 void for_each_patch(const std::vector<Tile>& tiles, int h, int w,
                     const std::function<void(const std::vector<std::vector<std::uint32_t>>&)>& f) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Tile>> by_nw_sw, by_nw_ne;
-  std::map<std::array<std::uint32_t, 3>, std::vector<std::uint32_t>> se_of;
+  // Colours are below 2^20 (kMaxColour): three fit one 64-bit key.
+  auto k2 = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 20) | b; };
+  auto k3 = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return (std::uint64_t(a) << 40) | (std::uint64_t(b) << 20) | c;
+  };
+  std::unordered_map<std::uint64_t, std::vector<Tile>> by_nw_sw, by_nw_ne;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> se_of;
   for (const Tile& t : tiles) {
-    by_nw_sw[{t[0], t[2]}].push_back(t);
-    by_nw_ne[{t[0], t[1]}].push_back(t);
-    se_of[{t[0], t[1], t[2]}].push_back(t[3]);
+    by_nw_sw[k2(t[0], t[2])].push_back(t);
+    by_nw_ne[k2(t[0], t[1])].push_back(t);
+    se_of[k3(t[0], t[1], t[2])].push_back(t[3]);
   }
   std::vector<std::vector<std::uint32_t>> g(std::size_t(h), std::vector<std::uint32_t>(std::size_t(w), 0u));
   std::size_t count = 0;
@@ -147,21 +152,21 @@ void for_each_patch(const std::vector<Tile>& tiles, int h, int w,
         fill(cell + 1);
       }
     } else if (y == 0) {
-      auto it = by_nw_sw.find({top[std::size_t(x)], bottom[std::size_t(x)]});
+      auto it = by_nw_sw.find(k2(top[std::size_t(x)], bottom[std::size_t(x)]));
       if (it == by_nw_sw.end()) return;
       for (const Tile& t : it->second) {
         top[std::size_t(x + 1)] = t[1], bottom[std::size_t(x + 1)] = t[3];
         fill(cell + 1);
       }
     } else if (x == 0) {
-      auto it = by_nw_ne.find({top[0], top[1]});
+      auto it = by_nw_ne.find(k2(top[0], top[1]));
       if (it == by_nw_ne.end()) return;
       for (const Tile& t : it->second) {
         bottom[0] = t[2], bottom[1] = t[3];
         fill(cell + 1);
       }
     } else {
-      auto it = se_of.find({top[std::size_t(x)], top[std::size_t(x + 1)], bottom[std::size_t(x)]});
+      auto it = se_of.find(k3(top[std::size_t(x)], top[std::size_t(x + 1)], bottom[std::size_t(x)]));
       if (it == se_of.end()) return;
       for (std::uint32_t se : it->second) {
         bottom[std::size_t(x + 1)] = se;
