@@ -197,7 +197,7 @@ Json merge_link(const TileSet& a, const TileSet& b, const MergeSearch& m, const 
       for (std::size_t x = x0; x < x0 + side; ++x) k += digit(merge ? cls.at(g[y][x]) : g[y][x]);
     return k;
   };
-  for (int r = o.min_merge_radius; r <= o.max_merge_radius; ++r)
+  for (int r = 1; r <= o.max_merge_radius; ++r)
     for (int mg = 0; mg <= o.max_merge_margin; ++mg) {
       const auto side = std::size_t(2 * r + 1);
       std::unordered_map<std::string, std::set<Colour>> v;

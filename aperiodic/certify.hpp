@@ -30,7 +30,6 @@ struct CertifyOptions {
   int max_merge_radius = 3;   // of the merge's recovery table
   int max_merge_margin = 2;   // of the patches of the source the table is read from
   int max_merged_margin = 3;  // of the merged set's patches, past the source's margin
-  int min_merge_radius = 1;   // tests: a radius too small must be refused
 };
 
 // The certificate of the recorded chain (InputError: a step without a certificate form, or no
