@@ -230,7 +230,7 @@ Json merge_link(const TileSet& a, const TileSet& b, const MergeSearch& m, const 
   throw InputError(
       fmt::format("certify: no recovery table of radius {}..{}, margin <= {} (merged set: {} more) is a "
                   "conjugacy",
-                  o.min_merge_radius, o.max_merge_radius, o.max_merge_margin, o.max_merged_margin));
+                  1, o.max_merge_radius, o.max_merge_margin, o.max_merged_margin));
 }
 
 }  // namespace
