@@ -158,6 +158,8 @@ void check_runnable(const PackRequest& a, const TilingProblem& problem, const Se
   }
   // A checkpoint of another run is refused here, before the database or the file is touched.
   if (!o.run.resume_path.empty()) read_resume_file(problem, o, use_portfolio ? &po : nullptr);
+  // So is a statistics file that cannot be read (a refused run creates no database).
+  if (use_portfolio && !po.stats_path.empty() && po.stats_path != "-") PortfolioStats::load(po.stats_path);
 }
 
 // The run's row in the results database, "running" until finish_record().
