@@ -27,12 +27,16 @@ bool is_long_job(std::string_view cmd, std::string_view sub) {
 }
 
 // Signals are caught before anything else, so that no signal finds the default handler,
-// however early or late it comes.
+// however early or late it comes. The other commands exit 3 on SIGTERM or SIGINT after removing
+// their temporary files (base/signals.hpp exit_on_signal_after_cleanup).
 void catch_signals_of_long_jobs(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (argv[i][0] != '-') {
       const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
-      if (is_long_job(cmd, sub)) tilekit::SignalCatcher::catch_for_process();
+      if (is_long_job(cmd, sub))
+        tilekit::SignalCatcher::catch_for_process();
+      else  // the others end at once, without their temporary files
+        tilekit::exit_on_signal_after_cleanup();
       return;
     }
 }
