@@ -83,13 +83,20 @@ bool inside_folder(const std::string& path, const std::string& folder) {
   return true;
 }
 
-void check_io_paths(const std::vector<IoPath>& paths) {
+void check_io_paths(const std::vector<IoPath>& given) {
+  std::vector<IoPath> paths = given;
+  for (const IoPath& p : given) {
+    std::error_code ec;
+    if (p.role != PathRole::Input || !fs::is_directory(p.path, ec)) continue;
+    for (const auto& e : fs::directory_iterator(p.path, ec))
+      if (e.is_regular_file(ec)) paths.push_back({p.what + " " + p.path, e.path().string(), PathRole::Input, {}});
+  }
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const IoPath& out = paths[i];
     if (!is_output(out.role) || out.path.empty()) continue;
     for (std::size_t k = 0; k < paths.size(); ++k) {
       const IoPath& other = paths[k];
-      if (k == i || other.path.empty()) continue;
+      if (k == i || other.path.empty() || (!out.may_replace.empty() && other.what == out.may_replace)) continue;
       // An output against an input or an earlier output (each pair once).
       if (is_output(other.role) && k > i) continue;
       if (same_file(out.path, other.path)) {

@@ -21,6 +21,9 @@ struct IoPath {
   std::string what;  // how the user named it (the CLI's flag), for the message
   std::string path;
   PathRole role = PathRole::Input;
+  // The input (its `what`) this output may name: a checkpoint read whole on resume and then
+  // written again in the same place.
+  std::string may_replace;
 };
 
 // True if `a` and `b` name the same file: device and inode where both exist (links, hard links
@@ -33,7 +36,8 @@ bool inside_folder(const std::string& path, const std::string& folder);
 
 // Throws InputError (exit 2) naming the paths when an output (a file, a folder, a written
 // database) names an input or another output, when a folder output holds an input, or when an
-// output's folder is missing, not a folder or not writable. Changes nothing on the disk.
+// output's folder is missing, not a folder or not writable. A file directly inside an input
+// folder (a folder of tiles) is an input too. Changes nothing on the disk.
 void check_io_paths(const std::vector<IoPath>& paths);
 
 // The databases among `paths` that a command stores into and that do not exist yet: what a refused

@@ -86,13 +86,14 @@ std::vector<IoPath> declared_paths(const CLI::App& leaf, const std::string& cmd)
     if (!role) continue;
     for (const std::string& value : opt->results()) {
       if (value.empty()) continue;
-      paths.push_back({name, value, *role});
-      if (cmd == "texture atlas" && name == "--out") {
-        // The atlas's files beside its PNG (texture/texture_atlas.hpp): each is an output.
+      // A checkpoint is read whole on --resume and written again in its place.
+      paths.push_back({name, value, *role, name == "--checkpoint" ? "--resume" : ""});
+      if (name == "--atlas" || (cmd == "texture atlas" && name == "--out")) {
+        // The atlas's files beside its PNG (texture/texture_atlas.hpp): each is read, or written.
         const std::string stem = atlas_stem(value);
         for (const char* ext : {".png", ".json", ".h", ".glsl"})
-          if (stem + ext != value) paths.push_back({name, stem + ext, *role});
-        for (int k = 1; k <= 16; ++k) paths.push_back({name, fmt::format("{}.mip{}.png", stem, k), *role});
+          if (stem + ext != value) paths.push_back({name, stem + ext, *role, {}});
+        for (int k = 1; k <= 16; ++k) paths.push_back({name, fmt::format("{}.mip{}.png", stem, k), *role, {}});
       }
     }
   }
