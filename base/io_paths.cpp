@@ -64,13 +64,28 @@ std::string why_unwritable(const IoPath& p) {
   return unwritable_folder(folder_of(p.path));
 }
 
+// What names a file: its device and inode where it exists, else where it will be.
+struct Identity {
+  bool exists = false;
+  dev_t dev{};
+  ino_t ino{};
+  fs::path where;
+};
+
+Identity identity_of(const std::string& path) {
+  if (const auto st = stat_of(path)) return {true, st->st_dev, st->st_ino, {}};
+  return {false, {}, {}, resolved(path)};
+}
+
+bool same_identity(const Identity& a, const Identity& b) {
+  if (a.exists && b.exists) return a.dev == b.dev && a.ino == b.ino;
+  return !a.exists && !b.exists && a.where == b.where;
+}
+
 }  // namespace
 
 bool same_file(const std::string& a, const std::string& b) {
-  const auto sa = stat_of(a), sb = stat_of(b);
-  if (sa && sb) return sa->st_dev == sb->st_dev && sa->st_ino == sb->st_ino;
-  if (sa || sb) return false;
-  return resolved(a) == resolved(b);
+  return same_identity(identity_of(a), identity_of(b));
 }
 
 bool inside_folder(const std::string& path, const std::string& folder) {
@@ -91,6 +106,8 @@ void check_io_paths(const std::vector<IoPath>& given) {
     for (const auto& e : fs::directory_iterator(p.path, ec))
       if (e.is_regular_file(ec)) paths.push_back({p.what + " " + p.path, e.path().string(), PathRole::Input, {}});
   }
+  std::vector<Identity> ids;  // each path stated once (a folder of tiles may hold thousands)
+  for (const IoPath& p : paths) ids.push_back(p.path.empty() ? Identity{} : identity_of(p.path));
   for (std::size_t i = 0; i < paths.size(); ++i) {
     const IoPath& out = paths[i];
     if (!is_output(out.role) || out.path.empty()) continue;
@@ -99,7 +116,7 @@ void check_io_paths(const std::vector<IoPath>& given) {
       if (k == i || other.path.empty() || (!out.may_replace.empty() && other.what == out.may_replace)) continue;
       // An output against an input or an earlier output (each pair once).
       if (is_output(other.role) && k > i) continue;
-      if (same_file(out.path, other.path)) {
+      if (same_identity(ids[i], ids[k])) {
         if (is_output(other.role))
           throw InputError(fmt::format("{} and {} name the same file ({}): refused, nothing was written", other.what,
                                        out.what, out.path));
@@ -107,7 +124,7 @@ void check_io_paths(const std::vector<IoPath>& given) {
                                      "refused, nothing was written",
                                      out.what, other.what, other.path));
       }
-      if (out.role == PathRole::OutputFolder && !is_output(other.role) && fs::exists(other.path) &&
+      if (out.role == PathRole::OutputFolder && !is_output(other.role) && ids[k].exists &&
           inside_folder(other.path, out.path))
         throw InputError(fmt::format("{} {} holds {} ({}), which replacing the folder would delete; refused, "
                                      "nothing was written",

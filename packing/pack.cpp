@@ -336,6 +336,7 @@ PackOutcome run_pack(PackRequest request, const PackFields& given) {
   RunRecord record = begin_record(db, a, problem, o, identity);
   out.run_id = record.id;
   SolutionSink sink(db, record.id, problem);
+  if (o.mode == SearchMode::First) sink.before_first_store = a.write_found;  // its file, then the database
   if (o.mode != SearchMode::Count) {
     o.on_solution = [&sink](const Tiling& t) { sink.add(t); };
     o.flush = [&sink] { sink.flush(); };

@@ -181,6 +181,44 @@ TEST_F(IoFaults, AFullDiskUnderAnExistingDatabaseLeavesItAsItWas) {
   EXPECT_EQ(hidden_files(out.path), std::vector<std::string>{});
 }
 
+// The database is written last: `pack --out` on a disk that takes the packing's rows but not the
+// file (a 600 KB limit; the C=16 packing's JSON is about 650 KB) stores nothing.
+TEST_F(IoFaults, APackWhoseOutputCannotBeWrittenStoresNothing) {
+  const TempDir& d = *dir_;
+  TempDir out, logs;
+  fs::copy_file(d / "R.sqlite", out / "R.sqlite");
+  const std::string exported = run_cli("db export --db " + (out / "R.sqlite")).out;
+  ASSERT_FALSE(exported.empty());
+  const CliResult r = run_with_file_limit(
+      {"pack", "--kind", "corner", "--colors", "16", "--db", out / "R.sqlite", "--out", out / "p.json", "--quiet"},
+      600000, logs);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("p.json"), std::string::npos) << r.err;
+  EXPECT_EQ(run_cli("db export --db " + (out / "R.sqlite")).out, exported);
+  EXPECT_FALSE(fs::exists(out / "p.json"));
+  EXPECT_EQ(hidden_files(out.path), std::vector<std::string>{});
+}
+
+// A rerun of `texture tiles` into the folder of a larger old set replaces it whole: no stale tile
+// stays, and `texture atlas` takes the fresh set.
+TEST_F(IoFaults, ASmallerTileSetReplacesALargerOneWhole) {
+  const TempDir& d = *dir_;
+  TempDir out;
+  const auto tiles = [&](int colours) {
+    return run_cli("texture tiles --exemplar " + (d / "I.png") + " --colors " + std::to_string(colours) +
+                   " --tile-px 16 --search 2 --quiet --out " + (out / "T"));
+  };
+  ASSERT_EQ(tiles(3).code, 0);
+  const CliResult r = tiles(2);
+  ASSERT_EQ(r.code, 0) << r.err;
+  int pngs = 0;
+  for (const auto& e : fs::directory_iterator(out / "T")) pngs += e.path().filename().string().starts_with("tile-");
+  EXPECT_EQ(pngs, 16);
+  const CliResult a = run_cli("texture atlas " + (out / "T") + " --out " + (out / "A.png") + " --no-db");
+  EXPECT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(hidden_files(out.path), std::vector<std::string>{});
+}
+
 // Starts `tilekit args`, sends `sig` the moment the first hidden file appears in `watch` (the
 // first temp file; inotify), and returns the exit code, or -1 if no temp file appeared.
 int signal_at_first_temp(const std::vector<std::string>& args, const std::string& watch, int sig, const TempDir& logs) {
