@@ -120,15 +120,17 @@ void check_io_paths(const std::vector<IoPath>& given) {
         if (is_output(other.role))
           throw InputError(fmt::format("{} and {} name the same file ({}): refused, nothing was written", other.what,
                                        out.what, out.path));
-        throw InputError(fmt::format("{} names the same file as {} ({}): writing it would destroy that input; "
-                                     "refused, nothing was written",
-                                     out.what, other.what, other.path));
+        throw InputError(
+            fmt::format("{} names the same file as {} ({}): writing it would destroy that input; "
+                        "refused, nothing was written",
+                        out.what, other.what, other.path));
       }
       if (out.role == PathRole::OutputFolder && !is_output(other.role) && ids[k].exists &&
           inside_folder(other.path, out.path))
-        throw InputError(fmt::format("{} {} holds {} ({}), which replacing the folder would delete; refused, "
-                                     "nothing was written",
-                                     out.what, out.path, other.what, other.path));
+        throw InputError(
+            fmt::format("{} {} holds {} ({}), which replacing the folder would delete; refused, "
+                        "nothing was written",
+                        out.what, out.path, other.what, other.path));
     }
     if (const std::string why = why_unwritable(out); !why.empty())
       throw InputError(fmt::format("{} {}: cannot write: {}; refused before any work, nothing was changed", out.what,
@@ -140,8 +142,7 @@ std::vector<std::string> databases_to_create(const std::vector<IoPath>& paths) {
   std::vector<std::string> out;
   for (const IoPath& p : paths) {
     struct stat st {};
-    if (p.role == PathRole::WrittenDatabase && !p.path.empty() && ::lstat(p.path.c_str(), &st) != 0 &&
-        errno == ENOENT)
+    if (p.role == PathRole::WrittenDatabase && !p.path.empty() && ::lstat(p.path.c_str(), &st) != 0 && errno == ENOENT)
       out.push_back(p.path);
   }
   return out;

@@ -1,13 +1,12 @@
 #include "base/signals.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <csignal>
 #include <cstring>
 #include <new>
-
-#include <unistd.h>
 
 #include "base/error.hpp"
 #include "base/temp_files.hpp"

@@ -98,7 +98,10 @@ void run_convert_command(const ConvertArgs& a, const Context& ctx) {
   if (a.verify > 0) req.verify_options.max_period = a.verify;
   req.db = a.db;
   // The tile-set file first, the database last (cli/io_policy.hpp).
-  if (!a.out.empty()) req.before_store = [&a](const ConvertReport& r) { write_file_atomic(a.out, format_tile_set_text(r.conversion.set)); };
+  if (!a.out.empty())
+    req.before_store = [&a](const ConvertReport& r) {
+      write_file_atomic(a.out, format_tile_set_text(r.conversion.set));
+    };
   ConvertReport rep = run_convert(req);
   const LabelledConversion& c = rep.conversion;
   nlohmann::json j = conversion_json(c, rep.source.name());

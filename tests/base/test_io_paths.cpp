@@ -57,14 +57,17 @@ TEST(IoPaths, AnOutputOverAnInputOrAnotherOutputIsRefused) {
             std::string::npos);
   EXPECT_NE(io_refusal({{"db", d / "in", PathRole::Database, {}}, {"out", d / "in", PathRole::Output, {}}}), "");
   // A checkpoint resumed and written again in its place.
-  EXPECT_EQ(io_refusal({{"resume", d / "in", PathRole::Input, {}}, {"checkpoint", d / "in", PathRole::Output, "resume"}}),
-            "");
+  EXPECT_EQ(
+      io_refusal({{"resume", d / "in", PathRole::Input, {}}, {"checkpoint", d / "in", PathRole::Output, "resume"}}),
+      "");
   // A file inside an input folder is an input; a folder output holding an input is refused.
   fs::create_directory(d / "tiles");
   test::write_text(d / "tiles/tiles.json", "{}");
-  EXPECT_NE(io_refusal({{"DIR", d / "tiles", PathRole::Input, {}}, {"out", d / "tiles/tiles.json", PathRole::Output, {}}}),
-            "");
-  EXPECT_NE(io_refusal({{"ex", d / "tiles/tiles.json", PathRole::Input, {}}, {"out", d / "tiles", PathRole::OutputFolder, {}}})
+  EXPECT_NE(
+      io_refusal({{"DIR", d / "tiles", PathRole::Input, {}}, {"out", d / "tiles/tiles.json", PathRole::Output, {}}}),
+      "");
+  EXPECT_NE(io_refusal(
+                {{"ex", d / "tiles/tiles.json", PathRole::Input, {}}, {"out", d / "tiles", PathRole::OutputFolder, {}}})
                 .find("holds"),
             std::string::npos);
   EXPECT_EQ(io_refusal({{"ex", d / "in", PathRole::Input, {}}, {"out", d / "tiles", PathRole::OutputFolder, {}}}), "");
@@ -81,7 +84,8 @@ TEST(IoPaths, AnOutputThatCannotBeWrittenIsRefused) {
   EXPECT_NE(io_refusal({{"out", d / "file/x", PathRole::Output, {}}}).find("is not a folder"), std::string::npos);
   EXPECT_NE(io_refusal({{"out", d / "folder", PathRole::Output, {}}}).find("it is a folder"), std::string::npos);
   EXPECT_NE(io_refusal({{"db", d / "missing/r.sqlite", PathRole::WrittenDatabase, {}}}), "");
-  EXPECT_EQ(io_refusal({{"db", d / "missing/r.sqlite", PathRole::Database, {}}}), "");  // read only: its reader's to say
+  EXPECT_EQ(io_refusal({{"db", d / "missing/r.sqlite", PathRole::Database, {}}}),
+            "");  // read only: its reader's to say
   // A folder output is made with its missing parents; a file in its place is refused.
   EXPECT_EQ(io_refusal({{"out", d / "missing/deeper/T", PathRole::OutputFolder, {}}}), "");
   EXPECT_NE(io_refusal({{"out", d / "file", PathRole::OutputFolder, {}}}), "");

@@ -62,7 +62,7 @@ CliResult run_with_file_limit(const std::vector<std::string>& args, rlim_t bytes
     const int n = ::open("/dev/null", O_RDONLY);
     if (o < 0 || e < 0 || n < 0) _exit(120);
     ::dup2(n, 0), ::dup2(o, 1), ::dup2(e, 2);
-    const struct rlimit lim {bytes, bytes};
+    const struct rlimit lim { bytes, bytes };
     ::setrlimit(RLIMIT_FSIZE, &lim);
     ::signal(SIGXFSZ, SIG_IGN);
     std::vector<std::string> all{TILEKIT_BINARY};
@@ -111,8 +111,8 @@ TempDir* IoFaults::dir_ = nullptr;
 TEST_F(IoFaults, AFullDiskIsExitTwoWithTheOldOutputsKeptForEveryWritingCommand) {
   const TempDir& d = *dir_;
   struct Case {
-    std::string args;  // "@": the input folder, "%": the output folder
-    bool remake = true;  // run once without the limit first, so that the old outputs exist
+    std::string args;     // "@": the input folder, "%": the output folder
+    bool remake = true;   // run once without the limit first, so that the old outputs exist
     rlim_t limit = 2048;  // bytes per file: less than the output (and more than the one stderr line)
   };
   const std::vector<Case> cases = {
@@ -167,10 +167,8 @@ TEST_F(IoFaults, AFullDiskUnderAnExistingDatabaseLeavesItAsItWas) {
   TempDir out, logs;
   fs::copy_file(d / "R.sqlite", out / "R.sqlite");
   const auto before = fault_snapshot(out.path);
-  const CliResult r =
-      run_with_file_limit({"pack", "--kind", "corner", "--colors", "2", "--mode", "all", "--db", out / "R.sqlite",
-                           "--quiet"},
-                          2048, logs);
+  const CliResult r = run_with_file_limit(
+      {"pack", "--kind", "corner", "--colors", "2", "--mode", "all", "--db", out / "R.sqlite", "--quiet"}, 2048, logs);
   EXPECT_EQ(r.code, 2) << r.err;
   auto after = fault_snapshot(out.path);
   if (fs::exists(out / "R.sqlite-wal")) {
@@ -228,7 +226,9 @@ int signal_at_first_temp(const std::vector<std::string>& args, const std::string
   bool sent = false;
   alignas(struct inotify_event) char buf[4096];
   while (!sent) {
-    struct pollfd p {in, POLLIN, 0};
+    struct pollfd p {
+      in, POLLIN, 0
+    };
     if (poll(&p, 1, 60000) <= 0) break;
     const ssize_t n = read(in, buf, sizeof buf);
     for (ssize_t off = 0; off < n && !sent;) {

@@ -133,8 +133,8 @@ TEST_F(IoPolicy, AnOutputOverAnInputIsExitTwoForEveryCommandWithAnOutput) {
 TEST_F(IoPolicy, ACheckpointMayBeResumedAndWrittenAgainInPlace) {
   const TempDir& d = *dir_;
   TempDir w;
-  const CliResult r = run_cli("aperiodic verify " + (d / "S.tiles") + " --checkpoint " + (w / "c.ckpt") +
-                              " --resume " + (w / "c.ckpt") + " --quiet");
+  const CliResult r = run_cli("aperiodic verify " + (d / "S.tiles") + " --checkpoint " + (w / "c.ckpt") + " --resume " +
+                              (w / "c.ckpt") + " --quiet");
   EXPECT_EQ(r.err.find("the same file"), std::string::npos) << r.err;
 }
 
@@ -185,8 +185,8 @@ TEST_F(IoPolicy, AHostileFileNameReachesThePreviewPageOnlyAsText) {
   fs::create_directory(w / "a<");
   const std::string name = w / "a</script><img src=x onerror=alert(1)>.png";
   fs::copy_file(d / "I.png", name);
-  const CliResult r = run_cli("texture preview --atlas " + (d / "A.png") + " --exemplar " + q(name) + " --out " +
-                              (w / "p.html"));
+  const CliResult r =
+      run_cli("texture preview --atlas " + (d / "A.png") + " --exemplar " + q(name) + " --out " + (w / "p.html"));
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string html = slurp(w / "p.html");
   EXPECT_EQ(html.find("<img src=x"), std::string::npos);
@@ -207,10 +207,10 @@ TEST_F(IoPolicy, AHostileNameReachesCHeadersAndShadersOnlyAsCommentText) {
   fs::create_directories(folder);  // its slashes make folders in folders
   fs::copy_file(d / "R.sqlite", folder + "/r.sqlite");
   const std::string db = q(folder + "/r.sqlite");
-  for (const std::string& c : std::vector<std::string>{
-           "atlas lookup --colors 2 --format c --db " + db + " --out " + (w / "l.h"),
-        "atlas lookup --colors 2 --format glsl --db " + db + " --out " + (w / "l.glsl"),
-        "texture atlas " + (d / "T") + " --db " + db + " --out " + (w / "a.png")}) {
+  for (const std::string& c :
+       std::vector<std::string>{"atlas lookup --colors 2 --format c --db " + db + " --out " + (w / "l.h"),
+                                "atlas lookup --colors 2 --format glsl --db " + db + " --out " + (w / "l.glsl"),
+                                "texture atlas " + (d / "T") + " --db " + db + " --out " + (w / "a.png")}) {
     const CliResult r = run_cli(c);
     ASSERT_EQ(r.code, 0) << c << "\n" << r.err;
   }
