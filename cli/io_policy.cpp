@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <exception>
+#include <filesystem>
 #include <optional>
 #include <string_view>
 
+#include "results/results_db.hpp"
 #include "texture/texture_atlas.hpp"
 
 namespace tilekit::cli {
@@ -75,6 +78,24 @@ std::vector<std::string>& created_databases() {
   return paths;
 }
 
+// True if the database at `path`, which this run found missing, holds nothing anyone stored:
+// another process may have made the same new file meanwhile and stored into it, and that stays.
+bool holds_nothing(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) return false;  // not there (or not a file): nothing to remove
+  try {
+    const ResultsDb db(
+        path, DbOpenOptions{.create = false, .read_only = true, .integrity_check = false, .busy_timeout_ms = 100});
+    const DbStats s = db.stats();
+    return s.runs == 0 && s.solutions == 0 && s.tilesets == 0 && s.conversions == 0;
+  } catch (const std::exception&) {
+    // Not a database, or one that is busy: removed only if it is no more than its first pages
+    // (the header a full disk cut short).
+    return bytes <= 8192;
+  }
+}
+
 }  // namespace
 
 std::vector<IoPath> declared_paths(const CLI::App& leaf, const std::string& cmd) {
@@ -115,7 +136,10 @@ void install_io_policy(CLI::App& app) {
 }
 
 void undo_created_databases() {
-  remove_created_files(created_databases());
+  std::vector<std::string> empty;
+  for (const std::string& p : created_databases())
+    if (holds_nothing(p)) empty.push_back(p);
+  remove_created_files(empty);
   created_databases().clear();
 }
 

@@ -19,8 +19,9 @@ std::vector<IoPath> declared_paths(const CLI::App& leaf, const std::string& cmd)
 // Checks the parsed command's files before its callback runs (a parse-complete callback on `app`).
 void install_io_policy(CLI::App& app);
 
-// On a refused run (exit 2): removes the databases it was to store into that did not exist
-// before it (a refused command creates no database).
+// On a refused run (exit 2 or 4): removes the databases it was to store into that did not exist
+// before it and hold nothing stored (a refused command creates no database; one another process
+// made and filled meanwhile stays).
 void undo_created_databases();
 
 }  // namespace tilekit::cli
