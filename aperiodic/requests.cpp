@@ -48,6 +48,7 @@ ConvertReport run_convert(const ConvertRequest& r) {
     rep.verify = verify_tile_set(rep.conversion.set, r.verify_options);
     label_by_decision(rep.conversion, *rep.verify);
   }
+  if (r.before_store) r.before_store(rep);
   if (!r.db.empty()) {
     ResultsDb db(r.db);
     nlohmann::json details = conversion_json(rep.conversion, rep.source.name());

@@ -3,6 +3,7 @@
 // printing. Each resolves the set (repeated tiles accepted and reported, the distinct set
 // used), runs the engine, and stores what it found when a database is named.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,12 +31,17 @@ struct VerifyReport {
 
 VerifyReport run_verify(const VerifyRequest& r);
 
+struct ConvertReport;
+
 struct ConvertRequest {
   std::string set;
   ConversionSpec spec;
   bool verify = false;  // also verify the result (a periodic witness relabels it `periodic`)
   VerifyOptions verify_options;
   std::string db;
+  // The command's other outputs (a tile-set file), written before the database is: a failed
+  // write leaves the database as it was.
+  std::function<void(const ConvertReport&)> before_store;
 };
 
 struct ConvertReport {

@@ -2,10 +2,12 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -38,6 +40,25 @@ void remove_temp(const std::string& tmp) {
   TempFiles::forget(tmp);
 }
 
+// SIGTERM and SIGINT held back while a temp file is made and registered: a signal handler that
+// removes the registered files (base/signals.hpp) never misses one that already exists.
+class HoldStopSignals {
+ public:
+  HoldStopSignals() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~HoldStopSignals() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  HoldStopSignals(const HoldStopSignals&) = delete;
+  HoldStopSignals& operator=(const HoldStopSignals&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
 // The rename itself survives a power cut only once the directory entry is on disk.
 void sync_directory(const std::string& path) {
   int dfd = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY);
@@ -52,6 +73,7 @@ void sync_directory(const std::string& path) {
 AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
   const std::filesystem::path target(path_);
   tmp_ = (directory_of(path_) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  const HoldStopSignals hold;
   fd_ = ::mkstemp(tmp_.data());
   if (fd_ < 0) throw InputError(fmt::format("{}: cannot write: {}", path_, std::strerror(errno)));
   TempFiles::add(tmp_);
@@ -133,6 +155,7 @@ AtomicFolder::AtomicFolder(std::string path) : path_(std::move(path)) {
     throw InputError(fmt::format("{}: cannot write: it exists and is not a folder", path_));
   std::filesystem::create_directories(directory_of(path_), ec);
   tmp_ = (directory_of(path_) / ("." + target.filename().string() + ".tmpXXXXXX")).string();
+  const HoldStopSignals hold;
   if (!::mkdtemp(tmp_.data())) {
     const int err = errno;
     tmp_.clear();

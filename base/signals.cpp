@@ -1,12 +1,15 @@
 #include "base/signals.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <csignal>
+#include <cstring>
 #include <new>
 
 #include "base/error.hpp"
+#include "base/temp_files.hpp"
 
 namespace tilekit {
 
@@ -41,6 +44,26 @@ void SignalCatcher::catch_for_process() {
   // process; no heap allocation, so LeakSanitizer has nothing to report.
   alignas(SignalCatcher) static unsigned char storage[sizeof(SignalCatcher)];
   [[maybe_unused]] static SignalCatcher* forever = new (storage) SignalCatcher;
+}
+
+namespace {
+extern "C" void on_exit_signal(int sig) {
+  TempFiles::remove_all_in_signal_handler();
+  const char* line = sig == SIGTERM ? "tilekit: interrupted by SIGTERM: nothing kept\n"
+                                    : "tilekit: interrupted by SIGINT: nothing kept\n";
+  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, line, std::strlen(line));
+  ::_exit(3);
+}
+}  // namespace
+
+void exit_on_signal_after_cleanup() {
+  struct sigaction sa {};
+  sa.sa_handler = on_exit_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaddset(&sa.sa_mask, SIGTERM);
+  sigaddset(&sa.sa_mask, SIGINT);
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
 }
 
 int SignalCatcher::caught() {

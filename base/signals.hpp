@@ -28,6 +28,12 @@ class SignalCatcher {
   static void catch_for_process();
 };
 
+// For a command that does not poll for signals (a short one: an export, a picture, an atlas):
+// SIGTERM or SIGINT removes the temporary files it has registered (base/temp_files.hpp), prints
+// "tilekit: interrupted by SIGTERM: nothing kept" and exits 3 at once, so that no hidden temp
+// file stays. A SignalCatcher made later (a search inside the command) replaces it while it lives.
+void exit_on_signal_after_cleanup();
+
 // "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
 std::string signal_name(int sig);
 

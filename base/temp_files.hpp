@@ -3,7 +3,8 @@
 // of base/atomic_file.hpp), in one registry, so that nothing a signal interrupts stays on the
 // disk. Each owner removes its own as it unwinds (RAII); the CLI's last step on an interrupted
 // or failed run, remove_all(), removes whatever an owner could not (a temp file handed over by
-// AtomicFileWriter::finish_temp() and not yet renamed).
+// AtomicFileWriter::finish_temp() and not yet renamed). A command that does not poll for signals
+// removes them from its signal handler (remove_all_in_signal_handler) before it exits.
 #include <cstddef>
 #include <string>
 
@@ -16,6 +17,9 @@ class TempFiles {
   // Removes every registered file and folder (whole); returns how many there were.
   static std::size_t remove_all();
   static std::size_t count();
+  // The same, with system calls only, from a signal handler (base/signals.hpp
+  // exit_on_signal_after_cleanup): the process ends right after, so the registry stays as it is.
+  static void remove_all_in_signal_handler();
 };
 
 }  // namespace tilekit

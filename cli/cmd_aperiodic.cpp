@@ -98,6 +98,11 @@ void run_convert_command(const ConvertArgs& a, const Context& ctx) {
   apply_verify_run(a.run, req.verify_options);
   if (a.verify > 0) req.verify_options.max_period = a.verify;
   req.db = a.db;
+  // The tile-set file first, the database last (cli/io_policy.hpp).
+  if (!a.out.empty())
+    req.before_store = [&a](const ConvertReport& r) {
+      write_file_atomic(a.out, format_tile_set_text(r.conversion.set));
+    };
   ConvertReport rep = run_convert(req);
   const LabelledConversion& c = rep.conversion;
   nlohmann::json j = conversion_json(c, rep.source.name());
@@ -108,10 +113,7 @@ void run_convert_command(const ConvertArgs& a, const Context& ctx) {
     for (std::size_t k = 0; k < c.set.size(); ++k) list.push_back(c.set.file_colours(k));
     j["list"] = list;
   }
-  if (!a.out.empty()) {
-    write_file_atomic(a.out, format_tile_set_text(c.set));
-    j["out"] = a.out;
-  }
+  if (!a.out.empty()) j["out"] = a.out;
   if (!a.db.empty()) j["conversion_id"] = rep.conversion_id, j["db"] = a.db;
   emit(ctx, j, [&] {
     if (!rep.repeated.empty()) fmt::print("{}\n", repeated_text(rep.repeated));

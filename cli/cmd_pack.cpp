@@ -195,13 +195,19 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   PackFields given;
   for (PackField f : pack_fields())
     if (cmd.count(flag_of_field(pack_field_name(f)))) given.insert(f);
-  PackOutcome o = run_pack(req, given);
-  std::string out_file;
-  if (!a.out.empty() && !o.result.found.empty()) {
-    const Tiling& t = o.result.found.front();  // window tori in the compact peg form
+  // --out is written before the packing is stored (the database last), or after the run where
+  // nothing new is stored (a packing from the database).
+  const auto write_out = [&a](const Tiling& t) {  // window tori in the compact peg form
     write_file_atomic(a.out, (t.kind == TileKind::Window && t.colours <= 62 ? tiling_to_peg_json(t) : tiling_to_json(t))
                                      .dump(1) +
                                  "\n");
+  };
+  bool out_written = false;
+  if (!a.out.empty()) req.write_found = [&](const Tiling& t) { write_out(t), out_written = true; };
+  PackOutcome o = run_pack(req, given);
+  std::string out_file;
+  if (!a.out.empty() && !o.result.found.empty()) {
+    if (!out_written) write_out(o.result.found.front());
     out_file = a.out;
   }
   nlohmann::json j = outcome_json(o, out_file);

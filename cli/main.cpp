@@ -14,6 +14,7 @@
 #include "base/version.hpp"
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
+#include "cli/io_policy.hpp"
 
 namespace {
 
@@ -26,19 +27,25 @@ bool is_long_job(std::string_view cmd, std::string_view sub) {
 }
 
 // Signals are caught before anything else, so that no signal finds the default handler,
-// however early or late it comes.
+// however early or late it comes. The other commands exit 3 on SIGTERM or SIGINT after removing
+// their temporary files (base/signals.hpp exit_on_signal_after_cleanup).
 void catch_signals_of_long_jobs(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
     if (argv[i][0] != '-') {
       const std::string_view cmd = argv[i], sub = i + 1 < argc ? argv[i + 1] : "";
-      if (is_long_job(cmd, sub)) tilekit::SignalCatcher::catch_for_process();
+      if (is_long_job(cmd, sub))
+        tilekit::SignalCatcher::catch_for_process();
+      else  // the others end at once, without their temporary files
+        tilekit::exit_on_signal_after_cleanup();
       return;
     }
 }
 
-// Ends with `code` after removing the temporary files a failed or interrupted job left registered.
+// Ends with `code` after removing the temporary files a failed or interrupted job left registered,
+// and, on a refusal or an internal error, a database the run created (cli/io_policy.hpp).
 int fail(int code) {
   tilekit::TempFiles::remove_all();
+  if (code == 2 || code == 4) tilekit::cli::undo_created_databases();
   return code;
 }
 
@@ -67,6 +74,7 @@ int main(int argc, char** argv) {
   cli::add_points_commands(app, ctx);
   cli::add_texture_commands(app, ctx);
   cli::add_tiled_commands(app, ctx);
+  cli::install_io_policy(app);  // outputs checked against inputs and the file system before any work
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -82,7 +90,7 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const RequestError& e) {  // a library's words for a field: the flag's here
     std::cerr << "tilekit: " << cli::in_flag_terms(e) << std::endl;
-    return 2;
+    return fail(2);
   } catch (const InputError& e) {
     std::cerr << "tilekit: " << e.what() << std::endl;
     return fail(2);

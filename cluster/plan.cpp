@@ -17,6 +17,11 @@ namespace tilekit::cluster {
 namespace fs = std::filesystem;
 namespace {
 
+// A carriage return or another control character would split or hide a line of the scripts.
+bool has_control_character(const std::string& s) {
+  return std::any_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+
 bool enumerate_run(const SubmitRequest& r) {
   return r.command == "enumerate";
 }
@@ -129,11 +134,11 @@ void check_plan(const ClusterPlan& p) {
   for (const auto& [what, value] : {std::pair<const char*, const std::string&>{"`run_dir`", p.run_dir},
                                     {"`partition`", p.partition},
                                     {"`job_name`", p.job_name}})
-    if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos)
+    if (value.find_first_of(" \t\n'\"#%\\") != std::string::npos || has_control_character(value))
       throw InputError(
           fmt::format("{} '{}': no spaces, quotes, '#', '%' or '\\' allowed in Slurm directives", what, value));
   for (const auto& a : p.sbatch_args)
-    if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos)
+    if (a.rfind("--", 0) != 0 || a.find_first_of(" \t\n") != std::string::npos || has_control_character(a))
       throw InputError(
           fmt::format("`sbatch_args` '{}': expected one sbatch option like "
                       "--account=NAME",  // not a tilekit flag

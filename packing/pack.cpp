@@ -158,6 +158,8 @@ void check_runnable(const PackRequest& a, const TilingProblem& problem, const Se
   }
   // A checkpoint of another run is refused here, before the database or the file is touched.
   if (!o.run.resume_path.empty()) read_resume_file(problem, o, use_portfolio ? &po : nullptr);
+  // So is a statistics file that cannot be read (a refused run creates no database).
+  if (use_portfolio && !po.stats_path.empty() && po.stats_path != "-") PortfolioStats::load(po.stats_path);
 }
 
 // The run's row in the results database, "running" until finish_record().
@@ -334,6 +336,7 @@ PackOutcome run_pack(PackRequest request, const PackFields& given) {
   RunRecord record = begin_record(db, a, problem, o, identity);
   out.run_id = record.id;
   SolutionSink sink(db, record.id, problem);
+  if (o.mode == SearchMode::First) sink.before_first_store = a.write_found;  // its file, then the database
   if (o.mode != SearchMode::Count) {
     o.on_solution = [&sink](const Tiling& t) { sink.add(t); };
     o.flush = [&sink] { sink.flush(); };

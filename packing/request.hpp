@@ -4,6 +4,7 @@
 // portfolio candidates) and the run's settings (threads, limits, files). Its identity goes into
 // every checkpoint, so that `tilekit pack --resume FILE` alone continues the run.
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -42,6 +43,9 @@ struct PackRequest {
   }();
   std::string db;               // results database ("" = the default one)
   std::string portfolio_stats;  // "" = the default statistics file
+  // First mode: the command's own file of the packing found (`pack --out`), written before the
+  // packing is stored (SolutionSink::before_first_store). Not part of a checkpoint.
+  std::function<void(const Tiling&)> write_found;
 };
 
 // The identity fields as JSON (what a checkpoint stores, with the database path).

@@ -1,6 +1,8 @@
 // SolutionSink: batched, validated solutions into the results database (solution_sink.hpp).
 #include "packing/solution_sink.hpp"
 
+#include <utility>
+
 namespace tilekit {
 
 SolutionSink::SolutionSink(ResultsDb& db, std::int64_t run_id, const TilingProblem& p)
@@ -28,6 +30,7 @@ void SolutionSink::add(const Tiling& t) {
 }
 
 void SolutionSink::flush() {
+  if (!batch_.empty() && before_first_store) std::exchange(before_first_store, nullptr)(batch_.front().tiling);
   added_ += db_.add_solutions(batch_);
   batch_.clear();
 }

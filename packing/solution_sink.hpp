@@ -3,6 +3,7 @@
 // engine calls before each checkpoint, so a checkpoint never covers a solution the database
 // lacks; every solution arrives validated (solve() checks each one before emitting it).
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -22,6 +23,9 @@ class SolutionSink {
   std::size_t added() const { return added_; }
   nlohmann::json group;           // the imposed group of the solutions added from now on (null: none)
   std::string method = "search";  // how the solutions added from now on were found
+  // Called once, with the first solution, just before it is stored: the command's own file of it
+  // (`pack --out`), so that the database is written last and a failed write leaves it without it.
+  std::function<void(const Tiling&)> before_first_store;
 
  private:
   ResultsDb& db_;

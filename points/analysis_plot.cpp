@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/text_escape.hpp"
+
 namespace tilekit::points {
 
 namespace {
@@ -55,7 +57,7 @@ class SvgCanvas : public Canvas {
   }
   void text(double x, double y, const std::string& s, Rgb c, bool right) override {
     body += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" fill="{}" font-size="11" font-family="sans-serif"{}>{}</text>)",
-                        x, y + 4, hex(c), right ? R"( text-anchor="end")" : "", s);
+                        x, y + 4, hex(c), right ? R"( text-anchor="end")" : "", html_escape(s));  // a name: text
     body += '\n';
   }
 };

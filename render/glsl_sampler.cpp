@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "base/text_escape.hpp"
 #include "render/anisotropic.hpp"
 #include "render/baseline_samplers.hpp"
 
@@ -91,7 +92,7 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o) {
       "// (dFdx(uv), dFdy(uv)); it filters anisotropically with up to TK_MAX_ANISO taps (define it\n"
       "// before this text to change it; 1 is trilinear). The tiling is bit-identical to tilekit's C++.\n",
       hash_kind_name(o.hash), o.seed, a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours,
-      a.tile_px, a.lookup.source, a.lookup.how);
+      a.tile_px, comment_text(a.lookup.source), comment_text(a.lookup.how));  // the user's text (a manifest's)
   return g + glsl_sampler_library(a.lookup, a.tile_px, tiling, GlslTables::Inline);
 }
 

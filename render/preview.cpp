@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "base/hash.hpp"
+#include "base/text_escape.hpp"
 #include "render/baseline_samplers.hpp"
 #include "render/glsl_sampler.hpp"
 #include "render/preview_scripts.hpp"
@@ -148,13 +149,14 @@ std::string preview_html(const TextureAtlas& atlas, const ExemplarSurface* exemp
                                {"seed", std::to_string(o.seed)},
                                {"aniso", o.max_aniso}};
   std::string json = data.dump();
-  // Inside <script>, "</" could end the element early; "<\/" is the same JSON string.
-  for (std::size_t p = json.find("</"); p != std::string::npos; p = json.find("</", p + 3)) json.replace(p, 2, "<\\/");
+  // Inside <script>, "</script" would end the element early and "<!--" change how it is read:
+  // every '<' (only ever inside a JSON string) as "\u003c", the same JSON string.
+  for (std::size_t p = json.find('<'); p != std::string::npos; p = json.find('<', p + 6)) json.replace(p, 1, "\\u003c");
   const std::string title =
       fmt::format("tilekit preview: {} tiles over {} colours, {} px{}", kind_name(atlas.lookup.kind),
                   atlas.lookup.colours, atlas.tile_px, exemplar ? ", exemplar " + exemplar->name : "");
   std::string html = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>";
-  html += title;
+  html += html_escape(title);  // the exemplar's name is the user's (a file name): text, never markup
   html +=
       "</title>\n<style>\n"
       "html, body { margin: 0; height: 100%; overflow: hidden; background: #222; color: #eee; font: 13px sans-serif; "
@@ -165,7 +167,7 @@ std::string preview_html(const TextureAtlas& atlas, const ExemplarSurface* exemp
       "#ui button.on { background: #6a6; }\n"
       "#msg { position: fixed; left: 8px; bottom: 8px; color: #f88; white-space: pre-wrap; }\n"
       "</style></head><body>\n<canvas id=\"view\"></canvas>\n<div id=\"ui\"><b>";
-  html += title;
+  html += html_escape(title);
   html +=
       "</b><br><span id=\"info\"></span><br>\n"
       "method <span id=\"methods\"></span> tilt <input id=\"tilt\" type=\"range\" min=\"0\" max=\"12\" step=\"0.1\">\n"
