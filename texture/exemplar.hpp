@@ -38,6 +38,9 @@ Exemplar exemplar_from_image(Image image, std::string name, bool tileable = fals
 
 // The exemplar resampled (bilinear) by sx horizontally and sy vertically (the torus with it).
 Exemplar resample_exemplar(const Exemplar& e, double sx, double sy);
+// The same for any image (any depth and channels): its w0 x h0 top-left part resampled to
+// round(w0 sx) x round(h0 sy) (at least kMinExemplarSide), a torus when `torus`.
+Image resample_image(const Image& src, int w0, int h0, double sx, double sy, bool torus);
 
 // The dominant period of the exemplar along x and along y (0: none), from the autocorrelation
 // of its gradient magnitude (so that mortar lines and joints count, not slow shading): among the
