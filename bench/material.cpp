@@ -56,8 +56,12 @@ HeldOut held_out(const std::string& name) {
   if (const std::string spec = real_texture_path(name + ".spec"); !spec.empty())
     h.maps.push_back(parse_material_map("spec=" + spec + ":linear"));
   resize_maps(h.maps, h.albedo.width, h.albedo.height, true);
+  if (const char* w = std::getenv("TILEKIT_MAP_WEIGHT"))  // every map's WEIGHT
+    for (MaterialMap& m : h.maps) m.weight = std::atof(w);
   return h;
 }
+
+constexpr double kAlbedoWeight = 1.0;
 
 SynthesisOptions options() {
   SynthesisOptions o;
@@ -74,7 +78,9 @@ SynthesisOptions options() {
 TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<MaterialMap>& maps) {
   const SynthesisOptions o = options();
   if (!all_maps) return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), o);
-  const MaterialFeatures f = material_features(h.albedo, 1.0, maps);
+  const char* w = std::getenv("TILEKIT_ALBEDO_WEIGHT");  // --albedo-weight
+  const MaterialFeatures f = material_features(h.albedo, w ? std::atof(w) : kAlbedoWeight,
+                                               std::getenv("TILEKIT_NO_MAPS") ? std::vector<MaterialMap>{} : maps);
   return synthesize_tiles(exemplar_from_image(f.image, h.name, true), o);
 }
 
@@ -118,9 +124,20 @@ void seams(const std::string& name) {
            {"normal_cut_ratio", nm.cut_ratio},
            {"albedo_cut_ratio", al.cut_ratio},
            {"cut_error", s.cut_error},
+           {"period", {s.period.x, s.period.y}},
+           {"thin_bands", s.thin_bands},
+           {"shared_fraction", s.shared_fraction},
            {"window_tiles", "16x16"}});
-    if (const char* dir = std::getenv("TILEKIT_BENCH_PICTURES"))
-      write_png(fmt::format("{}/material-{}-{}.png", dir, name, all ? "all" : "albedo"), render);
+    if (const char* dir = std::getenv("TILEKIT_BENCH_PICTURES")) {  // 256x256 crops: lit, and the shading alone
+      const Image shading = lit(Image(colour.width, colour.height, Rgb{188, 188, 188}), normals);
+      for (const auto& [what, img] : {std::pair<const char*, const Image*>{"lit", &render}, {"shading", &shading}}) {
+        Image crop(256, 256);
+        for (int y = 0; y < 256; ++y) std::copy_n(img->at(0, y), 256 * 4, crop.at(0, y));
+        write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
+      }
+      const SeamStatistics sh = seam_statistics(shading, s.tile_px, &sources);
+      print({{"case", fmt::format("material-shading/{}/{}", name, all ? "all" : "albedo")}, {"cut_ratio", sh.cut_ratio}});
+    }
   }
 }
 

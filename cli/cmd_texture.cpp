@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "atlas/lookup.hpp"
@@ -117,7 +118,16 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.threads = a.run.resolved_threads();
   o.seed = a.run.seed;
   o.progress = !a.quiet;
-  o.keep_period = a.period == "auto";
+  o.keep_period = a.period != "off";
+  if (a.period != "auto" && a.period != "off") {  // X,Y in pixels (0: none along that axis)
+    double x = 0, y = 0;
+    char tail = 0;
+    if (std::sscanf(a.period.c_str(), "%lf,%lf%c", &x, &y, &tail) != 2 || !(x == 0 || (x >= 4 && x <= 4096)) ||
+        !(y == 0 || (y >= 4 && y <= 4096)) || (x == 0 && y == 0))
+      throw InputError(fmt::format("--period '{}': expected auto, off or X,Y in pixels (each 0 or 4..4096, not both 0)",
+                                   a.period));
+    o.period_override = {x, y};
+  }
   o.rectify = a.perspective == "auto";
   const Exemplar e = load_exemplar(a.exemplar, a.tileable);
   MaterialRun m;
@@ -145,6 +155,8 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   });
   nlohmann::json j = tile_set_json(s);
   if (material) j.update(m.report);
+  if (const std::string why = o.keep_period ? structure_message(s.period) : ""; !why.empty())
+    fmt::print(stderr, "texture tiles: {}\n", why);
   j["exemplar"] = e.name;
   j["tileable"] = e.wrap_w > 0;
   j["out"] = a.out;
@@ -205,8 +217,8 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                 "but mip level 2 next to a border is no longer exact (not for a periodic exemplar)");
   cmd->add_option("--period", a->period,
                   "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
-                  "phase); off: never")
-      ->check(CLI::IsMember({"auto", "off"}))
+                  "phase); off: never; X,Y: this period in pixels (0: none along that axis), e.g. brick courses "
+                  "the detector missed")
       ->capture_default_str();
   cmd->add_option("--perspective", a->perspective,
                   "auto: rectify a photographed periodic exemplar whose lines converge (fit the homography that "

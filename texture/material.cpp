@@ -168,16 +168,24 @@ MaterialFeatures material_features(const Image& albedo, double albedo_weight, co
           f[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset + std::size_t(c)] = val;
           mean[std::size_t(c)] += val;
         }
-    double var = 0;
     for (int c = 0; c < b.channels; ++c) mean[std::size_t(c)] /= double(texels);
     for (std::size_t i = 0; i < texels; ++i)
-      for (int c = 0; c < b.channels; ++c) {
-        double& v = f[i * d + offset + std::size_t(c)];
-        v -= mean[std::size_t(c)];
-        var += v * v;
+      for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] -= mean[std::size_t(c)];
+    // The block's unit: the mean distance between 4-neighbours (what a cut through it shows),
+    // so that a map counts by how visible its steps are, not by its contrast.
+    double step = 0;
+    std::size_t pairs = 0;
+    for (int y = 0; y + 1 < h; ++y)
+      for (int x = 0; x + 1 < w; ++x) {
+        const std::size_t i = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset;
+        for (const std::size_t j : {i + d, i + std::size_t(w) * d}) {
+          double s2 = 0;
+          for (int c = 0; c < b.channels; ++c) s2 += (f[i + std::size_t(c)] - f[j + std::size_t(c)]) * (f[i + std::size_t(c)] - f[j + std::size_t(c)]);
+          step += std::sqrt(s2), ++pairs;
+        }
       }
-    var /= double(texels);
-    const double scale = var > 0 ? b.weight / std::sqrt(var) : 0.0;
+    step /= double(std::max<std::size_t>(pairs, 1));
+    const double scale = step > 0 ? b.weight / step : 0.0;
     for (std::size_t i = 0; i < texels; ++i)
       for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] *= scale;
     offset += std::size_t(b.channels);

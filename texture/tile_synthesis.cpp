@@ -84,6 +84,10 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
     if (perspective_.applied) e_ = rectify_exemplar(e, perspective_);
   }
   found_ = dominant_period(e_);
+  if (o.period_override[0] > 0 || o.period_override[1] > 0) {  // the user's period (0: none along that axis)
+    found_.x = o.period_override[0], found_.y = o.period_override[1];
+    found_.strength_x = found_.x > 0 ? 1 : 0, found_.strength_y = found_.y > 0 ? 1 : 0;
+  }
   // the tile holds k whole periods, k the nearest whole number; at most 25 % of stretch
   for (int axis = 0; axis < 2; ++axis) {
     const double p = axis == 0 ? found_.x : found_.y;
@@ -418,6 +422,29 @@ Image tile_set_sheet(const TextureTileSet& s, int gap) {
   return sheet;
 }
 
+std::string structure_message(const ExemplarPeriod& p) {
+  if (!structure_likely(p)) return "";
+  const bool x = p.x > 0, y = p.y > 0;
+  if (x || y)
+    return fmt::format("a period was found along {} ({:g} px) but not along {} (strongest repeat {:.2f} of the {:.2f} "
+                       "needed): the {} keep their phase, the other axis does not; give both with the period option "
+                       "X,Y if it has one",
+                       x ? "x" : "y", x ? p.x : p.y, x ? "y" : "x", x ? p.weak_y : p.weak_x, kPeriodProminence,
+                       x ? "columns" : "courses");
+  return fmt::format("the exemplar looks structured (repeats of {:.2f} along x, {:.2f} along y, below the {:.2f} "
+                     "needed) but no period was found: bricks, tiles or planks may be cut; give the period option "
+                     "X,Y in pixels",
+                     p.weak_x, p.weak_y, kPeriodProminence);
+}
+
+nlohmann::json structure_json(const ExemplarPeriod& p) {
+  return {{"period_found", {p.x > 0, p.y > 0}},
+          {"strength", {p.strength_x, p.strength_y}},
+          {"weak_repeat", {p.weak_x, p.weak_y}},
+          {"likely_missed", structure_likely(p)},
+          {"message", structure_message(p)}};
+}
+
 nlohmann::json tile_set_json(const TextureTileSet& s) {
   nlohmann::json samples = nlohmann::json::array();
   for (const auto& [x, y] : s.samples) samples.push_back({x, y});
@@ -445,6 +472,7 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
             {"spacing_spread", s.perspective.spread},
             {"homography", s.perspective.to_plane.m}}},
           {"period", {s.period.x, s.period.y}},
+          {"structure", structure_json(s.period)},
           {"exemplar_scale", s.exemplar_scale},
           {"colour_space", "srgb"},
           {"seconds", s.seconds}};

@@ -37,6 +37,9 @@ struct SynthesisOptions {
   // Structured textures: resample the exemplar so that the tile holds whole periods of it and
   // keep every sample in phase with the lattice (exemplar.hpp's dominant_period); off: never.
   bool keep_period = true;
+  // With keep_period, this period (px, x and y; 0: none along that axis) instead of the one
+  // dominant_period finds; both 0: find it.
+  std::array<double, 2> period_override{0, 0};
   // With keep_period, a photographed wall whose lines converge is first rectified
   // (perspective.hpp); off: never.
   bool rectify = true;
@@ -264,6 +267,11 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
 // The tiles in index order, about square, `gap` pixels apart on white (the README picture).
 Image tile_set_sheet(const TextureTileSet& s, int gap = 4);
 nlohmann::json tile_set_json(const TextureTileSet& s);
+// When a period was likely missed (structure_likely), what to tell the user (else ""); and the
+// `structure` object of tiles.json: periods found, their strength, the strongest repeat below the
+// prominence per axis, that message.
+std::string structure_message(const ExemplarPeriod& p);
+nlohmann::json structure_json(const ExemplarPeriod& p);
 // Tile t's sources as colours, one per sample (texture_analysis.hpp's labels): a bijection of the
 // ids, so two samples never share a colour.
 Image source_labels(const TextureTileSet& s, TileIndex t);
