@@ -103,6 +103,9 @@ nlohmann::json analysis_json(const AnalyzeArgs& a, const Lattice& l, const Textu
                       {"lattice_lags", lags},
                       {"seam_ratio", measure_or_null(r.seam_ratio)},
                       {"cut_visibility", measure_or_null(r.cut_visibility)},
+                      {"line_continuity", measure_or_null(r.line_continuity)},
+                      {"border_continuity", r.line_continuity ? nlohmann::json(r.border_continuity) : nlohmann::json()},
+                      {"interior_continuity", r.line_continuity ? nlohmann::json(r.interior_continuity) : nlohmann::json()},
                       {"histogram_distance", measure_or_null(r.histogram_distance)},
                       {"histogram_emd", measure_or_null(r.histogram_emd)},
                       {"lattice_peak_db", r.spectrum.lattice_peak_db},
@@ -120,6 +123,9 @@ void print_analysis(const AnalyzeArgs& a, const Lattice& l, const TextureAnalysi
              r.grid_repetition, r.lattice_correlation, r.reference_lags, r.reference_correlation);
   if (r.seam_ratio) fmt::print("seam ratio       {:.3f}\n", *r.seam_ratio);
   if (r.cut_visibility) fmt::print("cut visibility   {:.3f}\n", *r.cut_visibility);
+  if (r.line_continuity)
+    fmt::print("line continuity  {:.3f}  (lines across tile borders {:.3f} / between them {:.3f})\n", *r.line_continuity,
+               r.border_continuity, r.interior_continuity);
   if (r.histogram_emd)
     fmt::print("histogram EMD    {:.2f} grey levels (R {:.2f}, G {:.2f}, B {:.2f}) to {}\n", *r.histogram_distance,
                (*r.histogram_emd)[0], (*r.histogram_emd)[1], (*r.histogram_emd)[2], exemplar_name);

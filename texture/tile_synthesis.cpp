@@ -257,6 +257,7 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
   };
   for (int round = 0; o.search > 0 && round < o.rounds; ++round)
     for (std::size_t j = 0; j < samples.size(); ++j) {
+      throw_if_interrupted();  // the search of a large set takes seconds: a signal ends it too
       const SampleSlot& s = slots[j];
       std::vector<std::array<int, 2>> cand(std::size_t(o.search));
       std::vector<SampleScore> scores(cand.size());
