@@ -10,6 +10,8 @@
 //   material-speed/NAME  synthesis of the albedo alone against a four-map material (albedo,
 //       normal, specular, height), C = 4, 64 px, one thread, interleaved; the median of R runs
 //       each; goal: ratio <= 2.
+#include "texture/material.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -22,7 +24,6 @@
 #include <vector>
 
 #include "bench/bench_common.hpp"
-#include "texture/material.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/tile_synthesis.hpp"
 #include "tiling/direct_tiling.hpp"
@@ -92,11 +93,13 @@ Image lit(const Image& albedo, const Image& normals) {
   for (int y = 0; y < albedo.height; ++y)
     for (int x = 0; x < albedo.width; ++x) {
       double n[3], dot = 0;
-      for (int c = 0; c < 3; ++c) n[c] = 2.0 * normals.sample(x, y, c) / normals.max_value() - 1, dot += n[c] * l[c] / ll;
+      for (int c = 0; c < 3; ++c)
+        n[c] = 2.0 * normals.sample(x, y, c) / normals.max_value() - 1, dot += n[c] * l[c] / ll;
       const double shade = 0.15 + 0.85 * std::max(0.0, dot);
       std::uint8_t* p = out.at(x, y);
       for (int c = 0; c < 3; ++c)
-        p[c] = std::uint8_t(std::lround(linear_to_srgb(std::min(1.0, srgb_to_linear(albedo.at(x, y)[c] / 255.0) * shade)) * 255));
+        p[c] = std::uint8_t(
+            std::lround(linear_to_srgb(std::min(1.0, srgb_to_linear(albedo.at(x, y)[c] / 255.0) * shade)) * 255));
     }
   return out;
 }
@@ -109,7 +112,8 @@ void seams(const std::string& name) {
     const Image albedo = map_as_sampled(h.albedo, true, s.perspective, s.exemplar_scale);
     s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
     TextureTileSet normal_set = s;
-    normal_set.tiles = transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.maps[0].image, true, s.perspective, s.exemplar_scale));
+    normal_set.tiles =
+        transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.maps[0].image, true, s.perspective, s.exemplar_scale));
     std::vector<std::uint32_t> sources;
     const Image colour = stitch_tiles(s, window, &sources);
     const Image normals = stitch_tiles(normal_set, window);
@@ -136,7 +140,8 @@ void seams(const std::string& name) {
         write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
       }
       const SeamStatistics sh = seam_statistics(shading, s.tile_px, &sources);
-      print({{"case", fmt::format("material-shading/{}/{}", name, all ? "all" : "albedo")}, {"cut_ratio", sh.cut_ratio}});
+      print(
+          {{"case", fmt::format("material-shading/{}/{}", name, all ? "all" : "albedo")}, {"cut_ratio", sh.cut_ratio}});
     }
   }
 }
@@ -191,8 +196,10 @@ int main(int argc, char** argv) {
   int reps = 3;
   std::string only;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--reps") && i + 1 < argc) reps = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+    if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
+      reps = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
   }
   const auto want = [&](const std::string& c) { return only.empty() || c.rfind(only, 0) == 0; };
   for (const std::string name : {"ufo-brick", "ufo-tile", "ufo-wood", "ufo-concrete", "ufo-dirt", "ufo-mud"})

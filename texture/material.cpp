@@ -30,7 +30,10 @@ MaterialMap parse_material_map(const std::string& spec) {
   std::vector<std::string> parts;
   // FILE[:ROLE[:WEIGHT]]: the role and weight are the last fields when they parse as such, so a
   // file name with a colon still reads.
-  const auto is_role = [](const std::string& r) { ColourSpace c; return parse_colour_space(r, c); };
+  const auto is_role = [](const std::string& r) {
+    ColourSpace c;
+    return parse_colour_space(r, c);
+  };
   m.space = m.name == "normal" ? ColourSpace::Normal : ColourSpace::Linear;
   if (const std::size_t c1 = rest.rfind(':'); c1 != std::string::npos) {
     const std::string last = rest.substr(c1 + 1);
@@ -98,7 +101,8 @@ void symmetric_eigen(std::vector<double> a, std::size_t d, std::vector<double>& 
   }
   std::vector<std::size_t> order(d);
   for (std::size_t i = 0; i < d; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return a[x * d + x] > a[y * d + y]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return a[x * d + x] > a[y * d + y]; });
   values.assign(d, 0);
   vectors.assign(d * d, 0);
   for (std::size_t r = 0; r < d; ++r) {
@@ -180,7 +184,8 @@ MaterialFeatures material_features(const Image& albedo, double albedo_weight, co
         const std::size_t i = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset;
         for (const std::size_t j : {i + d, i + std::size_t(w) * d}) {
           double s2 = 0;
-          for (int c = 0; c < b.channels; ++c) s2 += (f[i + std::size_t(c)] - f[j + std::size_t(c)]) * (f[i + std::size_t(c)] - f[j + std::size_t(c)]);
+          for (int c = 0; c < b.channels; ++c)
+            s2 += (f[i + std::size_t(c)] - f[j + std::size_t(c)]) * (f[i + std::size_t(c)] - f[j + std::size_t(c)]);
           step += std::sqrt(s2), ++pairs;
         }
       }
@@ -287,7 +292,8 @@ Image normal_map_from_height(const Image& height, double strength, bool torus) {
   Image out(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const double dx = (lum(x + 1, y) - lum(x - 1, y)) / 2 * strength, dy = (lum(x, y + 1) - lum(x, y - 1)) / 2 * strength;
+      const double dx = (lum(x + 1, y) - lum(x - 1, y)) / 2 * strength,
+                   dy = (lum(x, y + 1) - lum(x, y - 1)) / 2 * strength;
       const double len = std::sqrt(dx * dx + dy * dy + 1);
       const double n[3] = {-dx / len, -dy / len, 1 / len};
       std::uint8_t* p = out.at(x, y);

@@ -83,8 +83,8 @@ TEST(CliMaterial, EveryMapIsCopiedAtTheRecordedTexelsAndAtlasedTheSameWay) {
 TEST(CliMaterial, BadMapsAndPeriodsAreExitTwoAndQuietPrintsNothing) {
   TempDir d;
   write_png(d / "ex.png", test::synthetic_image(96, 96));
-  const std::string base = "texture tiles --exemplar " + (d / "ex.png") + " --colors 1 --tile-px 32 --search 0 --out " +
-                           (d / "o") + " ";
+  const std::string base =
+      "texture tiles --exemplar " + (d / "ex.png") + " --colors 1 --tile-px 32 --search 0 --out " + (d / "o") + " ";
   EXPECT_EQ(run_cli(base + "--map nofile").code, 2);
   EXPECT_EQ(run_cli(base + "--map a=" + (d / "missing.png")).code, 2);
   EXPECT_EQ(run_cli(base + "--map coords=" + (d / "ex.png")).code, 2);
