@@ -88,14 +88,15 @@ Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Im
   // The depth of the tiles (all 8-bit or all 16-bit: atlas_from_tile_images makes them agree).
   const int depth = a.cells.empty() ? 8 : tile_image(a.cells[0]).depth;
   Image atlas{a.cols * tile_size, a.rows * tile_size,
-                  std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
-                                            std::size_t(tile_size) * 4 * std::size_t(depth / 8))};
+              std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
+                                        std::size_t(tile_size) * 4 * std::size_t(depth / 8))};
   atlas.depth = depth;
   const std::size_t row_bytes = std::size_t(tile_size) * std::size_t(atlas.texel_bytes());
   for (int r = 0; r < a.rows; ++r)
     for (int c = 0; c < a.cols; ++c) {
       const Image& t = tile_image(a.cells[std::size_t(r) * std::size_t(a.cols) + std::size_t(c)]);
-      for (int y = 0; y < tile_size; ++y) std::copy_n(t.at(0, y), row_bytes, atlas.at(c * tile_size, r * tile_size + y));
+      for (int y = 0; y < tile_size; ++y)
+        std::copy_n(t.at(0, y), row_bytes, atlas.at(c * tile_size, r * tile_size + y));
     }
   return atlas;
 }

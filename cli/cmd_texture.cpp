@@ -15,8 +15,8 @@
 #include "cli/command.hpp"
 #include "cli/packing_lookup.hpp"
 #include "cli/run_options.hpp"
-#include "render/glsl_sampler.hpp"
 #include "image/image.hpp"
+#include "render/glsl_sampler.hpp"
 #include "texture/material.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -66,10 +66,10 @@ struct MaterialRun {
   nlohmann::json report = nlohmann::json::object();
 };
 
-TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const SynthesisOptions& o,
-                                   MaterialRun& m) {
+TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const SynthesisOptions& o, MaterialRun& m) {
   const int w = m.albedo.width, h = m.albedo.height;
-  if (w > 65535 || h > 65535) throw InputError(fmt::format("{}: material sets take exemplars up to 65535 px a side", e.name));
+  if (w > 65535 || h > 65535)
+    throw InputError(fmt::format("{}: material sets take exemplars up to 65535 px a side", e.name));
   const bool tileable = e.wrap_w > 0;
   std::vector<std::pair<int, int>> sizes;
   for (const MaterialMap& map : m.maps) sizes.push_back({map.image.width, map.image.height});
@@ -124,8 +124,8 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
     char tail = 0;
     if (std::sscanf(a.period.c_str(), "%lf,%lf%c", &x, &y, &tail) != 2 || !(x == 0 || (x >= 4 && x <= 4096)) ||
         !(y == 0 || (y >= 4 && y <= 4096)) || (x == 0 && y == 0))
-      throw InputError(fmt::format("--period '{}': expected auto, off or X,Y in pixels (each 0 or 4..4096, not both 0)",
-                                   a.period));
+      throw InputError(
+          fmt::format("--period '{}': expected auto, off or X,Y in pixels (each 0 or 4..4096, not both 0)", a.period));
     o.period_override = {x, y};
   }
   o.rectify = a.perspective == "auto";
@@ -145,13 +145,15 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
       nlohmann::json mj = base;
       mj["map"] = map.name;
       mj["file"] = map.file;
-      write_map_tiles((fs::path(dir) / "maps" / map.name).string(),
-                      transfer_tiles(s.coords, s.tile_px, map_as_sampled(map.image, tileable, s.perspective, s.exemplar_scale)),
-                      map.space, mj);
+      write_map_tiles(
+          (fs::path(dir) / "maps" / map.name).string(),
+          transfer_tiles(s.coords, s.tile_px, map_as_sampled(map.image, tileable, s.perspective, s.exemplar_scale)),
+          map.space, mj);
     }
     nlohmann::json cj = base;
     cj["files"] = "tile-NNNN.png: 16-bit, R = x and G = y of the exemplar texel (as sampled) each texel is a copy of";
-    write_map_tiles((fs::path(dir) / "coords").string(), coordinate_tiles(s.coords, s.tile_px), ColourSpace::Linear, cj);
+    write_map_tiles((fs::path(dir) / "coords").string(), coordinate_tiles(s.coords, s.tile_px), ColourSpace::Linear,
+                    cj);
   });
   nlohmann::json j = tile_set_json(s);
   if (material) j.update(m.report);
@@ -234,7 +236,8 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                   "all: samples and cuts weigh every map (normals as vectors); albedo: the exemplar alone")
       ->check(CLI::IsMember({"all", "albedo"}))
       ->capture_default_str();
-  cmd->add_option("--albedo-weight", a->albedo_weight, "The exemplar's weight beside the maps' (each map's is its WEIGHT)")
+  cmd->add_option("--albedo-weight", a->albedo_weight,
+                  "The exemplar's weight beside the maps' (each map's is its WEIGHT)")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_flag("--coords", a->coords,
@@ -289,8 +292,8 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
   nlohmann::json maps = nlohmann::json::object();
   for (const MapAtlas& ma : map_atlases) {
-    const AtlasFiles mf = write_texture_atlas(ma.atlas, atlas_stem(a.out) + "-" + ma.name + ".png",
-                                              glsl_sampler_file(ma.atlas, ro));
+    const AtlasFiles mf =
+        write_texture_atlas(ma.atlas, atlas_stem(a.out) + "-" + ma.name + ".png", glsl_sampler_file(ma.atlas, ro));
     maps[ma.name] = {{"out", mf.levels[0]},
                      {"manifest", mf.manifest},
                      {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},

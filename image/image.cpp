@@ -1,6 +1,7 @@
 #include "image/image.hpp"
 
 #include <fmt/format.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cctype>
@@ -12,8 +13,6 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/input.hpp"
-
-#include <png.h>
 
 // stb as private, static implementations (no symbols shared with other translation units).
 #define STB_IMAGE_STATIC
@@ -106,8 +105,9 @@ std::string_view failure_reason() {
 
 Image Image::to_depth(int bits) const {
   if (bits == depth) return *this;
-  Image out(width, height, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * std::size_t(channels) *
-                                                    std::size_t(bits / 8)),
+  Image out(width, height,
+            std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * std::size_t(channels) *
+                                      std::size_t(bits / 8)),
             channels);
   out.depth = bits;
   for (int y = 0; y < height; ++y)

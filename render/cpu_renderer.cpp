@@ -96,7 +96,8 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
   const ViewRows vr = view_rows(view, unit);
   std::unique_ptr<TileSampler> tiles;
   std::unique_ptr<PatchHashes> patches;
-  const std::vector<Image> levels8 = src.method == RenderMethod::Tiles ? atlas_levels_8bit(*src.atlas) : std::vector<Image>{};
+  const std::vector<Image> levels8 =
+      src.method == RenderMethod::Tiles ? atlas_levels_8bit(*src.atlas) : std::vector<Image>{};
   bool srgb_out = false;
   if (src.method == RenderMethod::Tiles) {
     const TextureAtlas& a = *src.atlas;

@@ -94,8 +94,8 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o) {
       a.colour_space == ColourSpace::Srgb ? "; its colour space is sRGB: upload it as GL_SRGB8_ALPHA8, so that\n"
                                             "// it is filtered in linear light and tk_texture returns linear colour"
                                           : "",
-      a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours,
-      a.tile_px, a.lookup.source, a.lookup.how);
+      a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours, a.tile_px, a.lookup.source,
+      a.lookup.how);
   return g + glsl_sampler_library(a.lookup, a.tile_px, tiling, GlslTables::Inline);
 }
 

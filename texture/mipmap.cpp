@@ -107,9 +107,12 @@ unsigned quantise(double v, int max) {
 
 std::string_view colour_space_name(ColourSpace c) {
   switch (c) {
-    case ColourSpace::Srgb: return "srgb";
-    case ColourSpace::Linear: return "linear";
-    case ColourSpace::Normal: return "normal";
+    case ColourSpace::Srgb:
+      return "srgb";
+    case ColourSpace::Linear:
+      return "linear";
+    case ColourSpace::Normal:
+      return "normal";
   }
   return "srgb";
 }
@@ -151,8 +154,8 @@ Image downsample(const Image& img, MipEdge edge, ColourSpace space) {
       } else {
         for (int c = 0; c < colour; ++c) {
           const double v = space == ColourSpace::Normal ? (p[c] + 1) / 2 : a > 0 ? p[c] / a : 0.0;
-          out.set_sample(x, y, c, quantise(space == ColourSpace::Srgb ? linear_to_srgb(std::clamp(v, 0.0, 1.0)) : v,
-                                           max));
+          out.set_sample(x, y, c,
+                         quantise(space == ColourSpace::Srgb ? linear_to_srgb(std::clamp(v, 0.0, 1.0)) : v, max));
         }
       }
       if (nc == 4) out.set_sample(x, y, 3, quantise(a, max));
@@ -162,8 +165,7 @@ Image downsample(const Image& img, MipEdge edge, ColourSpace space) {
 
 std::vector<Image> mip_chain(const Image& level0, MipEdge edge, ColourSpace space) {
   std::vector<Image> levels{level0};
-  while (levels.back().width > 1 || levels.back().height > 1)
-    levels.push_back(downsample(levels.back(), edge, space));
+  while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(downsample(levels.back(), edge, space));
   return levels;
 }
 

@@ -329,7 +329,8 @@ LineContinuity line_continuity(const Image& img, int tile, int x0, int y0) {
     double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
     int count = 0;
     for (int t = 1; t + 1 < n; ++t) {
-      const double a = vertical ? std::abs(L(p - 1, t + 1) - L(p - 1, t - 1)) : std::abs(L(t + 1, p - 1) - L(t - 1, p - 1));
+      const double a =
+          vertical ? std::abs(L(p - 1, t + 1) - L(p - 1, t - 1)) : std::abs(L(t + 1, p - 1) - L(t - 1, p - 1));
       const double b = vertical ? std::abs(L(p, t + 1) - L(p, t - 1)) : std::abs(L(t + 1, p) - L(t - 1, p));
       sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, ++count;
     }

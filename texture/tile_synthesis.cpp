@@ -367,8 +367,8 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
         std::copy_n(best_patch.pixels.data() + 4 * i, 4, img.pixels.data() + 4 * i);
         s.sources[t][i] = s.shared_sources + std::uint32_t(t);
         if (!s.coords.empty())
-          s.coords[t][i] = exemplar_coord(e, e.at(s.centres[t][0] + int(i % std::size_t(n)),
-                                                   s.centres[t][1] + int(i / std::size_t(n))));
+          s.coords[t][i] = exemplar_coord(
+              e, e.at(s.centres[t][0] + int(i % std::size_t(n)), s.centres[t][1] + int(i / std::size_t(n))));
       }
     cost[t] = best.cost;
     progress.add(1);
@@ -404,7 +404,8 @@ TextureTileSet naive_tiles(const Exemplar& e, const SynthesisOptions& o) {
     if (o.record_coords) {
       s.coords.emplace_back(px);
       for (std::size_t i = 0; i < px; ++i)
-        s.coords.back()[i] = exemplar_coord(e, e.at(x0 + int(i % std::size_t(o.tile_px)), y0 + int(i / std::size_t(o.tile_px))));
+        s.coords.back()[i] =
+            exemplar_coord(e, e.at(x0 + int(i % std::size_t(o.tile_px)), y0 + int(i / std::size_t(o.tile_px))));
     }
     s.sources.emplace_back(px, std::uint32_t(t));
   }
@@ -427,15 +428,17 @@ std::string structure_message(const ExemplarPeriod& p) {
   if (!structure_likely(p)) return "";
   const bool x = p.x > 0, y = p.y > 0;
   if (x || y)
-    return fmt::format("a period was found along {} ({:g} px) but not along {} (strongest repeat {:.2f} of the {:.2f} "
-                       "needed): the {} keep their phase, the other axis does not; give both with the period option "
-                       "X,Y if it has one",
-                       x ? "x" : "y", x ? p.x : p.y, x ? "y" : "x", x ? p.weak_y : p.weak_x, kPeriodProminence,
-                       x ? "columns" : "courses");
-  return fmt::format("the exemplar looks structured (repeats of {:.2f} along x, {:.2f} along y, below the {:.2f} "
-                     "needed) but no period was found: bricks, tiles or planks may be cut; give the period option "
-                     "X,Y in pixels",
-                     p.weak_x, p.weak_y, kPeriodProminence);
+    return fmt::format(
+        "a period was found along {} ({:g} px) but not along {} (strongest repeat {:.2f} of the {:.2f} "
+        "needed): the {} keep their phase, the other axis does not; give both with the period option "
+        "X,Y if it has one",
+        x ? "x" : "y", x ? p.x : p.y, x ? "y" : "x", x ? p.weak_y : p.weak_x, kPeriodProminence,
+        x ? "columns" : "courses");
+  return fmt::format(
+      "the exemplar looks structured (repeats of {:.2f} along x, {:.2f} along y, below the {:.2f} "
+      "needed) but no period was found: bricks, tiles or planks may be cut; give the period option "
+      "X,Y in pixels",
+      p.weak_x, p.weak_y, kPeriodProminence);
 }
 
 nlohmann::json structure_json(const ExemplarPeriod& p) {
