@@ -85,14 +85,18 @@ Image generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int s
 namespace {
 
 Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Image&(TileIndex)>& tile_image) {
+  // The depth of the tiles (all 8-bit or all 16-bit: atlas_from_tile_images makes them agree).
+  const int depth = a.cells.empty() ? 8 : tile_image(a.cells[0]).depth;
   Image atlas{a.cols * tile_size, a.rows * tile_size,
-                  std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
-                                            std::size_t(tile_size) * 4)};
+              std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
+                                        std::size_t(tile_size) * 4 * std::size_t(depth / 8))};
+  atlas.depth = depth;
+  const std::size_t row_bytes = std::size_t(tile_size) * std::size_t(atlas.texel_bytes());
   for (int r = 0; r < a.rows; ++r)
     for (int c = 0; c < a.cols; ++c) {
       const Image& t = tile_image(a.cells[std::size_t(r) * std::size_t(a.cols) + std::size_t(c)]);
       for (int y = 0; y < tile_size; ++y)
-        std::copy_n(t.at(0, y), std::size_t(tile_size) * 4, atlas.at(c * tile_size, r * tile_size + y));
+        std::copy_n(t.at(0, y), row_bytes, atlas.at(c * tile_size, r * tile_size + y));
     }
   return atlas;
 }
@@ -146,8 +150,10 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
                                    dir, i, files.size(), a.cells.size(), i));
   std::vector<Image> tiles(a.cells.size());
   int size = 0;
+  bool wide = false;  // a 16-bit tile makes a 16-bit atlas
   for (auto& [index, path] : files) {
-    Image img = read_image(path.string());
+    Image img = read_image(path.string(), 4, true);
+    wide = wide || img.depth == 16;
     const int w = img.width, h = img.height;
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
@@ -158,6 +164,8 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
       throw InputError(fmt::format("{}: {}x{} pixels, but the other tiles are {}x{}", path.string(), w, h, size, size));
     tiles[index] = std::move(img);
   }
+  if (wide)
+    for (Image& t : tiles) t = t.to_depth(16);
   return assemble(a, size, [&](TileIndex i) -> const Image& { return tiles[i]; });
 }
 

@@ -5,14 +5,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "atlas/lookup.hpp"
 #include "base/error.hpp"
+#include "base/json_input.hpp"
 #include "cli/command.hpp"
 #include "cli/packing_lookup.hpp"
 #include "cli/run_options.hpp"
+#include "image/image.hpp"
 #include "render/glsl_sampler.hpp"
+#include "texture/material.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
 
@@ -34,8 +39,78 @@ struct TilesArgs {
     r.seed = SynthesisOptions{}.seed;
     return r;
   }();
-  bool tileable = false, quiet = false;
+  bool tileable = false, quiet = false, coords = false;
+  std::vector<std::string> maps;
+  std::string map_cost = "all";
+  double albedo_weight = 1;
 };
+
+// The exemplar at its own depth (a 16-bit PNG keeps 16 bits), one copy of a torus.
+Image exemplar_at_depth(const std::string& path_or_name, const Exemplar& e) {
+  std::error_code ec;
+  if (fs::is_regular_file(path_or_name, ec)) {
+    Image img = read_image(path_or_name, 4, true);
+    if (img.width == (e.wrap_w ? e.wrap_w : e.width()) && img.height == (e.wrap_h ? e.wrap_h : e.height())) return img;
+  }
+  const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();
+  Image img(w, h);
+  for (int y = 0; y < h; ++y) std::copy_n(e.image.at(0, y), std::size_t(w) * 4, img.at(0, y));
+  return img;
+}
+
+// A material set (texture/material.hpp): the synthesis on the features of every map (or the
+// albedo alone: --map-cost albedo), every map's tiles copied at the recorded texels.
+struct MaterialRun {
+  std::vector<MaterialMap> maps;
+  Image albedo;  // at its own depth
+  nlohmann::json report = nlohmann::json::object();
+};
+
+TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const SynthesisOptions& o, MaterialRun& m) {
+  const int w = m.albedo.width, h = m.albedo.height;
+  if (w > 65535 || h > 65535)
+    throw InputError(fmt::format("{}: material sets take exemplars up to 65535 px a side", e.name));
+  const bool tileable = e.wrap_w > 0;
+  std::vector<std::pair<int, int>> sizes;
+  for (const MaterialMap& map : m.maps) sizes.push_back({map.image.width, map.image.height});
+  resize_maps(m.maps, w, h, tileable);
+  for (std::size_t k = 0; k < m.maps.size(); ++k)
+    if (m.maps[k].resized)
+      fmt::print(stderr, "map {}: {}x{} resampled to the exemplar's {}x{} (bilinear{})\n", m.maps[k].name,
+                 sizes[k].first, sizes[k].second, w, h, m.maps[k].space == ColourSpace::Normal ? ", renormalised" : "");
+  SynthesisOptions so = o;
+  so.record_coords = true;
+  TextureTileSet s;
+  nlohmann::json explained = nullptr;
+  if (a.map_cost == "all" && !m.maps.empty()) {
+    const MaterialFeatures f = material_features(m.albedo.to_depth(8), a.albedo_weight, m.maps);
+    explained = f.explained;
+    s = synthesize_tiles(exemplar_from_image(f.image, e.name, tileable), so);
+  } else {
+    s = synthesize_tiles(e, so);
+  }
+  const Image albedo = map_as_sampled(m.albedo, tileable, s.perspective, s.exemplar_scale);
+  s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
+  if (s.sampled.width > 0) s.sampled = albedo.to_depth(8);
+  nlohmann::json maps = nlohmann::json::array();
+  for (std::size_t k = 0; k < m.maps.size(); ++k)
+    maps.push_back({{"name", m.maps[k].name},
+                    {"file", m.maps[k].file},
+                    {"colour_space", std::string(colour_space_name(m.maps[k].space))},
+                    {"weight", m.maps[k].weight},
+                    {"bits", m.maps[k].image.depth},
+                    {"size", {sizes[k].first, sizes[k].second}},
+                    {"resampled", m.maps[k].resized},
+                    {"folder", "maps/" + m.maps[k].name}});
+  m.report = {{"maps", maps},
+              {"map_cost", m.maps.empty() ? "albedo" : a.map_cost},
+              {"albedo_weight", a.albedo_weight},
+              {"feature_variance_explained", explained},
+              {"bits", m.albedo.depth},
+              {"exemplar_size", {w, h}},
+              {"coords", "coords"}};
+  return s;
+}
 
 void run_tiles(const TilesArgs& a, const Context& ctx) {
   SynthesisOptions o = a.synthesis;
@@ -43,12 +118,47 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.threads = a.run.resolved_threads();
   o.seed = a.run.seed;
   o.progress = !a.quiet;
-  o.keep_period = a.period == "auto";
+  o.keep_period = a.period != "off";
+  if (a.period != "auto" && a.period != "off") {  // X,Y in pixels (0: none along that axis)
+    double x = 0, y = 0;
+    char tail = 0;
+    if (std::sscanf(a.period.c_str(), "%lf,%lf%c", &x, &y, &tail) != 2 || !(x == 0 || (x >= 4 && x <= 4096)) ||
+        !(y == 0 || (y >= 4 && y <= 4096)) || (x == 0 && y == 0))
+      throw InputError(
+          fmt::format("--period '{}': expected auto, off or X,Y in pixels (each 0 or 4..4096, not both 0)", a.period));
+    o.period_override = {x, y};
+  }
   o.rectify = a.perspective == "auto";
   const Exemplar e = load_exemplar(a.exemplar, a.tileable);
-  const TextureTileSet s = synthesize_tiles(e, o);
-  write_tile_set(s, a.out, e.name);
+  MaterialRun m;
+  for (const std::string& spec : a.maps) m.maps.push_back(parse_material_map(spec));
+  m.albedo = exemplar_at_depth(a.exemplar, e);
+  const bool material = !m.maps.empty() || m.albedo.depth == 16 || a.coords;
+  const TextureTileSet s = material ? synthesize_material(a, e, o, m) : synthesize_tiles(e, o);
+  write_tile_set(s, a.out, e.name, [&](const std::string& dir, nlohmann::json& manifest) {
+    if (!material) return;
+    manifest.update(m.report);
+    nlohmann::json base = manifest;
+    base.erase("maps");
+    const bool tileable = e.wrap_w > 0;
+    for (const MaterialMap& map : m.maps) {
+      nlohmann::json mj = base;
+      mj["map"] = map.name;
+      mj["file"] = map.file;
+      write_map_tiles(
+          (fs::path(dir) / "maps" / map.name).string(),
+          transfer_tiles(s.coords, s.tile_px, map_as_sampled(map.image, tileable, s.perspective, s.exemplar_scale)),
+          map.space, mj);
+    }
+    nlohmann::json cj = base;
+    cj["files"] = "tile-NNNN.png: 16-bit, R = x and G = y of the exemplar texel (as sampled) each texel is a copy of";
+    write_map_tiles((fs::path(dir) / "coords").string(), coordinate_tiles(s.coords, s.tile_px), ColourSpace::Linear,
+                    cj);
+  });
   nlohmann::json j = tile_set_json(s);
+  if (material) j.update(m.report);
+  if (const std::string why = o.keep_period ? structure_message(s.period) : ""; !why.empty())
+    fmt::print(stderr, "texture tiles: {}\n", why);
   j["exemplar"] = e.name;
   j["tileable"] = e.wrap_w > 0;
   j["out"] = a.out;
@@ -56,6 +166,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   j["labels"] = (fs::path(a.out) / "labels").string();
   j["threads"] = o.threads;
   emit(ctx, j, [&] {
+    if (a.quiet) return;
     fmt::print("{}: {} {} texture tiles over {} colours, {}x{} px, from {} ({}, {:.2f} s)\n", a.out, s.tiles.size(),
                a.kind, o.colours, o.tile_px, o.tile_px, e.name, s.method, s.seconds);
     fmt::print("boundary-cut error {:.1f} (first draw {:.1f}); picture of the set: {}\n", s.cut_error,
@@ -68,6 +179,12 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
     if (s.exemplar_scale[0] != 1 || s.exemplar_scale[1] != 1)
       fmt::print("periodic exemplar (period {:g} x {:g} px): resampled by {:.3f} x {:.3f} to whole periods per tile\n",
                  s.period.x, s.period.y, s.exemplar_scale[0], s.exemplar_scale[1]);
+    for (const MaterialMap& map : m.maps)
+      fmt::print("map {} ({}, {} bits): {}/maps/{}/\n", map.name, colour_space_name(map.space), map.image.depth, a.out,
+                 map.name);
+    if (material)
+      fmt::print("texel coordinates (for `texture transfer`): {}/coords/; samples and cuts chosen on {}\n", a.out,
+                 m.maps.empty() || a.map_cost == "albedo" ? "the albedo alone" : "all maps");
   });
 }
 
@@ -102,15 +219,30 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                 "but mip level 2 next to a border is no longer exact (not for a periodic exemplar)");
   cmd->add_option("--period", a->period,
                   "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
-                  "phase); off: never")
-      ->check(CLI::IsMember({"auto", "off"}))
+                  "phase); off: never; X,Y: this period in pixels (0: none along that axis), e.g. brick courses "
+                  "the detector missed")
       ->capture_default_str();
   cmd->add_option("--perspective", a->perspective,
                   "auto: rectify a photographed periodic exemplar whose lines converge (fit the homography that "
                   "makes them parallel and equally spaced) before keeping its period; off: never")
       ->check(CLI::IsMember({"auto", "off"}))
       ->capture_default_str();
-  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
+  cmd->add_option("--map", a->maps,
+                  "Another map of the exemplar's surface, NAME=FILE[:ROLE[:WEIGHT]] (any number): ROLE srgb (colour), "
+                  "linear (data: roughness, height; the default) or normal (tangent-space; the default for a map "
+                  "called normal); tiles in DIR/maps/NAME/, aligned texel for texel with the exemplar's")
+      ->type_name("NAME=FILE[:ROLE[:WEIGHT]]");
+  cmd->add_option("--map-cost", a->map_cost,
+                  "all: samples and cuts weigh every map (normals as vectors); albedo: the exemplar alone")
+      ->check(CLI::IsMember({"all", "albedo"}))
+      ->capture_default_str();
+  cmd->add_option("--albedo-weight", a->albedo_weight,
+                  "The exemplar's weight beside the maps' (each map's is its WEIGHT)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_flag("--coords", a->coords,
+                "Write DIR/coords/ (the exemplar texel of every tile texel) without --map, for `texture transfer`");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr and no summary on stdout");
   add_json_flag(cmd, ctx);
   cmd->callback([a, &ctx] { run_tiles(*a, ctx); });
 }
@@ -128,9 +260,45 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   // set depends on nothing but the set: never on what the user's own database holds.
   const AtlasLookup lookup =
       a.db.empty() || a.no_db ? atlas_lookup(kind, m.colours) : lookup_with_database(kind, m.colours, a.db);
-  const TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
+  // `--out` may name a folder that does not exist yet, as `texture tiles --out` may.
+  if (const fs::path parent = fs::path(a.out).parent_path(); !parent.empty()) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec) throw InputError(fmt::format("{}: cannot create the folder ({})", parent.string(), ec.message()));
+  }
+  const TextureAtlas atlas = build_texture_atlas(lookup, a.dir, m.colour_space);
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
+  // The maps of a material set (DIR/maps/NAME, `texture tiles --map`) and its texel coordinates,
+  // atlased the same way beside it: STEM-NAME.png (and its mips, manifest, header, GLSL).
+  struct MapAtlas {
+    std::string name;
+    TextureAtlas atlas;
+  };
+  std::vector<MapAtlas> map_atlases;
+  std::error_code ec;
+  std::vector<fs::path> map_dirs;
+  if (fs::is_directory(fs::path(a.dir) / "maps", ec))
+    for (const auto& entry : fs::directory_iterator(fs::path(a.dir) / "maps", ec))
+      if (entry.is_directory(ec) && fs::exists(entry.path() / "tiles.json", ec)) map_dirs.push_back(entry.path());
+  if (fs::exists(fs::path(a.dir) / "coords" / "tiles.json", ec)) map_dirs.push_back(fs::path(a.dir) / "coords");
+  std::sort(map_dirs.begin(), map_dirs.end());
+  for (const fs::path& d : map_dirs) {
+    const TileSetManifest mm = read_tile_set_manifest(d.string());
+    if (mm.kind != m.kind || mm.colours != m.colours)
+      throw InputError(fmt::format("{}: a {} set over {} colours beside a {} set over {}", d.string(),
+                                   kind_name(mm.kind), mm.colours, kind_name(m.kind), m.colours));
+    map_atlases.push_back({d.filename().string(), build_texture_atlas(lookup, d.string(), mm.colour_space)});
+  }
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
+  nlohmann::json maps = nlohmann::json::object();
+  for (const MapAtlas& ma : map_atlases) {
+    const AtlasFiles mf =
+        write_texture_atlas(ma.atlas, atlas_stem(a.out) + "-" + ma.name + ".png", glsl_sampler_file(ma.atlas, ro));
+    maps[ma.name] = {{"out", mf.levels[0]},
+                     {"manifest", mf.manifest},
+                     {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},
+                     {"bits", ma.atlas.levels[0].depth}};
+  }
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
                       {"manifest", f.manifest},
@@ -144,12 +312,19 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                       {"width", atlas.levels[0].width},
                       {"height", atlas.levels[0].height},
                       {"source", lookup.source},
-                      {"how", lookup.how}};
+                      {"how", lookup.how},
+                      {"colour_space", std::string(colour_space_name(atlas.colour_space))},
+                      {"bits", atlas.levels[0].depth},
+                      {"maps", maps}};
   emit(ctx, j, [&] {
     fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels\n", f.levels[0],
                atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
                lookup.source, lookup.how, f.levels.size());
-    fmt::print("manifest {}, C lookup {}, GLSL sampler {}\n", f.manifest, f.header, f.glsl);
+    fmt::print("manifest {}, C lookup {}, GLSL sampler {}; colour space {}, {} bits\n", f.manifest, f.header, f.glsl,
+               colour_space_name(atlas.colour_space), atlas.levels[0].depth);
+    for (const auto& [name, mj] : maps.items())
+      fmt::print("map {}: {} ({}, {} bits)\n", name, mj["out"].get<std::string>(),
+                 mj["colour_space"].get<std::string>(), mj["bits"].get<int>());
   });
 }
 
@@ -158,7 +333,9 @@ void add_atlas(CLI::App& texture, Context& ctx) {
       "atlas", "Lay a texture tile set out as the packing from `atlas lookup`: atlas PNG, mip chain, lookup, GLSL");
   auto a = std::make_shared<AtlasArgs>();
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
-  cmd->add_option("--out", a->out, "Atlas PNG; atlas.mipK.png, atlas.json, atlas.h and atlas.glsl go beside it")
+  cmd->add_option("--out", a->out,
+                  "Atlas PNG (its folder is made); atlas.mipK.png, atlas.json, atlas.h and atlas.glsl go beside it, "
+                  "and atlas-NAME.png (and so on) for every map of a material set (DIR/maps/NAME, DIR/coords)")
       ->required();
   cmd->add_option("--db", a->db,
                   "Results database to look for a stored packing in first (default: none, the constructed or "
@@ -171,6 +348,84 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   cmd->callback([a, &ctx] { run_atlas(*a, ctx); });
 }
 
+struct TransferArgs {
+  std::string dir;
+  std::vector<std::string> maps;
+};
+
+// A map made after the tiles: copied at the texels DIR/coords/ records, as `texture tiles --map`
+// would have (resampled to the exemplar's grid, rectified and resampled as the samples saw it).
+void run_transfer(const TransferArgs& a, const Context& ctx) {
+  const fs::path coords_dir = fs::path(a.dir) / "coords";
+  std::error_code ec;
+  if (!fs::exists(coords_dir / "tiles.json", ec))
+    throw InputError(fmt::format("{}: no texel coordinates (make the tiles with `texture tiles --map` or --coords)",
+                                 coords_dir.string()));
+  const nlohmann::json doc = read_json_file((fs::path(a.dir) / "tiles.json").string(), "texture tile-set manifest");
+  const JsonIn j(doc, (fs::path(a.dir) / "tiles.json").string());
+  const TileSetManifest m = read_tile_set_manifest(a.dir);
+  const int tile_px = int(j.at("tile_px").integer(2, 1024));
+  const JsonIn size = j.at("exemplar_size");
+  const int w = int(size[0].integer(1, 65535)), h = int(size[1].integer(1, 65535));
+  const bool tileable = j.boolean_or("tileable", false);
+  std::array<double, 2> scale{1, 1};
+  if (auto sc = j.find("exemplar_scale")) scale = {(*sc)[0].number(0.5, 2), (*sc)[1].number(0.5, 2)};
+  PerspectiveFit fit;
+  if (auto p = j.find("perspective"); p && p->boolean_or("applied", false)) {
+    fit.applied = true;
+    const JsonIn hm = p->at("homography");
+    for (std::size_t k = 0; k < 9; ++k) fit.to_plane.m[k] = hm[k].number(-1e12, 1e12);
+  }
+  const std::size_t count = std::size_t(m.colours) * m.colours * m.colours * m.colours;
+  std::vector<Image> coord_tiles(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    coord_tiles[t] = read_image((coords_dir / fmt::format("tile-{:04d}.png", t)).string(), 4, true);
+    if (coord_tiles[t].width != tile_px)
+      throw InputError(fmt::format("{}: not {}x{} pixels", (coords_dir / fmt::format("tile-{:04d}.png", t)).string(),
+                                   tile_px, tile_px));
+  }
+  const auto coords = coords_from_tiles(coord_tiles);
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::string& spec : a.maps) {
+    std::vector<MaterialMap> one{parse_material_map(spec)};
+    const int w0 = one[0].image.width, h0 = one[0].image.height;
+    resize_maps(one, w, h, tileable);
+    if (one[0].resized)
+      fmt::print(stderr, "map {}: {}x{} resampled to the exemplar's {}x{}\n", one[0].name, w0, h0, w, h);
+    nlohmann::json mj = doc;
+    mj.erase("maps");
+    mj["map"] = one[0].name;
+    mj["file"] = one[0].file;
+    const std::string folder = (fs::path(a.dir) / "maps" / one[0].name).string();
+    write_map_tiles(folder, transfer_tiles(coords, tile_px, map_as_sampled(one[0].image, tileable, fit, scale)),
+                    one[0].space, mj);
+    out.push_back({{"map", one[0].name},
+                   {"folder", folder},
+                   {"colour_space", std::string(colour_space_name(one[0].space))},
+                   {"bits", one[0].image.depth},
+                   {"resampled", one[0].resized}});
+  }
+  emit(ctx, {{"dir", a.dir}, {"maps", out}}, [&] {
+    if (ctx.quiet) return;
+    for (const auto& o : out)
+      fmt::print("map {} ({}, {} bits): {}/\n", o["map"].get<std::string>(), o["colour_space"].get<std::string>(),
+                 o["bits"].get<int>(), o["folder"].get<std::string>());
+  });
+}
+
+void add_transfer(CLI::App& texture, Context& ctx) {
+  auto* cmd = texture.add_subcommand(
+      "transfer", "Carry further maps of the exemplar's surface onto a tile set by its texel coordinates (DIR/coords)");
+  auto a = std::make_shared<TransferArgs>();
+  cmd->add_option("DIR", a->dir, "Folder written by `texture tiles --map ...` or `texture tiles --coords`")->required();
+  cmd->add_option("--map", a->maps,
+                  "NAME=FILE[:ROLE] (any number; ROLE srgb, linear or normal): tiles in DIR/maps/NAME/")
+      ->type_name("NAME=FILE[:ROLE]")
+      ->required();
+  add_json_flag(cmd, ctx);
+  cmd->callback([a, &ctx] { run_transfer(*a, ctx); });
+}
+
 }  // namespace
 
 void add_texture_commands(CLI::App& app, Context& ctx) {
@@ -178,6 +433,7 @@ void add_texture_commands(CLI::App& app, Context& ctx) {
   texture->require_subcommand(1);
   add_tiles(*texture, ctx);
   add_atlas(*texture, ctx);
+  add_transfer(*texture, ctx);
   add_texture_render(*texture, ctx);
   add_texture_preview(*texture, ctx);
   add_texture_analyze(*texture, ctx);

@@ -92,22 +92,26 @@ nlohmann::json analysis_json(const AnalyzeArgs& a, const Lattice& l, const Textu
                              const std::string& exemplar_name) {
   nlohmann::json lags = nlohmann::json::array();
   for (const LagValue& v : r.lattice_lags) lags.push_back({{"lag", {v.dx, v.dy}}, {"r", v.r}});
-  nlohmann::json j = {{"image", a.image},
-                      {"width", r.width},
-                      {"height", r.height},
-                      {"lattice", {{"a", l.a}, {"b", l.b}, {"offset", l.offset}}},
-                      {"grid_repetition", r.grid_repetition},
-                      {"lattice_correlation", r.lattice_correlation},
-                      {"reference_correlation", r.reference_correlation},
-                      {"reference_lags", r.reference_lags},
-                      {"lattice_lags", lags},
-                      {"seam_ratio", measure_or_null(r.seam_ratio)},
-                      {"cut_visibility", measure_or_null(r.cut_visibility)},
-                      {"histogram_distance", measure_or_null(r.histogram_distance)},
-                      {"histogram_emd", measure_or_null(r.histogram_emd)},
-                      {"lattice_peak_db", r.spectrum.lattice_peak_db},
-                      {"lattice_frequencies", r.spectrum.lattice_frequencies},
-                      {"plot", a.plot.empty() ? nlohmann::json() : nlohmann::json(a.plot)}};
+  nlohmann::json j = {
+      {"image", a.image},
+      {"width", r.width},
+      {"height", r.height},
+      {"lattice", {{"a", l.a}, {"b", l.b}, {"offset", l.offset}}},
+      {"grid_repetition", r.grid_repetition},
+      {"lattice_correlation", r.lattice_correlation},
+      {"reference_correlation", r.reference_correlation},
+      {"reference_lags", r.reference_lags},
+      {"lattice_lags", lags},
+      {"seam_ratio", measure_or_null(r.seam_ratio)},
+      {"cut_visibility", measure_or_null(r.cut_visibility)},
+      {"line_continuity", measure_or_null(r.line_continuity)},
+      {"border_continuity", r.line_continuity ? nlohmann::json(r.border_continuity) : nlohmann::json()},
+      {"interior_continuity", r.line_continuity ? nlohmann::json(r.interior_continuity) : nlohmann::json()},
+      {"histogram_distance", measure_or_null(r.histogram_distance)},
+      {"histogram_emd", measure_or_null(r.histogram_emd)},
+      {"lattice_peak_db", r.spectrum.lattice_peak_db},
+      {"lattice_frequencies", r.spectrum.lattice_frequencies},
+      {"plot", a.plot.empty() ? nlohmann::json() : nlohmann::json(a.plot)}};
   if (!exemplar_name.empty()) j["exemplar"] = exemplar_name;
   return j;
 }
@@ -120,6 +124,9 @@ void print_analysis(const AnalyzeArgs& a, const Lattice& l, const TextureAnalysi
              r.grid_repetition, r.lattice_correlation, r.reference_lags, r.reference_correlation);
   if (r.seam_ratio) fmt::print("seam ratio       {:.3f}\n", *r.seam_ratio);
   if (r.cut_visibility) fmt::print("cut visibility   {:.3f}\n", *r.cut_visibility);
+  if (r.line_continuity)
+    fmt::print("line continuity  {:.3f}  (lines across tile borders {:.3f} / between them {:.3f})\n",
+               *r.line_continuity, r.border_continuity, r.interior_continuity);
   if (r.histogram_emd)
     fmt::print("histogram EMD    {:.2f} grey levels (R {:.2f}, G {:.2f}, B {:.2f}) to {}\n", *r.histogram_distance,
                (*r.histogram_emd)[0], (*r.histogram_emd)[1], (*r.histogram_emd)[2], exemplar_name);

@@ -1,6 +1,7 @@
 #include "image/image.hpp"
 
 #include <fmt/format.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cctype>
@@ -102,7 +103,23 @@ std::string_view failure_reason() {
 
 }  // namespace
 
-Image read_image(const std::string& path, int channels) {
+Image Image::to_depth(int bits) const {
+  if (bits == depth) return *this;
+  Image out(width, height,
+            std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * std::size_t(channels) *
+                                      std::size_t(bits / 8)),
+            channels);
+  out.depth = bits;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) {
+        const unsigned v = sample(x, y, c);
+        out.set_sample(x, y, c, bits == 16 ? v * 257 : (v * 255 + 32767) / 65535);
+      }
+  return out;
+}
+
+Image read_image(const std::string& path, int channels, bool keep_16) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
   std::string file = read_input_file(path, "image");
@@ -123,6 +140,16 @@ Image read_image(const std::string& path, int channels) {
   // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
   if (stbi_is_16_bit_from_memory(bytes, size) && !std::string_view(file).starts_with(kPngSignature))
     throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
+  if (keep_16 && stbi_is_16_bit_from_memory(bytes, size)) {
+    stbi_us* wide = stbi_load_16_from_memory(bytes, size, &w, &h, &n, channels);
+    if (!wide) throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
+    const std::size_t count = std::size_t(w) * std::size_t(h) * std::size_t(channels);
+    Image img(w, h, std::vector<std::uint8_t>(count * 2), channels);
+    img.depth = 16;
+    std::memcpy(img.pixels.data(), wide, count * 2);
+    stbi_image_free(wide);
+    return img;
+  }
   stbi_uc* data = stbi_load_from_memory(bytes, size, &w, &h, &n, channels);
   if (!data) throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
   Image img(w, h, std::vector<std::uint8_t>(data, data + std::size_t(w) * std::size_t(h) * std::size_t(channels)),
@@ -131,7 +158,70 @@ Image read_image(const std::string& path, int channels) {
   return img;
 }
 
+namespace {
+
+void append_to_string(png_structp p, png_bytep d, png_size_t n) {
+  static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<const char*>(d), n);
+}
+void flush_nothing(png_structp) {}
+
+// libpng reports errors by longjmp: nothing here lives across the setjmp but what libpng owns.
+bool png16_to(std::string& bytes, png_uint_32 w, png_uint_32 h, int colour_type, png_bytepp rows) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_set_write_fn(png, &bytes, append_to_string, flush_nothing);
+  png_set_IHDR(png, info, w, h, 16, colour_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_set_rows(png, info, rows);
+  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+// A 16-bit PNG through libpng's write API (stb_image_write writes 8 bits only): the fewest
+// channels that hold the image, big-endian samples as PNG stores them.
+std::string encode_png16(const Image& img) {
+  bool grey = true, opaque = true;
+  if (img.channels == 4)
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        grey = grey && img.sample(x, y, 0) == img.sample(x, y, 1) && img.sample(x, y, 0) == img.sample(x, y, 2);
+        opaque = opaque && img.sample(x, y, 3) == 65535;
+      }
+  std::vector<int> keep = img.channels == 1 ? std::vector<int>{0}
+                          : grey            ? std::vector<int>{0}
+                                            : std::vector<int>{0, 1, 2};
+  if (img.channels == 4 && !opaque) keep.push_back(3);
+  const int colour_type = keep.size() == 1   ? PNG_COLOR_TYPE_GRAY
+                          : keep.size() == 2 ? PNG_COLOR_TYPE_GRAY_ALPHA
+                          : keep.size() == 3 ? PNG_COLOR_TYPE_RGB
+                                             : PNG_COLOR_TYPE_RGBA;
+  std::vector<std::uint8_t> rows(std::size_t(img.width) * std::size_t(img.height) * keep.size() * 2);
+  std::size_t i = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c : keep) {
+        const unsigned v = img.sample(x, y, c);
+        rows[i++] = std::uint8_t(v >> 8), rows[i++] = std::uint8_t(v & 255);
+      }
+  std::vector<png_bytep> row_pointers(std::size_t(img.height));
+  for (int y = 0; y < img.height; ++y)
+    row_pointers[std::size_t(y)] = rows.data() + std::size_t(y) * std::size_t(img.width) * keep.size() * 2;
+  std::string bytes;
+  if (!png16_to(bytes, png_uint_32(img.width), png_uint_32(img.height), colour_type, row_pointers.data()))
+    throw InputError(fmt::format("cannot encode a {}x{} 16-bit PNG", img.width, img.height));
+  return bytes;
+}
+
+}  // namespace
+
 std::string encode_png(const Image& img) {
+  if (img.depth == 16) return encode_png16(img);
   // The fewest channels that hold the picture exactly (grey, grey+alpha, RGB or RGBA): pictures
   // of grey textures take a quarter of the space.
   const std::size_t ch = std::size_t(img.channels);

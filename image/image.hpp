@@ -1,9 +1,10 @@
 #pragma once
-// The one image type of Tilekit: 8-bit pixels with 1 (grey) or 4 (RGBA) channels, row-major,
-// row 0 at the top, column 0 at the left. Decoding (PNG, JPEG and whatever else stb_image reads)
+// The one image type of Tilekit: 8-bit (or 16-bit: `depth`) pixels with 1 (grey) or 4 (RGBA)
+// channels, row-major, row 0 at the top, column 0 at the left. Decoding (PNG, JPEG and whatever else stb_image reads)
 // and PNG encoding happen here and nowhere else; drawing (lines, discs, text for plots) is in
 // image/draw.cpp.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,12 @@ inline constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 28;
 
 struct Image {
   int width = 0, height = 0;
-  std::vector<std::uint8_t> pixels;  // width * height * channels bytes
+  std::vector<std::uint8_t> pixels;  // width * height * channels * depth / 8 bytes
   int channels = 4;                  // 4: RGBA; 1: grey
+  // Bits per channel: 8, or 16 (two bytes per channel in the machine's byte order; read them with
+  // sample/set_sample). Only image/, the mip chains and the copies of tiles and atlases handle
+  // 16-bit images; everything else takes `to_depth(8)`.
+  int depth = 8;
 
   Image() = default;
   Image(int w, int h, std::vector<std::uint8_t> px, int ch = 4)
@@ -33,8 +38,29 @@ struct Image {
   std::uint8_t* at(int x, int y) { return &pixels[offset(x, y)]; }
   const std::uint8_t* at(int x, int y) const { return &pixels[offset(x, y)]; }
   std::size_t offset(int x, int y) const {
-    return (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(channels);
+    return (std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(texel_bytes());
   }
+  int texel_bytes() const { return channels * (depth / 8); }
+  int max_value() const { return depth == 16 ? 65535 : 255; }
+  // Channel c of texel (x, y), 0..max_value(), at either depth.
+  unsigned sample(int x, int y, int c) const {
+    const std::uint8_t* p = at(x, y);
+    if (depth == 8) return p[c];
+    std::uint16_t v;
+    std::memcpy(&v, p + 2 * c, 2);
+    return v;
+  }
+  void set_sample(int x, int y, int c, unsigned v) {
+    std::uint8_t* p = at(x, y);
+    if (depth == 8) {
+      p[c] = std::uint8_t(v);
+      return;
+    }
+    const auto w = std::uint16_t(v);
+    std::memcpy(p + 2 * c, &w, 2);
+  }
+  // The same picture at 8 or 16 bits (8 -> 16 multiplies by 257, 16 -> 8 rounds).
+  Image to_depth(int bits) const;
 
   // Drawing on RGBA images (image/draw.cpp); pixels outside the image are skipped.
   void set(int x, int y, Rgb c) {
@@ -58,10 +84,12 @@ struct Image {
 };
 
 // An image file as `channels` (4: RGBA, 1: grey) channels. InputError naming the file when it is
-// missing, cannot be decoded, or would decode to more than kMaxImagePixels.
-Image read_image(const std::string& path, int channels = 4);
+// missing, cannot be decoded, or would decode to more than kMaxImagePixels. A 16-bit PNG is
+// rounded to 8 bits unless keep_16 (then depth 16).
+Image read_image(const std::string& path, int channels = 4, bool keep_16 = false);
 
-// The PNG encoding of `img` with the fewest channels that hold it exactly (grey, RGB, +alpha).
+// The PNG encoding of `img` with the fewest channels that hold it exactly (grey, RGB, +alpha);
+// a 16-bit image as a 16-bit PNG (libpng).
 std::string encode_png(const Image& img);
 // encode_png written atomically (temp file, fsync, rename). Throws InputError on failure.
 void write_png(const std::string& path, const Image& img);

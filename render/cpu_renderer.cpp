@@ -24,6 +24,13 @@ const char* render_method_name(RenderMethod m) {
   return m == RenderMethod::Tiles ? "tiles" : m == RenderMethod::Hex ? "hex" : "hpn";
 }
 
+std::vector<Image> atlas_levels_8bit(const TextureAtlas& a) {
+  std::vector<Image> out;
+  out.reserve(a.levels.size());
+  for (const Image& l : a.levels) out.push_back(l.to_depth(8));
+  return out;
+}
+
 std::size_t RenderSource::memory_bytes() const {
   if (method != RenderMethod::Tiles) return exemplar->memory_bytes(method == RenderMethod::Hpn);
   std::size_t bytes = 0;
@@ -40,12 +47,14 @@ struct TileSampler {
   const TextureAtlas& a;
   const DirectTiling tiling;
   const float inv_cols, inv_rows;
+  const std::vector<Image>& levels;  // a.levels, at 8 bits
+  const bool srgb;                   // filtered in linear light (GL: SRGB8_ALPHA8)
 
   std::array<float, 4> tap(TileIndex tile, std::uint32_t fu, std::uint32_t fv, float lod) const {
     const auto [row, col] = a.lookup.positions[tile];
     const float s = (float(col) + float(fu) / float(kFracOne)) * inv_cols;
     const float t = (float(row) + float(fv) / float(kFracOne)) * inv_rows;
-    return sample_trilinear(a.levels, s, t, lod);
+    return srgb ? sample_trilinear_srgb(levels, s, t, lod) : sample_trilinear(levels, s, t, lod);
   }
 
   std::array<float, 4> sample(const PixelPosition& p, TileIndex tile_here, const Footprint& f) const {
@@ -87,10 +96,14 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
   const ViewRows vr = view_rows(view, unit);
   std::unique_ptr<TileSampler> tiles;
   std::unique_ptr<PatchHashes> patches;
+  const std::vector<Image> levels8 =
+      src.method == RenderMethod::Tiles ? atlas_levels_8bit(*src.atlas) : std::vector<Image>{};
+  bool srgb_out = false;
   if (src.method == RenderMethod::Tiles) {
     const TextureAtlas& a = *src.atlas;
+    srgb_out = a.colour_space == ColourSpace::Srgb;
     tiles.reset(new TileSampler{a, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
-                                1.0f / float(a.lookup.cols), 1.0f / float(a.lookup.rows)});
+                                1.0f / float(a.lookup.cols), 1.0f / float(a.lookup.rows), levels8, srgb_out});
   } else {
     patches = std::make_unique<PatchHashes>(o.hash, o.seed);
   }
@@ -116,7 +129,10 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
                                          ? sample_hex(*src.exemplar, *patches, p, f, unit)
                                          : sample_hpn(*src.exemplar, *patches, p, f, unit);
       std::uint8_t* px = out.at(x, int(j));
-      for (int k = 0; k < 4; ++k) px[k] = std::uint8_t(std::clamp(std::lround(c[std::size_t(k)]), 0l, 255l));
+      for (int k = 0; k < 4; ++k) {
+        const float v = srgb_out && k < 3 ? srgb_encode_255(c[std::size_t(k)]) : c[std::size_t(k)];
+        px[k] = std::uint8_t(std::clamp(std::lround(v), 0l, 255l));
+      }
     }
     progress.add(1);
   });

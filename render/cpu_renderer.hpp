@@ -44,6 +44,11 @@ struct RenderSource {
   std::size_t memory_bytes() const;  // texture memory: the atlas's or the exemplar surface's mip chain (and LUT)
 };
 
+// An atlas's levels as the renderers sample them: 8 bits (16-bit atlases rounded). An atlas whose
+// colour space is sRGB is filtered in linear light and its render encoded back to sRGB (GL: an
+// SRGB8_ALPHA8 texture and the shader's tk_srgb_encode); linear and normal atlases as stored.
+std::vector<Image> atlas_levels_8bit(const TextureAtlas& a);
+
 Image render_cpu(const RenderSource& source, const View& view, const RenderOptions& o);
 // The mean texture fetches per pixel of a view (RenderSource::fetches of every pixel's taps).
 double mean_fetches(const RenderSource& source, const View& view, int max_aniso);

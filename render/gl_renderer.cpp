@@ -197,7 +197,9 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   const char* main_sampler = "tk_exemplar";
   if (src.method == RenderMethod::Tiles) {
-    upload_chain(s.textures[0], 0, src.atlas->levels, GL_RGBA8, GL_UNSIGNED_BYTE);
+    // An sRGB atlas as SRGB8_ALPHA8: filtered in linear light (the shader encodes the result).
+    upload_chain(s.textures[0], 0, atlas_levels_8bit(*src.atlas),
+                 src.atlas->colour_space == ColourSpace::Srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_UNSIGNED_BYTE);
     main_sampler = "tk_atlas";
   } else if (src.method == RenderMethod::Hex) {
     upload_chain(s.textures[0], 0, src.exemplar->levels, GL_RGBA8, GL_UNSIGNED_BYTE);

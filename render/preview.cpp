@@ -127,7 +127,8 @@ std::string preview_html(const TextureAtlas& atlas, const ExemplarSurface* exemp
     nlohmann::json spec = {
         {"kind", kind_name(atlas.lookup.kind)}, {"colors", atlas.lookup.colours}, {"tables", recipes}};
     if (glsl_tile_cell_texture(atlas.lookup, o.hash)) spec["positions"] = atlas.lookup.positions;
-    nlohmann::json t = page.png_levels(atlas.levels);
+    nlohmann::json t = page.png_levels(atlas_levels_8bit(atlas));
+    t["srgb"] = atlas.colour_space == ColourSpace::Srgb;  // uploaded as SRGB8_ALPHA8, as gl_renderer does
     t["unit"] = 0;
     t["sampler"] = "tk_atlas";
     page.add(tiles, o, nlohmann::json::array({t}), nlohmann::json::array(), spec);

@@ -41,7 +41,8 @@ function upload(spec) {
   gl.bindTexture(gl.TEXTURE_2D, t);
   spec.levels.forEach((level, k) => {
     if (spec.format === 'rgba8') {
-      gl.texImage2D(gl.TEXTURE_2D, k, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, document.getElementById(level));
+      gl.texImage2D(gl.TEXTURE_2D, k, spec.srgb ? gl.SRGB8_ALPHA8 : gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE,
+                    document.getElementById(level));
     } else {
       const bytes = Uint8Array.from(atob(level.data), c => c.charCodeAt(0));
       gl.texImage2D(gl.TEXTURE_2D, k, gl.RGBA16F, level.width, level.height, 0, gl.RGBA, gl.HALF_FLOAT,

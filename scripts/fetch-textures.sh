@@ -6,11 +6,63 @@
 #                                    a header and raw RGB, rewritten as binary PPM
 #   oa-dirt.tga oa-brick.tga oa-rock.jpg  OpenArena's tileable textures (GPL-2+): openarena-081-textures
 #                                    (a pk3, which is a zip: needs unzip)
+# With --held-out, also (only) the held-out textures: material sets no tuning decision looks at,
+# from UFO: Alien Invasion (GPL-2+ and others, see its copyright; Debian package ufoai-textures,
+# 336 MB), each with its colour map NAME.png and tangent-space normals NAME.normal.png, some with
+# specular NAME.spec.png:
+#   ufo-brick ufo-tile ufo-wood   brick, floor tiles and planks (structured)
+#   ufo-concrete ufo-dirt ufo-mud  concrete, dirt and dry mud (irregular)
 # Idempotent: does nothing when they are there. apt-get runs under flock /tmp/tilekit-apt.lock,
 # since other builds on the machine may install at the same time.
 #   TILEKIT_TEXTURES  the cache folder (default: ${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures)
 set -euo pipefail
 dest=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
+if [ "${1:-}" = --held-out ]; then
+  held=(ufo-brick ufo-tile ufo-wood ufo-concrete ufo-dirt ufo-mud)
+  missing=0
+  for f in "${held[@]}"; do [ -s "$dest/$f.normal.png" ] || missing=1; done
+  if [ "$missing" = 0 ]; then
+    echo "fetch-textures: the held-out textures (${held[*]}) already in $dest" >&2
+    exit 0
+  fi
+  mkdir -p "$dest"
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  cd "$work"
+  chmod 777 "$work"
+  flock /tmp/tilekit-apt.lock apt-get download ufoai-textures >/dev/null 2>&1 ||
+    { flock /tmp/tilekit-apt.lock apt-get update -q >/dev/null 2>&1 || true; flock /tmp/tilekit-apt.lock apt-get download ufoai-textures >/dev/null; }
+  dpkg -x ufoai-textures_*.deb ufo
+  pk3=ufo/usr/share/games/ufoai/base/0textures.pk3
+  # NAME, the texture in the pk3 (colour map; _nm and _sm beside it), its extension
+  while read -r name inner ext; do
+    unzip -p "$pk3" "textures/$inner.$ext" >colour.bin
+    unzip -p "$pk3" "textures/${inner}_nm.png" >normal.png
+    [ -s colour.bin ] && [ -s normal.png ] || { echo "fetch-textures: $inner is not in $pk3" >&2; exit 1; }
+    cp colour.bin "$dest/$name.$ext.tmp" && mv "$dest/$name.$ext.tmp" "$dest/$name.$ext"
+    cp normal.png "$dest/$name.normal.png.tmp" && mv "$dest/$name.normal.png.tmp" "$dest/$name.normal.png"
+    if unzip -p "$pk3" "textures/${inner}_sm.png" >spec.png 2>/dev/null && [ -s spec.png ]; then
+      cp spec.png "$dest/$name.spec.png.tmp" && mv "$dest/$name.spec.png.tmp" "$dest/$name.spec.png"
+    fi
+  done <<'LIST'
+ufo-brick tex_buildings/wall_brick01 png
+ufo-tile tex_buildings/tile01 png
+ufo-wood tex_buildings/floor_wood01 png
+ufo-concrete tex_trak/trak4_concrete3 png
+ufo-dirt tex_nature/dirt_se05 png
+ufo-mud tex_nature/drymud jpg
+LIST
+  cat >"$dest/SOURCE-held-out.txt" <<TXT
+ufo-*.png/jpg (colour), ufo-*.normal.png (tangent-space normals, _nm), ufo-*.spec.png (specular, _sm):
+UFO: Alien Invasion's textures tex_buildings/wall_brick01, tex_buildings/tile01,
+tex_buildings/floor_wood01, tex_trak/trak4_concrete3, tex_nature/dirt_se05, tex_nature/drymud
+(Debian package ufoai-textures, $(dpkg-deb -f ufoai-textures_*.deb Version), 0textures.pk3); see
+/usr/share/doc/ufoai-textures/copyright in the package for each file's licence. Held out: no
+tuning decision of Tilekit looks at them.
+TXT
+  echo "fetch-textures: ${held[*]} -> $dest" >&2
+  exit 0
+fi
 files=(brick.png grass.png gravel.png gimp-stone33.ppm gimp-walnut.ppm oa-dirt.tga oa-brick.tga oa-rock.jpg)
 missing=0
 for f in "${files[@]}"; do [ -s "$dest/$f" ] || missing=1; done

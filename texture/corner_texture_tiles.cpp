@@ -190,6 +190,7 @@ class CornerSynthesis {
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
     s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
+    if (o_.record_coords) s.coords.assign(count, std::vector<std::uint32_t>(px, 0));
     parallel_for(std::int64_t(count), o_.threads, [&](std::int64_t ti) {
       const CornerTile c = corner_tile(TileIndex(ti), c_);
       // the four bands: sample, distance of the pixel to its border, along-position from its
@@ -229,12 +230,16 @@ class CornerSynthesis {
           if (edge >= 0) {
             const Band& b = bands[edge];
             const int dx = x - b.origin_x, dy = y - b.origin_y;
-            std::copy_n(pix(pos_, b.sample, dx, dy), 4, out);
+            const std::uint8_t* from = pix(pos_, b.sample, dx, dy);
+            std::copy_n(from, 4, out);
+            if (!s.coords.empty()) s.coords[std::size_t(ti)][i] = exemplar_coord(e_, from);
             s.sources[std::size_t(ti)][i] = std::uint32_t(b.sample);
           } else if (corner < c_) {
             for (int k = 0; k < 4; ++k)
               if (corner_c[k] == corner && std::abs(x - corner_x[k]) <= E + 1 && std::abs(y - corner_y[k]) <= E + 1) {
-                std::copy_n(pix(pos_, corner, x - corner_x[k], y - corner_y[k]), 4, out);
+                const std::uint8_t* from = pix(pos_, corner, x - corner_x[k], y - corner_y[k]);
+                std::copy_n(from, 4, out);
+                if (!s.coords.empty()) s.coords[std::size_t(ti)][i] = exemplar_coord(e_, from);
                 break;
               }
             s.sources[std::size_t(ti)][i] = std::uint32_t(corner);

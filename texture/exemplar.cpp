@@ -69,30 +69,36 @@ Exemplar load_exemplar(const std::string& path_or_name, bool tileable) {
   return exemplar_from_image(read_image(path), path, tileable);
 }
 
-Exemplar resample_exemplar(const Exemplar& e, double sx, double sy) {
-  // the torus resamples as a torus; a plain exemplar loses no more than a pixel at its edges
-  const Image& src = e.image;
-  const int w0 = e.wrap_w ? e.wrap_w : src.width, h0 = e.wrap_h ? e.wrap_h : src.height;
+Image resample_image(const Image& src, int w0, int h0, double sx, double sy, bool torus) {
   const int w = std::max(kMinExemplarSide, int(std::lround(w0 * sx))),
             h = std::max(kMinExemplarSide, int(std::lround(h0 * sy)));
-  Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4));
+  Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(src.texel_bytes())),
+            src.channels);
+  out.depth = src.depth;
+  const long max = src.max_value();
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double fx = (x + 0.5) * w0 / w - 0.5, fy = (y + 0.5) * h0 / h - 0.5;
       const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
       const double ax = fx - x0, ay = fy - y0;
-      auto texel = [&](int xx, int yy) {
-        xx = e.wrap_w ? (xx % w0 + w0) % w0 : std::clamp(xx, 0, w0 - 1);
-        yy = e.wrap_h ? (yy % h0 + h0) % h0 : std::clamp(yy, 0, h0 - 1);
-        return src.at(xx, yy);
+      auto texel = [&](int xx, int yy, int c) {
+        xx = torus ? (xx % w0 + w0) % w0 : std::clamp(xx, 0, w0 - 1);
+        yy = torus ? (yy % h0 + h0) % h0 : std::clamp(yy, 0, h0 - 1);
+        return double(src.sample(xx, yy, c));
       };
-      for (int c = 0; c < 4; ++c) {
-        const double v = (1 - ay) * ((1 - ax) * texel(x0, y0)[c] + ax * texel(x0 + 1, y0)[c]) +
-                         ay * ((1 - ax) * texel(x0, y0 + 1)[c] + ax * texel(x0 + 1, y0 + 1)[c]);
-        out.at(x, y)[c] = std::uint8_t(std::clamp(std::lround(v), 0l, 255l));
+      for (int c = 0; c < src.channels; ++c) {
+        const double v = (1 - ay) * ((1 - ax) * texel(x0, y0, c) + ax * texel(x0 + 1, y0, c)) +
+                         ay * ((1 - ax) * texel(x0, y0 + 1, c) + ax * texel(x0 + 1, y0 + 1, c));
+        out.set_sample(x, y, c, unsigned(std::clamp(std::lround(v), 0l, max)));
       }
     }
-  return exemplar_from_image(std::move(out), e.name, e.wrap_w > 0);
+  return out;
+}
+
+Exemplar resample_exemplar(const Exemplar& e, double sx, double sy) {
+  // the torus resamples as a torus; a plain exemplar loses no more than a pixel at its edges
+  const int w0 = e.wrap_w ? e.wrap_w : e.width(), h0 = e.wrap_h ? e.wrap_h : e.height();
+  return exemplar_from_image(resample_image(e.image, w0, h0, sx, sy, e.wrap_w > 0), e.name, e.wrap_w > 0);
 }
 
 ExemplarPeriod dominant_period(const Exemplar& e) {
@@ -134,6 +140,8 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
       if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
         const double rise = (here - lowest) / (1 - lowest);
         if (rise >= kPeriodProminence) peaks.push_back({d, rise});
+        else
+          (axis == 0 ? p.weak_x : p.weak_y) = std::max(axis == 0 ? p.weak_x : p.weak_y, rise);
       }
       lowest = std::min(lowest, here);
     }

@@ -38,6 +38,9 @@ Exemplar exemplar_from_image(Image image, std::string name, bool tileable = fals
 
 // The exemplar resampled (bilinear) by sx horizontally and sy vertically (the torus with it).
 Exemplar resample_exemplar(const Exemplar& e, double sx, double sy);
+// The same for any image (any depth and channels): its w0 x h0 top-left part resampled to
+// round(w0 sx) x round(h0 sy) (at least kMinExemplarSide), a torus when `torus`.
+Image resample_image(const Image& src, int w0, int h0, double sx, double sy, bool torus);
 
 // The dominant period of the exemplar along x and along y (0: none), from the autocorrelation
 // of its gradient magnitude (so that mortar lines and joints count, not slow shading): among the
@@ -49,8 +52,19 @@ Exemplar resample_exemplar(const Exemplar& e, double sx, double sy);
 struct ExemplarPeriod {
   double x = 0, y = 0;
   double strength_x = 0, strength_y = 0;  // that rise, as a fraction of the way to 1
+  // The largest rise of a local maximum below kPeriodProminence, per axis (0: none): a repeat too
+  // weak to keep, which still says the texture is structured.
+  double weak_x = 0, weak_y = 0;
 };
 inline constexpr double kPeriodProminence = 0.2;
+// Structure likely but not all found: a period along one axis only (courses without head
+// joints, planks without ends), or a repeat of at least kStructureHint along an axis without one.
+inline constexpr double kStructureHint = 0.1;
+inline bool structure_likely(const ExemplarPeriod& p) {
+  const bool x = p.x > 0, y = p.y > 0;
+  if (x && y) return false;
+  return x != y || p.weak_x >= kStructureHint || p.weak_y >= kStructureHint;
+}
 ExemplarPeriod dominant_period(const Exemplar& e);
 
 // Euclidean RGB distance between two pixels (0 .. 441.7).

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace tilekit {
 
@@ -48,38 +49,143 @@ std::vector<std::vector<Tap>> taps(int in, int out, MipEdge edge) {
   return all;
 }
 
-}  // namespace
-
-Image downsample(const Image& img, MipEdge edge) {
-  const int w = std::max(1, img.width / 2), h = std::max(1, img.height / 2);
-  const auto tx = taps(img.width, w, edge), ty = taps(img.height, h, edge);
-  // Horizontal pass into 32-bit sums (x 256), then vertical, then round (/ 65536).
-  std::vector<std::int32_t> tmp(std::size_t(w) * std::size_t(img.height) * 4);
+// The texels as the quantities that are averaged (ColourSpace): linear light or data, times
+// alpha; normals as vectors (alpha kept apart, never premultiplied into a normal).
+std::vector<double> to_work(const Image& img, ColourSpace space) {
+  const int nc = img.channels;
+  const double scale = 1.0 / img.max_value();
+  std::vector<double> w(std::size_t(img.width) * std::size_t(img.height) * std::size_t(nc));
+  std::size_t i = 0;
   for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < w; ++x) {
-      std::int32_t* o = &tmp[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4];
+    for (int x = 0; x < img.width; ++x, i += std::size_t(nc)) {
+      const double a = nc == 4 ? img.sample(x, y, 3) * scale : 1.0;
+      const int colour = nc == 4 ? 3 : 1;
+      for (int c = 0; c < colour; ++c) {
+        const double v = img.sample(x, y, c) * scale;
+        w[i + std::size_t(c)] = space == ColourSpace::Normal ? 2 * v - 1
+                                : space == ColourSpace::Srgb ? srgb_to_linear(v) * a
+                                                             : v * a;
+      }
+      if (nc == 4) w[i + 3] = a;
+    }
+  return w;
+}
+
+// Filters `work` (channels nc, in_w x in_h) to out_w x out_h with the tent taps.
+std::vector<double> filter(const std::vector<double>& work, int nc, int in_w, int in_h, MipEdge edge, int& out_w,
+                           int& out_h) {
+  out_w = std::max(1, in_w / 2), out_h = std::max(1, in_h / 2);
+  const auto tx = taps(in_w, out_w, edge), ty = taps(in_h, out_h, edge);
+  const std::size_t c = std::size_t(nc);
+  std::vector<double> tmp(std::size_t(out_w) * std::size_t(in_h) * c, 0.0);
+  for (int y = 0; y < in_h; ++y)
+    for (int x = 0; x < out_w; ++x) {
+      double* o = &tmp[(std::size_t(y) * std::size_t(out_w) + std::size_t(x)) * c];
       for (const Tap& t : tx[std::size_t(x)]) {
-        const std::uint8_t* p = img.at(t.source, y);
-        for (int c = 0; c < 4; ++c) o[c] += t.weight * p[c];
+        const double* p = &work[(std::size_t(y) * std::size_t(in_w) + std::size_t(t.source)) * c];
+        for (std::size_t k = 0; k < c; ++k) o[k] += t.weight * p[k];
       }
     }
-  Image out{w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * 4)};
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      std::int32_t acc[4] = {0, 0, 0, 0};
+  std::vector<double> out(std::size_t(out_w) * std::size_t(out_h) * c, 0.0);
+  for (int y = 0; y < out_h; ++y)
+    for (int x = 0; x < out_w; ++x) {
+      double* o = &out[(std::size_t(y) * std::size_t(out_w) + std::size_t(x)) * c];
       for (const Tap& t : ty[std::size_t(y)]) {
-        const std::int32_t* p = &tmp[(std::size_t(t.source) * std::size_t(w) + std::size_t(x)) * 4];
-        for (int c = 0; c < 4; ++c) acc[c] += t.weight * p[c];
+        const double* p = &tmp[(std::size_t(t.source) * std::size_t(out_w) + std::size_t(x)) * c];
+        for (std::size_t k = 0; k < c; ++k) o[k] += t.weight * p[k];
       }
-      for (int c = 0; c < 4; ++c) out.at(x, y)[c] = std::uint8_t((acc[c] + 32768) >> 16);
+      for (std::size_t k = 0; k < c; ++k) o[k] /= 65536.0;
     }
   return out;
 }
 
-std::vector<Image> mip_chain(const Image& level0, MipEdge edge) {
+unsigned quantise(double v, int max) {
+  return unsigned(std::lround(std::clamp(v, 0.0, 1.0) * max));
+}
+
+}  // namespace
+
+std::string_view colour_space_name(ColourSpace c) {
+  switch (c) {
+    case ColourSpace::Srgb:
+      return "srgb";
+    case ColourSpace::Linear:
+      return "linear";
+    case ColourSpace::Normal:
+      return "normal";
+  }
+  return "srgb";
+}
+
+bool parse_colour_space(std::string_view name, ColourSpace& out) {
+  for (ColourSpace c : {ColourSpace::Srgb, ColourSpace::Linear, ColourSpace::Normal})
+    if (name == colour_space_name(c)) {
+      out = c;
+      return true;
+    }
+  return false;
+}
+
+double srgb_to_linear(double v) {
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
+double linear_to_srgb(double v) {
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+Image downsample(const Image& img, MipEdge edge, ColourSpace space) {
+  const int nc = img.channels;
+  int w = 0, h = 0;
+  const std::vector<double> avg = filter(to_work(img, space), nc, img.width, img.height, edge, w, h);
+  Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(img.texel_bytes())), nc);
+  out.depth = img.depth;
+  const int max = img.max_value();
+  std::size_t i = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x, i += std::size_t(nc)) {
+      const double* p = &avg[i];
+      const double a = nc == 4 ? p[3] : 1.0;
+      const int colour = nc == 4 ? 3 : 1;
+      if (space == ColourSpace::Normal && colour == 3) {
+        const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        const double n[3] = {len > 0 ? p[0] / len : 0, len > 0 ? p[1] / len : 0, len > 0 ? p[2] / len : 1};
+        for (int c = 0; c < 3; ++c) out.set_sample(x, y, c, quantise((n[c] + 1) / 2, max));
+      } else {
+        for (int c = 0; c < colour; ++c) {
+          const double v = space == ColourSpace::Normal ? (p[c] + 1) / 2 : a > 0 ? p[c] / a : 0.0;
+          out.set_sample(x, y, c,
+                         quantise(space == ColourSpace::Srgb ? linear_to_srgb(std::clamp(v, 0.0, 1.0)) : v, max));
+        }
+      }
+      if (nc == 4) out.set_sample(x, y, 3, quantise(a, max));
+    }
+  return out;
+}
+
+std::vector<Image> mip_chain(const Image& level0, MipEdge edge, ColourSpace space) {
   std::vector<Image> levels{level0};
-  while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(downsample(levels.back(), edge));
+  while (levels.back().width > 1 || levels.back().height > 1) levels.push_back(downsample(levels.back(), edge, space));
   return levels;
+}
+
+std::vector<double> normal_lengths(const Image& normals, MipEdge edge) {
+  int w = 0, h = 0;
+  const std::vector<double> avg =
+      filter(to_work(normals, ColourSpace::Normal), normals.channels, normals.width, normals.height, edge, w, h);
+  std::vector<double> len(std::size_t(w) * std::size_t(h));
+  const std::size_t nc = std::size_t(normals.channels);
+  for (std::size_t i = 0; i < len.size(); ++i) {
+    const double* p = &avg[i * nc];
+    len[i] = nc >= 3 ? std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) : 1.0;
+  }
+  return len;
+}
+
+double toksvig_roughness(double r, double len) {
+  len = std::clamp(len, 1e-3, 1.0);
+  const double alpha2 = r * r * r * r + (1 - len) / len;
+  return std::clamp(std::sqrt(std::sqrt(alpha2)), 0.0, 1.0);
 }
 
 }  // namespace tilekit

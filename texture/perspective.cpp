@@ -310,9 +310,9 @@ PerspectiveFit fit_perspective(const Exemplar& e) {
   return out;
 }
 
-Exemplar rectify_exemplar(const Exemplar& e, const PerspectiveFit& fit) {
-  if (!fit.applied) return e;
-  const int w = e.width(), h = e.height();
+Image rectify_image(const Image& img, const PerspectiveFit& fit) {
+  if (!fit.applied) return {};
+  const int w = img.width, h = img.height;
   // the largest axis-aligned rectangle of the plane inside the picture: the picture's edges
   // mapped to the plane bound it from each side
   double x0 = -1e300, x1 = 1e300, y0 = -1e300, y1 = 1e300;
@@ -325,21 +325,30 @@ Exemplar rectify_exemplar(const Exemplar& e, const PerspectiveFit& fit) {
     y1 = std::min(y1, fit.to_plane.apply(tx, h)[1]);
   }
   const int ow = int(std::floor(x1 - x0)), oh = int(std::floor(y1 - y0));
-  if (ow < kMinExemplarSide || oh < kMinExemplarSide) return e;
+  if (ow < kMinExemplarSide || oh < kMinExemplarSide) return {};
   const Homography back = fit.to_plane.inverse();
-  Image out(ow, oh, std::vector<std::uint8_t>(std::size_t(ow) * std::size_t(oh) * 4));
+  Image out(ow, oh, std::vector<std::uint8_t>(std::size_t(ow) * std::size_t(oh) * std::size_t(img.texel_bytes())),
+            img.channels);
+  out.depth = img.depth;
+  const long max = img.max_value();
   for (int y = 0; y < oh; ++y)
     for (int x = 0; x < ow; ++x) {
       const auto p = back.apply(x0 + x + 0.5, y0 + y + 0.5);
       const double fx = std::clamp(p[0] - 0.5, 0.0, w - 1.0), fy = std::clamp(p[1] - 0.5, 0.0, h - 1.0);
       const int xa = std::min(int(fx), w - 2), ya = std::min(int(fy), h - 2);
       const double ax = fx - xa, ay = fy - ya;
-      for (int c = 0; c < 4; ++c) {
-        const double v = (1 - ay) * ((1 - ax) * e.at(xa, ya)[c] + ax * e.at(xa + 1, ya)[c]) +
-                         ay * ((1 - ax) * e.at(xa, ya + 1)[c] + ax * e.at(xa + 1, ya + 1)[c]);
-        out.at(x, y)[c] = std::uint8_t(std::clamp(std::lround(v), 0l, 255l));
+      for (int c = 0; c < img.channels; ++c) {
+        const double v = (1 - ay) * ((1 - ax) * img.sample(xa, ya, c) + ax * img.sample(xa + 1, ya, c)) +
+                         ay * ((1 - ax) * img.sample(xa, ya + 1, c) + ax * img.sample(xa + 1, ya + 1, c));
+        out.set_sample(x, y, c, unsigned(std::clamp(std::lround(v), 0l, max)));
       }
     }
+  return out;
+}
+
+Exemplar rectify_exemplar(const Exemplar& e, const PerspectiveFit& fit) {
+  Image out = rectify_image(e.image, fit);
+  if (out.width == 0) return e;
   return exemplar_from_image(std::move(out), e.name, false);
 }
 

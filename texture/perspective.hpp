@@ -48,5 +48,8 @@ PerspectiveFit fit_perspective(const Exemplar& e);
 // The exemplar resampled (bilinear) through fit.to_plane over the largest axis-aligned rectangle
 // of the plane that the picture covers; unchanged when !fit.applied.
 Exemplar rectify_exemplar(const Exemplar& e, const PerspectiveFit& fit);
+// The same resampling of any image of the exemplar's size (any depth and channels): another map
+// of the same wall. Empty where rectify_exemplar returns the exemplar as it came.
+Image rectify_image(const Image& img, const PerspectiveFit& fit);
 
 }  // namespace tilekit

@@ -255,8 +255,11 @@ TextureAnalysis analyze_texture(const Image& img, const Lattice& l, const Image*
   for (double v : ref_r) r.reference_correlation += std::abs(v) / double(ref_r.size());
   r.reference_lags = ref.size();
   r.grid_repetition = r.lattice_correlation - r.reference_correlation;
-  if (l.is_square_grid())
+  if (l.is_square_grid()) {
     r.seam_ratio = seam_statistics(img, int(l.a[0]), nullptr, int(l.offset[0]), int(l.offset[1])).seam_ratio;
+    const LineContinuity c = line_continuity(img, int(l.a[0]), int(l.offset[0]), int(l.offset[1]));
+    r.line_continuity = c.ratio, r.border_continuity = c.border, r.interior_continuity = c.interior;
+  }
   if (labels) {
     const std::vector<std::uint32_t> ids = label_ids(*labels);
     r.cut_visibility =
@@ -314,6 +317,39 @@ Image spectrum_plot(const TextureAnalysis& a, const std::string& title, int widt
   const std::string xlabel = "FREQUENCY (CYCLES PER PIXEL)";
   img.text(int((left + right) / 2) - Image::text_width(xlabel) / 2, height - 16, xlabel, black);
   return img;
+}
+
+LineContinuity line_continuity(const Image& img, int tile, int x0, int y0) {
+  const std::vector<float> lum = luminance(img);
+  const int w = img.width, h = img.height;
+  const auto L = [&](int x, int y) { return double(lum[std::size_t(y) * std::size_t(w) + std::size_t(x)]); };
+  // corr over t of the across-gradient on the two sides of the line at position p (between p-1 and p)
+  const auto corr = [&](int p, bool vertical) {
+    const int n = vertical ? h : w;
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    int count = 0;
+    for (int t = 1; t + 1 < n; ++t) {
+      const double a =
+          vertical ? std::abs(L(p - 1, t + 1) - L(p - 1, t - 1)) : std::abs(L(t + 1, p - 1) - L(t - 1, p - 1));
+      const double b = vertical ? std::abs(L(p, t + 1) - L(p, t - 1)) : std::abs(L(t + 1, p) - L(t - 1, p));
+      sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, ++count;
+    }
+    const double va = saa - sa * sa / count, vb = sbb - sb * sb / count;
+    return va > 0 && vb > 0 ? (sab - sa * sb / count) / std::sqrt(va * vb) : 0.0;
+  };
+  LineContinuity c;
+  for (int pass = 0; pass < 2; ++pass) {  // 0: the lattice's lines, 1: halfway between
+    double sum = 0;
+    int lines = 0;
+    for (int vertical = 0; vertical < 2; ++vertical) {
+      const int n = vertical ? w : h, start = ((vertical ? x0 : y0) + pass * (tile / 2)) % tile;
+      for (int p = (start + tile) % tile; p < n; p += tile)
+        if (p >= 1 && p + 1 < n) sum += corr(p, vertical != 0), ++lines;
+    }
+    (pass == 0 ? c.border : c.interior) = lines ? sum / lines : 0;
+  }
+  c.ratio = c.interior > 0 ? c.border / c.interior : 0;
+  return c;
 }
 
 }  // namespace tilekit

@@ -53,6 +53,10 @@ struct TextureAnalysis {
   std::size_t reference_lags = 0;
   std::optional<double> seam_ratio;      // square lattices only: step across tile borders / step inside tiles
   std::optional<double> cut_visibility;  // with labels: step across sample boundaries / step inside samples
+  // Square lattices: do lines (mortar, plank edges) continue across tile borders as they do
+  // inside tiles? line_continuity = border / interior continuity (line_continuity below).
+  std::optional<double> line_continuity;
+  double border_continuity = 0, interior_continuity = 0;
   std::optional<std::array<double, 3>> histogram_emd;  // with an exemplar: per channel R, G, B, in grey levels
   std::optional<double> histogram_distance;            // their mean
   RadialSpectrum spectrum;
@@ -74,6 +78,15 @@ std::vector<std::array<int, 2>> reference_lags(const Lattice& l);
 // Per-channel 1-D earth mover's distance between the histograms of two images (R, G, B; grey
 // images count as R = G = B): sum over grey levels of |CDF_a - CDF_b|, in grey levels.
 std::array<double, 3> histogram_emd(const Image& a, const Image& b);
+
+// Line continuity across the lines x = x0 + k tile (and y = y0 + k tile): per such line, the
+// correlation (Pearson, along the line) of the gradient across the line's direction on its two
+// sides (|dL/dy| in the columns left and right of a vertical border: horizontal lines continue
+// when it matches), averaged over the lines. `interior` takes the lines halfway between.
+struct LineContinuity {
+  double border = 0, interior = 0, ratio = 0;
+};
+LineContinuity line_continuity(const Image& img, int tile, int x0 = 0, int y0 = 0);
 
 // Labels: one sample id per pixel as a PNG of the same size (id = R << 16 | G << 8 | B), where
 // neighbours with different ids lie on two sides of a cut (texture tiles write them, see

@@ -18,34 +18,40 @@ namespace fs = std::filesystem;
 
 namespace {
 
-TextureAtlas from_level0(const AtlasLookup& lookup, Image level0, int tile_px) {
+TextureAtlas from_level0(const AtlasLookup& lookup, Image level0, int tile_px, ColourSpace space) {
   TextureAtlas a;
   a.lookup = lookup;
   a.tile_px = tile_px;
-  a.levels = mip_chain(level0, MipEdge::Wrap);  // the atlas is a torus: filtering wraps around
+  a.colour_space = space;
+  a.levels = mip_chain(level0, MipEdge::Wrap, space);  // the atlas is a torus: filtering wraps around
   return a;
 }
 
 }  // namespace
 
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles) {
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles, ColourSpace space) {
   if (tiles.size() != lookup.cells.size())
     throw InputError(fmt::format("{} tile images for a set of {} tiles", tiles.size(), lookup.cells.size()));
   const int n = tiles.empty() ? 0 : tiles[0].width;
   for (const Image& t : tiles)
     if (t.width != n || t.height != n || n < 1) throw InputError("tile images must all be square and of one size");
+  const int depth = tiles.empty() ? 8 : tiles[0].depth;
+  for (const Image& t : tiles)
+    if (t.depth != depth || t.channels != 4) throw InputError("tile images must all be RGBA of one depth");
   Image level0(lookup.cols * n, lookup.rows * n, Rgb{0, 0, 0});
+  if (depth == 16) level0 = level0.to_depth(16);
+  const std::size_t row_bytes = std::size_t(n) * std::size_t(level0.texel_bytes());
   for (int r = 0; r < lookup.rows; ++r)
     for (int c = 0; c < lookup.cols; ++c) {
       const Image& t = tiles[lookup.cells[std::size_t(r) * std::size_t(lookup.cols) + std::size_t(c)]];
-      for (int y = 0; y < n; ++y) std::copy_n(t.at(0, y), std::size_t(n) * 4, level0.at(c * n, r * n + y));
+      for (int y = 0; y < n; ++y) std::copy_n(t.at(0, y), row_bytes, level0.at(c * n, r * n + y));
     }
-  return from_level0(lookup, std::move(level0), n);
+  return from_level0(lookup, std::move(level0), n, space);
 }
 
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir) {
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir, ColourSpace space) {
   Image level0 = atlas_from_tile_images(lookup, tiles_dir);
-  TextureAtlas a = from_level0(lookup, std::move(level0), 0);
+  TextureAtlas a = from_level0(lookup, std::move(level0), 0, space);
   a.tile_px = a.levels[0].width / lookup.cols;
   a.tiles_dir = tiles_dir;
   return a;
@@ -75,6 +81,8 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
                       {"kind", std::string(kind_name(a.lookup.kind))},
                       {"colors", a.lookup.colours},
                       {"tile_px", a.tile_px},
+                      {"colour_space", std::string(colour_space_name(a.colour_space))},
+                      {"bits", a.levels.empty() ? 8 : a.levels[0].depth},
                       {"rows", a.lookup.rows},
                       {"cols", a.lookup.cols},
                       {"levels", levels},
@@ -117,6 +125,9 @@ TextureAtlas read_texture_atlas(const std::string& path) {
                                a.lookup.cols, kMaxImagePixels));
   a.tile_px = int(tile_px);
   a.tiles_dir = j.string_or("tiles_dir", "");
+  if (auto space = j.find("colour_space"))
+    if (!parse_colour_space(space->string(16), a.colour_space))
+      throw space->error("expected \"srgb\", \"linear\" or \"normal\"");
   const fs::path dir = fs::path(manifest).parent_path();
   const JsonIn levels = j.at("levels");
   const std::size_t n = levels.array(1, 64);
@@ -124,7 +135,8 @@ TextureAtlas read_texture_atlas(const std::string& path) {
     const std::string file = (dir / levels[k].at("file").string(4096)).string();
     const std::int64_t want_w = a.levels.empty() ? a.lookup.cols * tile_px : std::max(1, a.levels.back().width / 2);
     const std::int64_t want_h = a.levels.empty() ? a.lookup.rows * tile_px : std::max(1, a.levels.back().height / 2);
-    Image img = read_image(file);
+    Image img = read_image(file, 4, true);
+    if (!a.levels.empty() && img.depth != a.levels[0].depth) img = img.to_depth(a.levels[0].depth);
     if (img.width != want_w || img.height != want_h)
       throw InputError(fmt::format("{}: {}x{} pixels, but level {} of this atlas is {}x{}", file, img.width,
                                    img.height, a.levels.size(), want_w, want_h));
@@ -148,6 +160,9 @@ TileSetManifest read_tile_set_manifest(const std::string& dir) {
   if (k != "corner" && k != "wang") throw kind.error("expected \"corner\" or \"wang\"");
   m.kind = k == "wang" ? TileKind::Wang : TileKind::Corner;
   m.colours = std::uint32_t(j.at("colors").integer(1, kMaxCompleteSetColours));
+  if (auto space = j.find("colour_space"))
+    if (!parse_colour_space(space->string(16), m.colour_space))
+      throw space->error("expected \"srgb\", \"linear\" or \"normal\"");
   // The synthesis methods make one kind each (texture/tile_synthesis.hpp): a manifest whose kind
   // and method disagree was edited, and its tiles would be laid out by the wrong packing.
   if (auto method = j.find("method")) {

@@ -9,6 +9,7 @@
 
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
+#include "texture/mipmap.hpp"
 
 namespace tilekit {
 
@@ -17,13 +18,19 @@ struct TextureAtlas {
   int tile_px = 0;
   std::vector<Image> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
   std::string tiles_dir;      // where the tiles came from (informational)
+  // How the levels were averaged and how a renderer samples them (mipmap.hpp): an sRGB atlas is
+  // uploaded as SRGB8_ALPHA8 and filtered in linear light. The levels are 8-bit, or 16-bit when
+  // the tiles were (levels[k].depth).
+  ColourSpace colour_space = ColourSpace::Srgb;
 };
 
 // InputError unless there is one square image of tile_px pixels per tile of the lookup's set.
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles);
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles,
+                                 ColourSpace space = ColourSpace::Srgb);
 // The same from a folder written by `tilekit texture tiles` (or any folder of tile images named
 // by tile index; atlas_from_tile_images reads it).
-TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir);
+TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir,
+                                 ColourSpace space = ColourSpace::Srgb);
 
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
 // atlas.mipL.png, atlas.json (the manifest: tile size, levels, the lookup), atlas.h (C lookup
@@ -44,6 +51,7 @@ TextureAtlas read_texture_atlas(const std::string& png_or_manifest);
 struct TileSetManifest {
   TileKind kind = TileKind::Corner;
   std::uint32_t colours = 0;
+  ColourSpace colour_space = ColourSpace::Srgb;  // "colour_space" (absent: srgb)
 };
 TileSetManifest read_tile_set_manifest(const std::string& dir);
 

@@ -84,6 +84,10 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
     if (perspective_.applied) e_ = rectify_exemplar(e, perspective_);
   }
   found_ = dominant_period(e_);
+  if (o.period_override[0] > 0 || o.period_override[1] > 0) {  // the user's period (0: none along that axis)
+    found_.x = o.period_override[0], found_.y = o.period_override[1];
+    found_.strength_x = found_.x > 0 ? 1 : 0, found_.strength_y = found_.y > 0 ? 1 : 0;
+  }
   // the tile holds k whole periods, k the nearest whole number; at most 25 % of stretch
   for (int axis = 0; axis < 2; ++axis) {
     const double p = axis == 0 ? found_.x : found_.y;
@@ -253,6 +257,7 @@ double search_samples(std::vector<std::array<int, 2>>& samples, const std::vecto
   };
   for (int round = 0; o.search > 0 && round < o.rounds; ++round)
     for (std::size_t j = 0; j < samples.size(); ++j) {
+      throw_if_interrupted();  // the search of a large set takes seconds: a signal ends it too
       const SampleSlot& s = slots[j];
       std::vector<std::array<int, 2>> cand(std::size_t(o.search));
       std::vector<SampleScore> scores(cand.size());
@@ -361,6 +366,9 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       if (best.take_new[i]) {
         std::copy_n(best_patch.pixels.data() + 4 * i, 4, img.pixels.data() + 4 * i);
         s.sources[t][i] = s.shared_sources + std::uint32_t(t);
+        if (!s.coords.empty())
+          s.coords[t][i] = exemplar_coord(
+              e, e.at(s.centres[t][0] + int(i % std::size_t(n)), s.centres[t][1] + int(i / std::size_t(n))));
       }
     cost[t] = best.cost;
     progress.add(1);
@@ -393,6 +401,12 @@ TextureTileSet naive_tiles(const Exemplar& e, const SynthesisOptions& o) {
     Image tile{o.tile_px, o.tile_px, std::vector<std::uint8_t>(px * 4)};
     for (int y = 0; y < o.tile_px; ++y) std::copy_n(e.at(x0, y0 + y), std::size_t(o.tile_px) * 4, tile.at(0, y));
     s.tiles.push_back(std::move(tile));
+    if (o.record_coords) {
+      s.coords.emplace_back(px);
+      for (std::size_t i = 0; i < px; ++i)
+        s.coords.back()[i] =
+            exemplar_coord(e, e.at(x0 + int(i % std::size_t(o.tile_px)), y0 + int(i / std::size_t(o.tile_px))));
+    }
     s.sources.emplace_back(px, std::uint32_t(t));
   }
   return s;
@@ -404,9 +418,35 @@ Image tile_set_sheet(const TextureTileSet& s, int gap) {
   Image sheet(cols * n + (cols + 1) * gap, rows * n + (rows + 1) * gap, Rgb{255, 255, 255});
   for (int t = 0; t < count; ++t) {
     const int x0 = gap + (t % cols) * (n + gap), y0 = gap + (t / cols) * (n + gap);
-    for (int y = 0; y < n; ++y) std::copy_n(s.tiles[std::size_t(t)].at(0, y), std::size_t(n) * 4, sheet.at(x0, y0 + y));
+    const Image tile = s.tiles[std::size_t(t)].to_depth(8);
+    for (int y = 0; y < n; ++y) std::copy_n(tile.at(0, y), std::size_t(n) * 4, sheet.at(x0, y0 + y));
   }
   return sheet;
+}
+
+std::string structure_message(const ExemplarPeriod& p) {
+  if (!structure_likely(p)) return "";
+  const bool x = p.x > 0, y = p.y > 0;
+  if (x || y)
+    return fmt::format(
+        "a period was found along {} ({:g} px) but not along {} (strongest repeat {:.2f} of the {:.2f} "
+        "needed): the {} keep their phase, the other axis does not; give both with the period option "
+        "X,Y if it has one",
+        x ? "x" : "y", x ? p.x : p.y, x ? "y" : "x", x ? p.weak_y : p.weak_x, kPeriodProminence,
+        x ? "columns" : "courses");
+  return fmt::format(
+      "the exemplar looks structured (repeats of {:.2f} along x, {:.2f} along y, below the {:.2f} "
+      "needed) but no period was found: bricks, tiles or planks may be cut; give the period option "
+      "X,Y in pixels",
+      p.weak_x, p.weak_y, kPeriodProminence);
+}
+
+nlohmann::json structure_json(const ExemplarPeriod& p) {
+  return {{"period_found", {p.x > 0, p.y > 0}},
+          {"strength", {p.strength_x, p.strength_y}},
+          {"weak_repeat", {p.weak_x, p.weak_y}},
+          {"likely_missed", structure_likely(p)},
+          {"message", structure_message(p)}};
 }
 
 nlohmann::json tile_set_json(const TextureTileSet& s) {
@@ -433,9 +473,12 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
             {"lines", s.perspective.lines},
             {"rms_periods", s.perspective.rms},
             {"drift_periods", s.perspective.drift},
-            {"spacing_spread", s.perspective.spread}}},
+            {"spacing_spread", s.perspective.spread},
+            {"homography", s.perspective.to_plane.m}}},
           {"period", {s.period.x, s.period.y}},
+          {"structure", structure_json(s.period)},
           {"exemplar_scale", s.exemplar_scale},
+          {"colour_space", "srgb"},
           {"seconds", s.seconds}};
 }
 
@@ -454,7 +497,8 @@ Image source_labels(const TextureTileSet& s, TileIndex t) {
 // The set goes to a temp folder beside `out` that replaces the old folder whole (base/atomic_file.hpp
 // AtomicFolder): a signal, a full disk or an error leaves the old set as it was, never a mix of old
 // and new tiles, and a larger old set leaves no stale tile behind.
-void write_tile_set(const TextureTileSet& s, const std::string& out, const std::string& exemplar) {
+void write_tile_set(const TextureTileSet& s, const std::string& out, const std::string& exemplar,
+                    const std::function<void(const std::string&, nlohmann::json&)>& more) {
   namespace fs = std::filesystem;
   std::error_code ec;
   AtomicFolder folder(out);
@@ -474,7 +518,9 @@ void write_tile_set(const TextureTileSet& s, const std::string& out, const std::
     write_png((labels / fmt::format("tile-{:04d}.png", t)).string(), source_labels(s, TileIndex(t)));
   nlohmann::json jl = j;
   jl["files"] = "tile-NNNN.png: the sample each pixel was copied from, one colour per sample (texture_analysis.hpp)";
+  jl["colour_space"] = "linear";  // ids, not colours: never averaged in linear light
   write_file_atomic((labels / "tiles.json").string(), jl.dump(2) + "\n");
+  if (more) more(dir, j);
   write_file_atomic((fs::path(dir) / "tiles.json").string(), j.dump(2) + "\n");
   throw_if_interrupted();
   folder.commit();

@@ -37,6 +37,9 @@ struct SynthesisOptions {
   // Structured textures: resample the exemplar so that the tile holds whole periods of it and
   // keep every sample in phase with the lattice (exemplar.hpp's dominant_period); off: never.
   bool keep_period = true;
+  // With keep_period, this period (px, x and y; 0: none along that axis) instead of the one
+  // dominant_period finds; both 0: find it.
+  std::array<double, 2> period_override{0, 0};
   // With keep_period, a photographed wall whose lines converge is first rectified
   // (perspective.hpp); off: never.
   bool rectify = true;
@@ -45,6 +48,9 @@ struct SynthesisOptions {
   // Periodic exemplars (keep_period and a period found) keep the default bands.
   bool thin_bands = false;
   bool progress = false;
+  // Record where every tile texel was copied from (TextureTileSet::coords): what material sets
+  // and `texture transfer` carry further maps by.
+  bool record_coords = false;
 };
 
 // Where the samples of a tile lie, relative to the tile (n x n pixels). Every border has a band
@@ -98,6 +104,10 @@ struct TextureTileSet {
   std::uint32_t shared_sources = 0;
   std::vector<std::array<int, 2>> samples;  // exemplar positions of the shared samples, by id
   std::vector<std::array<int, 2>> centres;  // exemplar position of every tile's centre patch
+  // With SynthesisOptions::record_coords, per tile and texel the exemplar texel it is a copy of,
+  // x | y << 16, in the exemplar as the samples saw it (`sampled` when there is one, else the
+  // exemplar itself; a tileable one's torus reduced to one copy): see exemplar_coord.
+  std::vector<std::vector<std::uint32_t>> coords;
   double cut_error_initial = 0;  // summed boundary-cut error (in exemplar neighbour differences) of the first draw
   double cut_error = 0;          // the same after the search
   double centre_cost = 0;        // mean graph-cut cost of the centre patches
@@ -111,6 +121,15 @@ struct TextureTileSet {
   double seconds = 0;
   std::string method;  // "corner-strips", "wang-strips" or "naive"
 };
+
+// The texel of `e` that `p` points into, x | y << 16, the torus reduced to one copy (tileable).
+inline std::uint32_t exemplar_coord(const Exemplar& e, const std::uint8_t* p) {
+  const std::size_t i = std::size_t(p - e.image.pixels.data()) / 4;
+  int x = int(i % std::size_t(e.width())), y = int(i / std::size_t(e.width()));
+  if (e.wrap_w) x %= e.wrap_w;
+  if (e.wrap_h) y %= e.wrap_h;
+  return std::uint32_t(x) | std::uint32_t(y) << 16;
+}
 
 // InputError (exit 2) for options the exemplar cannot serve: tile size odd, out of 16..1024 or
 // larger than the exemplar allows, C out of 1..16, or a set too large to hold.
@@ -248,6 +267,11 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
 // The tiles in index order, about square, `gap` pixels apart on white (the README picture).
 Image tile_set_sheet(const TextureTileSet& s, int gap = 4);
 nlohmann::json tile_set_json(const TextureTileSet& s);
+// When a period was likely missed (structure_likely), what to tell the user (else ""); and the
+// `structure` object of tiles.json: periods found, their strength, the strongest repeat below the
+// prominence per axis, that message.
+std::string structure_message(const ExemplarPeriod& p);
+nlohmann::json structure_json(const ExemplarPeriod& p);
 // Tile t's sources as colours, one per sample (texture_analysis.hpp's labels): a bijection of the
 // ids, so two samples never share a colour.
 Image source_labels(const TextureTileSet& s, TileIndex t);
@@ -256,6 +280,9 @@ Image source_labels(const TextureTileSet& s, TileIndex t);
 // there is one) and DIR/labels/ (the same files for
 // the source labels: `texture atlas DIR/labels` and `texture render` of that atlas give the
 // labels of a render); files written atomically.
-void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar);
+// `more`, when given, writes further files into the folder before it replaces `dir` (material
+// maps, coordinates: texture/material.hpp) and may add to the manifest.
+void write_tile_set(const TextureTileSet& s, const std::string& dir, const std::string& exemplar,
+                    const std::function<void(const std::string&, nlohmann::json&)>& more = {});
 
 }  // namespace tilekit

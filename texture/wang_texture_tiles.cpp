@@ -161,6 +161,7 @@ class WangSynthesis {
     const std::size_t count = std::size_t(c_) * c_ * c_ * c_, px = std::size_t(n) * std::size_t(n);
     s.tiles.assign(count, Image{n, n, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
+    if (o_.record_coords) s.coords.assign(count, std::vector<std::uint32_t>(px, 0));
     parallel_for(std::int64_t(count), o_.threads, [&](std::int64_t ti) {
       const WangTile t = wang_tile(TileIndex(ti), c_);  // thesis eq. (2.3)
       for (int y = 0; y < n; ++y)
@@ -180,6 +181,7 @@ class WangSynthesis {
           const std::uint8_t* p = horizontal ? hpix(pos_, h, sy, x, y) : vpix(pos_, v, sx, x, y);
           const std::size_t i = std::size_t(y) * std::size_t(n) + std::size_t(x);
           std::copy_n(p, 4, s.tiles[std::size_t(ti)].pixels.data() + 4 * i);
+          if (!s.coords.empty()) s.coords[std::size_t(ti)][i] = exemplar_coord(e_, p);
           s.sources[std::size_t(ti)][i] = horizontal ? h : c_ + v;
         }
     });

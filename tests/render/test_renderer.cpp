@@ -3,6 +3,7 @@
 // and 2/255 over all levels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -37,17 +38,22 @@ TEST(CpuRenderer, ScaleOneAtTexelCentresEqualsTheStitchedTiling) {
 }
 
 // Trilinear sampling (GL_LINEAR_MIPMAP_LINEAR, as sample_trilinear) of the mip chain of a
-// stitched tiling at level-0 texel (u, v) of that image: the ground truth of a render.
+// stitched tiling at level-0 texel (u, v) of that image: the ground truth of a render. The atlas
+// is sRGB: R, G and B are filtered in linear light and encoded back, as an SRGB8_ALPHA8 texture.
 std::array<double, 4> sample_chain(const std::vector<Image>& chain, double u, double v, float lambda) {
   std::array<double, 4> acc{0, 0, 0, 0};
+  const auto texel = [](const Image& img, int i, int j, int c) {
+    const double t = img.at(i, j)[c];
+    return c < 3 ? srgb_to_linear(t / 255.0) * 255.0 : t;
+  };
   auto level = [&](int k, double w) {
     const Image& img = chain[std::size_t(k)];
     const double x = u / double(1 << k) - 0.5, y = v / double(1 << k) - 0.5;
     const int i = int(std::floor(x)), j = int(std::floor(y));
     const double a = x - i, b = y - j;
     for (int c = 0; c < 4; ++c)
-      acc[std::size_t(c)] += w * ((1 - a) * (1 - b) * img.at(i, j)[c] + a * (1 - b) * img.at(i + 1, j)[c] +
-                                  (1 - a) * b * img.at(i, j + 1)[c] + a * b * img.at(i + 1, j + 1)[c]);
+      acc[std::size_t(c)] += w * ((1 - a) * (1 - b) * texel(img, i, j, c) + a * (1 - b) * texel(img, i + 1, j, c) +
+                                  (1 - a) * b * texel(img, i, j + 1, c) + a * b * texel(img, i + 1, j + 1, c));
   };
   if (!(lambda > 0)) {
     level(0, 1);
@@ -56,6 +62,8 @@ std::array<double, 4> sample_chain(const std::vector<Image>& chain, double u, do
     level(d, 1 - (lambda - float(d)));
     level(d + 1, lambda - float(d));
   }
+  for (int c = 0; c < 3; ++c)
+    acc[std::size_t(c)] = linear_to_srgb(std::clamp(acc[std::size_t(c)] / 255.0, 0.0, 1.0)) * 255.0;
   return acc;
 }
 

@@ -132,5 +132,29 @@ TEST(TextureAnalysis, ImagesTooSmallForTheLatticeAndLabelsOfAnotherSizeAreInputE
   EXPECT_THROW(analyze_texture(src, Lattice{{10, 0}, {20, 0}, {0, 0}}), InputError);  // degenerate
 }
 
+// Mortar-like lines every 8 rows with a little noise: continuous across the lattice's borders
+// (ratio near 1), or shifted by 4 rows in every other 32-pixel tile column (broken at the borders).
+TEST(LineContinuity, SeesLinesThatStopAtTileBorders) {
+  const auto wall = [](bool broken) {
+    Image img(256, 256);
+    SplitMix64 rng(7);
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x) {
+        const int shift = broken && (x / 32) % 2 ? 4 : 0;
+        const int v = ((y + shift) % 8 == 0 ? 60 : 180) + int(rng.uniform() * 30) + int(20 * std::sin(x * 0.3));
+        img.set(x, y, {std::uint8_t(v), std::uint8_t(v), std::uint8_t(v)});
+      }
+    return img;
+  };
+  const LineContinuity whole = line_continuity(wall(false), 32), broken = line_continuity(wall(true), 32);
+  EXPECT_GT(whole.ratio, 0.9);
+  EXPECT_LT(whole.ratio, 1.1);
+  EXPECT_LT(broken.ratio, 0.7);
+  EXPECT_NEAR(broken.interior, whole.interior, 0.05);  // inside the tiles the lines are the same
+  const TextureAnalysis a = analyze_texture(wall(true), Lattice{{32, 0}, {0, 32}, {0, 0}});
+  ASSERT_TRUE(a.line_continuity.has_value());
+  EXPECT_DOUBLE_EQ(*a.line_continuity, broken.ratio);
+}
+
 }  // namespace
 }  // namespace tilekit

@@ -15,11 +15,11 @@ namespace {
 TEST(Mipmap, EvenSizesUseTheOneThreeThreeOneTentWithWrapAround) {
   Image img(4, 1, std::vector<std::uint8_t>{});
   for (int v : {0, 64, 128, 255}) img.pixels.insert(img.pixels.end(), {std::uint8_t(v), 0, 0, 255});
-  const Image half = downsample(img, MipEdge::Wrap);
+  const Image half = downsample(img, MipEdge::Wrap, ColourSpace::Linear);  // data: averaged as stored
   ASSERT_EQ(half.width, 2);
   EXPECT_EQ(half.at(0, 0)[0], 72);   // (255 + 3*0 + 3*64 + 128) / 8 = 71.9, the west neighbour wraps
   EXPECT_EQ(half.at(1, 0)[0], 152);  // (64 + 3*128 + 3*255 + 0) / 8 = 151.6
-  EXPECT_EQ(downsample(img, MipEdge::Clamp).at(0, 0)[0], 40);  // (0 + 0 + 3*64 + 128) / 8
+  EXPECT_EQ(downsample(img, MipEdge::Clamp, ColourSpace::Linear).at(0, 0)[0], 40);  // (0 + 0 + 3*64 + 128) / 8
   const auto chain = mip_chain(test::synthetic_image(36, 20), MipEdge::Wrap);
   ASSERT_EQ(chain.size(), 6u);  // 36x20 18x10 9x5 4x2 2x1 1x1
   EXPECT_EQ(chain[3].width, 4);

@@ -1,0 +1,209 @@
+// Material sets (texture/material.hpp) on the held-out textures, which no tuning decision looks
+// at (scripts/fetch-textures.sh --held-out: UFO: Alien Invasion's colour, normal and specular
+// maps). One JSON line per case. Usage: build/bench_material [--reps R] [--only PREFIX]
+//   material-seams/NAME/{albedo,all}  corner tiles (C = 4, 64 px, seed 1, one thread) whose
+//       samples and cuts are chosen on the albedo alone or on every map (--map-cost), the normal
+//       map carried by the recorded texels either way; a 16x16-tile window of the tiling, lit
+//       through its normal map (albedo in linear light x max(0, n.l) + ambient, back to sRGB):
+//       cut_ratio is the step across sample boundaries over the step inside samples in that
+//       render (texture/seam_metrics.hpp), normal_cut_ratio the same on the normal map itself.
+//   material-speed/NAME  synthesis of the albedo alone against a four-map material (albedo,
+//       normal, specular, height), C = 4, 64 px, one thread, interleaved; the median of R runs
+//       each; goal: ratio <= 2.
+#include "texture/material.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/bench_common.hpp"
+#include "texture/seam_metrics.hpp"
+#include "texture/tile_synthesis.hpp"
+#include "tiling/direct_tiling.hpp"
+
+using namespace tilekit;
+
+namespace {
+
+void print(nlohmann::json j) {
+  j["bench"] = "material";
+  j["cores"] = std::thread::hardware_concurrency();
+  j["load"] = bench::loadavg();
+  fmt::print("{}\n", j.dump());
+  std::fflush(stdout);
+}
+
+struct HeldOut {
+  std::string name;
+  Image albedo;
+  std::vector<MaterialMap> maps;  // normal, then spec and height where there are
+};
+
+HeldOut held_out(const std::string& name) {
+  const std::string path = real_texture_path(name), normal = real_texture_path(name + ".normal");
+  if (path.empty() || normal.empty()) {
+    fmt::print(stderr, "bench_material: {} not fetched: run scripts/fetch-textures.sh --held-out\n", name);
+    std::exit(1);
+  }
+  HeldOut h{name, read_image(path), {}};
+  h.maps.push_back(parse_material_map("normal=" + normal + ":normal"));
+  if (const std::string spec = real_texture_path(name + ".spec"); !spec.empty())
+    h.maps.push_back(parse_material_map("spec=" + spec + ":linear"));
+  resize_maps(h.maps, h.albedo.width, h.albedo.height, true);
+  if (const char* w = std::getenv("TILEKIT_MAP_WEIGHT"))  // every map's WEIGHT
+    for (MaterialMap& m : h.maps) m.weight = std::atof(w);
+  return h;
+}
+
+constexpr double kAlbedoWeight = 1.0;
+
+SynthesisOptions options() {
+  SynthesisOptions o;
+  o.kind = TileKind::Corner;
+  o.colours = 4;
+  o.tile_px = 64;
+  o.seed = 1;
+  o.threads = 1;
+  o.thin_bands = true;
+  o.record_coords = true;
+  return o;
+}
+
+TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<MaterialMap>& maps) {
+  const SynthesisOptions o = options();
+  if (!all_maps) return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), o);
+  const char* w = std::getenv("TILEKIT_ALBEDO_WEIGHT");  // --albedo-weight
+  const MaterialFeatures f = material_features(h.albedo, w ? std::atof(w) : kAlbedoWeight,
+                                               std::getenv("TILEKIT_NO_MAPS") ? std::vector<MaterialMap>{} : maps);
+  return synthesize_tiles(exemplar_from_image(f.image, h.name, true), o);
+}
+
+// The window lit through its normal map.
+Image lit(const Image& albedo, const Image& normals) {
+  const double l[3] = {0.45, -0.45, 0.77};  // light from the upper left
+  const double ll = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+  Image out(albedo.width, albedo.height);
+  for (int y = 0; y < albedo.height; ++y)
+    for (int x = 0; x < albedo.width; ++x) {
+      double n[3], dot = 0;
+      for (int c = 0; c < 3; ++c)
+        n[c] = 2.0 * normals.sample(x, y, c) / normals.max_value() - 1, dot += n[c] * l[c] / ll;
+      const double shade = 0.15 + 0.85 * std::max(0.0, dot);
+      std::uint8_t* p = out.at(x, y);
+      for (int c = 0; c < 3; ++c)
+        p[c] = std::uint8_t(
+            std::lround(linear_to_srgb(std::min(1.0, srgb_to_linear(albedo.at(x, y)[c] / 255.0) * shade)) * 255));
+    }
+  return out;
+}
+
+void seams(const std::string& name) {
+  const HeldOut h = held_out(name);
+  const Tiling window = DirectCornerTiling(4, HashKind::LongPeriod, 1).generate(16, 16);
+  for (const bool all : {false, true}) {
+    TextureTileSet s = synthesize(h, all, h.maps);
+    const Image albedo = map_as_sampled(h.albedo, true, s.perspective, s.exemplar_scale);
+    s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
+    TextureTileSet normal_set = s;
+    normal_set.tiles =
+        transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.maps[0].image, true, s.perspective, s.exemplar_scale));
+    std::vector<std::uint32_t> sources;
+    const Image colour = stitch_tiles(s, window, &sources);
+    const Image normals = stitch_tiles(normal_set, window);
+    const Image render = lit(colour, normals);
+    const SeamStatistics r = seam_statistics(render, s.tile_px, &sources);
+    const SeamStatistics nm = seam_statistics(normals, s.tile_px, &sources);
+    const SeamStatistics al = seam_statistics(colour, s.tile_px, &sources);
+    print({{"case", fmt::format("material-seams/{}/{}", name, all ? "all" : "albedo")},
+           {"maps", h.maps.size() + 1},
+           {"cut_ratio", r.cut_ratio},
+           {"seam_ratio", r.seam_ratio},
+           {"normal_cut_ratio", nm.cut_ratio},
+           {"albedo_cut_ratio", al.cut_ratio},
+           {"cut_error", s.cut_error},
+           {"period", {s.period.x, s.period.y}},
+           {"thin_bands", s.thin_bands},
+           {"shared_fraction", s.shared_fraction},
+           {"window_tiles", "16x16"}});
+    if (const char* dir = std::getenv("TILEKIT_BENCH_PICTURES")) {  // 256x256 crops: lit, and the shading alone
+      const Image shading = lit(Image(colour.width, colour.height, Rgb{188, 188, 188}), normals);
+      for (const auto& [what, img] : {std::pair<const char*, const Image*>{"lit", &render}, {"shading", &shading}}) {
+        Image crop(256, 256);
+        for (int y = 0; y < 256; ++y) std::copy_n(img->at(0, y), 256 * 4, crop.at(0, y));
+        write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
+      }
+      const SeamStatistics sh = seam_statistics(shading, s.tile_px, &sources);
+      print(
+          {{"case", fmt::format("material-shading/{}/{}", name, all ? "all" : "albedo")}, {"cut_ratio", sh.cut_ratio}});
+    }
+  }
+}
+
+void speed(const std::string& name, int reps) {
+  HeldOut h = held_out(name);
+  // A four-map material: albedo, normal, specular and height (the normal map's alpha where it
+  // holds one, else the albedo's luminance).
+  std::vector<MaterialMap> maps = h.maps;
+  MaterialMap height;
+  height.name = "height", height.space = ColourSpace::Linear;
+  height.image = Image(h.albedo.width, h.albedo.height);
+  bool alpha = false;
+  for (int y = 0; y < h.albedo.height; ++y)
+    for (int x = 0; x < h.albedo.width; ++x) alpha = alpha || h.maps[0].image.at(x, y)[3] != 255;
+  for (int y = 0; y < h.albedo.height; ++y)
+    for (int x = 0; x < h.albedo.width; ++x) {
+      const std::uint8_t v = alpha ? h.maps[0].image.at(x, y)[3] : std::uint8_t(luma(h.albedo.at(x, y)) + 0.5f);
+      height.image.set(x, y, {v, v, v});
+    }
+  maps.push_back(height);
+  while (maps.size() < 3) maps.push_back(height);  // no specular map: height twice, still four maps
+  std::vector<double> one, four;
+  for (int r = 0; r < reps; ++r) {
+    one.push_back(bench::seconds_of([&] {
+      SynthesisOptions o = options();
+      o.record_coords = false;
+      const TextureTileSet s = synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), o);
+      if (s.tiles.empty()) std::abort();
+    }));
+    four.push_back(bench::seconds_of([&] {
+      TextureTileSet s = synthesize(h, true, maps);
+      s.tiles = transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.albedo, true, s.perspective, s.exemplar_scale));
+      for (const MaterialMap& m : maps)
+        if (transfer_tiles(s.coords, s.tile_px, map_as_sampled(m.image, true, s.perspective, s.exemplar_scale)).empty())
+          std::abort();
+    }));
+  }
+  const double a = bench::median_midpoint(one), b = bench::median_midpoint(four);
+  print({{"case", fmt::format("material-speed/{}", name)},
+         {"maps", maps.size() + 1},
+         {"albedo_seconds", a},
+         {"material_seconds", b},
+         {"ratio", b / a},
+         {"reps", reps},
+         {"goal", "ratio <= 2"}});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int reps = 3;
+  std::string only;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
+      reps = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+      only = argv[++i];
+  }
+  const auto want = [&](const std::string& c) { return only.empty() || c.rfind(only, 0) == 0; };
+  for (const std::string name : {"ufo-brick", "ufo-tile", "ufo-wood", "ufo-concrete", "ufo-dirt", "ufo-mud"})
+    if (want("material-seams/" + name)) seams(name);
+  for (const std::string name : {"ufo-concrete", "ufo-dirt"})
+    if (want("material-speed/" + name)) speed(name, reps);
+}

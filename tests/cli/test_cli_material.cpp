@@ -1,0 +1,102 @@
+// `texture tiles --map`, `texture atlas` of a material set and `texture transfer`: every map's
+// tiles copied at the texels DIR/coords/ records, maps of another size resampled (and said so),
+// 16 bits kept, colour spaces in the manifests; --period X,Y and --quiet.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "../cli_runner.hpp"
+#include "../texture/texture_fixtures.hpp"
+#include "image/image.hpp"
+#include "texture/material.hpp"
+
+namespace tilekit {
+namespace {
+
+using test::run_cli;
+using test::TempDir;
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(CliMaterial, EveryMapIsCopiedAtTheRecordedTexelsAndAtlasedTheSameWay) {
+  TempDir d;
+  const Image albedo = test::synthetic_image(96, 96, 11);
+  write_png(d / "albedo.png", albedo);
+  write_png(d / "normal.png", normal_map_from_height(test::synthetic_image(48, 48, 12), 8, false));  // half size
+  Image height = Image(96, 96).to_depth(16);
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x)
+      for (int c = 0; c < 3; ++c) height.set_sample(x, y, c, 1000u + unsigned(x * 96 + y) * 2000u / 9215u);
+  write_png(d / "height.png", height);
+  const auto t = run_cli("texture tiles --exemplar " + (d / "albedo.png") + " --map normal=" + (d / "normal.png") +
+                         " --map height=" + (d / "height.png") +
+                         ":linear --colors 2 --tile-px 32 --search 8 --period off --out " + (d / "mat") + " --json");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.err.find("map normal: 48x48 resampled to the exemplar's 96x96"), std::string::npos) << t.err;
+  const nlohmann::json j = t.json();
+  EXPECT_EQ(j["map_cost"], "all");
+  ASSERT_EQ(j["maps"].size(), 2u);
+  EXPECT_EQ(j["maps"][0]["colour_space"], "normal");
+  EXPECT_EQ(j["maps"][1]["bits"], 16);
+  EXPECT_EQ(read_json(d / "mat/maps/height/tiles.json")["colour_space"], "linear");
+  EXPECT_EQ(read_json(d / "mat/tiles.json")["colour_space"], "srgb");
+  for (int t_index : {0, 5, 15}) {
+    const std::string name = "tile-" + std::string(t_index < 10 ? "000" : "00") + std::to_string(t_index) + ".png";
+    const Image where = read_image(d / ("mat/coords/" + name), 4, true);
+    const Image colour = read_image(d / ("mat/" + name));
+    const Image h = read_image(d / ("mat/maps/height/" + name), 4, true);
+    ASSERT_EQ(where.depth, 16);
+    ASSERT_EQ(h.depth, 16);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        const int sx = int(where.sample(x, y, 0)), sy = int(where.sample(x, y, 1));
+        ASSERT_LT(sx, 96);
+        ASSERT_LT(sy, 96);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(colour.sample(x, y, c), albedo.sample(sx, sy, c));
+          ASSERT_EQ(h.sample(x, y, c), height.sample(sx, sy, c));
+        }
+      }
+  }
+  // The atlas of every map, into a folder that does not exist yet.
+  const auto a = run_cli("texture atlas " + (d / "mat") + " --out " + (d / "new/folder/atlas.png") + " --json");
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_EQ(a.json()["colour_space"], "srgb");
+  EXPECT_EQ(a.json()["maps"]["height"]["bits"], 16);
+  EXPECT_EQ(a.json()["maps"]["normal"]["colour_space"], "normal");
+  EXPECT_EQ(read_json(d / "new/folder/atlas-height.json")["colour_space"], "linear");
+  EXPECT_EQ(read_image(d / "new/folder/atlas-height.mip1.png", 4, true).depth, 16);
+  // A map carried later equals the same map given at synthesis.
+  const auto tr = run_cli("texture transfer " + (d / "mat") + " --map again=" + (d / "height.png") + " --json");
+  ASSERT_EQ(tr.code, 0) << tr.err;
+  for (const char* name : {"tile-0000.png", "tile-0009.png"})
+    EXPECT_EQ(read_image(d / (std::string("mat/maps/again/") + name), 4, true).pixels,
+              read_image(d / (std::string("mat/maps/height/") + name), 4, true).pixels);
+}
+
+TEST(CliMaterial, BadMapsAndPeriodsAreExitTwoAndQuietPrintsNothing) {
+  TempDir d;
+  write_png(d / "ex.png", test::synthetic_image(96, 96));
+  const std::string base =
+      "texture tiles --exemplar " + (d / "ex.png") + " --colors 1 --tile-px 32 --search 0 --out " + (d / "o") + " ";
+  EXPECT_EQ(run_cli(base + "--map nofile").code, 2);
+  EXPECT_EQ(run_cli(base + "--map a=" + (d / "missing.png")).code, 2);
+  EXPECT_EQ(run_cli(base + "--map coords=" + (d / "ex.png")).code, 2);
+  EXPECT_EQ(run_cli(base + "--period 3,0").code, 2);
+  EXPECT_EQ(run_cli(base + "--period 0,0").code, 2);
+  EXPECT_EQ(run_cli(base + "--period 12,x").code, 2);
+  EXPECT_EQ(run_cli("texture transfer " + (d / "nowhere") + " --map a=" + (d / "ex.png")).code, 2);
+  const auto q = run_cli(base + "--period 24,0 --quiet");
+  ASSERT_EQ(q.code, 0) << q.err;
+  EXPECT_EQ(q.out, "");
+  EXPECT_EQ(read_json(d / "o/tiles.json")["period"][0], 24.0);
+}
+
+}  // namespace
+}  // namespace tilekit

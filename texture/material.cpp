@@ -1,0 +1,319 @@
+#include "texture/material.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "base/atomic_file.hpp"
+#include "base/error.hpp"
+
+namespace tilekit {
+
+namespace fs = std::filesystem;
+
+MaterialMap parse_material_map(const std::string& spec) {
+  MaterialMap m;
+  const std::size_t eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+    throw InputError(fmt::format("map '{}': expected NAME=FILE[:ROLE[:WEIGHT]]", spec));
+  m.name = spec.substr(0, eq);
+  for (char c : m.name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
+      throw InputError(fmt::format("map '{}': a name of letters, digits, - and _ (it names a folder)", spec));
+  if (m.name == "coords") throw InputError(fmt::format("map '{}': the name coords is taken by the coordinates", spec));
+  std::string rest = spec.substr(eq + 1);
+  std::vector<std::string> parts;
+  // FILE[:ROLE[:WEIGHT]]: the role and weight are the last fields when they parse as such, so a
+  // file name with a colon still reads.
+  const auto is_role = [](const std::string& r) {
+    ColourSpace c;
+    return parse_colour_space(r, c);
+  };
+  m.space = m.name == "normal" ? ColourSpace::Normal : ColourSpace::Linear;
+  if (const std::size_t c1 = rest.rfind(':'); c1 != std::string::npos) {
+    const std::string last = rest.substr(c1 + 1);
+    const std::size_t c0 = rest.rfind(':', c1 == 0 ? std::string::npos : c1 - 1);
+    char* end = nullptr;
+    const double w = std::strtod(last.c_str(), &end);
+    if (c0 != std::string::npos && is_role(rest.substr(c0 + 1, c1 - c0 - 1)) && !last.empty() && end && *end == 0) {
+      if (!(w >= 0 && w <= 1000)) throw InputError(fmt::format("map '{}': the weight must be 0..1000", spec));
+      m.weight = w;
+      parse_colour_space(rest.substr(c0 + 1, c1 - c0 - 1), m.space);
+      rest = rest.substr(0, c0);
+    } else if (is_role(last)) {
+      parse_colour_space(last, m.space);
+      rest = rest.substr(0, c1);
+    }
+  }
+  m.file = rest;
+  m.image = read_image(m.file, 4, true);
+  return m;
+}
+
+namespace {
+
+void renormalise(Image& img) {
+  const double max = img.max_value();
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      double n[3], len = 0;
+      for (int c = 0; c < 3; ++c) n[c] = 2 * img.sample(x, y, c) / max - 1, len += n[c] * n[c];
+      len = std::sqrt(len);
+      if (len <= 0) continue;
+      for (int c = 0; c < 3; ++c)
+        img.set_sample(x, y, c, unsigned(std::lround(std::clamp((n[c] / len + 1) / 2, 0.0, 1.0) * max)));
+    }
+}
+
+// Jacobi's method: the eigenvalues (descending) and eigenvectors (rows) of a symmetric matrix.
+void symmetric_eigen(std::vector<double> a, std::size_t d, std::vector<double>& values, std::vector<double>& vectors) {
+  std::vector<double> v(d * d, 0.0);
+  for (std::size_t i = 0; i < d; ++i) v[i * d + i] = 1;
+  for (int sweep = 0; sweep < 64; ++sweep) {
+    double off = 0;
+    for (std::size_t p = 0; p < d; ++p)
+      for (std::size_t q = p + 1; q < d; ++q) off += a[p * d + q] * a[p * d + q];
+    if (off < 1e-22) break;
+    for (std::size_t p = 0; p < d; ++p)
+      for (std::size_t q = p + 1; q < d; ++q) {
+        if (std::abs(a[p * d + q]) < 1e-30) continue;
+        const double theta = (a[q * d + q] - a[p * d + p]) / (2 * a[p * d + q]);
+        const double t = (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (std::size_t k = 0; k < d; ++k) {  // columns p, q
+          const double akp = a[k * d + p], akq = a[k * d + q];
+          a[k * d + p] = c * akp - s * akq, a[k * d + q] = s * akp + c * akq;
+        }
+        for (std::size_t k = 0; k < d; ++k) {  // rows p, q
+          const double apk = a[p * d + k], aqk = a[q * d + k];
+          a[p * d + k] = c * apk - s * aqk, a[q * d + k] = s * apk + c * aqk;
+        }
+        for (std::size_t k = 0; k < d; ++k) {
+          const double vkp = v[k * d + p], vkq = v[k * d + q];
+          v[k * d + p] = c * vkp - s * vkq, v[k * d + q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  std::vector<std::size_t> order(d);
+  for (std::size_t i = 0; i < d; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return a[x * d + x] > a[y * d + y]; });
+  values.assign(d, 0);
+  vectors.assign(d * d, 0);
+  for (std::size_t r = 0; r < d; ++r) {
+    values[r] = a[order[r] * d + order[r]];
+    for (std::size_t k = 0; k < d; ++k) vectors[r * d + k] = v[k * d + order[r]];
+  }
+}
+
+bool is_grey(const Image& img) {
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.sample(x, y, 0) != img.sample(x, y, 1) || img.sample(x, y, 0) != img.sample(x, y, 2)) return false;
+  return true;
+}
+
+}  // namespace
+
+void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
+  for (MaterialMap& m : maps) {
+    if (m.image.width == w && m.image.height == h) continue;
+    m.image = resample_image(m.image, m.image.width, m.image.height, double(w) / m.image.width,
+                             double(h) / m.image.height, torus);
+    if (m.image.width != w || m.image.height != h) {  // rounding of the scale: crop or clamp to w x h
+      Image fit(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(m.image.texel_bytes())),
+                m.image.channels);
+      fit.depth = m.image.depth;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < fit.channels; ++c)
+            fit.set_sample(x, y, c, m.image.sample(std::min(x, m.image.width - 1), std::min(y, m.image.height - 1), c));
+      m.image = std::move(fit);
+    }
+    if (m.space == ColourSpace::Normal) renormalise(m.image);
+    m.resized = true;
+  }
+}
+
+MaterialFeatures material_features(const Image& albedo, double albedo_weight, const std::vector<MaterialMap>& maps) {
+  const int w = albedo.width, h = albedo.height;
+  const std::size_t texels = std::size_t(w) * std::size_t(h);
+  // The blocks: (image, space, weight, channels used).
+  struct Block {
+    const Image* img;
+    ColourSpace space;
+    double weight;
+    int channels;
+  };
+  std::vector<Block> blocks{{&albedo, ColourSpace::Srgb, albedo_weight, 3}};
+  for (const MaterialMap& m : maps) {
+    if (m.image.width != w || m.image.height != h)
+      throw InputError(fmt::format("map {} ({}x{}) is not the exemplar's size ({}x{})", m.name, m.image.width,
+                                   m.image.height, w, h));
+    blocks.push_back({&m.image, m.space, m.weight, m.space != ColourSpace::Normal && is_grey(m.image) ? 1 : 3});
+  }
+  std::size_t d = 0;
+  for (const Block& b : blocks) d += std::size_t(b.channels);
+  std::vector<double> f(texels * d);
+  std::size_t offset = 0;
+  for (const Block& b : blocks) {
+    const double max = b.img->max_value();
+    std::vector<double> mean(std::size_t(b.channels), 0.0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < b.channels; ++c) {
+          const double v = b.img->sample(x, y, c) / max;
+          const double val = b.space == ColourSpace::Normal ? 2 * v - 1 : v;  // normals as vectors
+          f[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset + std::size_t(c)] = val;
+          mean[std::size_t(c)] += val;
+        }
+    for (int c = 0; c < b.channels; ++c) mean[std::size_t(c)] /= double(texels);
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] -= mean[std::size_t(c)];
+    // The block's unit: the mean distance between 4-neighbours (what a cut through it shows),
+    // so that a map counts by how visible its steps are, not by its contrast.
+    double step = 0;
+    std::size_t pairs = 0;
+    for (int y = 0; y + 1 < h; ++y)
+      for (int x = 0; x + 1 < w; ++x) {
+        const std::size_t i = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset;
+        for (const std::size_t j : {i + d, i + std::size_t(w) * d}) {
+          double s2 = 0;
+          for (int c = 0; c < b.channels; ++c)
+            s2 += (f[i + std::size_t(c)] - f[j + std::size_t(c)]) * (f[i + std::size_t(c)] - f[j + std::size_t(c)]);
+          step += std::sqrt(s2), ++pairs;
+        }
+      }
+    step /= double(std::max<std::size_t>(pairs, 1));
+    const double scale = step > 0 ? b.weight / step : 0.0;
+    for (std::size_t i = 0; i < texels; ++i)
+      for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] *= scale;
+    offset += std::size_t(b.channels);
+  }
+  std::vector<double> cov(d * d, 0.0);
+  for (std::size_t i = 0; i < texels; ++i)
+    for (std::size_t p = 0; p < d; ++p)
+      for (std::size_t q = p; q < d; ++q) cov[p * d + q] += f[i * d + p] * f[i * d + q];
+  for (std::size_t p = 0; p < d; ++p)
+    for (std::size_t q = p; q < d; ++q) cov[q * d + p] = cov[p * d + q] /= double(texels);
+  std::vector<double> values, vectors;
+  symmetric_eigen(cov, d, values, vectors);
+  double total = 0;
+  for (double v : values) total += std::max(0.0, v);
+  MaterialFeatures out;
+  out.image = Image(w, h, Rgb{128, 128, 128});
+  const double sigma = std::sqrt(std::max(values[0], 1e-12));
+  const double scale = 127.0 / (3.5 * sigma);  // +-3.5 standard deviations of the first component
+  for (std::size_t k = 0; k < 3 && k < d; ++k) out.explained[k] = total > 0 ? std::max(0.0, values[k]) / total : 0;
+  for (std::size_t i = 0; i < texels; ++i) {
+    std::uint8_t* px = out.image.pixels.data() + 4 * i;
+    for (std::size_t k = 0; k < 3 && k < d; ++k) {
+      double p = 0;
+      for (std::size_t j = 0; j < d; ++j) p += vectors[k * d + j] * f[i * d + j];
+      px[k] = std::uint8_t(std::clamp(std::lround(128 + scale * p), 0l, 255l));
+    }
+  }
+  return out;
+}
+
+Image map_as_sampled(const Image& map, bool tileable, const PerspectiveFit& perspective,
+                     std::array<double, 2> exemplar_scale) {
+  Image out = map;
+  if (perspective.applied)
+    if (Image r = rectify_image(map, perspective); r.width > 0) out = std::move(r);
+  if (exemplar_scale[0] != 1 || exemplar_scale[1] != 1)
+    out = resample_image(out, out.width, out.height, exemplar_scale[0], exemplar_scale[1], tileable);
+  return out;
+}
+
+std::vector<Image> transfer_tiles(const std::vector<std::vector<std::uint32_t>>& coords, int tile_px,
+                                  const Image& map) {
+  if (coords.empty()) throw InputError("the tile set has no texel coordinates to carry a map by");
+  std::vector<Image> tiles;
+  tiles.reserve(coords.size());
+  const std::size_t bytes = std::size_t(map.texel_bytes());
+  for (const auto& c : coords) {
+    Image t(tile_px, tile_px, std::vector<std::uint8_t>(std::size_t(tile_px) * std::size_t(tile_px) * bytes),
+            map.channels);
+    t.depth = map.depth;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const int x = int(c[i] & 0xffff), y = int(c[i] >> 16);
+      if (x >= map.width || y >= map.height)
+        throw InputError(fmt::format("the map ({}x{}) does not reach texel ({}, {}) that the tiles copy", map.width,
+                                     map.height, x, y));
+      std::copy_n(map.at(x, y), bytes, t.pixels.data() + i * bytes);
+    }
+    tiles.push_back(std::move(t));
+  }
+  return tiles;
+}
+
+std::vector<Image> coordinate_tiles(const std::vector<std::vector<std::uint32_t>>& coords, int tile_px) {
+  std::vector<Image> tiles;
+  for (const auto& c : coords) {
+    Image t = Image(tile_px, tile_px, Rgb{0, 0, 0}).to_depth(16);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const int x = int(i % std::size_t(tile_px)), y = int(i / std::size_t(tile_px));
+      t.set_sample(x, y, 0, c[i] & 0xffff);
+      t.set_sample(x, y, 1, c[i] >> 16);
+    }
+    tiles.push_back(std::move(t));
+  }
+  return tiles;
+}
+
+std::vector<std::vector<std::uint32_t>> coords_from_tiles(const std::vector<Image>& tiles) {
+  std::vector<std::vector<std::uint32_t>> coords;
+  for (const Image& t : tiles) {
+    if (t.depth != 16 || t.width != t.height)
+      throw InputError("coordinate tiles must be square 16-bit PNGs (the coords folder of a material tile set)");
+    auto& c = coords.emplace_back(std::size_t(t.width) * std::size_t(t.height));
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x)
+        c[std::size_t(y) * std::size_t(t.width) + std::size_t(x)] = t.sample(x, y, 0) | t.sample(x, y, 1) << 16;
+  }
+  return coords;
+}
+
+Image normal_map_from_height(const Image& height, double strength, bool torus) {
+  const int w = height.width, h = height.height;
+  const double max = height.max_value();
+  auto lum = [&](int x, int y) {
+    x = torus ? (x % w + w) % w : std::clamp(x, 0, w - 1);
+    y = torus ? (y % h + h) % h : std::clamp(y, 0, h - 1);
+    if (height.channels < 3) return height.sample(x, y, 0) / max;
+    return (0.299 * height.sample(x, y, 0) + 0.587 * height.sample(x, y, 1) + 0.114 * height.sample(x, y, 2)) / max;
+  };
+  Image out(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double dx = (lum(x + 1, y) - lum(x - 1, y)) / 2 * strength,
+                   dy = (lum(x, y + 1) - lum(x, y - 1)) / 2 * strength;
+      const double len = std::sqrt(dx * dx + dy * dy + 1);
+      const double n[3] = {-dx / len, -dy / len, 1 / len};
+      std::uint8_t* p = out.at(x, y);
+      for (int c = 0; c < 3; ++c) p[c] = std::uint8_t(std::lround((n[c] + 1) / 2 * 255));
+    }
+  return out;
+}
+
+void write_map_tiles(const std::string& dir, const std::vector<Image>& tiles, ColourSpace space,
+                     const nlohmann::json& manifest) {
+  const fs::path folder(dir);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw InputError(fmt::format("{}: cannot create the folder ({})", folder.string(), ec.message()));
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    write_png((folder / fmt::format("tile-{:04d}.png", t)).string(), tiles[t]);
+  nlohmann::json j = manifest;
+  j["colour_space"] = std::string(colour_space_name(space));
+  j["bits"] = tiles.empty() ? 8 : tiles[0].depth;
+  write_file_atomic((folder / "tiles.json").string(), j.dump(2) + "\n");
+}
+
+}  // namespace tilekit

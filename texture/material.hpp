@@ -1,0 +1,74 @@
+#pragma once
+// Material sets: several aligned maps of one surface (albedo, normal, roughness, height, ...)
+// made into texture tiles by one synthesis. The samples and cuts are chosen once, on a feature
+// image that weighs every map (material_features), and every map's tiles are then copies of its
+// own texels at the positions the synthesis recorded (TextureTileSet::coords), so the maps stay
+// aligned texel for texel. The positions are written as a map of their own (coordinate tiles), so
+// a map made later can be carried over the same way (`texture transfer`).
+#include <array>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+#include "texture/exemplar.hpp"
+#include "texture/mipmap.hpp"
+#include "texture/perspective.hpp"
+#include "texture/tile_synthesis.hpp"
+
+namespace tilekit {
+
+struct MaterialMap {
+  std::string name;  // what its folder is called (DIR/maps/NAME)
+  std::string file;
+  ColourSpace space = ColourSpace::Srgb;  // srgb colour, linear data or tangent-space normals
+  double weight = 1;                      // its share of the synthesis cost (material_features)
+  Image image;                            // as read: 8 or 16 bits, RGBA; the exemplar's size after resize_maps
+  bool resized = false;                   // resampled to the exemplar's grid (resize_maps)
+};
+
+// Reads NAME=FILE[:ROLE[:WEIGHT]] (ROLE srgb, linear or normal; default linear, "normal" for a
+// map called normal); InputError (exit 2) naming the argument otherwise. 16-bit PNGs keep 16 bits.
+MaterialMap parse_material_map(const std::string& spec);
+
+// Every map resampled (bilinear; normals renormalised) to w x h where it is not that size already.
+void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus);
+
+// The feature image the synthesis runs on: per texel the albedo (sRGB values) and every map
+// (normals as vectors, n = 2v - 1; grey data as one channel), each map's block scaled to unit
+// total variance times its weight, projected onto the three principal components of all texels
+// and stored as 8-bit RGB (one scale for all three, so distances stay Euclidean). The costs of the
+// synthesis (cut error, graph cuts, seam goal) compare these, so a cut that is invisible in the
+// albedo but shows in the normals costs what it shows. `albedo` is the exemplar's w x h image.
+struct MaterialFeatures {
+  Image image;
+  std::array<double, 3> explained{0, 0, 0};  // the fraction of the weighted variance each component holds
+};
+MaterialFeatures material_features(const Image& albedo, double albedo_weight, const std::vector<MaterialMap>& maps);
+
+// A map of the exemplar's size as the synthesis saw the exemplar: rectified (perspective) and
+// resampled to whole periods (exemplar_scale) as the tile set records; unchanged otherwise.
+Image map_as_sampled(const Image& map, bool tileable, const PerspectiveFit& perspective,
+                     std::array<double, 2> exemplar_scale);
+
+// The tiles of a map: texel i of tile t is sampled_map's texel at s.coords[t][i]. InputError
+// when the set has no coordinates or the map is smaller than they reach.
+std::vector<Image> transfer_tiles(const std::vector<std::vector<std::uint32_t>>& coords, int tile_px,
+                                  const Image& sampled_map);
+
+// The coordinate tiles: 16-bit RGB, R = x, G = y of the exemplar texel (as sampled), B = 0.
+std::vector<Image> coordinate_tiles(const std::vector<std::vector<std::uint32_t>>& coords, int tile_px);
+// Back from those tiles (InputError unless they are 16-bit, tile_px square and as many as `count`).
+std::vector<std::vector<std::uint32_t>> coords_from_tiles(const std::vector<Image>& tiles);
+
+// A tangent-space normal map (RGB = (n + 1) / 2, 8-bit) of a height field: the luminance of
+// `height` (0..1) times `strength` texels of relief per unit, central differences (a torus when
+// `torus`). For tests, benchmarks and examples; real materials come with their own.
+Image normal_map_from_height(const Image& height, double strength, bool torus);
+
+// Writes FOLDER/tile-NNNN.png and FOLDER/tiles.json (`manifest` with the colour space and depth):
+// a tile set of its own, as `texture atlas FOLDER` reads it (DIR/maps/NAME, DIR/coords).
+void write_map_tiles(const std::string& folder, const std::vector<Image>& tiles, ColourSpace space,
+                     const nlohmann::json& manifest);
+
+}  // namespace tilekit
