@@ -83,14 +83,25 @@ FillModel::FillModel(const FillRegion& region)
 }
 
 std::uint64_t FillModel::tie(int cell) const {
-  return seed_ == 0 ? std::uint64_t(cell) : mix_seed(seed_ ^ (std::uint64_t(cell) * 0x9e3779b97f4a7c15ull));
+  return std::uint64_t(cell);  // scanline among equals: a block grows from its filled borders
 }
 
 void FillModel::set_value_seed(std::uint64_t seed) {
   seed_ = seed;
-  order_.clear();
+  rebuild_order();
+}
+
+void FillModel::rebuild_order() {
+  std::vector<Key> keys;
+  keys.reserve(std::size_t(cells_));
   for (int c = 0; c < cells_; ++c)
-    if (!assigned_[std::size_t(c)]) order_.emplace(count_[std::size_t(c)], tie(c), c);
+    if (!assigned_[std::size_t(c)]) keys.emplace_back(count_[std::size_t(c)], tie(c), c);
+  order_ = decltype(order_)(std::greater<Key>(), std::move(keys));
+}
+
+void FillModel::push_key(int cell) {
+  if (order_.size() > 8 * std::size_t(cells_) + 1024) rebuild_order();  // too many stale entries
+  order_.emplace(count_[std::size_t(cell)], tie(cell), cell);
 }
 
 int FillModel::neighbour(int cell, int d) const {
@@ -115,12 +126,8 @@ int FillModel::neighbour(int cell, int d) const {
 void FillModel::set_count(int cell, int n) {
   int& k = count_[std::size_t(cell)];
   if (k == n) return;
-  if (!assigned_[std::size_t(cell)]) {
-    const std::uint64_t h = tie(cell);
-    order_.erase({k, h, cell});
-    order_.emplace(n, h, cell);
-  }
   k = n;
+  if (!assigned_[std::size_t(cell)]) push_key(cell);
 }
 
 bool FillModel::restrict(int cell, const std::uint64_t* keep) {
@@ -178,10 +185,16 @@ bool FillModel::propagate() {
 
 int FillModel::branch(std::vector<int>& values) {
   values.clear();
+  while (!order_.empty()) {
+    const auto& [k, h, c] = order_.top();
+    if (!assigned_[std::size_t(c)] && k == count_[std::size_t(c)]) break;
+    order_.pop();
+  }
   if (order_.empty()) return -1;
-  const int cell = std::get<2>(*order_.begin());
+  const int cell = std::get<2>(order_.top());
   const std::uint64_t* d = &dom_[std::size_t(cell) * std::size_t(words_)];
-  std::vector<std::pair<double, int>> keyed;
+  std::vector<std::pair<double, int>>& keyed = keyed_;
+  keyed.clear();
   for (int w = 0; w < words_; ++w)
     for (std::uint64_t bits = d[w]; bits; bits &= bits - 1) {
       const int t = w * 64 + std::countr_zero(bits);
@@ -202,12 +215,10 @@ int FillModel::branch(std::vector<int>& values) {
 bool FillModel::assign(int cell, int tile) {
   assert(!assigned_[std::size_t(cell)]);
   marks_.push_back(trail_.size());
-  order_.erase({count_[std::size_t(cell)], tie(cell), cell});
   assigned_[std::size_t(cell)] = 1;
-  std::fill(scratch_.begin(), scratch_.end(), 0);
-  scratch_[std::size_t(tile) >> 6] = std::uint64_t(1) << (tile & 63);
-  std::vector<std::uint64_t> keep = scratch_;
-  if (!restrict(cell, keep.data())) return false;
+  single_.assign(std::size_t(words_), 0);
+  single_[std::size_t(tile) >> 6] = std::uint64_t(1) << (tile & 63);
+  if (!restrict(cell, single_.data())) return false;
   if (!queued_[std::size_t(cell)]) {
     queued_[std::size_t(cell)] = 1;
     queue_.push_back(cell);
@@ -229,7 +240,7 @@ void FillModel::unassign(int cell, int /*tile*/) {
     set_count(c, n);
   }
   assigned_[std::size_t(cell)] = 0;
-  order_.emplace(count_[std::size_t(cell)], tie(cell), cell);
+  push_key(cell);
 }
 
 Tiling FillModel::tiling() const {

@@ -17,7 +17,7 @@
 // and a region wraps in a direction only when it spans the whole torus in that direction.
 #include <cstdint>
 #include <memory>
-#include <set>
+#include <queue>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -104,7 +104,14 @@ class FillModel {
   };
   std::vector<Change> trail_;
   std::vector<std::size_t> marks_;  // trail size at each assign
-  std::set<std::tuple<int, std::uint64_t, int>> order_;  // (count, tie, cell) of unassigned cells
+  // (count, tie, cell) of the unassigned cells, smallest first: a lazy heap, an entry pushed at
+  // every change of a cell's count and dropped when it is stale (the cell assigned, its count changed)
+  using Key = std::tuple<int, std::uint64_t, int>;
+  std::priority_queue<Key, std::vector<Key>, std::greater<Key>> order_;
+  void push_key(int cell);
+  void rebuild_order();
+  std::vector<std::pair<double, int>> keyed_;
+  std::vector<std::uint64_t> single_;
   std::vector<int> queue_;
   std::vector<char> queued_;
   std::vector<std::uint64_t> scratch_;

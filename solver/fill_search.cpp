@@ -186,16 +186,32 @@ bool find_proof(const FillMapRequest& req, const Geometry& g, const FillWindow& 
       const int m = g.cell(near, i, j);
       if (m >= 0 && !req.fixed.empty() && req.fixed[std::size_t(m)] >= 0) seeds.push_back(m);
     }
-  for (int s : {1, 2, 3, 4, 5, 6, 8, 10, 12, 16, 24, 32}) {
-    const int sr = std::min(s, g.rows), sc = std::min(s, g.cols);
+  // windows by area: every placement holding the fixed cell while small, centred beyond
+  static constexpr int kShapes[][2] = {{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {3, 1}, {3, 3}, {4, 4}, {5, 5},
+                                       {6, 6}, {8, 8}, {10, 10}, {12, 12}, {16, 16}, {24, 24}, {32, 32}};
+  for (const auto& shape : kShapes) {
+    const int sr = std::min(shape[0], g.rows), sc = std::min(shape[1], g.cols);
     for (int m : seeds) {
-      const FillWindow w = window_around(g, m, sr, sc);
-      if (fill_window_status(req.rules, req.fixed, g.rows, g.cols, g.torus, w, 200000) == 1) {
-        proof = w;
-        return true;
-      }
+      const int span = sr * sc <= 16 ? 1 : 0;  // small windows: every offset
+      for (int oi = 0; oi < (span ? sr : 1); ++oi)
+        for (int oj = 0; oj < (span ? sc : 1); ++oj) {
+          FillWindow w = window_around(g, m, sr, sc);
+          if (span) {
+            w = window_around(g, m, 1, 1);
+            w.rows = sr, w.cols = sc;
+            w.row -= oi, w.col -= oj;
+            if (g.torus) {
+              w.row = (w.row + g.rows) % g.rows, w.col = (w.col + g.cols) % g.cols;
+            } else if (w.row < 0 || w.col < 0 || w.row + sr > g.rows || w.col + sc > g.cols) {
+              continue;
+            }
+          }
+          if (fill_window_status(req.rules, req.fixed, g.rows, g.cols, g.torus, w, 200000) == 1) {
+            proof = w;
+            return true;
+          }
+        }
     }
-    if (sr == g.rows && sc == g.cols) break;
   }
   if (std::int64_t(g.rows) * g.cols <= 64 * 64) {
     const FillWindow whole{0, 0, g.rows, g.cols};
@@ -302,7 +318,9 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
       rs.seed = derive_seed(req.run.seed, std::uint64_t(b) * 64 + std::uint64_t(attempt));
       rs.progress = req.run.progress && blocks == 1;
       rs.time_limit = deadline.limited() ? std::max(1e-3, deadline.seconds_left()) : 0;
-      const FillSearchResult r = fill_region(reg, rs, whole ? 0 : req.dives);
+      // one block that is the whole map restarts until the time limit; any other region gives up
+      // after `dives` restarts and grows
+      const FillSearchResult r = fill_region(reg, rs, whole && blocks == 1 ? 0 : req.dives);
       out.nodes += r.nodes;
       out.restarts += r.restarts;
       out.stats += r.stats;
@@ -326,7 +344,7 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
         checkpoint(b);
         return finish();
       }
-      if (whole || std::int64_t(w.rows + B) * (w.cols + B) > kMaxGrownCells) {
+      if (whole || std::int64_t(w.rows + 2 * margin + B) * (w.cols + 2 * margin + B) > kMaxGrownCells) {
         out.window = w;
         out.proved_impossible = find_proof(req, g, w, out.window);
         if (!out.proved_impossible && whole && r.complete) out.proved_impossible = true;

@@ -135,7 +135,8 @@ std::vector<int> read_cells(const LoadedSet& ls, const std::string& path, int ro
       throw InputError(fmt::format("{}:{}: {} cells, the map is {} wide", path, line_no, tokens.size(), cols));
     for (int c = 0; c < cols; ++c) {
       if (tokens[std::size_t(c)] == ".") continue;
-      const std::vector<int> t = tiles_named(ls, tokens[std::size_t(c)]);
+      std::vector<int> t = tiles_named(ls, tokens[std::size_t(c)]);
+      if (ls.wfc && wfc_tile_number(*ls.wfc, tokens[std::size_t(c)]) >= 0) t = {wfc_tile_number(*ls.wfc, tokens[std::size_t(c)])};
       if (t.size() != 1)
         throw InputError(fmt::format("{}:{}: \"{}\" is {} tile of the set", path, line_no,
                                      tokens[std::size_t(c)].substr(0, 32), t.empty() ? "no" : "more than one"));
@@ -258,8 +259,18 @@ void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vect
 
 std::string check_pair_fill(const std::vector<int>& map, int rows, int cols, bool torus,
                             const std::vector<std::array<int, 3>>& pairs, int tiles) {
-  std::set<std::array<int, 3>> ok(pairs.begin(), pairs.end());
   if (map.size() != std::size_t(rows) * std::size_t(cols)) return "the map's size is wrong";
+  std::vector<bool> allowed(4 * std::size_t(tiles) * std::size_t(tiles), false);
+  for (const auto& [d, a, b] : pairs)
+    if (d >= 0 && d < 4 && a >= 0 && a < tiles && b >= 0 && b < tiles)
+      allowed[(std::size_t(d) * std::size_t(tiles) + std::size_t(a)) * std::size_t(tiles) + std::size_t(b)] = true;
+  struct Lookup {
+    const std::vector<bool>& v;
+    std::size_t n;
+    std::size_t count(const std::array<int, 3>& p) const {
+      return v[(std::size_t(p[0]) * n + std::size_t(p[1])) * n + std::size_t(p[2])] ? 1 : 0;
+    }
+  } ok{allowed, std::size_t(tiles)};
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const int a = map[std::size_t(r) * std::size_t(cols) + std::size_t(c)];

@@ -10,8 +10,8 @@
 //   - a Tiled tileset (.tsx) with a Wang set of type corner or edge (tilemap/tsx_reader.hpp);
 //   - a WFC simple tiled model (.xml, tilemap/wfc_tileset.hpp), optionally one of its subsets.
 // Fixed cells come from a cells file: one line per map row, one token per cell, "." a free cell,
-// else the tile's number in the fill set or, for a WFC set, its name ("corner" or "corner 1" as
-// "corner:1"); blank lines and lines starting with '#' are skipped.
+// else the tile's number in the fill set or, for a WFC set, its name ("corner" is "corner 0",
+// "corner 1" is written "corner:1"); blank lines and lines starting with '#' are skipped.
 #include <cstdint>
 #include <string>
 #include <utility>
