@@ -4,6 +4,7 @@
 // a WFC simple tiled model) by the engine's fill model (tilemap/fill_job.hpp).
 #include <fmt/format.h>
 
+#include "base/hash.hpp"
 #include "base/parse.hpp"
 #include "base/signals.hpp"
 #include "cli/command.hpp"
@@ -61,6 +62,9 @@ nlohmann::json fill_json(const FillArgs& a, const tilemap::FillJobOutcome& o) {
     j["region"] = {{"row", f.window.row}, {"col", f.window.col}, {"rows", f.window.rows}, {"cols", f.window.cols},
                    {"proved", f.proved_impossible}};
   if (f.found) {
+    StableHash h;  // the map's identity: equal maps, equal hashes (a resumed run against a whole one)
+    for (int t : f.map) h.add(std::uint64_t(t), 4);
+    j["map_hash"] = fmt::format("{:016x}", h.mixed());
     nlohmann::json freq = nlohmann::json::array();
     for (std::size_t t = 0; t < o.names.size(); ++t)
       freq.push_back({{"tile", o.names[t]}, {"weight", o.weights[t]}, {"cells", o.counts[t]}});
