@@ -18,7 +18,7 @@ namespace {
 struct FillArgs {
   std::string set, subset, wangset, size, cells, png, map_json, tiled;
   std::vector<std::string> weights;
-  bool torus = false;
+  bool torus = false, cover = false;
   int block = 0, tile_px = 16;
   std::uint64_t dives = 64;
   RunOptions run;
@@ -81,6 +81,7 @@ void run_fill_cmd(const FillArgs& a, const CLI::App& cmd, const Context& ctx) {
   req.set = a.set, req.subset = a.subset, req.wangset = a.wangset;
   req.width = int(d.first), req.height = int(d.second), req.torus = a.torus;
   req.cells = a.cells, req.weights = parse_weights(a.weights);
+  req.cover = a.cover;
   req.block = a.block, req.dives = a.dives, req.tile_px = a.tile_px;
   req.out_png = a.png, req.out_json = a.map_json, req.out_tiled = a.tiled;
   a.run.apply(req.run, cmd);
@@ -118,13 +119,16 @@ void add_fill_command(CLI::App& app, Context& ctx) {
   a->run.seed = 1;
   a->run.checkpoint_every = 60;
   cmd->add_option("--set", a->set,
-                  "Tile set: a name (complete-corner-3, compact-wang-3, ...), a tile-set file, a Tiled .tsx with a "
+                  "Tile set: a name (complete-corner-3, compact-wang-3, blob-47, ...), a tile-set file, a Tiled .tsx with a "
                   "Wang set, or a WFC .xml (its tile images in the folder of the same name beside it)")
       ->required();
   cmd->add_option("--subset", a->subset, "WFC only: the subset of the .xml to use");
   cmd->add_option("--wangset", a->wangset, "Tiled only: the Wang set to read (default: the first)");
   cmd->add_option("--size", a->size, "Width x height in cells, e.g. 64x48")->required();
   cmd->add_flag("--torus", a->torus, "Wrap around: the map tiles the plane periodically");
+  cmd->add_flag("--cover", a->cover,
+                "Every tile of the set at least once (a sheet of the whole set; with --torus and no --cells, tile 0 "
+                "sits at the top left); exit 1 with the whole map when none exists");
   cmd->add_option("--cells", a->cells,
                   "Fixed cells: one line per row, one token per cell, '.' free, else the tile's number or (WFC) its "
                   "name, e.g. corner or corner:1");

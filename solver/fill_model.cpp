@@ -65,6 +65,18 @@ FillModel::FillModel(const FillRegion& region)
     count_[std::size_t(c)] = k;
     if (k == 0 && wiped_ < 0) wiped_ = c;
   }
+  // a cell that is its own neighbour (a torus one cell wide or high) holds only tiles that may touch themselves
+  for (int c = 0; c < cells_ && wiped_ < 0; ++c)
+    for (int d = 0; d < kFillDirs; ++d)
+      if (neighbour(c, d) == c) {
+        std::uint64_t* dc = &dom_[std::size_t(c) * std::size_t(words_)];
+        int k = 0;
+        for (int t = 0; t < tiles; ++t)
+          if (((dc[t >> 6] >> (t & 63)) & 1) && !rules_->allowed(t, d, t)) dc[t >> 6] &= ~(std::uint64_t(1) << (t & 63));
+        for (int w = 0; w < words_; ++w) k += std::popcount(dc[w]);
+        count_[std::size_t(c)] = k;
+        if (k == 0) wiped_ = c;
+      }
   if (wiped_ < 0) {
     for (int c = 0; c < cells_; ++c) {
       queue_.push_back(c);
@@ -77,6 +89,15 @@ FillModel::FillModel(const FillRegion& region)
           break;
         }
     }
+  }
+  if (region.cover) {
+    cover_ = true;
+    support_.assign(std::size_t(tiles), 0);
+    for (int c = 0; c < cells_; ++c)
+      for (int w = 0; w < words_; ++w) count_support(c, dom_[std::size_t(c) * std::size_t(words_) + std::size_t(w)], w, +1);
+    if (cells_ < tiles && wiped_ < 0) wiped_ = 0;
+    for (int t = 0; t < tiles && wiped_ < 0; ++t)
+      if (support_[std::size_t(t)] == 0) wiped_ = 0;
   }
   trail_.clear();  // the root state is never undone
   set_value_seed(0);
@@ -123,6 +144,14 @@ int FillModel::neighbour(int cell, int d) const {
   return r * cols_ + c;
 }
 
+void FillModel::count_support(int, std::uint64_t bits, int word, int delta) {
+  for (; bits; bits &= bits - 1) {
+    int& k = support_[std::size_t(word * 64 + std::countr_zero(bits))];
+    k += delta;
+    if (k == 0) cover_failed_ = true;
+  }
+}
+
 void FillModel::set_count(int cell, int n) {
   int& k = count_[std::size_t(cell)];
   if (k == n) return;
@@ -138,6 +167,7 @@ bool FillModel::restrict(int cell, const std::uint64_t* keep) {
     const std::uint64_t nw = d[w] & keep[w];
     if (nw != d[w]) {
       trail_.push_back({std::uint32_t(std::size_t(cell) * std::size_t(words_) + std::size_t(w)), d[w]});
+      if (cover_) count_support(cell, d[w] & ~nw, w, -1);
       d[w] = nw;
       changed = true;
     }
@@ -147,6 +177,10 @@ bool FillModel::restrict(int cell, const std::uint64_t* keep) {
   ++stats_.propagations;
   set_count(cell, n);
   if (n == 0) return false;
+  if (cover_failed_) {
+    stats_.prune(Prune::ClassCheck);
+    return false;
+  }
   if (!queued_[std::size_t(cell)]) {
     queued_[std::size_t(cell)] = 1;
     queue_.push_back(cell);
@@ -233,6 +267,7 @@ void FillModel::unassign(int cell, int /*tile*/) {
   while (trail_.size() > mark) {
     const Change ch = trail_.back();
     trail_.pop_back();
+    if (cover_) count_support(int(ch.word / std::uint32_t(words_)), ch.old & ~dom_[ch.word], int(ch.word % std::uint32_t(words_)), +1);
     dom_[ch.word] = ch.old;
     const int c = int(ch.word / std::uint32_t(words_));
     int n = 0;
@@ -240,6 +275,7 @@ void FillModel::unassign(int cell, int /*tile*/) {
     set_count(c, n);
   }
   assigned_[std::size_t(cell)] = 0;
+  cover_failed_ = false;
   push_key(cell);
 }
 

@@ -64,6 +64,9 @@ struct FillRegion {
   int rows = 0, cols = 0;
   bool wrap_rows = false, wrap_cols = false;  // a torus in that direction
   std::vector<std::uint64_t> domains;         // rows*cols*words, or empty for every tile everywhere
+  // Every tile at least once (a sheet that holds the whole set): a tile that no cell's domain
+  // holds any more is a dead end (prune `TileUsed`'s counterpart, counted as ClassCheck).
+  bool cover = false;
 };
 
 class FillModel {
@@ -112,6 +115,10 @@ class FillModel {
   void rebuild_order();
   std::vector<std::pair<double, int>> keyed_;
   std::vector<std::uint64_t> single_;
+  bool cover_ = false;
+  std::vector<int> support_;  // cover: cells whose domain holds each tile
+  void count_support(int cell, std::uint64_t removed, int word, int delta);
+  bool cover_failed_ = false;
   std::vector<int> queue_;
   std::vector<char> queued_;
   std::vector<std::uint64_t> scratch_;

@@ -79,8 +79,9 @@ struct Geometry {
 // The region of `w`: fixed cells as single tiles; with `context`, the cells next to filled map
 // cells outside the window restricted to what those allow.
 FillRegion make_region(const std::shared_ptr<const FillRules>& rules, const Geometry& g, const FillWindow& w,
-                       const std::vector<int>& fixed, const std::vector<int>* context) {
+                       const std::vector<int>& fixed, const std::vector<int>* context, bool cover = false) {
   FillRegion reg;
+  reg.cover = cover;
   reg.rules = rules;
   reg.rows = w.rows;
   reg.cols = w.cols;
@@ -123,7 +124,7 @@ std::string fingerprint(const FillMapRequest& req, int block) {
       for (int w = 0; w < r.words(); ++w) h.add(r.mask(t, d)[w]);
   }
   h.add(std::uint64_t(req.rows)).add(std::uint64_t(req.cols)).add(req.torus ? 1 : 0).add(std::uint64_t(block));
-  h.add(req.dives).add(req.run.seed);
+  h.add(req.dives).add(req.run.seed).add(req.cover ? 1 : 0);
   for (int f : req.fixed) h.add(std::uint64_t(std::int64_t(f)), 4);
   return fmt::format("{:016x}", h.mixed());
 }
@@ -258,11 +259,19 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
   if (B == 0) B = std::int64_t(req.rows) * req.cols <= 128 * 128 ? std::max(req.rows, req.cols) : 64;
   const int nbr = (req.rows + B - 1) / B, nbc = (req.cols + B - 1) / B;
   const int blocks = nbr * nbc;
+  if (req.cover && blocks > 1)
+    throw RequestError("cover", fmt::format("`cover` needs the map in one block (at most {0}x{0} cells, or `block` 0 and a "
+                                            "map of at most 128x128)", B));
   const std::string fp = fingerprint(req, B);
 
   FillMapOutcome out;
   out.map.assign(n, -1);
-  if (!req.fixed.empty()) out.map = req.fixed;
+  std::vector<int> fixed = req.fixed;
+  if (req.cover && req.torus && fixed.empty()) {  // translations: tile 0 at (0, 0)
+    fixed.assign(n, -1);
+    fixed[0] = 0;
+  }
+  if (!fixed.empty()) out.map = fixed;
   int next = 0;
   if (!req.run.resume_path.empty()) {
     next = load_checkpoint(req.run.resume_path, fp, blocks, out);
@@ -313,7 +322,7 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
           saved[std::size_t(i) * std::size_t(w.cols) + std::size_t(j)] = out.map[std::size_t(m)];
           out.map[std::size_t(m)] = -1;
         }
-      const FillRegion reg = make_region(req.rules, g, w, req.fixed, &out.map);
+      const FillRegion reg = make_region(req.rules, g, w, fixed, &out.map, req.cover);
       RunSettings rs = req.run;
       rs.seed = derive_seed(req.run.seed, std::uint64_t(b) * 64 + std::uint64_t(attempt));
       rs.progress = req.run.progress && blocks == 1;

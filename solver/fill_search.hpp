@@ -50,6 +50,10 @@ struct FillMapRequest {
   std::vector<int> fixed;  // rows*cols: a tile, or -1 for a free cell (empty: none fixed)
   int block = 0;           // block side; 0: the whole map up to 128 x 128 cells, else 64
   std::uint64_t dives = 64;  // restarts per attempt of one block before it grows
+  // Every tile of the set at least once (a sheet holding the whole set); one block only. On a
+  // torus without fixed cells tile 0 is placed at (0, 0): every such sheet has a translate with
+  // it there, so a refutation covers every sheet of the size.
+  bool cover = false;
   RunSettings run;         // threads, seed, time limit, checkpoint/resume files and interval, signals
 };
 

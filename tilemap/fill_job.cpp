@@ -14,6 +14,7 @@
 #include "base/error.hpp"
 #include "base/input.hpp"
 #include "image/image.hpp"
+#include "tilemap/blob_set.hpp"
 #include "tilemap/tiled_files.hpp"
 #include "tilemap/tiled_tileset.hpp"
 #include "tilemap/tsx_reader.hpp"
@@ -69,8 +70,8 @@ LoadedSet load_set(const FillJobRequest& req) {
     ls.tsx_path = req.set;
   } else {
     if (!req.wangset.empty()) throw RequestError("wangset", "`wangset` names a Wang set of a Tiled .tsx file");
-    ls.source = "tileset";
-    ls.set = resolve_tile_set(req.set);
+    ls.source = req.set == "blob-47" ? "blob" : "tileset";
+    ls.set = req.set == "blob-47" ? blob_tile_set() : resolve_tile_set(req.set);
   }
   if (ls.set->kind() == TileKind::Window) throw InputError("a window set has no adjacency rules to fill a map with");
   for (std::size_t k = 0; k < ls.set->size(); ++k) ls.names.push_back(std::to_string(k));
@@ -245,6 +246,7 @@ void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vect
     return;
   }
   const TileSet& s = *ls.set;
+  if (ls.source == "blob") throw RequestError("tiled", "`tiled`: no Tiled sheet for the blob set yet (its Wang set is mixed)");
   if (s.horizontal_radix() != s.vertical_radix() || s.horizontal_radix() > kMaxSheetColours)
     throw InputError("a Tiled sheet needs one colour radix of at most 64 colours");
   const TilesetOutcome ts = write_tiled_tileset({s.kind(), s.horizontal_radix(), "", req.tile_px, "", dir});
@@ -306,6 +308,7 @@ FillJobOutcome run_fill(const FillJobRequest& req) {
   mr.torus = req.torus;
   if (!req.cells.empty()) mr.fixed = read_cells(ls, req.cells, req.height, req.width, o.fixed);
   mr.block = req.block;
+  mr.cover = req.cover;
   mr.dives = req.dives;
   mr.run = req.run;
   o.source = ls.source;
@@ -324,13 +327,18 @@ FillJobOutcome run_fill(const FillJobRequest& req) {
   }
   for (std::size_t i = 0; i < mr.fixed.size(); ++i)
     if (mr.fixed[i] >= 0 && map[i] != mr.fixed[i]) throw std::logic_error("the fill changed a fixed cell");
-  o.valid = true;
   o.counts.assign(ls.names.size(), 0);
   for (int t : map) ++o.counts[std::size_t(t)];
+  if (req.cover)
+    for (std::size_t t = 0; t < o.counts.size(); ++t)
+      if (o.counts[t] == 0) throw std::logic_error("the sheet misses tile " + ls.names[t]);
+  o.valid = true;
   // outputs, each written atomically
   if (!req.out_png.empty()) {
     if (ls.wfc) {
       write_png(req.out_png, wfc_picture(*ls.wfc, map, req.height, req.width));
+    } else if (ls.source == "blob") {
+      write_png(req.out_png, blob_picture(map, req.height, req.width, req.tile_px - req.tile_px % 3));
     } else {
       const atlas::RenderOptions opt{req.tile_px, false};
       atlas::check_tiling_picture(req.height, req.width, opt);

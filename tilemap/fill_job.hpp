@@ -8,7 +8,8 @@
 //     tilesets/tile_set_io.hpp): Wang tiles meet where edges match, corner tiles where the two
 //     shared corners match; any subset of a complete set (incomplete sets are fine);
 //   - a Tiled tileset (.tsx) with a Wang set of type corner or edge (tilemap/tsx_reader.hpp);
-//   - a WFC simple tiled model (.xml, tilemap/wfc_tileset.hpp), optionally one of its subsets.
+//   - a WFC simple tiled model (.xml, tilemap/wfc_tileset.hpp), optionally one of its subsets;
+//   - "blob-47", the 8-neighbour blob set (tilemap/blob_set.hpp).
 // Fixed cells come from a cells file: one line per map row, one token per cell, "." a free cell,
 // else the tile's number in the fill set or, for a WFC set, its name ("corner" is "corner 0",
 // "corner 1" is written "corner:1"); blank lines and lines starting with '#' are skipped.
@@ -31,6 +32,7 @@ struct FillJobRequest {
   std::vector<std::pair<std::string, double>> weights;  // tile (number or WFC name) -> weight
   int block = 0;
   std::uint64_t dives = 64;
+  bool cover = false;  // every tile at least once (FillMapRequest::cover)
   RunSettings run;
   std::string out_png, out_json, out_tiled;  // "" = not written; out_tiled a folder
   int tile_px = 16;                          // pictures of Tilekit/Tiled sets (WFC tiles keep theirs)
