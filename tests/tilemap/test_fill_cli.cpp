@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -86,6 +87,24 @@ TEST(FillCli, BadInputExits2AndWritesNothing) {
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(d / "o.png")) << args;
   }
+}
+
+// The blob sheet: all 47 tiles of the 8-neighbour blob set on an 8 x 8 torus, checked by the
+// validator (edge triples) and counted here; a 1-cell-high torus cannot hold them (proved at once).
+TEST(FillCli, TheBlobSheetHoldsAll47TilesOnTheTorus) {
+  TempDir d;
+  CliResult r = run_cli("fill --set blob-47 --size 8x8 --torus --cover --seed 1 --map-json " + q(d / "b.json") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(r.json().at("valid").get<bool>());
+  EXPECT_EQ(r.json().at("tiles"), 47);
+  const nlohmann::json m = nlohmann::json::parse(slurp(d / "b.json"));
+  std::set<int> seen;
+  for (const auto& row : m.at("cells"))
+    for (const auto& c : row) seen.insert(c.get<int>());
+  EXPECT_EQ(seen.size(), 47u);
+  r = run_cli("fill --set blob-47 --size 47x1 --torus --cover --json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(r.json().at("region").at("proved").get<bool>());
 }
 
 // Tiled reads a fill of a Tilekit set and of a WFC set; every neighbour pair agrees on its
