@@ -9,7 +9,7 @@ frequencies (over its successful maps) are from the weights: the total variation
 the frequency of each oriented tile and its share of the weights (0 = exactly the weights).
 Prints a Markdown table (BENCHMARKS.md). Usage:
   NODE_PATH=$(bash scripts/npm-deps.sh)/node_modules python3 scripts/bench-fill-vs-wfc.py \
-      [--seeds 100] [--large 128:20,512:3,1024:1] [--limit 10] [--large-limit 60]
+      [--seeds 100] [--large 128:20,512:3,1024:1] [--limit 10] [--large-limit 60] [--no-reference]
 """
 import argparse, json, os, statistics, subprocess, sys, time
 
@@ -79,10 +79,11 @@ def main():
     ap.add_argument("--limit", type=float, default=10)
     ap.add_argument("--large", default="128:20,512:3,1024:1", help="SIZE:SEEDS,... for the four sets")
     ap.add_argument("--large-limit", type=float, default=60)
+    ap.add_argument("--no-reference", action="store_true", help="only the larger sizes")
     a = ap.parse_args()
     print("| sample | size | filler | filled | median s | p95 s | TV(freq, weights) | limit s |")
     print("|---|---|---|---|---|---|---|---|")
-    for s, sub, size, periodic in SAMPLES:
+    for s, sub, size, periodic in ([] if a.no_reference else SAMPLES):
         name = s + (f" {sub}" if sub else "") + (" (torus)" if periodic else "")
         r, c, w = ours(a.tilekit, s, sub, size, periodic, a.seeds, a.limit)
         row(name, size, "tilekit fill", r, c, w, a.limit)
