@@ -104,7 +104,8 @@ void run_fill_cmd(const FillArgs& a, const CLI::App& cmd, const Context& ctx) {
   if (f.found) return;
   if (f.timed_out) throw NotFound(fmt::format("no fill found within --time-limit {} s", a.run.time_limit));
   if (f.proved_impossible)
-    throw NotFound("no fill exists: the " + window_text(f.window) + " cannot be completed around its fixed cells");
+    throw NotFound("no fill exists: the " + window_text(f.window) + " cannot be completed " +
+                   (a.cover ? "holding every tile" : "around its fixed cells"));
   throw NotFound("no fill found: the " + window_text(f.window) + " could not be completed (not proved impossible)");
 }
 
