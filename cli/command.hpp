@@ -40,5 +40,6 @@ void add_cluster_commands(CLI::App& app, Context& ctx);
 void add_points_commands(CLI::App& app, Context& ctx);
 void add_texture_commands(CLI::App& app, Context& ctx);
 void add_tiled_commands(CLI::App& app, Context& ctx);  // cmd_tiled.cpp: `tiled tileset|map|import`
+void add_fill_command(CLI::App& app, Context& ctx);    // cmd_fill.cpp: `fill`
 
 }  // namespace tilekit::cli

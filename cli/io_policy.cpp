@@ -30,6 +30,7 @@ constexpr std::array kRules = {
     Rule{"tiled map", "--out", PathRole::OutputFolder},
     Rule{"cluster submit", "--run-dir", PathRole::OutputFolder},
     Rule{"cluster status", "--run-dir", PathRole::Input},
+    Rule{"fill", "--tiled", PathRole::OutputFolder},
     // The record a run writes, and the records others read.
     Rule{"aperiodic enumerate", "--record", PathRole::Output},
     Rule{"*", "--record", PathRole::Input},
@@ -54,6 +55,8 @@ constexpr std::array kRules = {
     Rule{"points analyze", "--spectrum", PathRole::Output},
     Rule{"points spectrum", "--image", PathRole::Output},
     Rule{"points objects", "--texture", PathRole::Output},
+    Rule{"fill", "--png", PathRole::Output},
+    Rule{"fill", "--map-json", PathRole::Output},
     // Files read.
     Rule{"*", "--resume", PathRole::Input},
     Rule{"*", "--set", PathRole::Input},
@@ -63,6 +66,7 @@ constexpr std::array kRules = {
     Rule{"*", "--exemplar", PathRole::Input},
     Rule{"*", "--density-image", PathRole::Input},
     Rule{"*", "--labels", PathRole::Input},
+    Rule{"*", "--cells", PathRole::Input},
 };
 
 std::optional<PathRole> role_of(const std::string& cmd, const std::string& name) {

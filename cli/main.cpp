@@ -23,7 +23,8 @@ namespace {
 // files and exits 3 with one line saying what was kept.
 bool is_long_job(std::string_view cmd, std::string_view sub) {
   return cmd == "pack" || (cmd == "aperiodic" && (sub == "enumerate" || sub == "verify")) ||
-         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles");
+         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles") ||
+         cmd == "fill";
 }
 
 // Signals are caught before anything else, so that no signal finds the default handler,
@@ -74,6 +75,7 @@ int main(int argc, char** argv) {
   cli::add_points_commands(app, ctx);
   cli::add_texture_commands(app, ctx);
   cli::add_tiled_commands(app, ctx);
+  cli::add_fill_command(app, ctx);
   cli::install_io_policy(app);  // outputs checked against inputs and the file system before any work
   try {
     app.parse(argc, argv);

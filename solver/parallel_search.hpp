@@ -60,6 +60,9 @@ struct ParallelConfig {
   std::string title = "search";
   bool restarts = false;              // first mode: Luby restarts from the root
   std::uint64_t restart_base = 2000;  // nodes per Luby unit
+  // First mode with restarts: stop after this many dives (0: no bound), neither found nor complete
+  // (the map filler's blocks grow when one fails; solver/fill_search.hpp).
+  std::uint64_t max_dives = 0;
   std::size_t subproblem_target = 1024;
   std::uint64_t estimate_probes = 0;  // Knuth probes before the search (0 = none)
   std::string fingerprint;
@@ -309,6 +312,11 @@ class ParallelSearch {
       // A checkpoint taken now resumes at the lowest dive in progress (see first_unfinished_dive).
       slot.dive.store(next_restart_.load());
       const std::uint64_t k = next_restart_++;
+      if (cfg_.max_dives && k >= cfg_.max_dives) {
+        slot.dive.store(kNoDive);
+        stop_.request(StopReason::Cancelled);
+        break;
+      }
       slot.dive.store(k);
       const std::uint64_t r = k * std::uint64_t(cfg_.run.shard.count) + std::uint64_t(cfg_.run.shard.index);
       M m = root_;
