@@ -116,7 +116,7 @@ void add_tiles(CLI::App& texture, Context& ctx) {
 }
 
 struct AtlasArgs {
-  std::string dir, out, db, hash = "long-period";
+  std::string dir, out, db, hash = "long-period", color_space = "srgb";
   std::uint64_t seed = 1;
   bool no_db = false;
 };
@@ -128,11 +128,14 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   // set depends on nothing but the set: never on what the user's own database holds.
   const AtlasLookup lookup =
       a.db.empty() || a.no_db ? atlas_lookup(kind, m.colours) : lookup_with_database(kind, m.colours, a.db);
-  const TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
+  TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
+  atlas.transfer = a.color_space == "linear" ? Ktx2Transfer::Linear : Ktx2Transfer::Srgb;
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
+                      {"ktx2", f.ktx2},
+                      {"color_space", a.color_space},
                       {"manifest", f.manifest},
                       {"header", f.header},
                       {"glsl", f.glsl},
@@ -149,7 +152,8 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels\n", f.levels[0],
                atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
                lookup.source, lookup.how, f.levels.size());
-    fmt::print("manifest {}, C lookup {}, GLSL sampler {}\n", f.manifest, f.header, f.glsl);
+    fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, GLSL sampler {}\n", f.ktx2, a.color_space,
+               f.manifest, f.header, f.glsl);
   });
 }
 
@@ -158,8 +162,13 @@ void add_atlas(CLI::App& texture, Context& ctx) {
       "atlas", "Lay a texture tile set out as the packing from `atlas lookup`: atlas PNG, mip chain, lookup, GLSL");
   auto a = std::make_shared<AtlasArgs>();
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
-  cmd->add_option("--out", a->out, "Atlas PNG; atlas.mipK.png, atlas.json, atlas.h and atlas.glsl go beside it")
+  cmd->add_option("--out", a->out,
+                  "Atlas PNG; atlas.mipK.png, atlas.ktx2, atlas.json, atlas.h and atlas.glsl go beside it")
       ->required();
+  cmd->add_option("--color-space", a->color_space,
+                  "srgb: colour (atlas.ktx2 is RGBA8 sRGB); linear: data such as normals or roughness (RGBA8 UNORM)")
+      ->check(CLI::IsMember({"srgb", "linear"}))
+      ->capture_default_str();
   cmd->add_option("--db", a->db,
                   "Results database to look for a stored packing in first (default: none, the constructed or "
                   "reference packing)");

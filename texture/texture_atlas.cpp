@@ -57,6 +57,25 @@ std::string atlas_stem(const std::string& path) {
   return p.string();
 }
 
+Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a) {
+  Ktx2Texture t;
+  t.width = a.levels.at(0).width;
+  t.height = a.levels[0].height;
+  t.transfer = a.transfer;
+  for (const Image& l : a.levels) {
+    if (l.channels != 4) throw InputError("a KTX2 atlas needs RGBA levels");
+    t.levels.push_back(l.pixels);
+  }
+  const nlohmann::json packing = {{"kind", std::string(kind_name(a.lookup.kind))},
+                                  {"colors", a.lookup.colours},
+                                  {"rows", a.lookup.rows},
+                                  {"cols", a.lookup.cols},
+                                  {"tile_px", a.tile_px},
+                                  {"source", a.lookup.source}};
+  t.key_values = {{"tilekit.atlas", packing.dump()}};
+  return t;
+}
+
 AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source) {
   const std::string stem = atlas_stem(png);
   AtlasFiles f;
@@ -80,6 +99,9 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
                       {"levels", levels},
                       {"tiles_dir", a.tiles_dir},
                       {"lookup", lookup_json(a.lookup)}};
+  j["color_space"] = a.transfer == Ktx2Transfer::Srgb ? "srgb" : "linear";
+  f.ktx2 = stem + ".ktx2";
+  files.stage(f.ktx2, encode_ktx2(texture_atlas_ktx2(a)));
   f.manifest = stem + ".json";
   f.header = stem + ".h";
   f.glsl = stem + ".glsl";
@@ -117,6 +139,11 @@ TextureAtlas read_texture_atlas(const std::string& path) {
                                a.lookup.cols, kMaxImagePixels));
   a.tile_px = int(tile_px);
   a.tiles_dir = j.string_or("tiles_dir", "");
+  if (auto space = j.find("color_space")) {
+    const std::string name = space->string(16);
+    if (name != "srgb" && name != "linear") throw space->error("expected \"srgb\" or \"linear\"");
+    a.transfer = name == "srgb" ? Ktx2Transfer::Srgb : Ktx2Transfer::Linear;
+  }
   const fs::path dir = fs::path(manifest).parent_path();
   const JsonIn levels = j.at("levels");
   const std::size_t n = levels.array(1, 64);

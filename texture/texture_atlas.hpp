@@ -9,6 +9,7 @@
 
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
+#include "image/ktx2.hpp"
 
 namespace tilekit {
 
@@ -17,6 +18,9 @@ struct TextureAtlas {
   int tile_px = 0;
   std::vector<Image> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
   std::string tiles_dir;      // where the tiles came from (informational)
+  // Colour (sRGB transfer: RGBA8 sRGB in atlas.ktx2) or data such as normals and roughness
+  // (linear: RGBA8 UNORM). Only what the files say; the mip chain is computed as before.
+  Ktx2Transfer transfer = Ktx2Transfer::Srgb;
 };
 
 // InputError unless there is one square image of tile_px pixels per tile of the lookup's set.
@@ -25,12 +29,18 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Im
 // by tile index; atlas_from_tile_images reads it).
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir);
 
+// The atlas as one KTX2 texture (image/ktx2.hpp): every level, RGBA8 sRGB or UNORM by
+// `transfer`, the key/value data "tilekit.atlas" naming the packing (kind, colors, rows, cols,
+// tile_px, source) as JSON.
+Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a);
+
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
-// atlas.mipL.png, atlas.json (the manifest: tile size, levels, the lookup), atlas.h (C lookup
-// table) and atlas.glsl (the GLSL ES 3.0 sampler, render/glsl_sampler.hpp, with the given hash).
+// atlas.mipL.png, atlas.ktx2 (every level in one file), atlas.json (the manifest: tile size,
+// levels, colour space, the lookup), atlas.h (C lookup table) and atlas.glsl (the GLSL ES 3.0
+// sampler, render/glsl_sampler.hpp, with the given hash).
 struct AtlasFiles {
   std::vector<std::string> levels;
-  std::string manifest, header, glsl;
+  std::string ktx2, manifest, header, glsl;
 };
 AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source);
 // Reads an atlas written by write_texture_atlas from its level-0 PNG (or its .json manifest).
