@@ -131,7 +131,10 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
   atlas.transfer = a.color_space == "linear" ? Ktx2Transfer::Linear : Ktx2Transfer::Srgb;
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
-  const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
+  std::vector<std::pair<std::string, std::string>> shaders;
+  for (const ShaderLanguage l : {ShaderLanguage::GlslVulkan, ShaderLanguage::Hlsl})
+    shaders.emplace_back(shader_language_extension(l), glsl_sampler_file(atlas, ro, l));
+  const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro), shaders);
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
                       {"ktx2", f.ktx2},
@@ -139,6 +142,7 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                       {"manifest", f.manifest},
                       {"header", f.header},
                       {"glsl", f.glsl},
+                      {"shaders", f.shaders},
                       {"kind", std::string(kind_name(kind))},
                       {"colors", lookup.colours},
                       {"rows", lookup.rows},
@@ -152,8 +156,9 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels\n", f.levels[0],
                atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
                lookup.source, lookup.how, f.levels.size());
-    fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, GLSL sampler {}\n", f.ktx2, a.color_space,
-               f.manifest, f.header, f.glsl);
+    fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
+               "(HLSL)\n",
+               f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1]);
   });
 }
 
@@ -163,7 +168,8 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   auto a = std::make_shared<AtlasArgs>();
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
   cmd->add_option("--out", a->out,
-                  "Atlas PNG; atlas.mipK.png, atlas.ktx2, atlas.json, atlas.h and atlas.glsl go beside it")
+                  "Atlas PNG; atlas.mipK.png, atlas.ktx2, atlas.json, atlas.h and the samplers atlas.glsl, "
+                  "atlas.vk.glsl and atlas.hlsl go beside it")
       ->required();
   cmd->add_option("--color-space", a->color_space,
                   "srgb: colour (atlas.ktx2 is RGBA8 sRGB); linear: data such as normals or roughness (RGBA8 UNORM)")

@@ -30,6 +30,7 @@
 
 #include "render/anisotropic.hpp"
 #include "render/cpu_renderer.hpp"
+#include "render/shader_languages.hpp"
 #include "render/view.hpp"
 #include "tiling/direct_tiling_glsl.hpp"
 
@@ -50,8 +51,10 @@ enum class GlslMode {
 };
 
 std::string glsl_sampler_library(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling, GlslTables tables);
-// The tiles library as a file (atlas.glsl): a header comment with the API and how it was made.
-std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o);
+// The tiles library as a file (atlas.glsl; atlas.vk.glsl and atlas.hlsl in the other languages of
+// render/shader_languages.hpp): a header comment with the API and how it was made.
+std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o,
+                              ShaderLanguage language = ShaderLanguage::GlslEs);
 // The library of any method, its tables as uniforms or integer textures (one text for every seed;
 // the browser preview uses this same text).
 std::string glsl_method_library(const RenderSource& source, const RenderOptions& o);

@@ -76,7 +76,8 @@ Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a) {
   return t;
 }
 
-AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source) {
+AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source,
+                               const std::vector<std::pair<std::string, std::string>>& shaders) {
   const std::string stem = atlas_stem(png);
   AtlasFiles f;
   // All files or none: each is staged (written beside its target) and renamed into place only
@@ -107,6 +108,10 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
   f.glsl = stem + ".glsl";
   files.stage(f.header, lookup_c_header(a.lookup));
   files.stage(f.glsl, glsl_source);
+  for (const auto& [suffix, text] : shaders) {
+    f.shaders.push_back(stem + suffix);
+    files.stage(f.shaders.back(), text);
+  }
   files.stage(f.manifest, j.dump(1) + "\n");  // last: its presence means the atlas is complete
   files.commit();
   return f;

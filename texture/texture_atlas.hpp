@@ -37,12 +37,15 @@ Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a);
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
 // atlas.mipL.png, atlas.ktx2 (every level in one file), atlas.json (the manifest: tile size,
 // levels, colour space, the lookup), atlas.h (C lookup table) and atlas.glsl (the GLSL ES 3.0
-// sampler, render/glsl_sampler.hpp, with the given hash).
+// sampler, render/glsl_sampler.hpp, with the given hash), and one file per entry of `shaders`
+// (the stem plus its suffix, say ".hlsl": the sampler in other languages).
 struct AtlasFiles {
   std::vector<std::string> levels;
   std::string ktx2, manifest, header, glsl;
+  std::vector<std::string> shaders;
 };
-AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source);
+AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source,
+                               const std::vector<std::pair<std::string, std::string>>& shaders = {});
 // Reads an atlas written by write_texture_atlas from its level-0 PNG (or its .json manifest).
 // InputError (exit 2) naming the file for a missing or inconsistent file or a manifest whose
 // cells are not a packing (checked by the independent validator).
