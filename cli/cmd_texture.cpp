@@ -132,7 +132,7 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   atlas.transfer = a.color_space == "linear" ? Ktx2Transfer::Linear : Ktx2Transfer::Srgb;
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   std::vector<std::pair<std::string, std::string>> shaders;
-  for (const ShaderLanguage l : {ShaderLanguage::GlslVulkan, ShaderLanguage::Hlsl})
+  for (const ShaderLanguage l : {ShaderLanguage::GlslVulkan, ShaderLanguage::Hlsl, ShaderLanguage::Wgsl})
     shaders.emplace_back(shader_language_extension(l), glsl_sampler_file(atlas, ro, l));
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro), shaders);
   nlohmann::json j = {{"out", f.levels[0]},
@@ -157,8 +157,8 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
                lookup.source, lookup.how, f.levels.size());
     fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
-               "(HLSL)\n",
-               f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1]);
+               "(HLSL), {} (WGSL)\n",
+               f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
   });
 }
 
@@ -169,7 +169,7 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
   cmd->add_option("--out", a->out,
                   "Atlas PNG; atlas.mipK.png, atlas.ktx2, atlas.json, atlas.h and the samplers atlas.glsl, "
-                  "atlas.vk.glsl and atlas.hlsl go beside it")
+                  "atlas.vk.glsl, atlas.hlsl and atlas.wgsl go beside it")
       ->required();
   cmd->add_option("--color-space", a->color_space,
                   "srgb: colour (atlas.ktx2 is RGBA8 sRGB); linear: data such as normals or roughness (RGBA8 UNORM)")

@@ -88,7 +88,8 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o, Sha
       hash_kind_name(o.hash), o.seed,
       language == ShaderLanguage::GlslEs       ? "GLSL ES 3.0"
       : language == ShaderLanguage::GlslVulkan ? "GLSL 4.50 (Vulkan)"
-                                               : "HLSL (Shader Model 5+)",
+      : language == ShaderLanguage::Hlsl       ? "HLSL (Shader Model 5+)"
+                                               : "WGSL (WebGPU)",
       a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours, a.tile_px, a.lookup.source,
       a.lookup.how);
   switch (language) {
@@ -113,9 +114,20 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o, Sha
            "//   float4 tk_texture(float2 uv, float2 duvdx, float2 duvdy)\n"
            "// with uv in tiles of the infinite virtual texture (u east, v south) and ddx(uv), ddy(uv);";
       break;
+    case ShaderLanguage::Wgsl:
+      g += "// Prepend to a WGSL module. The atlas (atlas.ktx2: every mip level) is tk_atlas at @group(0)\n"
+           "// @binding(0) and tk_atlas_sampler (linear min/mag/mipmap filters, address mode repeat) at\n"
+           "// @binding(1); edit those two lines to move them. Call\n"
+           "//   fn tk_texture(uv: vec2<f32>, duvdx: vec2<f32>, duvdy: vec2<f32>) -> vec4<f32>\n"
+           "// with uv in tiles of the infinite virtual texture (u east, v south) and dpdx(uv), dpdy(uv);";
+      break;
   }
-  g += "\n// it filters anisotropically with up to TK_MAX_ANISO taps (define it before this text to change\n"
-       "// it; 1 is trilinear). The tiling is bit-identical to tilekit's C++.\n";
+  g += language == ShaderLanguage::Wgsl
+           ? "\n// it filters anisotropically with up to TK_MAX_ANISO taps (a const below; 1 is trilinear). The\n"
+             "// tiling is bit-identical to tilekit's C++.\n"
+           : "\n// it filters anisotropically with up to TK_MAX_ANISO taps (define it before this text to change\n"
+             "// it; 1 is trilinear). The tiling is bit-identical to tilekit's C++.\n";
+  if (language == ShaderLanguage::Wgsl) return g + wgsl_sampler(a.lookup, a.tile_px, tiling);
   return g + sampler_in_language(glsl_sampler_library(a.lookup, a.tile_px, tiling, GlslTables::Inline), language);
 }
 

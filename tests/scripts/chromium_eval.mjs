@@ -62,7 +62,12 @@ export async function evaluatePage(page, { webgpu = false, seconds = 120 } = {})
       await sleep(200);
     }
   } finally {
-    child.kill('SIGKILL');
-    fs.rmSync(profile, { recursive: true, force: true });
+    if (child.exitCode === null) {
+      const exited = new Promise(r => child.once('exit', r));
+      child.kill('SIGTERM');
+      await Promise.race([exited, sleep(5000)]);
+      if (child.exitCode === null) child.kill('SIGKILL');
+    }
+    try { fs.rmSync(profile, { recursive: true, force: true, maxRetries: 10, retryDelay: 200 }); } catch { /* a helper still exiting */ }
   }
 }

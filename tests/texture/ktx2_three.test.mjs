@@ -15,7 +15,6 @@ import { createRequire } from 'node:module';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import zlib from 'node:zlib';
 
 const [tilekit, source] = process.argv.slice(2);
 const modules = process.env.NODE_PATH || '';
@@ -34,24 +33,9 @@ const { viewRows } = createRequire(import.meta.url)(path.join(source, 'render/pr
 let failures = 0;
 const check = (ok, what) => { if (!ok) { console.error('FAIL: ' + what); ++failures; } };
 const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'tk-ktx2-'));
-const run = args => execFileSync(tilekit, args, { stdio: ['ignore', 'pipe', 'inherit'] }).toString();
+const { tileSet, pageCompare } = await import(path.join(source, 'tests/scripts/tile_fixture.mjs'));
+const run = tileSet(tilekit, dir);
 
-// A 96x96 exemplar with structure at every scale.
-function png(w, h, rgb) {
-  const crc = b => { let c = ~0; for (const x of b) { c ^= x; for (let k = 0; k < 8; ++k) c = (c >>> 1) ^ (0xEDB88320 & -(c & 1)); } return ~c >>> 0; };
-  const chunk = (type, data) => {
-    const b = Buffer.alloc(12 + data.length);
-    b.writeUInt32BE(data.length, 0); b.write(type, 4, 'latin1'); data.copy(b, 8);
-    b.writeUInt32BE(crc(b.subarray(4, 8 + data.length)), 8 + data.length);
-    return b;
-  };
-  const raw = Buffer.alloc(h * (1 + 3 * w));
-  for (let y = 0; y < h; ++y) for (let x = 0; x < w; ++x) rgb(x, y).forEach((v, c) => { raw[y * (1 + 3 * w) + 1 + 3 * x + c] = v; });
-  const ihdr = Buffer.alloc(13); ihdr.writeUInt32BE(w, 0); ihdr.writeUInt32BE(h, 4); ihdr[8] = 8; ihdr[9] = 2;
-  return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr), chunk('IDAT', zlib.deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
-}
-fs.writeFileSync(path.join(dir, 'ex.png'), png(96, 96, (x, y) => [(x * 7 + y * 3) % 256, (x * y) % 256, ((x ^ y) * 2) % 256]));
-run(['texture', 'tiles', '--exemplar', path.join(dir, 'ex.png'), '--colors', '2', '--tile-px', '16', '--search', '2', '--out', path.join(dir, 't'), '--quiet']);
 
 const views = [
   { name: 'tilted', size: [96, 64], origin: [37.5, -20], scale: 0.7, tilt: 2.5, aniso: 16, linearOnly: true },
@@ -127,6 +111,7 @@ import { KTX2Loader } from '${loader}';
 const cases = ${JSON.stringify(cases)}, files = ${JSON.stringify(files)}, glsl = ${JSON.stringify(glsl)};
 const main = ${JSON.stringify(main)};
 const bytes = f => Uint8Array.from(atob(files[f]), c => c.charCodeAt(0));
+${pageCompare}
 async function run() {
   const canvas = document.createElement('canvas');
   const renderer = new THREE.WebGLRenderer({ canvas, preserveDrawingBuffer: true, antialias: false });
@@ -155,15 +140,9 @@ async function run() {
     renderer.render(scene, new THREE.Camera());
     const gl = renderer.getContext(), px = new Uint8Array(k.w * k.h * 4);
     gl.readPixels(0, 0, k.w, k.h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-    const bitmap = await createImageBitmap(new Blob([bytes(k.ref)], { type: 'image/png' }), { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
-    const ctx = new OffscreenCanvas(k.w, k.h).getContext('2d');
-    ctx.drawImage(bitmap, 0, 0);
-    const ref = ctx.getImageData(0, 0, k.w, k.h).data;
-    let worst = 0;
-    for (let y = 0; y < k.h; ++y)
-      for (let x = 0; x < k.w; ++x)
-        for (let c = 0; c < 3; ++c)
-          worst = Math.max(worst, Math.abs(px[((k.h - 1 - y) * k.w + x) * 4 + c] - ref[(y * k.w + x) * 4 + c]));
+    const top = new Uint8Array(px.length);  // readPixels' rows from the bottom
+    for (let y = 0; y < k.h; ++y) top.set(px.subarray((k.h - 1 - y) * k.w * 4, (k.h - y) * k.w * 4), y * k.w * 4);
+    const worst = await largestDifference(top, bytes(k.ref), k.w, k.h);
     out.push({ name: k.name, worst, colorSpace: tex.colorSpace, levels: tex.mipmaps.length });
   }
   return out;
