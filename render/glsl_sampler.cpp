@@ -67,6 +67,18 @@ std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const Direct
        "  }\n"
        "  return sum / float(taps);\n"
        "}\n"
+       "// the hardware's anisotropic filter: one fetch with the virtual texture's gradients (dx, dy in\n"
+       "// tiles per pixel; the atlas coordinate jumps at tile borders, its own derivatives would not do),\n"
+       "// whose taps may cross into the atlas neighbour, a valid one (the atlas is a toroidal tiling)\n"
+       "vec4 tk_sample_grad(ivec2 tile, vec2 f, vec2 dx, vec2 dy) {\n"
+       "  ivec2 rc = tk_tile_cell(tile);\n"
+       "  vec2 scale = vec2(TK_INV_COLS, TK_INV_ROWS);\n"
+       "  return textureGrad(tk_atlas, (vec2(float(rc.y), float(rc.x)) + f) * scale, dx * scale, dy * scale);\n"
+       "}\n"
+       "vec4 tk_texture_grad(vec2 uv, vec2 duvdx, vec2 duvdy) {  // set the atlas's anisotropy, up to 16\n"
+       "  vec2 cell = floor(uv);\n"
+       "  return tk_sample_grad(ivec2(cell), uv - cell, duvdx, duvdy);\n"
+       "}\n"
        "// uv in tiles of the virtual texture (u east, v south), with its screen derivatives\n"
        "vec4 tk_texture(vec2 uv, vec2 duvdx, vec2 duvdy) {\n"
        "  vec2 cell = floor(uv);\n"
@@ -247,9 +259,12 @@ std::string glsl_fragment_shader(const RenderSource& s, const RenderOptions& o, 
            "  float dudy = intBitsToFloat(r1.w) + float(px.x) * tk_dudy_step;\n"
            "  int taps;\n"
            "  float lod;\n"
-           "  ivec2 axis;\n"
-           "  tk_footprint(vec2(dudx, 0.0), vec2(dudy, dvdy), tk_max_aniso, taps, lod, axis);\n"
-           "  tk_colour = tk_sample(tile, frac, taps, lod, axis);\n";
+           "  ivec2 axis;\n";
+      if (s.method == RenderMethod::Tiles && o.hardware_filter)
+        g += "  tk_colour = tk_sample_grad(tile, vec2(frac) / 65536.0, vec2(dudx, 0.0), vec2(dudy, dvdy));\n";
+      else
+        g += "  tk_footprint(vec2(dudx, 0.0), vec2(dudy, dvdy), tk_max_aniso, taps, lod, axis);\n"
+             "  tk_colour = tk_sample(tile, frac, taps, lod, axis);\n";
       break;
     case GlslMode::FlatTexture:
       g += "  ivec4 r0 = texelFetch(tk_rows, ivec2(0, j), 0);\n"

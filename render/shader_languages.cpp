@@ -19,7 +19,8 @@ const char* const kHlslPrelude =
     "#define ivec2 int2\n#define ivec3 int3\n#define ivec4 int4\n#define uvec2 uint2\n#define uvec4 uint4\n"
     "#define highp\n#define fract frac\n#define mix lerp\n"
     "#define floatBitsToInt asint\n#define intBitsToFloat asfloat\n"
-    "#define textureLod(t, st, lod) t.SampleLevel(t##_sampler, st, lod)\n";
+    "#define textureLod(t, st, lod) t.SampleLevel(t##_sampler, st, lod)\n"
+    "#define textureGrad(t, st, dx, dy) t.SampleGrad(t##_sampler, st, dx, dy)\n";
 
 const char* const kAtlasGlslEs = "uniform highp sampler2D tk_atlas;";
 
@@ -212,6 +213,18 @@ std::string wgsl_sampler(const AtlasLookup& l, int tile_px, const DirectTiling& 
        " f.lod);\n"
        "  }\n"
        "  return sum / f32(f.taps);\n"
+       "}\n"
+       "// the hardware's anisotropic filter (the GLSL's tk_sample_grad): one fetch with the virtual\n"
+       "// texture's gradients; set the sampler's maxAnisotropy (up to 16)\n"
+       "fn tk_sample_grad(tile: vec2<i32>, f: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {\n"
+       "  let rc = tk_tile_cell(tile);\n"
+       "  let scale = vec2<f32>(TK_INV_COLS, TK_INV_ROWS);\n"
+       "  return textureSampleGrad(tk_atlas, tk_atlas_sampler, (vec2<f32>(f32(rc.y), f32(rc.x)) + f) * scale, dx * scale,"
+       " dy * scale);\n"
+       "}\n"
+       "fn tk_texture_grad(uv: vec2<f32>, duvdx: vec2<f32>, duvdy: vec2<f32>) -> vec4<f32> {\n"
+       "  let cell = floor(uv);\n"
+       "  return tk_sample_grad(vec2<i32>(cell), uv - cell, duvdx, duvdy);\n"
        "}\n"
        "// uv in tiles of the virtual texture (u east, v south), with its screen derivatives\n"
        "fn tk_texture(uv: vec2<f32>, duvdx: vec2<f32>, duvdy: vec2<f32>) -> vec4<f32> {\n"

@@ -22,15 +22,18 @@ std::string with_main(const std::string& library, ShaderLanguage l) {
   switch (l) {
     case ShaderLanguage::GlslEs:
       return "#version 300 es\nprecision highp float;\nprecision highp int;\n" + library +
-             "in vec2 uv;\nout vec4 colour;\nvoid main() { colour = tk_texture(uv, dFdx(uv), dFdy(uv)); }\n";
+             "in vec2 uv;\nout vec4 colour;\n"
+             "void main() { colour = tk_texture(uv, dFdx(uv), dFdy(uv)) + tk_texture_grad(uv, dFdx(uv), dFdy(uv)); }\n";
     case ShaderLanguage::GlslVulkan:
       return "#version 450\n#define TK_SET 1\n#define TK_BINDING 2\n" + library +
              "layout(location = 0) in vec2 uv;\nlayout(location = 0) out vec4 colour;\n"
-             "void main() { colour = tk_texture(uv, dFdx(uv), dFdy(uv)); }\n";
+             "void main() { colour = tk_texture(uv, dFdx(uv), dFdy(uv)) + tk_texture_grad(uv, dFdx(uv), dFdy(uv)); }\n";
     case ShaderLanguage::Hlsl:
       return library +
              "float4 main(float4 position : SV_Position, float2 uv : TEXCOORD0) : SV_Target {\n"
-             "  return tk_texture(uv, ddx(uv), ddy(uv));\n}\n";
+             "  return tk_texture(uv, ddx(uv), ddy(uv)) + tk_texture_grad(uv, ddx(uv), ddy(uv));\n}\n";
+    case ShaderLanguage::Wgsl:  // compiled in chromium's WebGPU: tests/render/wgsl_webgpu.test.mjs
+      break;
   }
   return {};
 }

@@ -35,6 +35,7 @@ const views = [
   ...[1, 2, 4, 8].map(s => ({ name: `flat-x${s}`, size: [64, 48], origin: [3 * s, 5 * s], scale: s, tilt: 0 })),
 ];
 const cases = [], wgsl = {}, files = {};
+const filters = ['taps', 'hardware'];  // hardware: textureSampleGrad, maxAnisotropy 16
 for (const hash of ['perm', 'long-period']) {
   const atlas = path.join(dir, hash, 'atlas.png');
   fs.mkdirSync(path.dirname(atlas));
@@ -42,20 +43,21 @@ for (const hash of ['perm', 'long-period']) {
   wgsl[hash] = fs.readFileSync(path.join(dir, hash, 'atlas.wgsl'), 'utf8');
   files[hash + '/atlas.ktx2'] = fs.readFileSync(path.join(dir, hash, 'atlas.ktx2')).toString('base64');
   const tilePx = JSON.parse(fs.readFileSync(path.join(dir, hash, 'atlas.json'), 'utf8')).tile_px;
-  for (const v of views) {
-    const ref = path.join(dir, hash, v.name + '.png');
+  for (const filter of filters) for (const v of views) {
+    const name = `${hash}/${v.name}${filter === 'taps' ? '' : '-' + filter}`;
+    const ref = path.join(dir, name + '.png');
     run(['texture', 'render', '--atlas', atlas, '--hash', hash, '--seed', '7', '--size', v.size.join('x'), '--origin', v.origin.join(','),
-      '--scale', String(v.scale), '--tilt', String(v.tilt), '--aniso', '16', '--quiet', '--out', ref]);
-    files[`${hash}/${v.name}.png`] = fs.readFileSync(ref).toString('base64');
+      '--scale', String(v.scale), '--tilt', String(v.tilt), '--aniso', '16', '--filter', filter, '--quiet', '--out', ref]);
+    files[name + '.png'] = fs.readFileSync(ref).toString('base64');
     const r = viewRows(v.size[0], v.size[1], v.scale, v.origin[0], v.origin[1], v.tilt, tilePx);
-    cases.push({ name: `${hash}/${v.name}`, hash, w: v.size[0], h: v.size[1], rows: Array.from(r.rows), dudyStep: r.dudyStep });
+    cases.push({ name, hash, hw: filter === 'hardware', w: v.size[0], h: v.size[1], rows: Array.from(r.rows), dudyStep: r.dudyStep });
   }
 }
 
 // The renderer's main() (render/glsl_sampler.cpp, GlslMode::Texture) in WGSL; WebGPU's y runs down.
 const main = `
 @group(0) @binding(2) var tk_rows: texture_2d<i32>;
-struct TkView { dudy_step: f32, max_aniso: i32, pad0: i32, pad1: i32 }
+struct TkView { dudy_step: f32, max_aniso: i32, hardware: i32, pad1: i32 }
 @group(0) @binding(3) var<uniform> tk_view: TkView;
 @vertex fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
   return vec4<f32>(f32((i & 1u) << 2u) - 1.0, f32((i & 2u) << 1u) - 1.0, 0.0, 1.0);
@@ -68,8 +70,10 @@ struct TkView { dudy_step: f32, max_aniso: i32, pad0: i32, pad1: i32 }
   let tile = vec2<i32>(r0.x + i32(fu >> 16u), r0.w);
   let sub = vec2<i32>(i32(fu & 65535u), r1.x);
   let dudy = bitcast<f32>(r1.w) + f32(px.x) * tk_view.dudy_step;
-  let f = tk_footprint(vec2<f32>(bitcast<f32>(r1.y), 0.0), vec2<f32>(dudy, bitcast<f32>(r1.z)), tk_view.max_aniso);
-  return tk_sample(tile, sub, f);
+  let dx = vec2<f32>(bitcast<f32>(r1.y), 0.0);
+  let dy = vec2<f32>(dudy, bitcast<f32>(r1.z));
+  if (tk_view.hardware == 1) { return tk_sample_grad(tile, vec2<f32>(sub) / 65536.0, dx, dy); }
+  return tk_sample(tile, sub, tk_footprint(dx, dy, tk_view.max_aniso));
 }`;
 const ktxParse = 'file://' + path.join(modules, 'ktx-parse/dist/index.mjs');
 const html = `<!doctype html><html><body><script type="module">
@@ -97,14 +101,14 @@ async function run() {
     const view = device.createBuffer({ size: 16, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
     const v = new ArrayBuffer(16);
     new Float32Array(v, 0, 1)[0] = k.dudyStep;
-    new Int32Array(v, 4, 1)[0] = 16;
+    new Int32Array(v, 4, 2).set([16, k.hw ? 1 : 0]);
     device.queue.writeBuffer(view, 0, v);
     const module = device.createShaderModule({ code: wgsl[k.hash] + main });
     const info = await module.getCompilationInfo();
     compilation[k.hash] = info.messages.map(m => m.type + ' ' + m.lineNum + ':' + m.linePos + ' ' + m.message);
     const pipeline = device.createRenderPipeline({ layout: 'auto', vertex: { module, entryPoint: 'vs' },
       fragment: { module, entryPoint: 'fs', targets: [{ format: 'rgba8unorm' }] } });
-    const sampler = device.createSampler({ magFilter: 'linear', minFilter: 'linear', mipmapFilter: 'linear', addressModeU: 'repeat', addressModeV: 'repeat' });
+    const sampler = device.createSampler({ magFilter: 'linear', minFilter: 'linear', mipmapFilter: 'linear', addressModeU: 'repeat', addressModeV: 'repeat', maxAnisotropy: k.hw ? 16 : 1 });
     const group = device.createBindGroup({ layout: pipeline.getBindGroupLayout(0), entries: [
       { binding: 0, resource: atlas.createView() }, { binding: 1, resource: sampler },
       { binding: 2, resource: rows.createView() }, { binding: 3, resource: { buffer: view } }] });
@@ -123,7 +127,7 @@ async function run() {
     const mapped = new Uint8Array(readback.getMappedRange()), px = new Uint8Array(k.w * k.h * 4);
     for (let y = 0; y < k.h; ++y) px.set(mapped.subarray(y * stride, y * stride + k.w * 4), y * k.w * 4);
     readback.unmap();
-    out.push({ name: k.name, worst: await largestDifference(px, bytes(k.hash + '/' + k.name.split('/')[1] + '.png'), k.w, k.h), levels: c.levels.length });
+    out.push({ name: k.name, worst: await largestDifference(px, bytes(k.name + '.png'), k.w, k.h), levels: c.levels.length });
   }
   return { out, compilation, adapter: adapter.info ? adapter.info.vendor + ' ' + adapter.info.architecture + ' ' + adapter.info.description : '' };
 }

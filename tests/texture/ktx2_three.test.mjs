@@ -39,6 +39,8 @@ const run = tileSet(tilekit, dir);
 
 const views = [
   { name: 'tilted', size: [96, 64], origin: [37.5, -20], scale: 0.7, tilt: 2.5, aniso: 16, linearOnly: true },
+  // the hardware filter: one textureGrad, the texture's anisotropy 16 (SwiftShader's rule on the CPU)
+  { name: 'tilted-hardware', size: [96, 64], origin: [37.5, -20], scale: 0.7, tilt: 2.5, aniso: 16, linearOnly: true, filter: 'hardware' },
   ...[1, 2, 4, 8].map(s => ({ name: `flat-x${s}`, size: [64, 48], origin: [3 * s, 5 * s], scale: s, tilt: 0, aniso: 16 })),
 ];
 const cases = [];
@@ -69,9 +71,9 @@ for (const space of ['linear', 'srgb']) {
   for (const v of views) {
     if (v.linearOnly && space === 'srgb') continue;
     const ref = path.join(dir, space, v.name + '.png');
-    run(['texture', 'render', '--atlas', atlas, '--size', v.size.join('x'), '--origin', v.origin.join(','), '--scale', String(v.scale), '--tilt', String(v.tilt), '--aniso', String(v.aniso), '--quiet', '--out', ref]);
+    run(['texture', 'render', '--atlas', atlas, '--size', v.size.join('x'), '--origin', v.origin.join(','), '--scale', String(v.scale), '--tilt', String(v.tilt), '--aniso', String(v.aniso), '--filter', v.filter || 'taps', '--quiet', '--out', ref]);
     const r = viewRows(v.size[0], v.size[1], v.scale, v.origin[0], v.origin[1], v.tilt, manifest.tile_px);
-    cases.push({ name: `${space}/${v.name}`, space, ktx2: `${space}/atlas.ktx2`, ref: `${space}/${v.name}.png`, w: v.size[0], h: v.size[1], aniso: v.aniso, rows: Array.from(r.rows), dudyStep: r.dudyStep });
+    cases.push({ name: `${space}/${v.name}`, space, ktx2: `${space}/atlas.ktx2`, ref: `${space}/${v.name}.png`, w: v.size[0], h: v.size[1], aniso: v.aniso, hw: v.filter === 'hardware', rows: Array.from(r.rows), dudyStep: r.dudyStep });
   }
   fs.copyFileSync(path.join(dir, space, 'atlas.glsl'), path.join(dir, space + '.glsl'));
 }
@@ -84,7 +86,7 @@ const files = Object.fromEntries(cases.flatMap(k => [k.ktx2, k.ref]).map(f => [f
 const main = `
 uniform highp isampler2D tk_rows;
 uniform float tk_dudy_step;
-uniform int tk_height, tk_max_aniso, tk_srgb;
+uniform int tk_height, tk_max_aniso, tk_srgb, tk_hw;
 out vec4 tk_colour;
 void main() {  // render/glsl_sampler.cpp, GlslMode::Texture
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -95,8 +97,9 @@ void main() {  // render/glsl_sampler.cpp, GlslMode::Texture
   ivec2 frac = ivec2(int(fu & 65535u), r1.x);
   float dudy = intBitsToFloat(r1.w) + float(px.x) * tk_dudy_step;
   int taps; float lod; ivec2 axis;
-  tk_footprint(vec2(intBitsToFloat(r1.y), 0.0), vec2(dudy, intBitsToFloat(r1.z)), tk_max_aniso, taps, lod, axis);
-  vec4 c = tk_sample(tile, frac, taps, lod, axis);
+  vec2 dx = vec2(intBitsToFloat(r1.y), 0.0), dy = vec2(dudy, intBitsToFloat(r1.z));
+  tk_footprint(dx, dy, tk_max_aniso, taps, lod, axis);
+  vec4 c = tk_hw == 1 ? tk_sample_grad(tile, vec2(frac) / 65536.0, dx, dy) : tk_sample(tile, frac, taps, lod, axis);
   if (tk_srgb == 1) {  // the GPU decoded the sRGB atlas to linear light: encode it back (sRGB OETF)
     vec3 l = clamp(c.rgb, 0.0, 1.0);
     c.rgb = mix(l * 12.92, 1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, l));
@@ -123,6 +126,7 @@ async function run() {
     tex.wrapS = tex.wrapT = THREE.RepeatWrapping;
     tex.minFilter = THREE.LinearMipmapLinearFilter;
     tex.magFilter = THREE.LinearFilter;
+    tex.anisotropy = k.hw ? 16 : 1;
     tex.needsUpdate = true;
     const rows = new THREE.DataTexture(new Int32Array(k.rows), 2, k.h, THREE.RGBAIntegerFormat, THREE.IntType);
     rows.internalFormat = 'RGBA32I';
@@ -133,7 +137,8 @@ async function run() {
       vertexShader: 'in vec3 position; void main() { gl_Position = vec4(position.xy, 0.0, 1.0); }',
       fragmentShader: 'precision highp float;\\nprecision highp int;\\nprecision highp isampler2D;\\n' + glsl[k.space] + main,
       uniforms: { tk_atlas: { value: tex }, tk_rows: { value: rows }, tk_dudy_step: { value: k.dudyStep },
-                  tk_height: { value: k.h }, tk_max_aniso: { value: k.aniso }, tk_srgb: { value: k.space === 'srgb' ? 1 : 0 } },
+                  tk_height: { value: k.h }, tk_max_aniso: { value: k.aniso }, tk_srgb: { value: k.space === 'srgb' ? 1 : 0 },
+                  tk_hw: { value: k.hw ? 1 : 0 } },
     });
     const scene = new THREE.Scene();
     scene.add(new THREE.Mesh(new THREE.PlaneGeometry(2, 2), material));
@@ -143,7 +148,8 @@ async function run() {
     const top = new Uint8Array(px.length);  // readPixels' rows from the bottom
     for (let y = 0; y < k.h; ++y) top.set(px.subarray((k.h - 1 - y) * k.w * 4, (k.h - y) * k.w * 4), y * k.w * 4);
     const worst = await largestDifference(top, bytes(k.ref), k.w, k.h);
-    out.push({ name: k.name, worst, colorSpace: tex.colorSpace, levels: tex.mipmaps.length });
+    out.push({ name: k.name, worst, colorSpace: tex.colorSpace, levels: tex.mipmaps.length,
+               maxAnisotropy: renderer.capabilities.getMaxAnisotropy() });
   }
   return out;
 }
@@ -153,7 +159,7 @@ fs.writeFileSync(path.join(dir, 'page.html'), html);
 const result = await evaluatePage(path.join(dir, 'page.html'), { seconds: 300 });
 if (result.error) { console.error('FAIL: the page: ' + result.error); process.exit(1); }
 for (const r of result) {
-  console.log(`${r.name}: largest difference ${r.worst}/255 (${r.levels} levels, ${r.colorSpace})`);
+  console.log(`${r.name}: largest difference ${r.worst}/255 (${r.levels} levels, ${r.colorSpace}; anisotropy up to ${r.maxAnisotropy})`);
   check(r.worst <= 2, `${r.name}: ${r.worst}/255 from the CPU reference`);
   check(r.colorSpace === (r.name.startsWith('srgb') ? 'srgb' : 'srgb-linear'), `${r.name}: three's colour space ${r.colorSpace}`);
 }
