@@ -118,7 +118,7 @@ void add_tiles(CLI::App& texture, Context& ctx) {
 struct AtlasArgs {
   std::string dir, out, db, hash = "long-period", color_space = "srgb";
   std::uint64_t seed = 1;
-  bool no_db = false;
+  bool no_db = false, power_of_two = false;
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
@@ -129,6 +129,7 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
   const AtlasLookup lookup =
       a.db.empty() || a.no_db ? atlas_lookup(kind, m.colours) : lookup_with_database(kind, m.colours, a.db);
   TextureAtlas atlas = build_texture_atlas(lookup, a.dir);
+  if (a.power_of_two) atlas = resample_to_power_of_two(atlas);
   atlas.transfer = a.color_space == "linear" ? Ktx2Transfer::Linear : Ktx2Transfer::Srgb;
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
   std::vector<std::pair<std::string, std::string>> shaders;
@@ -148,14 +149,17 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                       {"rows", lookup.rows},
                       {"cols", lookup.cols},
                       {"tile_px", atlas.tile_px},
+                      {"texels_per_tile", atlas_texels_per_tile(atlas)},
+                      {"memory_bytes", RenderSource{RenderMethod::Tiles, &atlas, nullptr}.memory_bytes()},
                       {"width", atlas.levels[0].width},
                       {"height", atlas.levels[0].height},
                       {"source", lookup.source},
                       {"how", lookup.how}};
   emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels\n", f.levels[0],
-               atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
-               lookup.source, lookup.how, f.levels.size());
+    fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels, {:.2f} MiB{}\n",
+               f.levels[0], atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px,
+               kind_name(kind), lookup.source, lookup.how, f.levels.size(), j["memory_bytes"].get<double>() / (1 << 20),
+               a.power_of_two ? fmt::format(" (resampled: {:.2f} texels a tile)", atlas_texels_per_tile(atlas)) : "");
     fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
                "(HLSL), {} (WGSL)\n",
                f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
@@ -179,6 +183,9 @@ void add_atlas(CLI::App& texture, Context& ctx) {
                   "Results database to look for a stored packing in first (default: none, the constructed or "
                   "reference packing)");
   cmd->add_flag("--no-db", a->no_db, "Constructions only, no database (the default; kept for scripts)");
+  cmd->add_flag("--power-of-two", a->power_of_two,
+                "Resample level 0 to the nearest power of two per axis (area-weighted, wrapping: C = 3, 5, 6, 7 "
+                "make 9, 25, 36, 49 tiles a side) and make the mips again; tiles then span fractional texels");
   cmd->add_option("--hash", a->hash, "Lattice hash of the tiling in atlas.glsl: perm or long-period")
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of that hash")->capture_default_str();

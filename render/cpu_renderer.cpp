@@ -85,8 +85,9 @@ double mean_fetches(const RenderSource& src, const View& view, int max_aniso) {
   double sum = 0;
   for (const ViewRow& r : vr.rows)
     for (int x = 0; x < view.width; ++x)
-      sum += src.fetches(
-          anisotropic_footprint(r.dudx, 0.0f, r.dudy0 + float(x) * vr.dudy_step, r.dvdy, unit, max_aniso).taps);
+      sum += src.fetches(anisotropic_footprint(r.dudx, 0.0f, r.dudy0 + float(x) * vr.dudy_step, r.dvdy,
+                                               src.texels_per_unit(), max_aniso)
+                             .taps);
   return sum / (double(view.width) * double(view.height));
 }
 
@@ -98,6 +99,7 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
   if (o.max_aniso < 1 || o.max_aniso > kMaxAnisotropy)
     throw RequestError("max_aniso", fmt::format("`max_aniso` must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
   const int unit = src.unit_px();
+  const float texels = src.texels_per_unit();
   const ViewRows vr = view_rows(view, unit);
   std::unique_ptr<TileSampler> tiles;
   std::unique_ptr<PatchHashes> patches;
@@ -125,8 +127,8 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
       const PixelPosition p{r.tile_u0 + std::int32_t(fixed >> kFracBits), r.tile_v, fixed & (kFracOne - 1), r.frac_v};
       const float dudy = r.dudy0 + float(x) * vr.dudy_step;
       const Footprint f = tiles && o.hardware_filter
-                              ? hardware_footprint(r.dudx, 0.0f, dudy, r.dvdy, unit, o.max_aniso)
-                              : anisotropic_footprint(r.dudx, 0.0f, dudy, r.dvdy, unit, o.max_aniso);
+                              ? hardware_footprint(r.dudx, 0.0f, dudy, r.dvdy, texels, o.max_aniso)
+                              : anisotropic_footprint(r.dudx, 0.0f, dudy, r.dvdy, texels, o.max_aniso);
       const std::array<float, 4> c = tiles ? tiles->sample(p, row_tiles[std::size_t(p.tile_u - first)], f)
                                      : src.method == RenderMethod::Hex
                                          ? sample_hex(*src.exemplar, *patches, p, f, unit)

@@ -43,6 +43,11 @@ struct RenderSource {
   const ExemplarSurface* exemplar = nullptr;
   // Texels per unit of the view's fixed point: the atlas's tile size; 64 for the baselines.
   int unit_px() const { return method == RenderMethod::Tiles ? atlas->tile_px : 64; }
+  // Level-0 texels a unit: unit_px, but for an atlas resampled to a power of two
+  // (texture_atlas.hpp), its width over its columns.
+  float texels_per_unit() const {
+    return method == RenderMethod::Tiles ? atlas_texels_per_tile(*atlas) : float(unit_px());
+  }
   // Texture fetches (trilinear taps and look-ups) of one pixel with `taps` anisotropic taps; one
   // for tiles with the hardware filter (the shader's; the hardware's taps are inside it).
   bool hardware_filter = false;

@@ -200,7 +200,7 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   Footprint flat;
   std::optional<GlslTileWindow> window;
   if (mode == GlslMode::Texture && src.method == RenderMethod::Tiles &&
-      uniform_footprint(vr, src.unit_px(), o.max_aniso, &flat) &&
+      uniform_footprint(vr, src.texels_per_unit(), o.max_aniso, &flat) &&
       (window = glsl_tile_window(*src.atlas, vr, view.width, o)))
     mode = GlslMode::FlatTexture;
   s.mode = mode;

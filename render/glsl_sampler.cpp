@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "render/anisotropic.hpp"
@@ -19,17 +20,26 @@ bool cell_texture(const AtlasLookup& l, const DirectTiling& t, GlslTables tables
   return tables == GlslTables::Texture && glsl_tile_cell_texture(l, t.hash_kind());
 }
 
+// A float as a GLSL literal: an integer as one (TK_TILE_PX 64), else 9 significant digits (the
+// same float back).
+std::string glsl_number(float v) {
+  if (v == std::floor(v) && std::abs(v) < 1e7f) return fmt::format("{}", std::int64_t(v));
+  return fmt::format("{:.9g}", double(v));
+}
+
 }  // namespace
 
 bool glsl_tile_cell_texture(const AtlasLookup& l, HashKind hash) {
   return hash == HashKind::Permutation && l.rows <= 256 && l.cols <= 256;
 }
 
-std::string glsl_sampler_library(const AtlasLookup& l, int tile_px, const DirectTiling& tiling, GlslTables tables) {
+std::string glsl_sampler_library(const AtlasLookup& l, float texels_per_tile, const DirectTiling& tiling,
+                                 GlslTables tables) {
   check_same_set(l, tiling);
   std::string g;
+  // TK_TILE_PX: the texels a tile, a float literal where the atlas was resampled to a power of two
   g += fmt::format("#define TK_COLORS {}\n#define TK_ROWS {}\n#define TK_COLS {}\n#define TK_TILE_PX {}\n", l.colours,
-                   l.rows, l.cols, tile_px);
+                   l.rows, l.cols, glsl_number(texels_per_tile));
   g += "#ifndef TK_MAX_ANISO\n#define TK_MAX_ANISO 16\n#endif\n";
   g += fmt::format("const float TK_INV_ROWS = {:.9g}, TK_INV_COLS = {:.9g};\n", 1.0f / float(l.rows),
                    1.0f / float(l.cols));
@@ -139,15 +149,17 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o, Sha
              "// tiling is bit-identical to tilekit's C++.\n"
            : "\n// it filters anisotropically with up to TK_MAX_ANISO taps (define it before this text to change\n"
              "// it; 1 is trilinear). The tiling is bit-identical to tilekit's C++.\n";
-  if (language == ShaderLanguage::Wgsl) return g + wgsl_sampler(a.lookup, a.tile_px, tiling);
-  return g + sampler_in_language(glsl_sampler_library(a.lookup, a.tile_px, tiling, GlslTables::Inline), language);
+  const float texels = atlas_texels_per_tile(a);
+  if (language == ShaderLanguage::Wgsl) return g + wgsl_sampler(a.lookup, texels, tiling);
+  return g + sampler_in_language(glsl_sampler_library(a.lookup, texels, tiling, GlslTables::Inline), language);
 }
 
 std::string glsl_method_library(const RenderSource& s, const RenderOptions& o) {
   switch (s.method) {
     case RenderMethod::Tiles: {
       const TextureAtlas& a = *s.atlas;
-      return glsl_sampler_library(a.lookup, a.tile_px, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
+      return glsl_sampler_library(a.lookup, atlas_texels_per_tile(a),
+                                  DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
                                   GlslTables::Texture);
     }
     case RenderMethod::Hex:
@@ -221,12 +233,12 @@ std::optional<GlslTileWindow> glsl_tile_window(const TextureAtlas& a, const View
   return w;
 }
 
-bool uniform_footprint(const ViewRows& vr, int tile_px, int max_aniso, Footprint* footprint) {
+bool uniform_footprint(const ViewRows& vr, float texels_per_tile, int max_aniso, Footprint* footprint) {
   if (vr.rows.empty() || vr.dudy_step != 0) return false;
   const ViewRow& first = vr.rows.front();
   for (const ViewRow& r : vr.rows)
     if (r.dudx != first.dudx || r.dvdy != first.dvdy || r.dudy0 != first.dudy0) return false;
-  const Footprint f = anisotropic_footprint(first.dudx, 0.0f, first.dudy0, first.dvdy, tile_px, max_aniso);
+  const Footprint f = anisotropic_footprint(first.dudx, 0.0f, first.dudy0, first.dvdy, texels_per_tile, max_aniso);
   if (f.taps != 1) return false;
   if (footprint) *footprint = f;
   return true;

@@ -138,13 +138,14 @@ std::string wgsl_colour_hash(const ColourHash& h, const std::string& name) {
 
 }  // namespace
 
-std::string wgsl_sampler(const AtlasLookup& l, int tile_px, const DirectTiling& tiling) {
+std::string wgsl_sampler(const AtlasLookup& l, float texels_per_tile, const DirectTiling& tiling) {
   check_same_set(l, tiling);
   std::string g = fmt::format(
-      "const TK_COLORS: i32 = {};\nconst TK_ROWS: i32 = {};\nconst TK_COLS: i32 = {};\nconst TK_TILE_PX: i32 = {};\n"
+      "const TK_COLORS: i32 = {};\nconst TK_ROWS: i32 = {};\nconst TK_COLS: i32 = {};\n"
+      "const TK_TILE_PX: f32 = {:.9g};  // level-0 texels a tile\n"
       "const TK_MAX_ANISO: i32 = 16;  // 1: trilinear\n"
       "const TK_INV_ROWS: f32 = {:.9g};\nconst TK_INV_COLS: f32 = {:.9g};\n",
-      l.colours, l.rows, l.cols, tile_px, 1.0f / float(l.rows), 1.0f / float(l.cols));
+      l.colours, l.rows, l.cols, double(texels_per_tile), 1.0f / float(l.rows), 1.0f / float(l.cols));
   g += "@group(0) @binding(0) var tk_atlas: texture_2d<f32>;  // every mip level\n"
        "@group(0) @binding(1) var tk_atlas_sampler: sampler;  // linear, mipmap linear, repeat\n";
   g += fmt::format("// direct stochastic tiling, {} hash, seed {}; x east, y south, tile (x, y) has its NW\n"
@@ -187,7 +188,7 @@ std::string wgsl_sampler(const AtlasLookup& l, int tile_px, const DirectTiling& 
        "  let major = max(lx, ly);\n  let minor = min(lx, ly);\n"
        "  var f: TkFootprint;\n  f.taps = 1;\n"
        "  while (f.taps < max_aniso && f32(f.taps) * minor < major) { f.taps += 1; }\n"
-       "  f.lod = log2(f32(TK_TILE_PX) * major / f32(f.taps));\n"
+       "  f.lod = log2(TK_TILE_PX * major / f32(f.taps));\n"
        "  let a = clamp(select(dy, dx, lx >= ly), vec2<f32>(-256.0, -256.0), vec2<f32>(256.0, 256.0));\n"
        "  f.axis = select(vec2<i32>(0, 0), vec2<i32>(floor(a * 65536.0 + 0.5)), f.taps > 1);\n"
        "  return f;\n"

@@ -34,6 +34,6 @@ std::string sampler_in_language(const std::string& glsl_es_library, ShaderLangua
 
 // The WGSL tiles library: the tiling with its tables inline, the packing position (a table), the
 // anisotropic footprint and taps, the same operations in the same order as the GLSL.
-std::string wgsl_sampler(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling);
+std::string wgsl_sampler(const AtlasLookup& lookup, float texels_per_tile, const DirectTiling& tiling);
 
 }  // namespace tilekit

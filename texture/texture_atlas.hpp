@@ -29,6 +29,20 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Im
 // by tile index; atlas_from_tile_images reads it).
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir);
 
+// Level-0 texels a tile: tile_px, but for an atlas resampled to a power of two
+// (resample_to_power_of_two), its width over its columns (not a whole number).
+inline float atlas_texels_per_tile(const TextureAtlas& a) {
+  return a.levels.empty() ? float(a.tile_px) : float(a.levels[0].width) / float(a.lookup.cols);
+}
+
+// The atlas with level 0 resampled (on the torus: area-weighted, wrapping) to the power of two
+// nearest its size on a log scale along each axis, and its mip chain made again: what engines
+// like (KTX2 with every level, block compression); tile_px stays the tile size of the views. The
+// sampler reads it through normalised coordinates, its level of detail through
+// atlas_texels_per_tile. Tile borders fall inside texels, so each border texel blends the two
+// tiles on either side: the atlas is a toroidal tiling, so they are a valid pair of neighbours.
+TextureAtlas resample_to_power_of_two(const TextureAtlas& a);
+
 // The atlas as one KTX2 texture (image/ktx2.hpp): every level, RGBA8 sRGB or UNORM by
 // `transfer`, the key/value data "tilekit.atlas" naming the packing (kind, colors, rows, cols,
 // tile_px, source) as JSON.
