@@ -156,13 +156,15 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                       {"source", lookup.source},
                       {"how", lookup.how}};
   emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels, {:.2f} MiB{}\n",
-               f.levels[0], atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px,
-               kind_name(kind), lookup.source, lookup.how, f.levels.size(), j["memory_bytes"].get<double>() / (1 << 20),
-               a.power_of_two ? fmt::format(" (resampled: {:.2f} texels a tile)", atlas_texels_per_tile(atlas)) : "");
-    fmt::print("KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
-               "(HLSL), {} (WGSL)\n",
-               f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
+    fmt::print(
+        "{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels, {:.2f} MiB{}\n",
+        f.levels[0], atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
+        lookup.source, lookup.how, f.levels.size(), j["memory_bytes"].get<double>() / (1 << 20),
+        a.power_of_two ? fmt::format(" (resampled: {:.2f} texels a tile)", atlas_texels_per_tile(atlas)) : "");
+    fmt::print(
+        "KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
+        "(HLSL), {} (WGSL)\n",
+        f.ktx2, a.color_space, f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
   });
 }
 

@@ -33,7 +33,9 @@ void pad_to(std::string& s, std::size_t align) {
   while (s.size() % align) s.push_back('\0');
 }
 
-std::uint32_t texel_bytes(int bytes_per_channel) { return 4u * std::uint32_t(bytes_per_channel); }
+std::uint32_t texel_bytes(int bytes_per_channel) {
+  return 4u * std::uint32_t(bytes_per_channel);
+}
 
 std::uint64_t level_bytes(const Ktx2Texture& t, std::size_t k) {
   return std::uint64_t(std::max(1, t.width >> k)) * std::uint64_t(std::max(1, t.height >> k)) *
@@ -46,21 +48,21 @@ std::string dfd(const Ktx2Texture& t) {
   const std::uint32_t bits = 8u * std::uint32_t(t.bytes_per_channel);
   std::string d;
   put32(d, std::uint32_t(kDfdBytes));
-  put32(d, 0);                                         // vendorId 0 (Khronos), descriptorType 0 (basic)
+  put32(d, 0);                                                  // vendorId 0 (Khronos), descriptorType 0 (basic)
   put32(d, kDfVersion | (std::uint32_t(kDfdBytes - 4) << 16));  // version, descriptorBlockSize
   const std::uint32_t transfer = t.transfer == Ktx2Transfer::Srgb ? kDfTransferSrgb : kDfTransferLinear;
   put32(d, kDfModelRgbsda | (kDfPrimariesBt709 << 8) | (transfer << 16));  // flags 0: straight alpha
-  put32(d, 0);                                         // texel block 1x1x1x1
-  put32(d, texel_bytes(t.bytes_per_channel));          // bytesPlane0
-  put32(d, 0);                                         // bytesPlane4..7
+  put32(d, 0);                                                             // texel block 1x1x1x1
+  put32(d, texel_bytes(t.bytes_per_channel));                              // bytesPlane0
+  put32(d, 0);                                                             // bytesPlane4..7
   const std::array<std::uint32_t, 4> channels = {0, 1, 2, kDfChannelAlpha};
   for (std::uint32_t c = 0; c < 4; ++c) {
     std::uint32_t type = channels[c];
     if (c == 3 && t.transfer == Ktx2Transfer::Srgb) type |= kDfSampleLinear;
     put32(d, (c * bits) | ((bits - 1) << 16) | (type << 24));  // bitOffset, bitLength - 1, channelType
-    put32(d, 0);                                                // sample position
-    put32(d, 0);                                                // sampleLower
-    put32(d, (1u << bits) - 1u);                                // sampleUpper
+    put32(d, 0);                                               // sample position
+    put32(d, 0);                                               // sampleLower
+    put32(d, (1u << bits) - 1u);                               // sampleUpper
   }
   return d;
 }
@@ -209,8 +211,8 @@ Ktx2Texture decode_ktx2(std::string_view bytes, const std::string& name) {
     if (!value.empty() && value.back() == '\0') value.pop_back();
     std::string key(kv.substr(0, nul));
     if (!t.key_values.empty() && key <= t.key_values.back().first)
-      r.fail(fmt::format("the key/value data is not sorted by key (\"{}\" after \"{}\")", key,
-                         t.key_values.back().first));
+      r.fail(
+          fmt::format("the key/value data is not sorted by key (\"{}\" after \"{}\")", key, t.key_values.back().first));
     t.key_values.emplace_back(std::move(key), std::move(value));
     at += (4 + std::uint64_t(len) + 3) / 4 * 4;
   }

@@ -52,7 +52,9 @@ struct RenderSource {
   // for tiles with the hardware filter (the shader's; the hardware's taps are inside it).
   bool hardware_filter = false;
   int fetches(int taps) const {
-    return method == RenderMethod::Tiles ? (hardware_filter ? 1 : taps) : method == RenderMethod::Hex ? 3 * taps : 3 * taps + 3;
+    return method == RenderMethod::Tiles ? (hardware_filter ? 1 : taps)
+           : method == RenderMethod::Hex ? 3 * taps
+                                         : 3 * taps + 3;
   }
   std::size_t memory_bytes() const;  // texture memory: the atlas's or the exemplar surface's mip chain (and LUT)
 };

@@ -159,8 +159,7 @@ std::string glsl_method_library(const RenderSource& s, const RenderOptions& o) {
     case RenderMethod::Tiles: {
       const TextureAtlas& a = *s.atlas;
       return glsl_sampler_library(a.lookup, atlas_texels_per_tile(a),
-                                  DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
-                                  GlslTables::Texture);
+                                  DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed), GlslTables::Texture);
     }
     case RenderMethod::Hex:
       return hex_glsl(*s.exemplar, PatchHashes(o.hash, o.seed), s.unit_px(), true);

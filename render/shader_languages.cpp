@@ -28,20 +28,28 @@ const char* const kAtlasGlslEs = "uniform highp sampler2D tk_atlas;";
 
 const char* shader_language_name(ShaderLanguage l) {
   switch (l) {
-    case ShaderLanguage::GlslEs: return "glsl-es";
-    case ShaderLanguage::GlslVulkan: return "glsl-vulkan";
-    case ShaderLanguage::Hlsl: return "hlsl";
-    case ShaderLanguage::Wgsl: return "wgsl";
+    case ShaderLanguage::GlslEs:
+      return "glsl-es";
+    case ShaderLanguage::GlslVulkan:
+      return "glsl-vulkan";
+    case ShaderLanguage::Hlsl:
+      return "hlsl";
+    case ShaderLanguage::Wgsl:
+      return "wgsl";
   }
   return "";
 }
 
 const char* shader_language_extension(ShaderLanguage l) {
   switch (l) {
-    case ShaderLanguage::GlslEs: return ".glsl";
-    case ShaderLanguage::GlslVulkan: return ".vk.glsl";
-    case ShaderLanguage::Hlsl: return ".hlsl";
-    case ShaderLanguage::Wgsl: return ".wgsl";
+    case ShaderLanguage::GlslEs:
+      return ".glsl";
+    case ShaderLanguage::GlslVulkan:
+      return ".vk.glsl";
+    case ShaderLanguage::Hlsl:
+      return ".hlsl";
+    case ShaderLanguage::Wgsl:
+      return ".wgsl";
   }
   return "";
 }
@@ -105,7 +113,8 @@ std::string wgsl_mod(const std::string& v, std::uint32_t n) {
 
 std::string wgsl_array(const std::string& name, const std::vector<std::int32_t>& values) {
   std::string s = fmt::format("var<private> {}: array<i32, {}> = array<i32, {}>(", name, values.size(), values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) s += (i ? (i % 24 ? ", " : ",\n  ") : "\n  ") + std::to_string(values[i]);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    s += (i ? (i % 24 ? ", " : ",\n  ") : "\n  ") + std::to_string(values[i]);
   return s + ");\n";
 }
 
@@ -148,9 +157,10 @@ std::string wgsl_sampler(const AtlasLookup& l, float texels_per_tile, const Dire
       l.colours, l.rows, l.cols, double(texels_per_tile), 1.0f / float(l.rows), 1.0f / float(l.cols));
   g += "@group(0) @binding(0) var tk_atlas: texture_2d<f32>;  // every mip level\n"
        "@group(0) @binding(1) var tk_atlas_sampler: sampler;  // linear, mipmap linear, repeat\n";
-  g += fmt::format("// direct stochastic tiling, {} hash, seed {}; x east, y south, tile (x, y) has its NW\n"
-                   "// corner at lattice point (x, y)\n",
-                   hash_kind_name(tiling.hash_kind()), tiling.seed());
+  g += fmt::format(
+      "// direct stochastic tiling, {} hash, seed {}; x east, y south, tile (x, y) has its NW\n"
+      "// corner at lattice point (x, y)\n",
+      hash_kind_name(tiling.hash_kind()), tiling.seed());
   g += "fn tk_mod(v: i32, n: i32, wrap: i32) -> i32 {  // floored v mod n; wrap = 2^32 mod n\n"
        "  let r = bitcast<u32>(v) % u32(n);\n"
        "  return select(i32(r), i32((r + u32(n - wrap)) % u32(n)), v < 0);\n"
@@ -220,7 +230,8 @@ std::string wgsl_sampler(const AtlasLookup& l, float texels_per_tile, const Dire
        "fn tk_sample_grad(tile: vec2<i32>, f: vec2<f32>, dx: vec2<f32>, dy: vec2<f32>) -> vec4<f32> {\n"
        "  let rc = tk_tile_cell(tile);\n"
        "  let scale = vec2<f32>(TK_INV_COLS, TK_INV_ROWS);\n"
-       "  return textureSampleGrad(tk_atlas, tk_atlas_sampler, (vec2<f32>(f32(rc.y), f32(rc.x)) + f) * scale, dx * scale,"
+       "  return textureSampleGrad(tk_atlas, tk_atlas_sampler, (vec2<f32>(f32(rc.y), f32(rc.x)) + f) * scale, dx * "
+       "scale,"
        " dy * scale);\n"
        "}\n"
        "fn tk_texture_grad(uv: vec2<f32>, duvdx: vec2<f32>, duvdy: vec2<f32>) -> vec4<f32> {\n"
@@ -230,7 +241,8 @@ std::string wgsl_sampler(const AtlasLookup& l, float texels_per_tile, const Dire
        "// uv in tiles of the virtual texture (u east, v south), with its screen derivatives\n"
        "fn tk_texture(uv: vec2<f32>, duvdx: vec2<f32>, duvdy: vec2<f32>) -> vec4<f32> {\n"
        "  let cell = floor(uv);\n"
-       "  return tk_sample(vec2<i32>(cell), vec2<i32>((uv - cell) * 65536.0), tk_footprint(duvdx, duvdy, TK_MAX_ANISO));\n"
+       "  return tk_sample(vec2<i32>(cell), vec2<i32>((uv - cell) * 65536.0), tk_footprint(duvdx, duvdy, "
+       "TK_MAX_ANISO));\n"
        "}\n";
   return g;
 }

@@ -10,9 +10,9 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/json_input.hpp"
+#include "texture/mipmap.hpp"
 #include "tilesets/tile_grid.hpp"
 #include "tilesets/tile_set.hpp"
-#include "texture/mipmap.hpp"
 
 namespace tilekit {
 
@@ -40,8 +40,9 @@ int nearest_power_of_two(std::int64_t n) {
 // s = in / out, each input texel weighted by its overlap.
 Image resample_axis(const Image& in, int out_size, bool along_x) {
   const int n = along_x ? in.width : in.height, other = along_x ? in.height : in.width;
-  Image out(along_x ? out_size : in.width, along_x ? in.height : out_size, std::vector<std::uint8_t>(
-      std::size_t(along_x ? out_size : in.width) * std::size_t(along_x ? in.height : out_size) * 4));
+  Image out(along_x ? out_size : in.width, along_x ? in.height : out_size,
+            std::vector<std::uint8_t>(std::size_t(along_x ? out_size : in.width) *
+                                      std::size_t(along_x ? in.height : out_size) * 4));
   const double s = double(n) / out_size;
   for (int i = 0; i < out_size; ++i) {
     const double a = i * s, b = (i + 1) * s;
@@ -203,10 +204,10 @@ TextureAtlas read_texture_atlas(const std::string& path) {
   for (std::size_t k = 0; k < n; ++k) {
     const std::string file = (dir / levels[k].at("file").string(4096)).string();
     const std::int64_t w0 = a.lookup.cols * tile_px, h0 = a.lookup.rows * tile_px;
-    const std::int64_t want_w = a.levels.empty() ? (power_of_two ? nearest_power_of_two(w0) : w0)
-                                                 : std::max(1, a.levels.back().width / 2);
-    const std::int64_t want_h = a.levels.empty() ? (power_of_two ? nearest_power_of_two(h0) : h0)
-                                                 : std::max(1, a.levels.back().height / 2);
+    const std::int64_t want_w =
+        a.levels.empty() ? (power_of_two ? nearest_power_of_two(w0) : w0) : std::max(1, a.levels.back().width / 2);
+    const std::int64_t want_h =
+        a.levels.empty() ? (power_of_two ? nearest_power_of_two(h0) : h0) : std::max(1, a.levels.back().height / 2);
     Image img = read_image(file);
     if (img.width != want_w || img.height != want_h)
       throw InputError(fmt::format("{}: {}x{} pixels, but level {} of this atlas is {}x{}", file, img.width,

@@ -44,9 +44,9 @@ TEST(PreviewBrowser, ChromiumCaptureOfEveryMethodEqualsTheRenderWithinTwo) {
                               .c_str()),
               0)
         << name;
-    auto r =
-        run_cli("texture render --method " + (method.empty() ? std::string("tiles") : method) + " --atlas " + (d / "a.png") + " --exemplar " + (d / "ex.png") +
-                " --size 200x150 --origin 37.5,-20 --scale 0.7 --seed 5 --tilt 2.5 --quiet --out " + ref);
+    auto r = run_cli("texture render --method " + (method.empty() ? std::string("tiles") : method) + " --atlas " +
+                     (d / "a.png") + " --exemplar " + (d / "ex.png") +
+                     " --size 200x150 --origin 37.5,-20 --scale 0.7 --seed 5 --tilt 2.5 --quiet --out " + ref);
     ASSERT_EQ(r.code, 0) << r.err;
     const Image a = read_image(shot), b = read_image(ref);
     ASSERT_EQ(a.width, b.width);

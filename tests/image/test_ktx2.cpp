@@ -20,7 +20,8 @@ Ktx2Texture ramp(int w, int h, int bytes_per_channel, Ktx2Transfer transfer) {
   Ktx2Texture t;
   t.width = w, t.height = h, t.bytes_per_channel = bytes_per_channel, t.transfer = transfer;
   for (int k = 0;; ++k) {
-    const std::size_t n = std::size_t(std::max(1, w >> k)) * std::size_t(std::max(1, h >> k)) * 4 * std::size_t(bytes_per_channel);
+    const std::size_t n =
+        std::size_t(std::max(1, w >> k)) * std::size_t(std::max(1, h >> k)) * 4 * std::size_t(bytes_per_channel);
     std::vector<std::uint8_t> level(n);
     for (std::size_t i = 0; i < n; ++i) level[i] = std::uint8_t(i * 31 + std::size_t(k));
     t.levels.push_back(std::move(level));
@@ -35,7 +36,9 @@ std::uint32_t u32(const std::string& b, std::size_t at) {
   for (int i = 3; i >= 0; --i) v = (v << 8) | std::uint8_t(b[at + std::size_t(i)]);
   return v;
 }
-std::uint64_t u64(const std::string& b, std::size_t at) { return u32(b, at) | (std::uint64_t(u32(b, at + 4)) << 32); }
+std::uint64_t u64(const std::string& b, std::size_t at) {
+  return u32(b, at) | (std::uint64_t(u32(b, at + 4)) << 32);
+}
 
 std::string refusal(const std::string& bytes) {
   try {

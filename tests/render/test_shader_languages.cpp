@@ -16,7 +16,9 @@
 namespace tilekit {
 namespace {
 
-int run_shell(const std::string& cmd) { return std::system(cmd.c_str()); }
+int run_shell(const std::string& cmd) {
+  return std::system(cmd.c_str());
+}
 
 std::string with_main(const std::string& library, ShaderLanguage l) {
   switch (l) {
@@ -42,7 +44,8 @@ TEST(ShaderLanguages, EveryLanguageCompilesAndVulkanAndHlslPassSpirvVal) {
   ASSERT_EQ(run_shell("command -v glslangValidator >/dev/null && command -v spirv-val >/dev/null"), 0)
       << "glslangValidator or spirv-val missing: run scripts/setup.sh";
   test::TempDir d;
-  for (auto [kind, c] : {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
+  for (auto [kind, c] :
+       {std::pair{TileKind::Corner, 2u}, std::pair{TileKind::Corner, 3u}, std::pair{TileKind::Wang, 2u}})
     for (HashKind h : {HashKind::Permutation, HashKind::LongPeriod}) {
       const TextureAtlas a{atlas_lookup(kind, c), 64, {}, ""};
       for (ShaderLanguage l : {ShaderLanguage::GlslEs, ShaderLanguage::GlslVulkan, ShaderLanguage::Hlsl}) {
@@ -50,12 +53,13 @@ TEST(ShaderLanguages, EveryLanguageCompilesAndVulkanAndHlslPassSpirvVal) {
         const std::string src = d / (std::string("t") + (l == ShaderLanguage::Hlsl ? ".hlsl" : ".frag"));
         test::write_text(src, with_main(text, l));
         const std::string spv = d / "t.spv", log = d / "log.txt";
-        const std::string compile =
-            l == ShaderLanguage::GlslEs       ? "glslangValidator " + src
-            : l == ShaderLanguage::GlslVulkan ? "glslangValidator -V " + src + " -o " + spv
-                                              : "glslangValidator -D -V -e main -S frag " + src + " -o " + spv;
+        const std::string compile = l == ShaderLanguage::GlslEs ? "glslangValidator " + src
+                                    : l == ShaderLanguage::GlslVulkan
+                                        ? "glslangValidator -V " + src + " -o " + spv
+                                        : "glslangValidator -D -V -e main -S frag " + src + " -o " + spv;
         ASSERT_EQ(run_shell(compile + " > " + log + " 2>&1"), 0)
-            << shader_language_name(l) << " " << kind_name(kind) << " C=" << c << "\n" << test::slurp(log);
+            << shader_language_name(l) << " " << kind_name(kind) << " C=" << c << "\n"
+            << test::slurp(log);
         if (l != ShaderLanguage::GlslEs) {
           EXPECT_EQ(run_shell("spirv-val " + spv + " > " + log + " 2>&1"), 0) << test::slurp(log);
         }

@@ -11,7 +11,9 @@ import path from 'node:path';
 
 const sleep = ms => new Promise(r => setTimeout(r, ms));
 
-export async function evaluatePage(page, { webgpu = false, seconds = 120 } = {}) {
+// `expression` (default window.tkResult) is evaluated until it is not undefined; `query` is appended
+// to the page's URL.
+export async function evaluatePage(page, { webgpu = false, seconds = 120, expression = 'window.tkResult', query = '' } = {}) {
   const browser = process.env.TILEKIT_CHROMIUM || 'chromium';
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'tk-chromium-'));
   const gpuFlags = webgpu
@@ -48,11 +50,11 @@ export async function evaluatePage(page, { webgpu = false, seconds = 120 } = {})
       ws.send(JSON.stringify({ id, method, params }));
     });
     await send('Page.enable');
-    await send('Page.navigate', { url: 'file://' + path.resolve(page) });
+    await send('Page.navigate', { url: 'file://' + path.resolve(page) + query });
     for (;;) {
       if (Date.now() > deadline) timeout('no window.tkResult');
       const r = await send('Runtime.evaluate', {
-        expression: 'window.tkResult', awaitPromise: true, returnByValue: true,
+        expression, awaitPromise: true, returnByValue: true,
       });
       if (r.result && r.result.exceptionDetails) throw new Error('the page threw: ' + JSON.stringify(r.result.exceptionDetails));
       if (r.result && r.result.result && r.result.result.type !== 'undefined') {
