@@ -13,6 +13,7 @@ const sleep = ms => new Promise(r => setTimeout(r, ms));
 
 // `expression` (default window.tkResult) is evaluated until it is not undefined; `query` is appended
 // to the page's URL.
+// `page` is a file, or a URL (http://...).
 export async function evaluatePage(page, { webgpu = false, seconds = 120, expression = 'window.tkResult', query = '' } = {}) {
   const browser = process.env.TILEKIT_CHROMIUM || 'chromium';
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'tk-chromium-'));
@@ -41,16 +42,22 @@ export async function evaluatePage(page, { webgpu = false, seconds = 120, expres
     await new Promise((resolve, reject) => { ws.onopen = resolve; ws.onerror = reject; });
     let id = 0;
     const pending = new Map();
+    let loaded;
+    const load = new Promise(r => { loaded = r; });
     ws.onmessage = m => {
       const msg = JSON.parse(m.data);
       if (msg.id && pending.has(msg.id)) { pending.get(msg.id)(msg); pending.delete(msg.id); }
+      if (msg.method === 'Page.loadEventFired') loaded();
     };
     const send = (method, params = {}) => new Promise(resolve => {
       pending.set(++id, resolve);
       ws.send(JSON.stringify({ id, method, params }));
     });
     await send('Page.enable');
-    await send('Page.navigate', { url: 'file://' + path.resolve(page) + query });
+    const url = /^https?:/.test(page) ? page : 'file://' + path.resolve(page);
+    await send('Page.navigate', { url: url + query });
+    // the page's load, not about:blank's (an unref'd timer: it must not keep node alive afterwards)
+    await Promise.race([load, new Promise(r => setTimeout(r, Math.max(0, deadline - Date.now())).unref())]);
     for (;;) {
       if (Date.now() > deadline) timeout('no window.tkResult');
       const r = await send('Runtime.evaluate', {

@@ -164,6 +164,37 @@ for (const r of result) {
   check(r.colorSpace === (r.name.startsWith('srgb') ? 'srgb' : 'srgb-linear'), `${r.name}: three's colour space ${r.colorSpace}`);
 }
 check(result.length === cases.length, 'every case rendered');
+
+// examples/three-atlas served over http (python3 -m http.server), as its README says: it loads the
+// sRGB atlas and draws a textured ground plane (many colours, nothing left black below the horizon).
+const site = path.join(dir, 'site');
+fs.mkdirSync(site);
+for (const f of ['index.html', 'main.js']) fs.copyFileSync(path.join(source, 'examples/three-atlas', f), path.join(site, f));
+for (const f of ['atlas.ktx2', 'atlas.glsl']) fs.copyFileSync(path.join(dir, 'srgb', f), path.join(site, f));
+fs.symlinkSync(modules, path.join(site, 'node_modules'));
+const { spawn } = await import('node:child_process');
+const server = spawn('python3', ['-m', 'http.server', '0', '--bind', '127.0.0.1', '--directory', site], { stdio: ['ignore', 'pipe', 'pipe'] });
+try {
+  const port = await new Promise((resolve, reject) => {
+    let text = '';
+    server.stdout.on('data', d => { text += d; const m = /port (\d+)/.exec(text); if (m) resolve(m[1]); });
+    server.on('exit', () => reject(new Error('http.server exited')));
+    setTimeout(() => reject(new Error('http.server did not start')), 20000);
+  });
+  const drawn = await evaluatePage(`http://127.0.0.1:${port}/index.html`, { seconds: 120, expression: `!window.tkReady ? undefined :
+    new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => {
+      const c = document.querySelector('canvas'), w = 200, h = 150, x = new OffscreenCanvas(w, h).getContext('2d');
+      x.drawImage(c, 0, 0, w, h);
+      const d = x.getImageData(0, h / 2, w, h / 2).data, colours = new Set();
+      let black = 0;
+      for (let i = 0; i < d.length; i += 4) { colours.add(d[i] << 16 | d[i + 1] << 8 | d[i + 2]); if (d[i] + d[i + 1] + d[i + 2] === 0) ++black; }
+      r({ colours: colours.size, black, pixels: d.length / 4 });
+    })))` });
+  console.log(`examples/three-atlas: ${drawn.colours} colours, ${drawn.black} of ${drawn.pixels} pixels black below the horizon`);
+  check(drawn.colours > 100 && drawn.black === 0, 'examples/three-atlas did not draw the atlas');
+} finally {
+  server.kill();
+}
 if (failures) process.exit(1);
 fs.rmSync(dir, { recursive: true, force: true });
 console.log('ok');
