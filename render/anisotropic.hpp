@@ -54,8 +54,9 @@ inline Footprint anisotropic_footprint(float dudx, float dvdx, float dudy, float
 // in texels, major^2 the longer derivative's square length, det = |dx x dy| the pixel's area,
 // anisotropy = min(major^2 / det, max_aniso), N = that rounded to the nearest integer (half to
 // even) taps along the major axis, at log2(major / anisotropy) (not / N: the level of the minor
-// axis, major^2 / det being major / minor; log2 approximated as SwiftShader does). Other GPUs filter otherwise
-// (llvmpipe: an elliptical weighted average); the GLSL = CPU tests of that filter run on SwiftShader.
+// axis, major^2 / det being major / minor; log2 approximated as SwiftShader does). Other GPUs
+// filter otherwise (llvmpipe: an elliptical weighted average); the GLSL = CPU tests of that
+// filter run on SwiftShader.
 inline Footprint hardware_footprint(float dudx, float dvdx, float dudy, float dvdy, float texels_per_tile,
                                     int max_aniso) {
   const float px = texels_per_tile;

@@ -5,8 +5,11 @@
 // ktx-parse and three.js's KTX2Loader.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "base/error.hpp"

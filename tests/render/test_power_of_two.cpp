@@ -5,6 +5,7 @@
 // render stays close to the render of the atlas as laid out.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
