@@ -38,7 +38,8 @@ fs::path folder_of(const std::string& path) {
 }
 
 bool is_output(PathRole r) {
-  return r == PathRole::Output || r == PathRole::OutputFolder || r == PathRole::WrittenDatabase;
+  return r == PathRole::Output || r == PathRole::OutputFolder || r == PathRole::OutputInNewFolder ||
+         r == PathRole::WrittenDatabase;
 }
 
 // "it is missing" and the like when `dir` cannot take a new file, else empty.
@@ -52,12 +53,14 @@ std::string unwritable_folder(const fs::path& dir) {
 }
 
 std::string why_unwritable(const IoPath& p) {
-  if (p.role == PathRole::OutputFolder) {
-    // A folder output is made with its missing parents: the nearest existing one must take it.
+  if (p.role == PathRole::OutputFolder || p.role == PathRole::OutputInNewFolder) {
+    // A folder output (or a file's folder) is made with its missing parents: the nearest
+    // existing one must take it.
     fs::path dir = folder_of(resolved(p.path).string());
     std::error_code ec;
     while (!fs::exists(dir, ec) && dir.has_parent_path() && dir != dir.parent_path()) dir = dir.parent_path();
-    if (const auto st = stat_of(p.path); st && !S_ISDIR(st->st_mode)) return "it exists and is not a folder";
+    if (const auto st = stat_of(p.path); st && (p.role == PathRole::OutputFolder) != S_ISDIR(st->st_mode))
+      return p.role == PathRole::OutputFolder ? "it exists and is not a folder" : "it is a folder";
     return unwritable_folder(dir);
   }
   if (const auto st = stat_of(p.path); st && S_ISDIR(st->st_mode)) return "it is a folder";

@@ -13,6 +13,7 @@ enum class PathRole {
   Input,            // read (only where it exists: a name that is no file, e.g. a built-in set, is no file)
   Output,           // a file written whole (base/atomic_file.hpp): its folder must exist and be writable
   OutputFolder,     // a folder replaced whole (AtomicFolder): its nearest existing parent must be writable
+  OutputInNewFolder,  // a file written whole whose missing folders the command makes: as OutputFolder
   Database,         // a results database read (and perhaps written, where the command stores nothing new)
   WrittenDatabase,  // a results database the command stores into: its folder must exist and be writable
 };

@@ -248,9 +248,9 @@ void add_tiles(CLI::App& texture, Context& ctx) {
 }
 
 struct AtlasArgs {
-  std::string dir, out, db, hash = "long-period";
+  std::string dir, out, db, hash = "long-period", color_space;
   std::uint64_t seed = 1;
-  bool no_db = false;
+  bool no_db = false, power_of_two = false;
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
@@ -266,8 +266,19 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     fs::create_directories(parent, ec);
     if (ec) throw InputError(fmt::format("{}: cannot create the folder ({})", parent.string(), ec.message()));
   }
-  const TextureAtlas atlas = build_texture_atlas(lookup, a.dir, m.colour_space);
+  // The tile set's colour space (tiles.json), unless --color-space says otherwise.
+  ColourSpace space = m.colour_space;
+  if (!a.color_space.empty()) parse_colour_space(a.color_space, space);  // checked by IsMember
+  TextureAtlas atlas = build_texture_atlas(lookup, a.dir, space);
+  if (a.power_of_two) atlas = resample_to_power_of_two(atlas);
   const RenderOptions ro{hash_option(a.hash), a.seed, 1, false};
+  // The sampler in the other languages, beside atlas.glsl (render/shader_languages.hpp).
+  const auto shaders_of = [&](const TextureAtlas& at) {
+    std::vector<std::pair<std::string, std::string>> shaders;
+    for (const ShaderLanguage l : {ShaderLanguage::GlslVulkan, ShaderLanguage::Hlsl, ShaderLanguage::Wgsl})
+      shaders.emplace_back(shader_language_extension(l), glsl_sampler_file(at, ro, l));
+    return shaders;
+  };
   // The maps of a material set (DIR/maps/NAME, `texture tiles --map`) and its texel coordinates,
   // atlased the same way beside it: STEM-NAME.png (and its mips, manifest, header, GLSL).
   struct MapAtlas {
@@ -287,28 +298,36 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     if (mm.kind != m.kind || mm.colours != m.colours)
       throw InputError(fmt::format("{}: a {} set over {} colours beside a {} set over {}", d.string(),
                                    kind_name(mm.kind), mm.colours, kind_name(m.kind), m.colours));
-    map_atlases.push_back({d.filename().string(), build_texture_atlas(lookup, d.string(), mm.colour_space)});
+    TextureAtlas ma = build_texture_atlas(lookup, d.string(), mm.colour_space);
+    if (a.power_of_two) ma = resample_to_power_of_two(ma);
+    map_atlases.push_back({d.filename().string(), std::move(ma)});
   }
-  const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro));
+  const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro), shaders_of(atlas));
   nlohmann::json maps = nlohmann::json::object();
   for (const MapAtlas& ma : map_atlases) {
     const AtlasFiles mf =
-        write_texture_atlas(ma.atlas, atlas_stem(a.out) + "-" + ma.name + ".png", glsl_sampler_file(ma.atlas, ro));
+        write_texture_atlas(ma.atlas, atlas_stem(a.out) + "-" + ma.name + ".png", glsl_sampler_file(ma.atlas, ro),
+                            shaders_of(ma.atlas));
     maps[ma.name] = {{"out", mf.levels[0]},
+                     {"ktx2", mf.ktx2},
                      {"manifest", mf.manifest},
                      {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},
                      {"bits", ma.atlas.levels[0].depth}};
   }
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
+                      {"ktx2", f.ktx2},
                       {"manifest", f.manifest},
                       {"header", f.header},
                       {"glsl", f.glsl},
+                      {"shaders", f.shaders},
                       {"kind", std::string(kind_name(kind))},
                       {"colors", lookup.colours},
                       {"rows", lookup.rows},
                       {"cols", lookup.cols},
                       {"tile_px", atlas.tile_px},
+                      {"texels_per_tile", atlas_texels_per_tile(atlas)},
+                      {"memory_bytes", RenderSource{RenderMethod::Tiles, &atlas, nullptr}.memory_bytes()},
                       {"width", atlas.levels[0].width},
                       {"height", atlas.levels[0].height},
                       {"source", lookup.source},
@@ -317,11 +336,16 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                       {"bits", atlas.levels[0].depth},
                       {"maps", maps}};
   emit(ctx, j, [&] {
-    fmt::print("{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels\n", f.levels[0],
-               atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
-               lookup.source, lookup.how, f.levels.size());
-    fmt::print("manifest {}, C lookup {}, GLSL sampler {}; colour space {}, {} bits\n", f.manifest, f.header, f.glsl,
-               colour_space_name(atlas.colour_space), atlas.levels[0].depth);
+    fmt::print(
+        "{}: {}x{} atlas of {} {}-pixel tiles laid out by the {} packing ({}: {}), {} mip levels, {:.2f} MiB{}\n",
+        f.levels[0], atlas.levels[0].width, atlas.levels[0].height, lookup.cells.size(), atlas.tile_px, kind_name(kind),
+        lookup.source, lookup.how, f.levels.size(), j["memory_bytes"].get<double>() / (1 << 20),
+        a.power_of_two ? fmt::format(" (resampled: {:.2f} texels a tile)", atlas_texels_per_tile(atlas)) : "");
+    fmt::print(
+        "KTX2 {} ({}, every level), manifest {}, C lookup {}, samplers {} (GLSL ES), {} (Vulkan GLSL), {} "
+        "(HLSL), {} (WGSL)\n",
+        f.ktx2, colour_space_name(atlas.colour_space), f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
+    fmt::print("colour space {}, {} bits\n", colour_space_name(atlas.colour_space), atlas.levels[0].depth);
     for (const auto& [name, mj] : maps.items())
       fmt::print("map {}: {} ({}, {} bits)\n", name, mj["out"].get<std::string>(),
                  mj["colour_space"].get<std::string>(), mj["bits"].get<int>());
@@ -334,13 +358,22 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   auto a = std::make_shared<AtlasArgs>();
   cmd->add_option("DIR", a->dir, "Folder written by `tilekit texture tiles`")->required();
   cmd->add_option("--out", a->out,
-                  "Atlas PNG (its folder is made); atlas.mipK.png, atlas.json, atlas.h and atlas.glsl go beside it, "
-                  "and atlas-NAME.png (and so on) for every map of a material set (DIR/maps/NAME, DIR/coords)")
+                  "Atlas PNG (its folder is made); atlas.mipK.png, atlas.ktx2, atlas.json, atlas.h and the samplers "
+                  "atlas.glsl, atlas.vk.glsl, atlas.hlsl and atlas.wgsl go beside it, and atlas-NAME.png (and so on) "
+                  "for every map of a material set (DIR/maps/NAME, DIR/coords)")
       ->required();
+  cmd->add_option("--color-space", a->color_space,
+                  "How the levels are averaged and stored (default: the tile set's, from its tiles.json): srgb, "
+                  "colour in linear light (atlas.ktx2 RGBA8 sRGB); linear, data such as roughness or height; normal, "
+                  "tangent-space normals averaged as vectors (both RGBA8, or RGBA16 for 16-bit tiles, UNORM)")
+      ->check(CLI::IsMember({"srgb", "linear", "normal"}));
   cmd->add_option("--db", a->db,
                   "Results database to look for a stored packing in first (default: none, the constructed or "
                   "reference packing)");
   cmd->add_flag("--no-db", a->no_db, "Constructions only, no database (the default; kept for scripts)");
+  cmd->add_flag("--power-of-two", a->power_of_two,
+                "Resample level 0 to the nearest power of two per axis (area-weighted, wrapping: C = 3, 5, 6, 7 "
+                "make 9, 25, 36, 49 tiles a side) and make the mips again; tiles then span fractional texels");
   cmd->add_option("--hash", a->hash, "Lattice hash of the tiling in atlas.glsl: perm or long-period")
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of that hash")->capture_default_str();

@@ -24,6 +24,7 @@ struct SourceArgs {
   std::uint64_t seed = 1;
   float cell_px = 0;
   int aniso = 16;
+  std::string filter = "taps";
 };
 // --method, --atlas, --exemplar, --cell-px, --hash, --seed, --aniso.
 void add_source_options(CLI::App* cmd, SourceArgs& a);

@@ -28,6 +28,11 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
   cmd->add_option("--aniso", a.aniso, "Most anisotropic taps per fetch, 1 (trilinear) to 16")
       ->check(CLI::Range(1, kMaxAnisotropy))
       ->capture_default_str();
+  cmd->add_option("--filter", a.filter,
+                  "tiles: taps (each anisotropic tap through the tiling, textureLod) or hardware (one textureGrad "
+                  "with the virtual texture's gradients, the sampler's own anisotropic taps in the atlas)")
+      ->check(CLI::IsMember({"taps", "hardware"}))
+      ->capture_default_str();
 }
 
 std::unique_ptr<LoadedSource> load_source(const SourceArgs& a) {
@@ -36,6 +41,8 @@ std::unique_ptr<LoadedSource> load_source(const SourceArgs& a) {
   s->options.hash = parse_hash_kind(a.hash);
   s->options.seed = a.seed;
   s->options.max_aniso = a.aniso;
+  s->options.hardware_filter = a.filter == "hardware";
+  s->source.hardware_filter = s->options.hardware_filter;
   const bool tiles = s->source.method == RenderMethod::Tiles;
   if (tiles && a.atlas.empty()) throw InputError("--method tiles needs --atlas (written by `tilekit texture atlas`)");
   if (!tiles && a.exemplar.empty())
@@ -56,6 +63,7 @@ nlohmann::json source_json(const LoadedSource& s) {
                       {"hash", hash_kind_name(s.options.hash)},
                       {"seed", s.options.seed},
                       {"aniso", s.options.max_aniso},
+                      {"filter", s.options.hardware_filter ? "hardware" : "taps"},
                       {"memory_bytes", s.source.memory_bytes()}};
   if (s.atlas) {
     j["kind"] = kind_name(s.atlas->lookup.kind);

@@ -31,6 +31,7 @@ constexpr std::array kRules = {
     Rule{"cluster submit", "--run-dir", PathRole::OutputFolder},
     Rule{"cluster status", "--run-dir", PathRole::Input},
     Rule{"fill", "--tiled", PathRole::OutputFolder},
+    Rule{"texture atlas", "--out", PathRole::OutputInNewFolder},  // its folder is made, as texture tiles' is
     // The record a run writes, and the records others read.
     Rule{"aperiodic enumerate", "--record", PathRole::Output},
     Rule{"*", "--record", PathRole::Input},
@@ -116,7 +117,7 @@ std::vector<IoPath> declared_paths(const CLI::App& leaf, const std::string& cmd)
       if (name == "--atlas" || (cmd == "texture atlas" && name == "--out")) {
         // The atlas's files beside its PNG (texture/texture_atlas.hpp): each is read, or written.
         const std::string stem = atlas_stem(value);
-        for (const char* ext : {".png", ".json", ".h", ".glsl"})
+        for (const char* ext : {".png", ".json", ".h", ".glsl", ".ktx2", ".vk.glsl", ".hlsl", ".wgsl"})
           if (stem + ext != value) paths.push_back({name, stem + ext, *role, {}});
         for (int k = 1; k <= 16; ++k) paths.push_back({name, fmt::format("{}.mip{}.png", stem, k), *role, {}});
       }

@@ -50,7 +50,11 @@ struct TileSampler {
   const std::vector<Image>& levels;  // a.levels, at 8 bits
   const bool srgb;                   // filtered in linear light (GL: SRGB8_ALPHA8)
 
-  std::array<float, 4> tap(TileIndex tile, std::uint32_t fu, std::uint32_t fv, float lod) const {
+  const bool hardware;
+
+  // fu, fv: the position in the tile in fixed point; beyond [0, 1) (the hardware filter's taps)
+  // it reaches into the atlas neighbours, wrapping around the atlas.
+  std::array<float, 4> tap(TileIndex tile, std::int64_t fu, std::int64_t fv, float lod) const {
     const auto [row, col] = a.lookup.positions[tile];
     const float s = (float(col) + float(fu) / float(kFracOne)) * inv_cols;
     const float t = (float(row) + float(fv) / float(kFracOne)) * inv_rows;
@@ -59,6 +63,16 @@ struct TileSampler {
 
   std::array<float, 4> sample(const PixelPosition& p, TileIndex tile_here, const Footprint& f) const {
     if (f.taps == 1) return tap(tile_here, p.frac_u, p.frac_v, f.lod);
+    if (hardware) {  // the taps in the atlas around the pixel's own tile
+      std::array<float, 4> sum{0, 0, 0, 0};
+      for (int i = 0; i < f.taps; ++i) {
+        const auto c = tap(tile_here, std::int64_t(p.frac_u) + tap_offset(f.axis_u, i, f.taps),
+                           std::int64_t(p.frac_v) + tap_offset(f.axis_v, i, f.taps), f.lod);
+        for (int k = 0; k < 4; ++k) sum[std::size_t(k)] += c[std::size_t(k)];
+      }
+      for (float& c : sum) c /= float(f.taps);
+      return sum;
+    }
     std::array<float, 4> sum{0, 0, 0, 0};
     for (int i = 0; i < f.taps; ++i) {
       const std::int32_t u = std::int32_t(p.frac_u) + tap_offset(f.axis_u, i, f.taps);
@@ -80,8 +94,9 @@ double mean_fetches(const RenderSource& src, const View& view, int max_aniso) {
   double sum = 0;
   for (const ViewRow& r : vr.rows)
     for (int x = 0; x < view.width; ++x)
-      sum += src.fetches(
-          anisotropic_footprint(r.dudx, 0.0f, r.dudy0 + float(x) * vr.dudy_step, r.dvdy, unit, max_aniso).taps);
+      sum += src.fetches(anisotropic_footprint(r.dudx, 0.0f, r.dudy0 + float(x) * vr.dudy_step, r.dvdy,
+                                               src.texels_per_unit(), max_aniso)
+                             .taps);
   return sum / (double(view.width) * double(view.height));
 }
 
@@ -93,6 +108,7 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
   if (o.max_aniso < 1 || o.max_aniso > kMaxAnisotropy)
     throw RequestError("max_aniso", fmt::format("`max_aniso` must be 1..{}, got {}", kMaxAnisotropy, o.max_aniso));
   const int unit = src.unit_px();
+  const float texels = src.texels_per_unit();
   const ViewRows vr = view_rows(view, unit);
   std::unique_ptr<TileSampler> tiles;
   std::unique_ptr<PatchHashes> patches;
@@ -103,7 +119,8 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
     const TextureAtlas& a = *src.atlas;
     srgb_out = a.colour_space == ColourSpace::Srgb;
     tiles.reset(new TileSampler{a, DirectTiling(a.lookup.kind, a.lookup.colours, o.hash, o.seed),
-                                1.0f / float(a.lookup.cols), 1.0f / float(a.lookup.rows), levels8, srgb_out});
+                                1.0f / float(a.lookup.cols), 1.0f / float(a.lookup.rows), levels8, srgb_out,
+                                o.hardware_filter});
   } else {
     patches = std::make_unique<PatchHashes>(o.hash, o.seed);
   }
@@ -123,7 +140,9 @@ Image render_cpu(const RenderSource& src, const View& view, const RenderOptions&
       const std::uint32_t fixed = r.frac_u0 + std::uint32_t(x) * r.step_u;
       const PixelPosition p{r.tile_u0 + std::int32_t(fixed >> kFracBits), r.tile_v, fixed & (kFracOne - 1), r.frac_v};
       const float dudy = r.dudy0 + float(x) * vr.dudy_step;
-      const Footprint f = anisotropic_footprint(r.dudx, 0.0f, dudy, r.dvdy, unit, o.max_aniso);
+      const Footprint f = tiles && o.hardware_filter
+                              ? hardware_footprint(r.dudx, 0.0f, dudy, r.dvdy, texels, o.max_aniso)
+                              : anisotropic_footprint(r.dudx, 0.0f, dudy, r.dvdy, texels, o.max_aniso);
       const std::array<float, 4> c = tiles ? tiles->sample(p, row_tiles[std::size_t(p.tile_u - first)], f)
                                      : src.method == RenderMethod::Hex
                                          ? sample_hex(*src.exemplar, *patches, p, f, unit)

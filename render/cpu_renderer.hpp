@@ -23,6 +23,12 @@ struct RenderOptions {
   int threads = 1;
   bool progress = false;
   int max_aniso = 1;  // 1: trilinear; up to kMaxAnisotropy taps along the footprint
+  // tiles: the hardware's anisotropic filter (`filter` "hardware"): one fetch per pixel, the
+  // gradients of the virtual texture given to the sampler (textureGrad), whose taps (the same
+  // footprint rule, render/anisotropic.hpp) run along the major axis in the atlas from the pixel's
+  // own tile, across its border into the atlas neighbour (a valid neighbour: the atlas is a
+  // toroidal tiling, GL_REPEAT), instead of each through the tiling ("taps", the default).
+  bool hardware_filter = false;
 };
 
 enum class RenderMethod { Tiles, Hex, Hpn };
@@ -37,9 +43,18 @@ struct RenderSource {
   const ExemplarSurface* exemplar = nullptr;
   // Texels per unit of the view's fixed point: the atlas's tile size; 64 for the baselines.
   int unit_px() const { return method == RenderMethod::Tiles ? atlas->tile_px : 64; }
-  // Texture fetches (trilinear taps and look-ups) of one pixel with `taps` anisotropic taps.
+  // Level-0 texels a unit: unit_px, but for an atlas resampled to a power of two
+  // (texture_atlas.hpp), its width over its columns.
+  float texels_per_unit() const {
+    return method == RenderMethod::Tiles ? atlas_texels_per_tile(*atlas) : float(unit_px());
+  }
+  // Texture fetches (trilinear taps and look-ups) of one pixel with `taps` anisotropic taps; one
+  // for tiles with the hardware filter (the shader's; the hardware's taps are inside it).
+  bool hardware_filter = false;
   int fetches(int taps) const {
-    return method == RenderMethod::Tiles ? taps : method == RenderMethod::Hex ? 3 * taps : 3 * taps + 3;
+    return method == RenderMethod::Tiles ? (hardware_filter ? 1 : taps)
+           : method == RenderMethod::Hex ? 3 * taps
+                                         : 3 * taps + 3;
   }
   std::size_t memory_bytes() const;  // texture memory: the atlas's or the exemplar surface's mip chain (and LUT)
 };

@@ -163,6 +163,18 @@ void upload_chain(GLuint& texture, int unit, const std::vector<Level>& levels, G
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
 }
 
+// The hardware filter's anisotropy on the bound texture (EXT_texture_filter_anisotropic; without
+// the extension the hardware filters isotropically and says so).
+void set_max_anisotropy(int max_aniso) {
+  const char* ext = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
+  if (!ext || !std::strstr(ext, "GL_EXT_texture_filter_anisotropic")) {
+    if (max_aniso > 1) throw GlUnavailable("this OpenGL ES has no GL_EXT_texture_filter_anisotropic");
+    return;
+  }
+  constexpr GLenum kMaxAnisotropyExt = 0x84FE;  // GL_TEXTURE_MAX_ANISOTROPY_EXT
+  glTexParameterf(GL_TEXTURE_2D, kMaxAnisotropyExt, float(max_aniso));
+}
+
 }  // namespace
 
 GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOptions& o, GlslMode mode)
@@ -188,7 +200,7 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
   Footprint flat;
   std::optional<GlslTileWindow> window;
   if (mode == GlslMode::Texture && src.method == RenderMethod::Tiles &&
-      uniform_footprint(vr, src.unit_px(), o.max_aniso, &flat) &&
+      uniform_footprint(vr, src.texels_per_unit(), o.max_aniso, &flat) &&
       (window = glsl_tile_window(*src.atlas, vr, view.width, o)))
     mode = GlslMode::FlatTexture;
   s.mode = mode;
@@ -201,6 +213,7 @@ GlRenderer::GlRenderer(const RenderSource& src, const View& view, const RenderOp
     upload_chain(s.textures[0], 0, atlas_levels_8bit(*src.atlas),
                  src.atlas->colour_space == ColourSpace::Srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, GL_UNSIGNED_BYTE);
     main_sampler = "tk_atlas";
+    if (o.hardware_filter) set_max_anisotropy(o.max_aniso);
   } else if (src.method == RenderMethod::Hex) {
     upload_chain(s.textures[0], 0, src.exemplar->levels, GL_RGBA8, GL_UNSIGNED_BYTE);
   } else {

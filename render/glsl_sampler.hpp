@@ -30,6 +30,7 @@
 
 #include "render/anisotropic.hpp"
 #include "render/cpu_renderer.hpp"
+#include "render/shader_languages.hpp"
 #include "render/view.hpp"
 #include "tiling/direct_tiling_glsl.hpp"
 
@@ -49,9 +50,13 @@ enum class GlslMode {
   FlatTexture,
 };
 
-std::string glsl_sampler_library(const AtlasLookup& lookup, int tile_px, const DirectTiling& tiling, GlslTables tables);
-// The tiles library as a file (atlas.glsl): a header comment with the API and how it was made.
-std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o);
+// texels_per_tile: the atlas's level-0 texels a tile (atlas_texels_per_tile).
+std::string glsl_sampler_library(const AtlasLookup& lookup, float texels_per_tile, const DirectTiling& tiling,
+                                 GlslTables tables);
+// The tiles library as a file (atlas.glsl; atlas.vk.glsl and atlas.hlsl in the other languages of
+// render/shader_languages.hpp): a header comment with the API and how it was made.
+std::string glsl_sampler_file(const TextureAtlas& atlas, const RenderOptions& o,
+                              ShaderLanguage language = ShaderLanguage::GlslEs);
 // The library of any method, its tables as uniforms or integer textures (one text for every seed;
 // the browser preview uses this same text).
 std::string glsl_method_library(const RenderSource& source, const RenderOptions& o);
@@ -73,7 +78,7 @@ std::optional<GlslTileWindow> glsl_tile_window(const TextureAtlas& atlas, const 
 
 // Whether every pixel of a view has the same footprint with one tap (what FlatTexture needs), and
 // that footprint: no shear (dudy_step 0) and the same derivatives on every row.
-bool uniform_footprint(const ViewRows& rows, int tile_px, int max_aniso, Footprint* footprint = nullptr);
+bool uniform_footprint(const ViewRows& rows, float texels_per_tile, int max_aniso, Footprint* footprint = nullptr);
 // The uniform tables (uniform ivec4 NAME[...]) of glsl_fragment_shader for the seed and hash of o
 // (hex and hpn).
 std::vector<std::pair<std::string, std::vector<std::int32_t>>> glsl_table_uniforms(const RenderSource& source,

@@ -9,7 +9,8 @@ const canvas = document.getElementById('view');
 const msg = document.getElementById('msg');
 function fail(text) { msg.textContent = text; msg.hidden = false; document.title = 'error: ' + text; throw new Error(text); }
 
-const methods = Object.keys(D.methods);
+// Tilekit's method first: the page opens on tiles (the JSON's keys come sorted: hex, hpn, tiles).
+const methods = ['tiles', 'hex', 'hpn'].filter(m => D.methods[m]).concat(Object.keys(D.methods).filter(m => !['tiles', 'hex', 'hpn'].includes(m)));
 const number = (name, fallback) => { const v = query.get(name); return v === null ? fallback : Number(v); };
 const state = {
   method: query.get('method') || methods[0],

@@ -2,11 +2,12 @@
 # Idempotent set-up: installs the Debian packages Tilekit builds and tests with, if missing, and
 # fetches the real textures (scripts/fetch-textures.sh).
 # EGL/GLES + Mesa (libegl-dev, libgles-dev, libegl-mesa0, libgl1-mesa-dri): the headless GLSL renderer.
+# spirv-tools: spirv-val checks the SPIR-V of the Vulkan GLSL and HLSL samplers (tests/render/test_shader_languages.cpp).
 # chromium: the browser test of `texture preview` (headless, WebGL2 on SwiftShader; scripts/capture-preview.sh).
 set -euo pipefail
 PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt-dev libgtest-dev
       libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libstb-dev libpng-dev
-      glslang-tools cadical libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+      glslang-tools cadical spirv-tools libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
       clang libfuzzer-14-dev libclang-rt-14-dev libomp-dev  # fuzzing and the sanitizer builds
       tiled libpugixml-dev  # tilemap/: Tiled's XML reader; Tiled 1.8 and tmxrasterizer for tests/tilemap
       unzip        # scripts/fetch-textures.sh reads OpenArena's pk3 (a zip)

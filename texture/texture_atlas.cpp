@@ -2,15 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/json_input.hpp"
+#include "texture/mipmap.hpp"
 #include "tilesets/tile_grid.hpp"
 #include "tilesets/tile_set.hpp"
-#include "texture/mipmap.hpp"
 
 namespace tilekit {
 
@@ -27,7 +29,52 @@ TextureAtlas from_level0(const AtlasLookup& lookup, Image level0, int tile_px, C
   return a;
 }
 
+// 2^round(log2 n): the power of two nearest n on a log scale.
+int nearest_power_of_two(std::int64_t n) {
+  int k = 0;
+  while ((std::int64_t(1) << (k + 1)) <= n) ++k;  // 2^k <= n < 2^(k+1)
+  const double low = double(std::int64_t(1) << k);
+  return n * n >= std::int64_t(low * low * 2) ? int(low * 2) : int(low);  // n >= 2^k sqrt 2: up
+}
+
+// Area-weighted resampling of one axis on a torus: output texel i covers input [i s, (i + 1) s),
+// s = in / out, each input texel weighted by its overlap.
+Image resample_axis(const Image& in, int out_size, bool along_x) {
+  const int n = along_x ? in.width : in.height, other = along_x ? in.height : in.width;
+  Image out(along_x ? out_size : in.width, along_x ? in.height : out_size,
+            std::vector<std::uint8_t>(std::size_t(along_x ? out_size : in.width) *
+                                      std::size_t(along_x ? in.height : out_size) * 4));
+  const double s = double(n) / out_size;
+  for (int i = 0; i < out_size; ++i) {
+    const double a = i * s, b = (i + 1) * s;
+    std::vector<std::pair<int, double>> taps;
+    for (int k = int(std::floor(a)); double(k) < b; ++k)
+      taps.emplace_back(((k % n) + n) % n, (std::min(b, double(k + 1)) - std::max(a, double(k))) / s);
+    for (int j = 0; j < other; ++j) {
+      double sum[4] = {0, 0, 0, 0};
+      for (const auto& [k, w] : taps) {
+        const std::uint8_t* p = along_x ? in.at(k, j) : in.at(j, k);
+        for (int c = 0; c < 4; ++c) sum[c] += w * p[c];
+      }
+      std::uint8_t* q = along_x ? out.at(i, j) : out.at(j, i);
+      for (int c = 0; c < 4; ++c) q[c] = std::uint8_t(std::clamp(std::lround(sum[c]), 0l, 255l));
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+TextureAtlas resample_to_power_of_two(const TextureAtlas& a) {
+  const Image& l0 = a.levels.at(0);
+  const int w = nearest_power_of_two(l0.width), h = nearest_power_of_two(l0.height);
+  if (w == l0.width && h == l0.height) return a;
+  // resample_axis averages 8-bit values as stored (for sRGB colour, in the sRGB encoding).
+  if (l0.depth != 8) throw InputError("a power-of-two atlas is made from 8-bit tiles only; these are 16-bit");
+  TextureAtlas r = a;
+  r.levels = mip_chain(resample_axis(resample_axis(l0, w, true), h, false), MipEdge::Wrap, a.colour_space);
+  return r;
+}
 
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Image>& tiles, ColourSpace space) {
   if (tiles.size() != lookup.cells.size())
@@ -63,7 +110,31 @@ std::string atlas_stem(const std::string& path) {
   return p.string();
 }
 
-AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source) {
+Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a) {
+  Ktx2Texture t;
+  t.width = a.levels.at(0).width;
+  t.height = a.levels[0].height;
+  // sRGB colour is RGBA8 sRGB (Vulkan has no 16-bit sRGB format: 16-bit colour levels are
+  // rounded to 8 bits here); data and normals are RGBA8 or RGBA16 UNORM at the atlas's depth.
+  t.transfer = a.colour_space == ColourSpace::Srgb ? Ktx2Transfer::Srgb : Ktx2Transfer::Linear;
+  const int depth = t.transfer == Ktx2Transfer::Srgb ? 8 : a.levels[0].depth;
+  t.bytes_per_channel = depth / 8;
+  for (const Image& l : a.levels) {
+    if (l.channels != 4) throw InputError("a KTX2 atlas needs RGBA levels");
+    t.levels.push_back(l.depth == depth ? l.pixels : l.to_depth(depth).pixels);
+  }
+  const nlohmann::json packing = {{"kind", std::string(kind_name(a.lookup.kind))},
+                                  {"colors", a.lookup.colours},
+                                  {"rows", a.lookup.rows},
+                                  {"cols", a.lookup.cols},
+                                  {"tile_px", a.tile_px},
+                                  {"source", a.lookup.source}};
+  t.key_values = {{"tilekit.atlas", packing.dump()}};
+  return t;
+}
+
+AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source,
+                               const std::vector<std::pair<std::string, std::string>>& shaders) {
   const std::string stem = atlas_stem(png);
   AtlasFiles f;
   // All files or none: each is staged (written beside its target) and renamed into place only
@@ -88,11 +159,20 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
                       {"levels", levels},
                       {"tiles_dir", a.tiles_dir},
                       {"lookup", lookup_json(a.lookup)}};
+  // level 0 resampled to a power of two (resample_to_power_of_two): its size, texels a tile
+  j["power_of_two"] = a.levels[0].width != a.lookup.cols * a.tile_px || a.levels[0].height != a.lookup.rows * a.tile_px;
+  j["texels_per_tile"] = atlas_texels_per_tile(a);
+  f.ktx2 = stem + ".ktx2";
+  files.stage(f.ktx2, encode_ktx2(texture_atlas_ktx2(a)));
   f.manifest = stem + ".json";
   f.header = stem + ".h";
   f.glsl = stem + ".glsl";
   files.stage(f.header, lookup_c_header(a.lookup));
   files.stage(f.glsl, glsl_source);
+  for (const auto& [suffix, text] : shaders) {
+    f.shaders.push_back(stem + suffix);
+    files.stage(f.shaders.back(), text);
+  }
   files.stage(f.manifest, j.dump(1) + "\n");  // last: its presence means the atlas is complete
   files.commit();
   return f;
@@ -129,12 +209,16 @@ TextureAtlas read_texture_atlas(const std::string& path) {
     if (!parse_colour_space(space->string(16), a.colour_space))
       throw space->error("expected \"srgb\", \"linear\" or \"normal\"");
   const fs::path dir = fs::path(manifest).parent_path();
+  const bool power_of_two = j.boolean_or("power_of_two", false);
   const JsonIn levels = j.at("levels");
   const std::size_t n = levels.array(1, 64);
   for (std::size_t k = 0; k < n; ++k) {
     const std::string file = (dir / levels[k].at("file").string(4096)).string();
-    const std::int64_t want_w = a.levels.empty() ? a.lookup.cols * tile_px : std::max(1, a.levels.back().width / 2);
-    const std::int64_t want_h = a.levels.empty() ? a.lookup.rows * tile_px : std::max(1, a.levels.back().height / 2);
+    const std::int64_t w0 = a.lookup.cols * tile_px, h0 = a.lookup.rows * tile_px;
+    const std::int64_t want_w =
+        a.levels.empty() ? (power_of_two ? nearest_power_of_two(w0) : w0) : std::max(1, a.levels.back().width / 2);
+    const std::int64_t want_h =
+        a.levels.empty() ? (power_of_two ? nearest_power_of_two(h0) : h0) : std::max(1, a.levels.back().height / 2);
     Image img = read_image(file, 4, true);
     if (!a.levels.empty() && img.depth != a.levels[0].depth) img = img.to_depth(a.levels[0].depth);
     if (img.width != want_w || img.height != want_h)

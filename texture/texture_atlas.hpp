@@ -10,6 +10,7 @@
 #include "atlas/atlas_image.hpp"
 #include "atlas/lookup.hpp"
 #include "texture/mipmap.hpp"
+#include "image/ktx2.hpp"
 
 namespace tilekit {
 
@@ -32,14 +33,37 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Im
 TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& tiles_dir,
                                  ColourSpace space = ColourSpace::Srgb);
 
+// Level-0 texels a tile: tile_px, but for an atlas resampled to a power of two
+// (resample_to_power_of_two), its width over its columns (not a whole number).
+inline float atlas_texels_per_tile(const TextureAtlas& a) {
+  return a.levels.empty() ? float(a.tile_px) : float(a.levels[0].width) / float(a.lookup.cols);
+}
+
+// The atlas with level 0 resampled (on the torus: area-weighted, wrapping) to the power of two
+// nearest its size on a log scale along each axis, and its mip chain made again: what engines
+// like (KTX2 with every level, block compression); tile_px stays the tile size of the views. The
+// sampler reads it through normalised coordinates, its level of detail through
+// atlas_texels_per_tile. Tile borders fall inside texels, so each border texel blends the two
+// tiles on either side: the atlas is a toroidal tiling, so they are a valid pair of neighbours.
+TextureAtlas resample_to_power_of_two(const TextureAtlas& a);
+
+// The atlas as one KTX2 texture (image/ktx2.hpp): every level, RGBA8 sRGB or UNORM by
+// `transfer`, the key/value data "tilekit.atlas" naming the packing (kind, colors, rows, cols,
+// tile_px, source) as JSON.
+Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a);
+
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
-// atlas.mipL.png, atlas.json (the manifest: tile size, levels, the lookup), atlas.h (C lookup
-// table) and atlas.glsl (the GLSL ES 3.0 sampler, render/glsl_sampler.hpp, with the given hash).
+// atlas.mipL.png, atlas.ktx2 (every level in one file), atlas.json (the manifest: tile size,
+// levels, colour space, the lookup), atlas.h (C lookup table) and atlas.glsl (the GLSL ES 3.0
+// sampler, render/glsl_sampler.hpp, with the given hash), and one file per entry of `shaders`
+// (the stem plus its suffix, say ".hlsl": the sampler in other languages).
 struct AtlasFiles {
   std::vector<std::string> levels;
-  std::string manifest, header, glsl;
+  std::string ktx2, manifest, header, glsl;
+  std::vector<std::string> shaders;
 };
-AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source);
+AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, const std::string& glsl_source,
+                               const std::vector<std::pair<std::string, std::string>>& shaders = {});
 // Reads an atlas written by write_texture_atlas from its level-0 PNG (or its .json manifest).
 // InputError (exit 2) naming the file for a missing or inconsistent file or a manifest whose
 // cells are not a packing (checked by the independent validator).

@@ -2,8 +2,9 @@
 // (scripts/capture-preview.sh). A capture of the page's ?capture=1 view equals `texture render`
 // of the same view within 2/255, for every method, at a seed other than the page's default (so
 // the page's own port of the seeded hash tables is exercised) with 16x anisotropic filtering on a
-// tilted view. Skipped where chromium is missing, unless TILEKIT_REQUIRE_BROWSER=1 (scripts/test.sh
-// sets it after scripts/setup.sh has installed chromium): then a missing browser fails the test.
+// tilted view; without a method in the query the page opens on tiles. Skipped where chromium is
+// missing, unless TILEKIT_REQUIRE_BROWSER=1 (scripts/test.sh sets it after scripts/setup.sh has
+// installed chromium): then a missing browser fails the test.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -34,16 +35,18 @@ TEST(PreviewBrowser, ChromiumCaptureOfEveryMethodEqualsTheRenderWithinTwo) {
                       (d / "p.html"));
   ASSERT_EQ(page.code, 0) << page.err;
   const std::string capture = std::string(TILEKIT_SOURCE_DIR) + "/scripts/capture-preview.sh";
-  for (const std::string method : {"tiles", "hex", "hpn"}) {
-    const std::string shot = d / (method + "-browser.png"), ref = d / (method + "-render.png");
-    ASSERT_EQ(std::system((capture + " " + (d / "p.html") +
-                           " 'u=37.5&v=-20&scale=0.7&seed=5&tilt=2.5&method=" + method + "' 200x150 " + shot)
+  // "": no method in the query, where the page opens on tiles
+  for (const std::string method : {"tiles", "hex", "hpn", ""}) {
+    const std::string name = method.empty() ? "default" : method;
+    const std::string shot = d / (name + "-browser.png"), ref = d / (name + "-render.png");
+    ASSERT_EQ(std::system((capture + " " + (d / "p.html") + " 'u=37.5&v=-20&scale=0.7&seed=5&tilt=2.5" +
+                           (method.empty() ? "" : "&method=" + method) + "' 200x150 " + shot)
                               .c_str()),
               0)
-        << method;
-    auto r =
-        run_cli("texture render --method " + method + " --atlas " + (d / "a.png") + " --exemplar " + (d / "ex.png") +
-                " --size 200x150 --origin 37.5,-20 --scale 0.7 --seed 5 --tilt 2.5 --quiet --out " + ref);
+        << name;
+    auto r = run_cli("texture render --method " + (method.empty() ? std::string("tiles") : method) + " --atlas " +
+                     (d / "a.png") + " --exemplar " + (d / "ex.png") +
+                     " --size 200x150 --origin 37.5,-20 --scale 0.7 --seed 5 --tilt 2.5 --quiet --out " + ref);
     ASSERT_EQ(r.code, 0) << r.err;
     const Image a = read_image(shot), b = read_image(ref);
     ASSERT_EQ(a.width, b.width);
@@ -52,8 +55,8 @@ TEST(PreviewBrowser, ChromiumCaptureOfEveryMethodEqualsTheRenderWithinTwo) {
     for (int y = 0; y < a.height; ++y)
       for (int x = 0; x < a.width; ++x)
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c])));
-    EXPECT_LE(worst, 2) << method;
-    RecordProperty(method + "_max_difference", worst);
+    EXPECT_LE(worst, 2) << name;
+    RecordProperty(name + "_max_difference", worst);
   }
 }
 

@@ -95,3 +95,37 @@ TEST(Anisotropic, GlslEqualsTheCpuWithinTwoForEveryMethodOnATiltedView) {
 
 }  // namespace
 }  // namespace tilekit
+
+namespace tilekit {
+namespace {
+
+// The hardware filter's footprint (SwiftShader's rule, anisotropic.hpp): by area, N rounded, the
+// minor axis' level through the bit-pattern log2.
+TEST(HardwareFootprint, AreaRuleRoundedTapsAndTheMinorAxisLevel) {
+  // isotropic, 2 texels a pixel: one tap at level 1 (exact: a power of two)
+  Footprint f = hardware_footprint(2.0f / 64, 0, 0, 2.0f / 64, 64, 16);
+  EXPECT_EQ(f.taps, 1);
+  EXPECT_FLOAT_EQ(f.lod, 1.0f);
+  // 8 texels along x, 2 along y: anisotropy 4, four taps along x at the level of 2 texels
+  f = hardware_footprint(8.0f / 64, 0, 0, 2.0f / 64, 64, 16);
+  EXPECT_EQ(f.taps, 4);
+  EXPECT_FLOAT_EQ(f.lod, 1.0f);
+  EXPECT_EQ(f.axis_u, std::int32_t(std::lround(8.0 / 64 * 65536)));
+  EXPECT_EQ(f.axis_v, 0);
+  // anisotropy 2.4 rounds to 2 taps (the tap rule, anisotropic_footprint, takes ceil: 3), and
+  // the level stays that of the minor axis: log2(2.4 / 2.4) = 0 at 2.4 x 1 texels
+  f = hardware_footprint(2.4f / 64, 0, 0, 1.0f / 64, 64, 16);
+  EXPECT_EQ(f.taps, 2);
+  EXPECT_NEAR(f.lod, 0.0f, 1e-6f);
+  EXPECT_EQ(anisotropic_footprint(2.4f / 64, 0, 0, 1.0f / 64, 64, 16).taps, 3);
+  // capped at the sampler's anisotropy; a degenerate footprint takes the most
+  EXPECT_EQ(hardware_footprint(40.0f / 64, 0, 0, 1.0f / 64, 64, 16).taps, 16);
+  EXPECT_EQ(hardware_footprint(4.0f / 64, 0, 4.0f / 64, 0, 64, 8).taps, 8);
+  // the bit-pattern log2 is piecewise linear between powers of two: major^2 = 3, 3^2 = 9 reads
+  // as 3 + 1/8, a quarter of it 0.78125 (log2 sqrt 3 = 0.7925)
+  f = hardware_footprint(std::sqrt(3.0f) / 64, 0, 0, std::sqrt(3.0f) / 64, 64, 1);
+  EXPECT_NEAR(f.lod, 0.78125f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace tilekit
