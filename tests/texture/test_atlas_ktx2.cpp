@@ -23,9 +23,9 @@ TEST(AtlasKtx2, HoldsEveryLevelTheColourSpaceAndThePacking) {
   const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 2);
   std::vector<Image> tiles;
   for (std::size_t i = 0; i < lookup.cells.size(); ++i) tiles.push_back(test::synthetic_image(16, 16, i + 1));
-  for (const Ktx2Transfer transfer : {Ktx2Transfer::Srgb, Ktx2Transfer::Linear}) {
-    TextureAtlas a = build_texture_atlas(lookup, tiles);
-    a.transfer = transfer;
+  for (const ColourSpace space : {ColourSpace::Srgb, ColourSpace::Linear, ColourSpace::Normal}) {
+    const TextureAtlas a = build_texture_atlas(lookup, tiles, space);
+    const Ktx2Transfer transfer = space == ColourSpace::Srgb ? Ktx2Transfer::Srgb : Ktx2Transfer::Linear;
     const AtlasFiles f = write_texture_atlas(a, d / "atlas.png", "// glsl\n");
     std::ifstream in(f.ktx2, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -41,8 +41,25 @@ TEST(AtlasKtx2, HoldsEveryLevelTheColourSpaceAndThePacking) {
     EXPECT_EQ(packing["tile_px"], 16);
     EXPECT_EQ(packing["kind"], "corner");
     // The manifest names the colour space, and reading the atlas back keeps it.
-    EXPECT_EQ(read_texture_atlas(d / "atlas.png").transfer, transfer);
+    EXPECT_EQ(read_texture_atlas(d / "atlas.png").colour_space, space);
   }
+}
+
+// 16-bit tiles: data keeps 16 bits (RGBA16 UNORM); sRGB colour has no 16-bit Vulkan format, so
+// its KTX2 levels are the atlas's rounded to 8 bits (RGBA8 sRGB).
+TEST(AtlasKtx2, SixteenBitDataStaysSixteenBitAndColourIsRoundedToEight) {
+  const AtlasLookup lookup = atlas_lookup(TileKind::Corner, 2);
+  std::vector<Image> tiles;
+  for (std::size_t i = 0; i < lookup.cells.size(); ++i) tiles.push_back(test::synthetic_image(8, 8, i + 1).to_depth(16));
+  const TextureAtlas data = build_texture_atlas(lookup, tiles, ColourSpace::Linear);
+  const Ktx2Texture kd = texture_atlas_ktx2(data);
+  EXPECT_EQ(kd.bytes_per_channel, 2);
+  for (std::size_t i = 0; i < data.levels.size(); ++i) EXPECT_EQ(kd.levels[i], data.levels[i].pixels) << "level " << i;
+  const TextureAtlas colour = build_texture_atlas(lookup, tiles, ColourSpace::Srgb);
+  const Ktx2Texture kc = texture_atlas_ktx2(colour);
+  EXPECT_EQ(kc.bytes_per_channel, 1);
+  EXPECT_EQ(kc.transfer, Ktx2Transfer::Srgb);
+  EXPECT_EQ(kc.levels[0], colour.levels[0].to_depth(8).pixels);
 }
 
 }  // namespace
