@@ -14,6 +14,7 @@
 #include "base/version.hpp"
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
+#include "cli/numeric_flags.hpp"
 
 namespace {
 
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
   cli::add_points_commands(app, ctx);
   cli::add_texture_commands(app, ctx);
   cli::add_tiled_commands(app, ctx);
+  cli::check_numeric_flags(app);  // every numeric flag through one strict parse (cli/numeric_flags.hpp)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
