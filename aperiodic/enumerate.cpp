@@ -503,7 +503,7 @@ std::vector<ChainLink> recorded_chain(const EnumerateResult& r, const std::strin
 }
 
 std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps,
-                                       TileSet* last) {
+                                       TileSet* last, const Deadline& deadline, bool* timed_out) {
   const auto& known = published_enumeration_sources();
   if (std::find(known.begin(), known.end(), source) == known.end())
     throw InputError(fmt::format("unknown source '{}' (expected one of: {})", source, fmt::join(known, ", ")));
@@ -511,12 +511,24 @@ std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vec
   std::vector<ReplayedLink> out;
   out.push_back(
       {source, "published", resolve_tile_set(source).source(), f.hash, f.set.size(), f.set.colours(), f.set.kind()});
+  if (timed_out) *timed_out = false;
   for (const std::string& step : steps) {
+    if (deadline.expired()) {
+      if (!timed_out) throw CanonicalTimeLimit();
+      *timed_out = true;
+      break;
+    }
     std::optional<StepResult> r = apply_step(f.set, step);
     if (!r)
       throw InputError(fmt::format("step '{}' does not apply to set {} ({} {} tiles)", step, f.hash, f.set.size(),
                                    kind_name(f.set.kind())));
-    f = canonical_form(r->set);
+    try {
+      f = canonical_form(r->set, 512, deadline);
+    } catch (const CanonicalTimeLimit&) {
+      if (!timed_out) throw;
+      *timed_out = true;
+      break;
+    }
     out.push_back({step, r->label, r->argument, f.hash, f.set.size(), f.set.colours(), f.set.kind()});
   }
   if (last) *last = f.set;

@@ -288,7 +288,10 @@ void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSi
   record.seconds = r.seconds;
   db.finish_run(record);
   out.stored = sink.added();
-  if (out.method == "search" && !o.run.checkpoint_path.empty()) out.checkpoint = o.run.checkpoint_path;
+  // Named only when this run wrote it: a signal before the search (a database lookup, a
+  // construction) keeps nothing, and the CLI's message must say so.
+  if (out.method == "search" && !o.run.checkpoint_path.empty() && r.checkpoints > 0)
+    out.checkpoint = o.run.checkpoint_path;
   if (!r.found.empty())
     if (auto sym = PackingSymmetry::for_problem(out.problem)) {
       std::uint64_t orbit = 0;
@@ -400,6 +403,8 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
         "probes",
         "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
         "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
+  if (!a.run.resume_path.empty())
+    throw RequestError("probes", "`probes` measures the candidates afresh: it does not continue a checkpoint (`resume`)");
   o.run.threads = resolve_threads(o.run.threads);
   PortfolioOptions po;
   po.candidates = a.candidates;

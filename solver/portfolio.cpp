@@ -536,6 +536,9 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
   const std::vector<std::string> names = portfolio.candidates.empty()
                                              ? default_candidates(problem.set.kind(), problem.set.colours())
                                              : portfolio.candidates;
+  std::set<std::string> seen;  // refused as a run refuses them (Scheduler::start)
+  for (const std::string& name : names)
+    if (!seen.insert(name).second) throw InputError(fmt::format("portfolio candidate '{}' is listed twice", name));
   std::vector<CandidateEstimate> out;
   // The run's own time limit bounds every probe and slice together; a signal ends the list.
   const Deadline deadline(options.run.time_limit);
