@@ -15,6 +15,7 @@
 #include "packing/find_packing.hpp"
 #include "packing/solution_sink.hpp"
 #include "results/results_db.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/impose_domain.hpp"
 #include "solver/portfolio.hpp"
 #include "solver/solve.hpp"
@@ -306,6 +307,8 @@ void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSi
 PackOutcome run_pack(PackRequest request, const PackFields& given) {
   std::optional<SignalCatcher> signals;  // from here to the outcome: a signal always ends in `interrupted`
   if (request.run.catch_signals) signals.emplace();
+  // A lift's base file is stored absolute, so that `pack --resume F` works from any directory.
+  if (request.set.empty() && request.kind != "window") request.lift = lift_with_absolute_base(request.lift);
   if (!request.run.resume_path.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
     CheckpointFile f = read_checkpoint_file(request.run.resume_path);
     request = resume_request(request, given, f.request, request.run.resume_path);
