@@ -52,8 +52,8 @@ Tile4 mirror(TileKind kind, const Tile4& t) {
 // N/S colours and E/W colours are two classes relabelled separately, a corner set's one.
 class Canonizer {
  public:
-  Canonizer(TileKind kind, const std::vector<Tile4>& tiles, std::size_t max_leaves)
-      : kind_(kind), max_leaves_(max_leaves) {
+  Canonizer(TileKind kind, const std::vector<Tile4>& tiles, std::size_t max_leaves, const Deadline& deadline)
+      : kind_(kind), max_leaves_(max_leaves), deadline_(deadline) {
     std::map<std::pair<int, Colour>, std::uint32_t> id;
     for (const Tile4& t : tiles)
       for (int j = 0; j < 4; ++j) id.emplace(std::pair{slot_class(j), t[j]}, 0);
@@ -91,6 +91,7 @@ class Canonizer {
     const std::size_t n = cell.size();
     std::size_t cells = count_cells(cell);
     for (;;) {
+      if (deadline_.expired()) throw CanonicalTimeLimit();
       std::vector<std::vector<std::uint64_t>> sig(n);
       for (std::size_t v = 0; v < n; ++v) {
         for (auto [k, j] : occurs_[v]) {
@@ -171,6 +172,7 @@ class Canonizer {
   static constexpr std::uint32_t kNone = ~0u;
   TileKind kind_;
   std::size_t max_leaves_;
+  Deadline deadline_;
   std::vector<Tile4> tiles_;                                   // vertex ids
   std::vector<int> class_of_;                                  // vertex -> slot class
   std::vector<std::vector<std::pair<std::uint32_t, int>>> occurs_;  // vertex -> (tile, slot)
@@ -216,9 +218,9 @@ TileSet transform(const TileSet& set, const Dihedral& g) {
   return from_tiles4(set.kind(), t, set.name(), set.source());
 }
 
-CanonicalForm relabel_canonical(const TileSet& set, std::size_t max_leaves) {
+CanonicalForm relabel_canonical(const TileSet& set, std::size_t max_leaves, const Deadline& deadline) {
   CanonicalForm f;
-  Canonizer c(set.kind(), tiles4(set), max_leaves);
+  Canonizer c(set.kind(), tiles4(set), max_leaves, deadline);
   std::vector<Tile4> tiles = c.run(&f.exact);
   assert(tiles.size() == set.size());
   f.text = canonical_text(set.kind(), tiles);
@@ -227,11 +229,11 @@ CanonicalForm relabel_canonical(const TileSet& set, std::size_t max_leaves) {
   return f;
 }
 
-CanonicalForm canonical_form(const TileSet& set, std::size_t max_leaves) {
+CanonicalForm canonical_form(const TileSet& set, std::size_t max_leaves, const Deadline& deadline) {
   CanonicalForm best;
   bool first = true, exact = true;
   for (const Dihedral& g : Dihedral::all()) {
-    CanonicalForm f = relabel_canonical(transform(set, g), max_leaves);
+    CanonicalForm f = relabel_canonical(transform(set, g), max_leaves, deadline);
     exact = exact && f.exact;
     if (first || f.text < best.text) {
       best = std::move(f);

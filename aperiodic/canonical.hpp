@@ -13,9 +13,11 @@
 // form found within it (`exact` false): still a relabelled copy of the set, so two sets with equal
 // forms are always isomorphic; only the converse may fail (a duplicate is then expanded twice).
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "base/run_control.hpp"
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {
@@ -43,10 +45,16 @@ struct CanonicalForm {
   bool exact = true;  // false: the branching budget was hit (see the header)
 };
 
+// Thrown by the canonical forms when their deadline passes (a set of thousands of tiles, whose
+// refinement alone takes minutes): the caller reports how far it got.
+struct CanonicalTimeLimit : std::runtime_error {
+  CanonicalTimeLimit() : std::runtime_error("the time limit passed while computing a canonical form") {}
+};
+
 // Canonical form up to colour relabelling and tile order only (no dihedral images).
-CanonicalForm relabel_canonical(const TileSet& set, std::size_t max_leaves = 512);
+CanonicalForm relabel_canonical(const TileSet& set, std::size_t max_leaves = 512, const Deadline& deadline = {});
 // Canonical form up to the dihedral group, colour relabelling and tile order.
-CanonicalForm canonical_form(const TileSet& set, std::size_t max_leaves = 512);
+CanonicalForm canonical_form(const TileSet& set, std::size_t max_leaves = 512, const Deadline& deadline = {});
 
 // The set a canonical text describes (name enum-HASH). InputError naming `origin` when the text
 // is not of that form (a kind line, then four colours per line).

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <deque>
-#include <functional>
+#include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -97,36 +98,111 @@ std::vector<SourceBest> smallest_per_source(const ConversionGraph& g) {
   return result;
 }
 
+namespace {
+
+// The sound edges as an index graph with one extra node S before every published set, so that
+// a chain is a simple path from S to the target (its first, virtual, edge names the source).
+struct SoundGraph {
+  std::vector<std::string> hashes;            // node -> hash; node n = S
+  std::vector<std::pair<int, int>> ends;      // edge -> (from, to); real edges first, then S's
+  std::vector<const GraphEdge*> edge;         // real edges (nullptr for S's)
+  std::vector<std::vector<int>> out;          // node -> edges, in (from, step) order
+  int s = 0;
+};
+
+SoundGraph sound_graph(const ConversionGraph& g) {
+  SoundGraph x;
+  std::map<std::string, int> id;
+  for (const auto& [h, set] : g.sets) id[h] = int(x.hashes.size()), x.hashes.push_back(h);
+  x.s = int(x.hashes.size());
+  x.out.resize(x.hashes.size() + 1);
+  auto add = [&](int from, int to, const GraphEdge* e) {
+    x.out[std::size_t(from)].push_back(int(x.ends.size()));
+    x.ends.push_back({from, to});
+    x.edge.push_back(e);
+  };
+  for (const GraphEdge& e : g.edges)
+    if (sound_label(e.label) && id.count(e.from) && id.count(e.to)) add(id.at(e.from), id.at(e.to), &e);
+  for (const auto& [h, set] : g.sets)
+    if (!set.source.empty()) add(x.s, id.at(h), nullptr);
+  return x;
+}
+
+// A shortest path (fewest edges) from `from` to `to` avoiding the blocked nodes and edges;
+// breadth first in edge order, so the same graph gives the same path. Empty when there is none.
+std::optional<std::vector<int>> shortest_path(const SoundGraph& x, int from, int to, const std::vector<char>& blocked_node,
+                                              const std::set<int>& blocked_edge) {
+  std::vector<int> via(x.out.size(), -1);
+  std::vector<char> seen(x.out.size(), 0);
+  std::deque<int> todo{from};
+  seen[std::size_t(from)] = 1;
+  while (!todo.empty() && !seen[std::size_t(to)]) {
+    const int v = todo.front();
+    todo.pop_front();
+    for (int e : x.out[std::size_t(v)]) {
+      const int w = x.ends[std::size_t(e)].second;
+      if (seen[std::size_t(w)] || blocked_node[std::size_t(w)] || blocked_edge.count(e)) continue;
+      seen[std::size_t(w)] = 1;
+      via[std::size_t(w)] = e;
+      todo.push_back(w);
+    }
+  }
+  if (!seen[std::size_t(to)]) return std::nullopt;
+  std::vector<int> path;
+  for (int v = to; v != from; v = x.ends[std::size_t(via[std::size_t(v)])].first) path.push_back(via[std::size_t(v)]);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace
+
+// Yen's k shortest simple paths (Yen 1971, "Finding the K shortest loopless paths in a network"),
+// with breadth-first search for the unit-length spur paths: at most `limit` paths, each found with
+// at most (its length) searches of the graph, so the work is bounded by limit x length x edges
+// however dense the graph is (every simple path of a dense graph is exponentially many).
 std::vector<StoredChain> sound_chains_to(const ConversionGraph& g, const std::string& hash, std::size_t limit) {
   if (!g.sets.count(hash)) throw NotFound(fmt::format("no tile set with content hash {} in the database", hash));
-  std::map<std::string, std::vector<const GraphEdge*>> in;
-  for (const GraphEdge& e : g.edges)
-    if (sound_label(e.label)) in[e.to].push_back(&e);
-  std::vector<StoredChain> chains;
-  std::vector<GraphEdge> path;  // backwards from the target
-  std::set<std::string> on_path{hash};
-  // Depth-first backwards over sound edges; every simple path that ends at a published set.
-  std::function<void(const std::string&)> walk = [&](const std::string& h) {
-    if (chains.size() >= 100000) return;
-    const GraphSet& s = g.sets.at(h);
-    if (!s.source.empty()) {
-      StoredChain c{s.source, {path.rbegin(), path.rend()}};
-      chains.push_back(std::move(c));
-    }
-    for (const GraphEdge* e : in[h]) {
-      if (on_path.count(e->from)) continue;
-      on_path.insert(e->from);
-      path.push_back(*e);
-      walk(e->from);
-      path.pop_back();
-      on_path.erase(e->from);
-    }
+  const SoundGraph x = sound_graph(g);
+  const int target = int(std::find(x.hashes.begin(), x.hashes.end(), hash) - x.hashes.begin());
+  auto nodes_of = [&](const std::vector<int>& path) {
+    std::vector<int> n{x.s};
+    for (int e : path) n.push_back(x.ends[std::size_t(e)].second);
+    return n;
   };
-  walk(hash);
+  std::vector<std::vector<int>> found;
+  std::set<std::pair<std::size_t, std::vector<int>>> candidates;  // by length, then edges
+  std::vector<char> none(x.out.size(), 0);
+  if (auto first = shortest_path(x, x.s, target, none, {}); first && limit > 0) found.push_back(*first);
+  while (!found.empty() && found.size() < limit) {
+    const std::vector<int>& last = found.back();
+    const std::vector<int> on_last = nodes_of(last);
+    for (std::size_t i = 0; i < last.size(); ++i) {
+      const std::vector<int> root(last.begin(), last.begin() + std::ptrdiff_t(i));
+      std::set<int> blocked_edge;
+      for (const auto& p : found)
+        if (p.size() > i && std::equal(root.begin(), root.end(), p.begin())) blocked_edge.insert(p[i]);
+      std::vector<char> blocked_node(x.out.size(), 0);
+      for (std::size_t k = 0; k < i; ++k) blocked_node[std::size_t(on_last[k])] = 1;
+      if (auto spur = shortest_path(x, on_last[i], target, blocked_node, blocked_edge)) {
+        std::vector<int> path = root;
+        path.insert(path.end(), spur->begin(), spur->end());
+        candidates.insert({path.size(), std::move(path)});
+      }
+    }
+    if (candidates.empty()) break;
+    found.push_back(candidates.begin()->second);
+    candidates.erase(candidates.begin());
+  }
+  std::vector<StoredChain> chains;
+  for (const auto& p : found) {
+    StoredChain c;
+    c.source = g.sets.at(x.hashes[std::size_t(x.ends[std::size_t(p.front())].second)]).source;
+    for (std::size_t k = 1; k < p.size(); ++k) c.links.push_back(*x.edge[std::size_t(p[k])]);
+    chains.push_back(std::move(c));
+  }
   std::stable_sort(chains.begin(), chains.end(), [](const StoredChain& a, const StoredChain& b) {
     return std::make_tuple(a.links.size(), a.source) < std::make_tuple(b.links.size(), b.source);
   });
-  if (chains.size() > limit) chains.resize(limit);
   return chains;
 }
 

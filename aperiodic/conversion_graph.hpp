@@ -48,8 +48,9 @@ struct SourceBest {
 };
 std::vector<SourceBest> smallest_per_source(const ConversionGraph& g);
 
-// Every sound chain (simple paths of sound edges) from a published source to `hash`, shortest
-// first, at most `limit`. InputError when the graph has no such set.
+// The `limit` shortest sound chains (simple paths of sound edges) from a published source to
+// `hash`, shortest first (Yen's k shortest loopless paths: the work is bounded by limit x chain
+// length x edges, however dense the graph). NotFound when the graph has no such set.
 std::vector<StoredChain> sound_chains_to(const ConversionGraph& g, const std::string& hash, std::size_t limit);
 
 }  // namespace tilekit

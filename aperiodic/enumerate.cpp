@@ -192,6 +192,53 @@ State read_state(const std::string& path) {
   return decode_state(read_checkpoint_envelope(path, kMagic, kVersion, kVersion), path);
 }
 
+// A checkpoint's claims re-derived before a resumed run builds on them: every published set is
+// its source's canonical form at depth 0, every sound edge is what its step gives (set and label,
+// apply_step again), and every set's shortest sound link is such an edge, one deeper than its
+// parent. The envelope's checksum only catches damage, not a relabelled node written with a fresh
+// checksum, so a checkpoint that claims a link its step does not give is refused here (InputError
+// naming the link). Unsound edges are not re-derived: they only ever make a set a lead.
+void rederive_state(const State& s, const std::vector<std::string>& sources, int threads, const std::string& origin) {
+  auto refuse = [&](const std::string& what) {
+    throw InputError(fmt::format("checkpoint {}: {} (the checkpoint is refused: its links must re-derive)", origin, what));
+  };
+  const EnumerateResult& r = s.r;
+  for (const auto& [h, n] : r.nodes) {
+    if (n.label == "published") {
+      if (std::find(sources.begin(), sources.end(), n.root) == sources.end())
+        refuse(fmt::format("set {} claims the source '{}', which is not one of this run's", h, n.root));
+      if (canonical_form(resolve_tile_set(n.root)).hash != h || n.depth != 0 || !n.parent.empty())
+        refuse(fmt::format("set {} is not the published set {}", h, n.root));
+      continue;
+    }
+    if (n.parent.empty()) {
+      if (n.depth >= 0) refuse(fmt::format("set {} has depth {} but no link", h, n.depth));
+      continue;
+    }
+    auto e = r.edges.find({n.parent, n.step});
+    const EnumNode& p = r.nodes.at(n.parent);
+    if (e == r.edges.end() || e->second.to != h || e->second.label != n.label || !sound_label(n.label) ||
+        p.depth < 0 || n.depth != p.depth + 1 || n.root != p.root)
+      refuse(fmt::format("the link {} -[{}]-> {} ({}) is not a recorded sound edge one deeper than its parent",
+                         n.parent, n.step, h, n.label));
+  }
+  std::vector<const EnumEdge*> sound;
+  for (const auto& [k, e] : r.edges)
+    if (sound_label(e.label)) sound.push_back(&e);
+  std::vector<std::string> wrong(sound.size());
+  parallel_for(std::int64_t(sound.size()), threads, [&](std::int64_t i) {
+    const EnumEdge& e = *sound[std::size_t(i)];
+    const EnumNode& from = r.nodes.at(e.from);
+    std::optional<StepResult> x = apply_step(set_from_canonical_text(from.text, origin), e.step);
+    const std::string hash = x ? canonical_form(x->set).hash : std::string();
+    if (!x || x->label != e.label || hash != e.to)
+      wrong[std::size_t(i)] = fmt::format("the link {} -[{}]-> {} ({}) re-derives to {}", e.from, e.step, e.to,
+                                          e.label, x ? hash + " (" + x->label + ")" : std::string("nothing"));
+  });
+  for (const std::string& w : wrong)
+    if (!w.empty()) refuse(w);
+}
+
 std::string digest_of(const EnumerateResult& r) {
   StableHash h;
   for (const auto& [hash, n] : r.nodes) h.add("S " + hash + " " + n.label + "\n");
@@ -344,6 +391,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     State old = read_state(o.resume_path);
     if (std::string diff = fingerprint_difference(st.fingerprint, old.fingerprint); !diff.empty())
       throw InputError(fmt::format("checkpoint {} does not match this run: {}", o.resume_path, diff));
+    rederive_state(old, sources, threads, o.resume_path);
     st = std::move(old);
     st.r.resumed = true;
   }
@@ -465,7 +513,7 @@ std::vector<ChainLink> recorded_chain(const EnumerateResult& r, const std::strin
 }
 
 std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps,
-                                       TileSet* last) {
+                                       TileSet* last, const Deadline& deadline, bool* timed_out) {
   const auto& known = published_enumeration_sources();
   if (std::find(known.begin(), known.end(), source) == known.end())
     throw InputError(fmt::format("unknown source '{}' (expected one of: {})", source, fmt::join(known, ", ")));
@@ -473,12 +521,24 @@ std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vec
   std::vector<ReplayedLink> out;
   out.push_back(
       {source, "published", resolve_tile_set(source).source(), f.hash, f.set.size(), f.set.colours(), f.set.kind()});
+  if (timed_out) *timed_out = false;
   for (const std::string& step : steps) {
+    if (deadline.expired()) {
+      if (!timed_out) throw CanonicalTimeLimit();
+      *timed_out = true;
+      break;
+    }
     std::optional<StepResult> r = apply_step(f.set, step);
     if (!r)
       throw InputError(fmt::format("step '{}' does not apply to set {} ({} {} tiles)", step, f.hash, f.set.size(),
                                    kind_name(f.set.kind())));
-    f = canonical_form(r->set);
+    try {
+      f = canonical_form(r->set, 512, deadline);
+    } catch (const CanonicalTimeLimit&) {
+      if (!timed_out) throw;
+      *timed_out = true;
+      break;
+    }
     out.push_back({step, r->label, r->argument, f.hash, f.set.size(), f.set.colours(), f.set.kind()});
   }
   if (last) *last = f.set;

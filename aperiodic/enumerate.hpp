@@ -111,6 +111,9 @@ std::vector<ChainLink> recorded_chain(const EnumerateResult& r, const std::strin
 
 // Applies steps one by one from a built-in source, each to the canonical form of the last result
 // (aperiodic link). InputError for an unknown source or step, or a step that does not apply.
+// With a deadline, the replay stops when it passes (checked between steps and inside the
+// canonical forms, whose refinement of a set of thousands of tiles takes minutes): the links
+// re-derived so far are returned and *timed_out is set (`last` is then the last one's set).
 struct ReplayedLink {
   std::string step, label, argument, hash;
   std::size_t tiles = 0;
@@ -118,6 +121,7 @@ struct ReplayedLink {
   TileKind kind = TileKind::Wang;
 };
 std::vector<ReplayedLink> replay_chain(const std::string& source, const std::vector<std::string>& steps,
-                                       TileSet* last = nullptr);
+                                       TileSet* last = nullptr, const Deadline& deadline = {},
+                                       bool* timed_out = nullptr);
 
 }  // namespace tilekit

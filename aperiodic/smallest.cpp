@@ -74,20 +74,33 @@ CornerSetCandidate rederive_chain(const RecordedChain& record) {
   std::vector<ReplayedLink> links = replay_chain(record.source, record.steps, &c.set);
   std::set<std::string> labels;
   std::vector<std::string> steps;
+  // Link i by the steps that re-derive it: what a user reruns (`aperiodic link`) to see it.
+  auto link_name = [&](std::size_t i) {
+    if (i == 0) return fmt::format("link 0 (the source {})", record.source);
+    if (i == 1) return fmt::format("link 1 (step {} from {})", links[i].step, record.source);
+    return fmt::format("link {} (step {} after {})", i, links[i].step,
+                       fmt::join(record.steps.begin(), record.steps.begin() + std::ptrdiff_t(i - 1), ","));
+  };
   for (std::size_t i = 0; i < links.size(); ++i) {
     const ReplayedLink& l = links[i];
     if (!sound_label(l.label))
-      throw std::logic_error(fmt::format("the recorded chain from {}: step '{}' is now labelled {}, not sound",
-                                         record.source, l.step, l.label));
+      throw InputError(fmt::format("the chain from {}: {} re-derives with the label {}, which is not sound",
+                                   record.source, link_name(i), l.label));
     if (i > 0) steps.push_back(l.step), labels.insert(l.label);
     c.chain.push_back({l.step, l.hash, l.tiles, l.colours, std::string(kind_name(l.kind)), l.label, l.argument,
                        LinkDerivation{record.source, steps}});
   }
+  const std::size_t last = links.size() - 1;
   if (links.back().hash != record.set)
-    throw std::logic_error(fmt::format("the recorded chain from {} ({}) now gives set {}, not the recorded {}",
-                                       record.source, fmt::join(record.steps, ","), links.back().hash, record.set));
+    throw InputError(fmt::format("the chain from {}: {} re-derives to set {}, not the recorded set {}", record.source,
+                                 link_name(last), links.back().hash, record.set));
   if (c.set.kind() != TileKind::Corner)
-    throw std::logic_error(fmt::format("the recorded chain from {} ends in a Wang set", record.source));
+    throw InputError(fmt::format("the chain from {}: {} re-derives to a Wang set, not a corner set", record.source,
+                                 link_name(last)));
+  if (c.set.size() != record.tiles || c.set.colours() != record.colours)
+    throw InputError(fmt::format("the chain from {}: {} re-derives to {} tiles and {} colours, not the recorded {} and {}",
+                                 record.source, link_name(last), c.set.size(), c.set.colours(), record.tiles,
+                                 record.colours));
   c.tiles = c.set.size();
   c.colours = c.set.colours();
   c.soundness = fmt::format("{}", fmt::join(labels, "+"));

@@ -64,9 +64,9 @@ struct CornerSetCandidate {
 };
 
 // Replays the record's steps from its source (aperiodic link) and checks every link: a sound
-// label, and the last set is the recorded one, a corner set. std::logic_error when a check
-// fails (a change to a step that the record no longer matches); InputError for an unknown
-// source or step.
+// label, and the last set is the recorded one (its tiles and colours), a corner set. Every
+// failure is an InputError naming the link (a record is input: a file, a database row, or the
+// embedded record after a change to a step), as is an unknown source or step.
 CornerSetCandidate rederive_chain(const RecordedChain& record);
 
 // Published aperiodic Wang sets (built-in names) of the thesis' tables.

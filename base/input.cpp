@@ -1,6 +1,9 @@
 #include "base/input.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -12,22 +15,40 @@
 
 namespace tilekit {
 
+// The file is opened first (O_NONBLOCK: opening a FIFO never waits for a writer) and checked
+// on the open descriptor (fstat), so a FIFO, a device or a link to /dev/urandom swapped in
+// after a check by name is still refused, and at most max_bytes + 1 bytes are ever read, so a
+// file that grows while it is read is refused too.
 std::string read_input_file(const std::string& path, std::string_view what, std::uint64_t max_bytes) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) throw InputError(fmt::format("{}: no such {}", path, what));
-  if (!fs::is_regular_file(st)) throw InputError(fmt::format("{}: not a regular file (expected a {})", path, what));
-  const std::uint64_t size = fs::file_size(path, ec);
-  if (ec) throw InputError(fmt::format("{}: cannot read the {} ({})", path, what, ec.message()));
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT || errno == ENOTDIR) throw InputError(fmt::format("{}: no such {}", path, what));
+    throw InputError(fmt::format("{}: cannot open the {} ({})", path, what, std::strerror(errno)));
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0)
+    throw InputError(fmt::format("{}: cannot read the {} ({})", path, what, std::strerror(errno)));
+  if (!S_ISREG(st.st_mode)) throw InputError(fmt::format("{}: not a regular file (expected a {})", path, what));
+  const std::uint64_t size = std::uint64_t(st.st_size);
   if (size > max_bytes)
     throw InputError(fmt::format("{}: the {} is {} bytes, more than the limit of {} bytes", path, what, size, max_bytes));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the {} ({})", path, what, std::strerror(errno)));
   std::string text(std::size_t(size), '\0');
-  in.read(text.data(), std::streamsize(size));
-  if (in.bad() || std::uint64_t(in.gcount()) != size)
-    throw InputError(fmt::format("{}: cannot read the {} (it changed while being read)", path, what));
+  std::size_t got = 0;
+  for (;;) {
+    if (got == text.size()) text.resize(got + 1);  // one byte more: does it end where it said?
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError(fmt::format("{}: cannot read the {} ({})", path, what, std::strerror(errno)));
+    if (n == 0) break;
+    got += std::size_t(n);
+    if (got > size) throw InputError(fmt::format("{}: cannot read the {} (it changed while being read)", path, what));
+  }
+  if (got != size) throw InputError(fmt::format("{}: cannot read the {} (it changed while being read)", path, what));
+  text.resize(got);
   return text;
 }
 

@@ -43,6 +43,8 @@ class Deadline {
   using Clock = std::chrono::steady_clock;
   Deadline() = default;
   // `seconds` after `from`; none for 0, a negative or NaN value, or one beyond kMaxTimeLimitSeconds.
+  // (A library's tolerance: every `--time-limit` flag refuses a negative, NaN or infinite value
+  // before a run starts, cli/numeric_flags.hpp, and 0 means none there too.)
   explicit Deadline(double seconds, Clock::time_point from = Clock::now());
   static Deadline at(Clock::time_point when) {
     Deadline d;

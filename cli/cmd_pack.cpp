@@ -280,7 +280,8 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   add_json_flag(cmd, ctx);
   cmd->footer(
       "`tilekit pack --resume FILE [--db DB]` alone continues the run FILE describes.\n"
-      "Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted (checkpoint written).");
+      "Exit codes: 0 ok, 1 no packing found, 2 bad input or checkpoint, 3 interrupted by a signal (its one line "
+      "says whether a checkpoint was written: \"checkpoint written to F\" or \"nothing kept\").");
   cmd->callback([a, cmd, &ctx] { run_pack_command(*a, *cmd, ctx); });
 }
 

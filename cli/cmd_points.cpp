@@ -18,6 +18,7 @@
 #include "base/progress.hpp"
 #include "base/resources.hpp"
 #include "base/signals.hpp"
+#include "cli/numeric_flags.hpp"
 #include "cli/run_options.hpp"
 #include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
@@ -284,9 +285,11 @@ void add_generate_command(CLI::App* points, Context& ctx) {
                   "the density of black)")
       ->required();
   cmd->add_option("--density-expr", a->density_expr,
-                  "recursive: density as an expression in x, y, e.g. '2000 * exp(-20 * ((x-0.5)^2 + (y-0.5)^2))'");
+                  "recursive: density as an expression in x, y, e.g. '2000 * exp(-20 * ((x-0.5)^2 + (y-0.5)^2))'")
+      ->check(non_empty_text());
   cmd->add_option("--density-image", a->density_image,
-                  "recursive: density from a grey image over the window (dark = dense)");
+                  "recursive: density from a grey image over the window (dark = dense)")
+      ->check(non_empty_text());
   cmd->add_flag("--invert", a->invert, "--density-image: light = dense");
   add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed, a->run);
   cmd->add_option("--period", a->period, "Repeat the tiling every M tiles (a toroidal set)")

@@ -18,6 +18,7 @@
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "cli/cmd_points.hpp"
+#include "cli/numeric_flags.hpp"
 #include "points/analysis_plot.hpp"
 #include "points/analysis_radius.hpp"
 #include "points/point_io.hpp"
@@ -180,7 +181,8 @@ void add_analyze(CLI::App* points, Context& ctx) {
   auto a = std::make_shared<AnalyzeArgs>();
   cmd->add_option("file", a->file, "Points: .f32/.bin (float32 x,y pairs), .f64 (float64) or .csv")->required();
   cmd->add_option("--window", a->window, "x0,y0,x1,y1 the set covers (default: its bounding box)");
-  cmd->add_option("--tile-size", a->tile_size, "Tile side: also measure rho inside tiles and across tile borders");
+  cmd->add_option("--tile-size", a->tile_size, "Tile side: also measure rho inside tiles and across tile borders")
+      ->check(positive_number());
   cmd->add_option("--spectrum", a->spectrum, "Periodogram picture (.png) of the largest square at the window's corner");
   cmd->add_option("--plot", a->plot, "Radially averaged power and anisotropy (.png or .svg)");
   cmd->add_option("--zoneplate", a->zoneplate, "Zone plate sampled at the points (.png, thesis sec. 6.2.3)");

@@ -8,6 +8,7 @@
 #include "base/error.hpp"
 #include "base/resources.hpp"
 #include "cli/cmd_points.hpp"
+#include "cli/numeric_flags.hpp"
 #include "points/generation_plan.hpp"
 #include "points/reference_sets.hpp"
 #include "points/tile_set_file.hpp"
@@ -37,7 +38,8 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
       ->check(CLI::Range(2, 8));
   cmd->add_option("--levels", a.levels, "recursive: subdivision levels below the base tiles at most (default 20)")
       ->check(CLI::Range(0, 40));
-  cmd->add_option("--base-tile", a.base_tile, "recursive: side of the base tiles (default: sqrt(2.5 N / density))");
+  cmd->add_option("--base-tile", a.base_tile, "recursive: side of the base tiles (default: sqrt(2.5 N / density))")
+      ->check(positive_number());
   cmd->add_option("--hash", a.hash, "Lattice hash of the direct stochastic tiling: perm | long-period (default)");
   cmd->add_option("--db", a.db, "Results database for --tiles db:ID (default: $TILEKIT_DB or the per-user one)");
 }

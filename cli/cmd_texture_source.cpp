@@ -7,6 +7,7 @@
 #include "base/error.hpp"
 #include "base/parse.hpp"
 #include "cli/cmd_texture.hpp"
+#include "cli/numeric_flags.hpp"
 #include "render/anisotropic.hpp"
 #include "texture/exemplar.hpp"
 
@@ -21,7 +22,8 @@ void add_source_options(CLI::App* cmd, SourceArgs& a) {
   cmd->add_option("--exemplar", a.exemplar,
                   "Exemplar of hex and hpn (PNG or JPEG, or a fetched real texture by name: brick, grass, gravel)");
   cmd->add_option("--cell-px", a.cell_px,
-                  "hex/hpn: triangle side in texels (default: the papers' scale, min(width, height) / (2 sqrt 3))");
+                  "hex/hpn: triangle side in texels (default: the papers' scale, min(width, height) / (2 sqrt 3))")
+      ->check(positive_number());
   cmd->add_option("--hash", a.hash, "Lattice hash of the tiling and of the patch centres: perm or long-period")
       ->capture_default_str();
   cmd->add_option("--seed", a.seed, "Seed of that hash")->capture_default_str();

@@ -15,6 +15,7 @@
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
 #include "cli/io_policy.hpp"
+#include "cli/numeric_flags.hpp"
 
 namespace {
 
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
   cli::add_tiled_commands(app, ctx);
   cli::add_fill_command(app, ctx);
   cli::install_io_policy(app);  // outputs checked against inputs and the file system before any work
+  cli::check_numeric_flags(app);  // every numeric flag through one strict parse (cli/numeric_flags.hpp)
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -7,6 +7,7 @@
 
 #include "base/error.hpp"
 #include "base/parse.hpp"
+#include "cli/numeric_flags.hpp"
 
 namespace tilekit::cli {
 
@@ -40,12 +41,16 @@ void add_run_options(CLI::App* cmd, RunOptionFlags which, RunOptions& o) {
     cmd->add_option("--seed", o.seed, "Seed: the same seed gives the same result on any thread count")
         ->capture_default_str();
   if (has(which, F::TimeLimit))
-    cmd->add_option("--time-limit", o.time_limit, "Stop after this many seconds (0 = none)")->capture_default_str();
+    cmd->add_option("--time-limit", o.time_limit, "Stop after this many seconds (0 = none)")
+        ->check(non_negative_seconds())
+        ->capture_default_str();
   if (has(which, F::Checkpoint)) {
     cmd->add_option("--checkpoint", o.checkpoint,
                     "Write checkpoints to this file (atomically: every --checkpoint-every s, at the end, and on "
                     "SIGTERM/SIGINT/SIGUSR1, which then exit 3)");
-    cmd->add_option("--checkpoint-every", o.checkpoint_every, "Seconds between checkpoints")->capture_default_str();
+    cmd->add_option("--checkpoint-every", o.checkpoint_every, "Seconds between checkpoints")
+        ->check(non_negative_seconds())
+        ->capture_default_str();
     cmd->add_option("--resume", o.resume, "Continue the run this checkpoint holds");
   }
   if (has(which, F::Shard))

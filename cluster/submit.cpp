@@ -74,18 +74,36 @@ std::string sbatch(const std::string& sbatch_cmd, const std::vector<std::string>
   return id;
 }
 
+// A first submission that fails before its array job is queued (sbatch missing or refusing)
+// leaves nothing behind: the run directory it made is removed, or, when the directory was there
+// (empty) before, what it wrote into it. A later submission of the same run keeps its files.
 Submission submit_run(const ClusterPlan& p, const std::string& sbatch_command) {
   const fs::path dir(p.run_dir);
   nlohmann::json record = resumed_record(p, dir);
-  fs::create_directories(dir / "shards");
-  fs::create_directories(dir / "logs");
-  for (const JobScript& s : job_scripts(p)) write_script(dir / s.name, s.text);
-  write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
-
+  std::error_code ec;
+  const bool fresh = !fs::exists(dir / "run.json", ec), had_dir = fs::exists(dir, ec);
+  std::vector<fs::path> made{dir / "shards", dir / "logs", dir / "run.json"};
   Submission out;
-  out.array_job = sbatch(sbatch_command, {(dir / "pack-array.sbatch").string()});
+  try {
+    fs::create_directories(dir / "shards");
+    fs::create_directories(dir / "logs");
+    for (const JobScript& s : job_scripts(p)) made.push_back(dir / s.name), write_script(dir / s.name, s.text);
+    write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
+    out.array_job = sbatch(sbatch_command, {(dir / "pack-array.sbatch").string()});
+  } catch (...) {
+    if (fresh && !had_dir) fs::remove_all(dir, ec);
+    if (fresh && had_dir)
+      for (const fs::path& f : made) fs::remove_all(f, ec);
+    throw;
+  }
   const std::string after = "--dependency=afterok:" + out.array_job;  // sbatch's: not a tilekit flag
-  out.merge_job = sbatch(sbatch_command, {after, (dir / "merge.sbatch").string()});
+  try {
+    out.merge_job = sbatch(sbatch_command, {after, (dir / "merge.sbatch").string()});
+  } catch (...) {  // the array job is queued: its run file says so, and the error goes on
+    record["submissions"].push_back({{"array_job", out.array_job}, {"merge_job", nullptr}, {"time", utc_now()}});
+    write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
+    throw;
+  }
   record["submissions"].push_back({{"array_job", out.array_job}, {"merge_job", out.merge_job}, {"time", utc_now()}});
   write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
   out.submissions = record["submissions"].size();

@@ -19,6 +19,10 @@ set(TILEKIT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Tilekit)
 install(TARGETS tilekit RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(FILES README.md BENCHMARKS.md docs/TESTING.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 install(DIRECTORY docs/images DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+# The tile sets with a known status (aperiodic/data/: periodic, finite, hard; their sources in its
+# README), which the README's `aperiodic verify` examples read: share/tilekit/aperiodic/data.
+install(DIRECTORY aperiodic/data/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tilekit/aperiodic/data COMPONENT runtime
+        FILES_MATCHING PATTERN "*.tiles" PATTERN "README.md")
 
 install(TARGETS ${TILEKIT_INSTALLED_LIBRARIES} EXPORT TilekitTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)

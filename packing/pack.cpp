@@ -15,6 +15,7 @@
 #include "packing/find_packing.hpp"
 #include "packing/solution_sink.hpp"
 #include "results/results_db.hpp"
+#include "solver/colour_lift_model.hpp"
 #include "solver/impose_domain.hpp"
 #include "solver/portfolio.hpp"
 #include "solver/solve.hpp"
@@ -290,7 +291,10 @@ void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSi
   record.seconds = r.seconds;
   db.finish_run(record);
   out.stored = sink.added();
-  if (out.method == "search" && !o.run.checkpoint_path.empty()) out.checkpoint = o.run.checkpoint_path;
+  // Named only when this run wrote it: a signal before the search (a database lookup, a
+  // construction) keeps nothing, and the CLI's message must say so.
+  if (out.method == "search" && !o.run.checkpoint_path.empty() && r.checkpoints > 0)
+    out.checkpoint = o.run.checkpoint_path;
   if (!r.found.empty())
     if (auto sym = PackingSymmetry::for_problem(out.problem)) {
       std::uint64_t orbit = 0;
@@ -305,6 +309,8 @@ void finish(PackOutcome& out, ResultsDb& db, RunRecord& record, const SolutionSi
 PackOutcome run_pack(PackRequest request, const PackFields& given) {
   std::optional<SignalCatcher> signals;  // from here to the outcome: a signal always ends in `interrupted`
   if (request.run.catch_signals) signals.emplace();
+  // A lift's base file is stored absolute, so that `pack --resume F` works from any directory.
+  if (request.set.empty() && request.kind != "window") request.lift = lift_with_absolute_base(request.lift);
   if (!request.run.resume_path.empty()) {  // `--resume FILE` alone: the checkpoint says what the run is
     CheckpointFile f = read_checkpoint_file(request.run.resume_path);
     request = resume_request(request, given, f.request, request.run.resume_path);
@@ -403,6 +409,8 @@ nlohmann::json estimate_pack(const PackRequest& a, std::uint64_t probes, double 
         "probes",
         "`probes` measures the portfolio's candidates: a complete set (`kind`, `colours`), `mode` first, "
         "no `impose`, `lift`, `plain`, `formulation` or `ordering`");
+  if (!a.run.resume_path.empty())
+    throw RequestError("probes", "`probes` measures the candidates afresh: it does not continue a checkpoint (`resume`)");
   o.run.threads = resolve_threads(o.run.threads);
   PortfolioOptions po;
   po.candidates = a.candidates;

@@ -220,9 +220,15 @@ class Parser {
 class Expression : public DensityFunction {
  public:
   explicit Expression(std::string text) : text_(std::move(text)), root_(Parser(text_).parse()) {}
+  // Every evaluation is checked: an infinite or undefined density (exp(1000), 0/0, log(-1)) is
+  // bad input, never a silent 0 that would give an empty point set.
   double operator()(double x, double y) const override {
     const double v = root_.eval(x, y);
-    return v > 0 && std::isfinite(v) ? v : 0;
+    if (!std::isfinite(v))
+      throw InputError(fmt::format("density expression '{}' is {} at ({}, {}): a density must be a finite number",
+                                   text_.size() > 80 ? text_.substr(0, 77) + "..." : text_,
+                                   std::isnan(v) ? "undefined (NaN)" : "infinite", x, y));
+    return v > 0 ? v : 0;
   }
   std::string describe() const override { return text_; }
 

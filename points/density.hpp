@@ -24,7 +24,8 @@ std::unique_ptr<DensityFunction> constant_density(double d);
 
 // An expression in x, y (and r = sqrt(x^2 + y^2), pi, e) with + - * / ^, parentheses and the
 // functions sin cos tan exp log sqrt abs floor min max pow clamp(v, lo, hi). Negative values
-// count as 0. InputError naming the position of a syntax error, e.g.
+// count as 0; a value that is not finite where it is evaluated (exp(1000), 0/0, log(-1)) is an
+// InputError, as is an empty expression. InputError naming the position of a syntax error, e.g.
 // "1000 * (exp(-20 * ((x-0.5)^2 + (y-0.5)^2)) + 0.05)" (thesis Fig. 4.44, shifted to [0,1]^2).
 std::unique_ptr<DensityFunction> expression_density(const std::string& text);
 

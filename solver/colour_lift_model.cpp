@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "base/error.hpp"
 #include "tilesets/constructions.hpp"
 #include "tilesets/validator.hpp"
@@ -34,8 +36,9 @@ LiftSpec parse_lift_spec(const std::string& text) {
       spec.base_colours = std::uint32_t(m);
       have_m = true;
     } else if (key == "base") {
-      if (value.empty()) throw fail("base= needs a packing file");
-      spec.base_file = value;
+      spec.base_file = text.substr(at + 5);  // the rest of the text, commas included
+      if (spec.base_file.empty()) throw fail("base= needs a packing file");
+      break;
     } else {
       throw fail(fmt::format("unknown field '{}' (expected M, m=M or base=FILE)", field));
     }
@@ -43,6 +46,14 @@ LiftSpec parse_lift_spec(const std::string& text) {
   }
   if (!have_m) throw fail("missing the base colour count (e.g. `lift` 4 or `lift` m=4,base=FILE)");
   return spec;
+}
+
+std::string lift_with_absolute_base(const std::string& text) {
+  if (text.empty()) return text;
+  LiftSpec spec = parse_lift_spec(text);
+  if (spec.base_file.empty() || std::filesystem::path(spec.base_file).is_absolute()) return text;
+  spec.base_file = std::filesystem::absolute(spec.base_file).lexically_normal().string();
+  return spec.text();
 }
 
 LiftProblem make_lift_problem(TileKind kind, std::uint32_t colours, const LiftSpec& spec) {

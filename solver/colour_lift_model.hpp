@@ -31,8 +31,13 @@ struct LiftSpec {
   std::string text() const;        // normalised spec, e.g. "m=4" or "m=4,base=b.json"
 };
 
-// Throws InputError naming --lift and the problem.
+// Throws InputError naming --lift and the problem. base=FILE is the last field and runs to the
+// end of the text, so a file name may hold commas ("m=2,base=a,b.json" is the file "a,b.json").
 LiftSpec parse_lift_spec(const std::string& text);
+
+// The spec with a relative base file made absolute (as the current directory resolves it), so
+// that a checkpoint that stores the spec resumes from any directory; other specs unchanged.
+std::string lift_with_absolute_base(const std::string& text);
 
 struct LiftProblem {
   LiftSpec spec;

@@ -279,6 +279,22 @@ void Scheduler::start() {
     state_ = *po_.resume_state;
     if (state_.fingerprint != fp)
       throw InputError("checkpoint does not match this portfolio (different problem, seed, shard or candidates)");
+    // The schedule's candidates must be the ones the fingerprint names (a checksum proves only
+    // that the file is as written, not that its parts agree).
+    std::vector<std::string> listed, named =
+        po_.candidates.empty() ? default_candidates(p_.set.kind(), p_.set.colours()) : po_.candidates;
+    for (const auto& c : state_.candidates) listed.push_back(c.name);
+    std::sort(listed.begin(), listed.end());
+    std::sort(named.begin(), named.end());
+    if (listed != named)
+      throw InputError(fmt::format("checkpoint lists the candidates {} but its fingerprint names {}",
+                                   fmt::join(listed, ","), fmt::join(named, ",")));
+    // "Exhausted" is re-derived, not trusted: every candidate marked empty is scheduled again.
+    // An engine candidate resumes its own engine state, which the engine checks against its
+    // split (check_search_state) and, when every subproblem is finished, ends at once as
+    // exhausted; a restarting one (cadical) runs again. So the run ends "no packing exists"
+    // only when the searches themselves say so again.
+    for (auto& c : state_.candidates) c.empty = false;
     prior_seconds_ = state_.seconds;
   } else {
     std::vector<std::string> names =
@@ -520,6 +536,9 @@ std::vector<CandidateEstimate> estimate_candidates(const TilingProblem& problem,
   const std::vector<std::string> names = portfolio.candidates.empty()
                                              ? default_candidates(problem.set.kind(), problem.set.colours())
                                              : portfolio.candidates;
+  std::set<std::string> seen;  // refused as a run refuses them (Scheduler::start)
+  for (const std::string& name : names)
+    if (!seen.insert(name).second) throw InputError(fmt::format("portfolio candidate '{}' is listed twice", name));
   std::vector<CandidateEstimate> out;
   // The run's own time limit bounds every probe and slice together; a signal ends the list.
   const Deadline deadline(options.run.time_limit);

@@ -7,7 +7,9 @@
 // slice stopped. With two or more threads, the candidates that restart each slice (cadical's)
 // run in a side lane of their own beside the engine's (portfolio.cpp, Scheduler). The first
 // solution ends the run; a candidate whose subspace is exhausted is dropped. The schedule and every candidate's engine state are a PortfolioState, which the
-// caller checkpoints (checkpoints/checkpoint.hpp) exactly like a single search.
+// caller checkpoints (checkpoints/checkpoint.hpp) exactly like a single search. A resumed state
+// is checked, not trusted: its candidates must be those its fingerprint names, and "exhausted"
+// is re-derived (every candidate runs again; a finished engine state ends at once).
 //
 // Candidate names: "plain" (the whole space), "SPEC" or "impose:SPEC" (only the packings
 // invariant under the group SPEC, solver/impose_group.hpp), "sat:SPEC" (the same subspace as

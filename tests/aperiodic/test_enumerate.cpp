@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "aperiodic/canonical.hpp"
@@ -12,6 +14,7 @@
 #include "aperiodic/prune.hpp"
 #include "aperiodic/steps.hpp"
 #include "base/atomic_file.hpp"
+#include "base/checkpoint_envelope.hpp"
 #include "base/error.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/tile_set_io.hpp"
@@ -215,6 +218,53 @@ TEST(Enumerate, ResumesFromEveryBatchToTheSameResultAndRefusesBadCheckpoints) {
   EXPECT_THROW(enumerate_conversions(other), InputError);  // truncated
   other.resume_path = d / "missing.ckpt";
   EXPECT_THROW(enumerate_conversions(other), InputError);
+}
+
+// A checkpoint with a fresh checksum can still lie: one that relabels an unsound link as
+// conjugate (so a periodic set gets a "sound" chain) is refused on resume, because every sound
+// link is re-derived by its step before the run builds on it.
+TEST(Enumerate, AResumedCheckpointThatRelabelsALinkAsSoundIsRefused) {
+  test::TempDir d;
+  EnumerateOptions o;  // one source, one step: a run of milliseconds with leads in it
+  o.sources = {"jeandel-rao-11-variant-2"};
+  o.max_depth = 1;
+  o.max_tiles = 100;
+  o.checkpoint_path = d / "c.ckpt";
+  const EnumerateResult whole = enumerate_conversions(o);
+  ASSERT_TRUE(whole.complete);
+  const std::string text = test::slurp(o.checkpoint_path);
+  nlohmann::json body = nlohmann::json::parse(open_checkpoint(text, "TILEKIT-ENUMERATE", 1, 1, "c.ckpt"));
+  // An unsound edge into a set that has no sound chain (a lead), and its parent's depth.
+  std::map<std::string, nlohmann::json*> node;
+  for (auto& n : body["nodes"]) node[n[0].get<std::string>()] = &n;
+  nlohmann::json* edge = nullptr;
+  for (auto& e : body["edges"])
+    if (!sound_label(e[3].get<std::string>()) && (*node.at(e[2].get<std::string>()))[2] == -1 &&
+        (*node.at(e[0].get<std::string>()))[2] >= 0)
+      edge = &e;
+  ASSERT_NE(edge, nullptr) << "the small run has no lead to relabel";
+  nlohmann::json& from = *node.at((*edge)[0].get<std::string>());
+  nlohmann::json& to = *node.at((*edge)[2].get<std::string>());
+  (*edge)[3] = "conjugate";
+  to[2] = to[3] = from[2].get<int>() + 1;  // depth, owned depth
+  to[5] = (*edge)[0];                      // parent
+  to[6] = (*edge)[1];                      // step
+  to[7] = "conjugate";
+  to[8] = from[8];  // root
+  to[9] = "";
+  write_checkpoint_envelope(d / "lie.ckpt", "TILEKIT-ENUMERATE", 1, body.dump());
+  EnumerateOptions resume = o;
+  resume.checkpoint_path.clear();
+  resume.resume_path = d / "lie.ckpt";
+  try {
+    enumerate_conversions(resume);
+    FAIL() << "the relabelled checkpoint was resumed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("re-derives to"), std::string::npos) << e.what();
+  }
+  // The honest checkpoint resumes to the same result.
+  resume.resume_path = o.checkpoint_path;
+  EXPECT_EQ(enumerate_conversions(resume).digest, whole.digest);
 }
 
 TEST(Enumerate, BadOptionsAreInputErrors) {

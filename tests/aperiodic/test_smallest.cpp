@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "aperiodic/enumerate.hpp"
 #include "aperiodic/smallest.hpp"
@@ -39,11 +40,24 @@ TEST(SmallestSet, ARecordThatNoLongerReDerivesIsRefused) {
   const RecordedChain rec = embedded_smallest_record();
   RecordedChain wrong = rec;
   wrong.set = "0123456789abcdef";
-  EXPECT_THROW(rederive_chain(wrong), std::logic_error);
+  // Every refusal is an InputError naming the link that does not re-derive.
+  auto refused_link = [](const RecordedChain& r) {
+    try {
+      rederive_chain(r);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refused_link(wrong).find("link " + std::to_string(rec.steps.size())), std::string::npos)
+      << refused_link(wrong);
   RecordedChain wang = rec;
   wang.steps.clear();  // the published Wang set itself: not a corner set
   wang.set = replay_chain(rec.source, {}).front().hash;
-  EXPECT_THROW(rederive_chain(wang), std::logic_error);
+  EXPECT_NE(refused_link(wang).find("link 0 (the source"), std::string::npos) << refused_link(wang);
+  RecordedChain tiles = rec;
+  ++tiles.tiles;  // the right set, the wrong size
+  EXPECT_NE(refused_link(tiles).find("tiles"), std::string::npos) << refused_link(tiles);
   RecordedChain unknown = rec;
   unknown.source = "penrose-2";
   EXPECT_THROW(rederive_chain(unknown), InputError);

@@ -1,6 +1,7 @@
 // The shared input layer: files with a size bound, the UTF-8 policy, depth-limited
 // JSON with one checked accessor, and the flag parsers every command uses.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -57,6 +58,20 @@ TEST(InputFile, RefusesMissingDirectoriesAndOversizedFiles) {
   EXPECT_EQ(message_of([&] { read_input_file(path, "file", 9); }),
             path + ": the file is 10 bytes, more than the limit of 9 bytes");
   std::filesystem::remove(path);
+}
+
+// Checked on the open file, not by name first: a FIFO (which a plain open would wait on for a
+// writer) and a link to an endless device are refused at once.
+TEST(InputFile, RefusesAFifoAndALinkToADeviceWithoutBlocking) {
+  const std::string dir = std::filesystem::temp_directory_path() / ("tk-input-fifo-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir + "/f").c_str(), 0600), 0);
+  std::filesystem::create_symlink("/dev/urandom", dir + "/r");
+  EXPECT_EQ(message_of([&] { read_input_file(dir + "/f", "attempts file"); }),
+            dir + "/f: not a regular file (expected a attempts file)");
+  EXPECT_EQ(message_of([&] { read_input_file(dir + "/r", "attempts file"); }),
+            dir + "/r: not a regular file (expected a attempts file)");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(JsonInput, DeepNestingIsRefusedBeforeParsing) {

@@ -339,5 +339,5 @@ TEST(BadInput, PortfolioCheckpointIsValidatedStructurally) {
 
 TEST(BadInput, AperiodicVerifyTimeLimitMustBeANonNegativeNumber) {
   expect_refused(run_cli("aperiodic verify culik-13 --time-limit -1"),
-                 "--time-limit must be a number of seconds >= 0, got -1");
+                 "--time-limit: expected a number of seconds >= 0, got '-1' (see --help)");
 }

@@ -249,4 +249,34 @@ TEST(EnumerateCli, ARunsRecordIsWhatSmallestReDerives) {
   EXPECT_EQ(run_cli("aperiodic smallest --record " + std::string(d / "garbage.json")).code, 2);
   EXPECT_EQ(run_cli("aperiodic smallest --record " + std::string(d / "missing.json")).code, 2);
   EXPECT_EQ(run_cli("aperiodic smallest --record " + rec + " --db " + std::string(d / "x.sqlite")).code, 2);
+  // Records and databases that lie are exit 2 naming the link, never an internal error: a chain
+  // that ends in a Wang set, one that names another set's hash, and a database with one extra
+  // well-typed conversion row claiming a sound link to a smaller (periodic) corner set.
+  auto record = nlohmann::json::parse(slurp(rec));
+  auto refused = [&](const nlohmann::json& bad, const std::string& words) {
+    write_text(d / "lie.json", bad.dump());
+    CliResult x = run_cli("aperiodic smallest --record " + std::string(d / "lie.json") + " --max-period 4");
+    EXPECT_EQ(x.code, 2) << bad.dump() << "\n" << x.err;
+    EXPECT_NE(x.err.find(words), std::string::npos) << x.err;
+  };
+  auto wang = record;
+  wang["steps"] = nlohmann::json::array();
+  refused(wang, "link 0");
+  auto other = record;
+  other["set"] = "0123456789abcdef";
+  refused(other, "link 1");
+  sqlite3* h = nullptr;
+  ASSERT_EQ(sqlite3_open(db.c_str(), &h), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(h,
+                         "INSERT INTO conversions (source_set, method, result_set, tiles_before, tiles_after, colors, "
+                         "soundness, details, created_at) SELECT s.id, 'horizontal', r.id, s.tiles, r.tiles, r.colors, "
+                         "'conjugate', '{}', 'now' FROM tilesets s, tilesets r WHERE s.source LIKE 'published:%' AND "
+                         "r.kind = 'corner' AND NOT EXISTS (SELECT 1 FROM conversions c WHERE c.source_set = s.id AND "
+                         "c.method = 'horizontal' AND c.result_set = r.id) ORDER BY r.tiles LIMIT 1",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(h);
+  CliResult lie = run_cli("aperiodic smallest --db " + db + " --max-period 4");
+  EXPECT_EQ(lie.code, 2) << lie.err;
+  EXPECT_NE(lie.err.find("link 1 (step horizontal"), std::string::npos) << lie.err;
 }

@@ -239,6 +239,27 @@ TEST(HostileInputs, PointsFarFromTheOriginKeepTheirDistances) {
   }
 }
 
+// Points are computed in double precision whatever file they go to: a window at 2^53 or 1e15
+// (where the rounding reaches the spacing and points coincide) is refused naming the precision
+// limit, for .csv and .f64 as for .f32; nearer the origin every point keeps its distance.
+TEST(HostileInputs, PointsBeyondDoublePrecisionAreRefusedForEveryFormat) {
+  TempDir d;
+  for (const char* x : {"9007199254740992", "1000000000000000"})
+    for (const char* ext : {"csv", "f64", "png"}) {
+      SCOPED_TRACE(std::string(x) + " " + ext);
+      const std::string out = d / (std::string("p.") + ext);
+      const double x1 = std::stod(x) + 2;  // representable at 2^53 too
+      const std::string window = fmt::format("{},{},{:.1f},{:.1f}", x, x, x1, x1);
+      expect_refused_saying(run_cli("points generate --window " + window + " --density 100 --quiet --out " + out),
+                            "precision limit");
+      EXPECT_FALSE(fs::exists(out));
+    }
+  const CliResult r = run_cli("points generate --window 1000000000000,1000000000000,1000000000001.6,1000000000001.6 "
+                              "--density 100 --colors 2 --points 64 --analyze --quiet --json --out " + d / "p.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GE(r.json()["radius"]["rho"].get<double>(), 0.74);  // the set's own rho, 0.75
+}
+
 TEST(HostileInputs, PointTileFilesAreCheckedOnLoad) {
   TempDir d;
   ASSERT_EQ(run_cli("points tiles --colors 1 --points 8 --rho 0.5 --no-db --quiet --out " + d / "t.ptiles").code, 0);

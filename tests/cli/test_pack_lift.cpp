@@ -4,6 +4,7 @@
 #include <signal.h>
 
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "tests/cli_runner.hpp"
@@ -101,4 +102,23 @@ TEST(PackLift, BadSpecsAreExit2WithOneLine) {
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("--lift"), std::string::npos) << args << "\n" << r.err;
   }
+}
+
+// The base file of a lift is stored absolute, so `pack --resume F` works from another directory;
+// and base=FILE runs to the end of the spec, so a path with a comma can be given.
+TEST(PackLift, ABaseWithACommaResumesFromAnotherDirectory) {
+  TempDir d;
+  const std::string dir = d / "a,b";
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(run_cli("pack --kind corner --colors 2 --quiet --out " + q(dir + "/base.json")).code, 0);
+  const std::string ck = d / "lift.ckpt";
+  CliResult first = run_cli_prefixed("cd " + q(d.path.string()) + " && ",
+                                     "pack --kind corner --colors 4 --lift m=2,base=a,b/base.json --threads 1 --quiet "
+                                     "--json --checkpoint " + q(ck) + " --db " + q(d / "r.sqlite"));
+  ASSERT_EQ(first.code, 0) << first.err;
+  EXPECT_EQ(first.json()["valid"], true);
+  ASSERT_TRUE(std::filesystem::exists(ck));
+  CliResult resumed = run_cli_prefixed("cd / && ", "pack --resume " + q(ck) + " --quiet --json --db " + q(d / "r2.sqlite"));
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_EQ(resumed.json()["formulation"], "lift");
 }

@@ -100,6 +100,17 @@ TEST(ClusterSubmitRun, SbatchMissingIsNotFoundAndOneThatPrintsNoJobIdIsBadInput)
   fs::permissions(d / "odd", fs::perms::owner_all);
   EXPECT_THROW(cluster::submit_run(plan_in(d / "b"), d / "odd"), InputError);
   EXPECT_THROW(cluster::submit_run(plan_in(d / "c"), "/bin/false"), InputError);
+  // A failed first submission leaves nothing: no run directory, or an empty one left empty.
+  for (const char* run : {"a", "b", "c"}) EXPECT_FALSE(fs::exists(d / run)) << run;
+  fs::create_directories(d / "empty");
+  EXPECT_THROW(cluster::submit_run(plan_in(d / "empty"), "/bin/false"), InputError);
+  EXPECT_TRUE(fs::exists(d / "empty"));
+  EXPECT_TRUE(fs::is_empty(d / "empty"));
+  // A resubmission of a queued run that fails keeps the run's files.
+  cluster::submit_run(plan_in(d / "queued"), fake_sbatch(d));
+  EXPECT_THROW(cluster::submit_run(plan_in(d / "queued"), "/bin/false"), InputError);
+  EXPECT_TRUE(fs::exists(d / "queued/run.json"));
+  EXPECT_TRUE(fs::exists(d / "queued/pack-array.sbatch"));
 }
 
 }  // namespace

@@ -59,6 +59,9 @@ relocated() {  # relocated PREFIX WORK
     "$p/bin/tilekit" atlas lookup --kind corner --colors "$c" --no-db >"$work/lookup-$c.relocated"
     same "C=$c: relocated atlas lookup vs the build's" "$work/lookup-$c.relocated" "$work/lookup-$c.build"
   done
+  "$p/bin/tilekit" aperiodic verify "$p/share/tilekit/aperiodic/data/periodic-10-15.tiles" --json >"$work/known.json"
+  [ "$(jq -r .verdict "$work/known.json")" = periodic ] || fail "the installed known-status set periodic-10-15 is not periodic"
+  say "the installed known-status sets (share/tilekit/aperiodic/data) verify from the relocated prefix"
   "$p/bin/tilekit" tileset show culik-13 --json >"$work/culik.relocated"
   same "relocated tileset show culik-13 vs the build's" "$work/culik.relocated" "$work/culik.build"
   say "the relocated binary reads its stored packings (C = 16, 32) and reference tile sets without the build tree"
@@ -74,7 +77,8 @@ case "$mode" in
       lib/cmake/Tilekit/TilekitTargets.cmake lib/libtilekit_atlas.a lib/libtilekit_tiling.a lib/libtilekit_results.a \
       include/tilekit/atlas/lookup.hpp include/tilekit/tiling/direct_tiling.hpp include/tilekit/results/results_db.hpp \
       include/tilekit/tilesets/tile_grid.hpp include/tilekit/base/error.hpp include/tilekit/image/image.hpp \
-      share/doc/tilekit/README.md share/doc/tilekit/examples/consumer/main.cpp; do
+      share/doc/tilekit/README.md share/doc/tilekit/examples/consumer/main.cpp \
+      share/tilekit/aperiodic/data/README.md share/tilekit/aperiodic/data/finite-14.tiles; do
       [ -e "$work/prefix/$f" ] || fail "$f was not installed"
     done
     say "installed into a fresh prefix: $(wc -l <"$build/install_manifest.txt") files"

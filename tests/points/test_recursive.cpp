@@ -114,6 +114,11 @@ TEST(DensityFunctions, ExpressionsEvaluateAndReportSyntaxErrors) {
   EXPECT_THROW(expression_density("2 * (x + 1"), InputError);
   EXPECT_THROW(expression_density("foo(x)"), InputError);
   EXPECT_THROW(expression_density("max(x)"), InputError);
+  EXPECT_THROW(expression_density(""), InputError);
+  // Every evaluation is checked: infinite or undefined values are bad input, not a silent 0.
+  for (const char* e : {"exp(1000)", "0/0", "log(-1)", "sqrt(x - 10)"})
+    EXPECT_THROW((*expression_density(e))(1, 1), InputError) << e;
+  EXPECT_EQ((*expression_density("log(x)"))(0.5, 0), 0);  // finite and negative: 0
 }
 
 TEST(ObjectDistribution, ClassesFollowTheProbabilitiesAndEvaluationFindsTheClosestPoint) {

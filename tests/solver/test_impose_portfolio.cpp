@@ -177,7 +177,7 @@ TEST(PortfolioResume, StateCarriesEmptySubspacesBudgetsAndEngineStatesAcrossRuns
   EXPECT_THROW(portfolio_slice(p, cands, 0.1, other, 4), InputError);  // another seed
 }
 
-TEST(PortfolioResume, ProvedEmptyCandidatesStayDroppedAfterResume) {
+TEST(PortfolioResume, EmptyCandidatesAreReDerivedOnResume) {
   const TilingProblem c2 = complete_packing_problem(TileKind::Corner, 2);
   std::optional<PortfolioState> state;
   PortfolioResult r = portfolio_slice(c2, {"t=0,2:pi=1,0", "t=2,0:pi=1,0"}, 10, state);
@@ -185,13 +185,42 @@ TEST(PortfolioResume, ProvedEmptyCandidatesStayDroppedAfterResume) {
   EXPECT_TRUE(r.complete);
   ASSERT_TRUE(state.has_value());
   for (const auto& c : state->candidates) EXPECT_TRUE(c.empty) << c.name;
-  std::uint64_t slices = 0;
-  for (const auto& c : state->candidates) slices += c.slices;
+  // Each candidate resumes its finished engine state and is exhausted again at once.
   PortfolioResult again = portfolio_slice(c2, {"t=0,2:pi=1,0", "t=2,0:pi=1,0"}, 10, state);
   EXPECT_TRUE(again.complete);
-  std::uint64_t slices2 = 0;
-  for (const auto& c : state->candidates) slices2 += c.slices;
-  EXPECT_EQ(slices2, slices);  // nothing ran again
+  EXPECT_FALSE(again.found);
+  for (const auto& c : state->candidates) EXPECT_TRUE(c.empty) << c.name;
+}
+
+// A checkpoint that lies about emptiness (every candidate marked exhausted, for a problem with
+// packings) does not resume to "no packing exists": the candidates run again and find one.
+TEST(PortfolioResume, CandidatesMarkedEmptyWithoutProofRunAgain) {
+  const TilingProblem c3 = complete_packing_problem(TileKind::Corner, 3);
+  const std::vector<std::string> cands = {"plain"};
+  std::optional<PortfolioState> state;
+  portfolio_slice(c3, cands, 0.001, state);
+  ASSERT_TRUE(state.has_value());
+  for (auto& c : state->candidates) c.empty = true;
+  PortfolioResult r = portfolio_slice(c3, cands, 30, state);
+  EXPECT_FALSE(r.complete);
+  ASSERT_TRUE(r.found);
+  EXPECT_TRUE(validate(r.result.found[0]).packing);
+}
+
+// The schedule's candidates must be those its fingerprint names.
+TEST(PortfolioResume, ACandidateListThatDiffersFromTheFingerprintIsRefused) {
+  const TilingProblem c3 = complete_packing_problem(TileKind::Corner, 3);
+  const std::vector<std::string> cands = {"plain", "t=0,3:pi=1,2,0"};
+  std::optional<PortfolioState> state;
+  portfolio_slice(c3, cands, 0.001, state);
+  ASSERT_TRUE(state.has_value());
+  ASSERT_EQ(state->candidates.size(), 2u);
+  std::optional<PortfolioState> dropped = state;
+  dropped->candidates.pop_back();
+  EXPECT_THROW(portfolio_slice(c3, cands, 1, dropped), InputError);
+  std::optional<PortfolioState> renamed = state;
+  renamed->candidates[1].name = "t=3,0:pi=1,2,0";
+  EXPECT_THROW(portfolio_slice(c3, cands, 1, renamed), InputError);
 }
 
 TEST(PortfolioShards, ShardsSplitTheDivesAndEachFindsAValidPacking) {
