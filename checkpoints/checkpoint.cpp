@@ -341,8 +341,11 @@ SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions opti
     // A fresh MPI run: another run's rank files beside the checkpoint are not this run's.
     for (const std::string& f : rank_checkpoint_files(options.run.checkpoint_path)) std::filesystem::remove(f);
   }
-  if (rank != 0 && !options.run.checkpoint_path.empty())
-    options.run.checkpoint_path = rank_checkpoint_path(options.run.checkpoint_path, rank);
+  if (rank != 0) {  // takes its jobs (resumed ones with their paths) from the root
+    options.run.resume_path.clear();
+    if (!options.run.checkpoint_path.empty())
+      options.run.checkpoint_path = rank_checkpoint_path(options.run.checkpoint_path, rank);
+  }
   if (!options.run.checkpoint_path.empty()) {
     std::string path = options.run.checkpoint_path;
     options.save_checkpoint = [path, request](const SearchState& s) {

@@ -96,6 +96,7 @@ class MpiWork final : public WorkSource {
     }
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+    finished_ = ranks_ == 1;  // until finish(): an error before it aborts the job
   }
   ~MpiWork() override {
     // Left without finish() (an error on this rank): the others would wait for it forever.
@@ -119,7 +120,6 @@ class MpiWork final : public WorkSource {
     if (roots[0] != mine[0] || roots[1] != mine[1])
       throw InputError(fmt::format("MPI rank {}: its subproblem list ({} subproblems) differs from the root's ({})",
                                    rank_, mine[0], roots[0]));
-    finished_ = false;
     if (rank_ != 0) return;
     {
       std::lock_guard lock(queue_mu_);
