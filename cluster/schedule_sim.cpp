@@ -117,7 +117,10 @@ Trace read_trace(const std::vector<std::string>& files, const std::string& cost)
     for (auto& [i, u] : by_index) t.units.push_back(std::move(u));
   } else {  // the run ended with the unit that found
     auto f = std::find_if(t.units.begin(), t.units.end(), [](const TraceUnit& u) { return u.found; });
-    if (f != t.units.end()) t.units.erase(f + 1, t.units.end());
+    if (f != t.units.end()) {
+      t.units.erase(f + 1, t.units.end());
+      t.found = true;
+    }
   }
   if (!(t.work() > 0)) throw InputError(fmt::format("{}: the trace holds no work (no subproblem or dive with a cost)", t.files));
   return t;
@@ -149,7 +152,7 @@ double list_schedule(const std::vector<double>& costs, std::int64_t workers, std
 
 double static_schedule(const Trace& tr, std::int64_t P) {
   std::vector<double> load(std::size_t(std::min<std::int64_t>(P, std::int64_t(tr.units.size()) + 1)), 0.0);
-  const std::size_t found = tr.first ? tr.units.size() - 1 : tr.units.size();
+  const std::size_t found = tr.found ? tr.units.size() - 1 : tr.units.size();
   for (std::size_t k = 0; k < tr.units.size(); ++k) {
     // exhaustive: the engine's rule, subproblem index mod P; first mode: the k-th unit run
     const std::uint64_t key = tr.first ? k : tr.units[k].index;
@@ -281,10 +284,10 @@ SimResult simulate(const Trace& tr, SchedulePolicy policy, std::int64_t workers,
   r.policy = policy;
   r.workers = workers;
   r.ideal = tr.work() / double(workers);
-  r.bound = std::max(r.ideal, tr.first ? tr.units.back().cost : tr.largest_piece());
+  r.bound = std::max(r.ideal, tr.found ? tr.units.back().cost : tr.largest_piece());
   std::vector<double> costs;
   for (const TraceUnit& u : tr.units) costs.push_back(u.cost);
-  const std::size_t stop_at = tr.first ? tr.units.size() - 1 : tr.units.size();
+  const std::size_t stop_at = tr.found ? tr.units.size() - 1 : tr.units.size();
   if (policy == SchedulePolicy::Static) {
     r.makespan = static_schedule(tr, workers);
   } else if (tr.first || policy == SchedulePolicy::Pool) {  // first mode: whole units only

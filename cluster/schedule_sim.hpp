@@ -49,6 +49,7 @@ struct TraceUnit {
 struct Trace {
   std::string files;  // the files read, for reports
   bool first = false;  // a first-mode run: it ends when the found unit ends
+  bool found = false;  // first mode: the last unit found the solution (else the run ran out of time)
   std::vector<TraceUnit> units;
   double work() const;  // the total cost (first mode: up to and including the found unit)
   double largest_piece() const;

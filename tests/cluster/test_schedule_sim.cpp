@@ -64,6 +64,17 @@ TEST(ScheduleSim, FirstModeEndsWithTheFoundDive) {
   // static on 2 workers: dives 0 and 2 on worker 0 end at 7; the pool runs dive 2 after dive 1: 5.
   EXPECT_DOUBLE_EQ(cluster::simulate(t, cluster::SchedulePolicy::Static, 2).makespan, 7);
   EXPECT_DOUBLE_EQ(cluster::simulate(t, cluster::SchedulePolicy::Pool, 2).makespan, 5);
+  // Without a found dive the run is every dive: static 0+2 = 4+3 = 7 and 1+3 = 2+9 = 11.
+  write_text(path,
+             "{\"type\":\"search\",\"title\":\"f\",\"mode\":\"first\"}\n"
+             "{\"type\":\"dive\",\"dive\":0,\"nodes\":4,\"seconds\":1,\"found\":false}\n"
+             "{\"type\":\"dive\",\"dive\":1,\"nodes\":2,\"seconds\":1,\"found\":false}\n"
+             "{\"type\":\"dive\",\"dive\":2,\"nodes\":3,\"seconds\":1,\"found\":false}\n"
+             "{\"type\":\"dive\",\"dive\":3,\"nodes\":9,\"seconds\":1,\"found\":false}\n");
+  const cluster::Trace none = cluster::read_trace({path}, "nodes");
+  EXPECT_FALSE(none.found);
+  EXPECT_DOUBLE_EQ(cluster::simulate(none, cluster::SchedulePolicy::Static, 2).makespan, 11);
+  EXPECT_LE(cluster::simulate(none, cluster::SchedulePolicy::Pool, 2).efficiency, 1.0);
 }
 
 TEST(ScheduleSim, RefusesBadTracesAndSettings) {
