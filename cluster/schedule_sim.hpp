@@ -57,8 +57,9 @@ struct Trace {
 
 // Reads trace files (the lines of solver/run_trace.hpp; several files: the ranks of an MPI job
 // or the shards of a job array, merged by subproblem index) with the cost `nodes` or `seconds`.
-// InputError naming the file and line on a malformed line, an unknown cost, no work at all,
-// or one subproblem traced twice with different costs.
+// A subproblem traced twice (run again after a resume) counts once, as first traced. InputError
+// naming the file and line on a malformed line; also on an unknown cost, no work at all, or two
+// different exhaustive searches in one trace.
 Trace read_trace(const std::vector<std::string>& files, const std::string& cost);
 
 struct SimResult {
