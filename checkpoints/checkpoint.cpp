@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -299,9 +300,52 @@ CheckpointFile read_resume_file(const TilingProblem& problem, const SearchOption
   return f;
 }
 
+std::string rank_checkpoint_path(const std::string& path, int rank) {
+  return rank == 0 ? path : fmt::format("{}.rank-{}", path, rank);
+}
+
+std::vector<std::string> rank_checkpoint_files(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  const std::string prefix = p.filename().string() + ".rank-";
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0 &&
+        name.find_first_not_of("0123456789", prefix.size()) == std::string::npos)
+      out.push_back((p.parent_path() / name).string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options, const nlohmann::json& request) {
-  if (!options.run.resume_path.empty())
+  const int rank = options.run.work ? options.run.work->rank() : 0;
+  if (rank == 0 && !options.run.resume_path.empty())
     options.resume_state = std::move(*read_resume_file(problem, options, nullptr).search);
+  if (options.run.work && rank == 0 && !options.run.resume_path.empty()) {
+    // An MPI run: what every rank of the earlier runs checkpointed, whatever their number.
+    for (const std::string& f : rank_checkpoint_files(options.run.resume_path)) {
+      SearchOptions other = options;
+      other.run.resume_path = f;
+      const CheckpointFile part = read_resume_file(problem, other, nullptr);
+      try {
+        merge_search_states(*options.resume_state, *part.search);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("checkpoint {}: {}", f, e.what()));
+      }
+    }
+  } else if (options.run.work && rank == 0 && !options.run.checkpoint_path.empty()) {
+    // A fresh MPI run: another run's rank files beside the checkpoint are not this run's.
+    for (const std::string& f : rank_checkpoint_files(options.run.checkpoint_path)) std::filesystem::remove(f);
+  }
+  if (rank != 0) {  // takes its jobs (resumed ones with their paths) from the root
+    options.run.resume_path.clear();
+    if (!options.run.checkpoint_path.empty())
+      options.run.checkpoint_path = rank_checkpoint_path(options.run.checkpoint_path, rank);
+  }
   if (!options.run.checkpoint_path.empty()) {
     std::string path = options.run.checkpoint_path;
     options.save_checkpoint = [path, request](const SearchState& s) {

@@ -28,6 +28,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "base/checkpoint_envelope.hpp"
 #include "solver/portfolio.hpp"
@@ -69,10 +70,17 @@ std::string fingerprint_difference(const std::string& here, const std::string& c
 CheckpointFile read_resume_file(const TilingProblem& problem, const SearchOptions& options,
                                 const PortfolioOptions* portfolio);
 
+// An MPI run's checkpoint files (cluster/mpi_work.hpp): rank 0 writes `path`, rank R > 0
+// `path`.rank-R; rank_checkpoint_files() lists the `path`.rank-* files beside `path`.
+std::string rank_checkpoint_path(const std::string& path, int rank);
+std::vector<std::string> rank_checkpoint_files(const std::string& path);
+
 // solve() with checkpoint files: reads options.run.resume_path (checking that it belongs to this
 // search: InputError naming what differs), and writes options.run.checkpoint_path every
 // options.run.checkpoint_every seconds, on a signal (with run.catch_signals) and at the end, with
-// `request` in every file written.
+// `request` in every file written. With options.run.work (an MPI job) rank R > 0 writes
+// rank_checkpoint_path() and reads nothing; the root resumes from `resume_path` merged with every
+// rank file beside it (merge_search_states), and a fresh root removes stale rank files.
 SearchResult solve_checkpointed(const TilingProblem& problem, SearchOptions options,
                                 const nlohmann::json& request = nullptr);
 

@@ -9,9 +9,11 @@
 #include <string_view>
 
 #include "base/error.hpp"
+#include "base/parse.hpp"
 #include "cli/command.hpp"
 #include "cluster/job_scripts.hpp"
 #include "cluster/plan.hpp"
+#include "cluster/schedule_sim.hpp"
 #include "cli/shard_words.hpp"
 #include "cluster/status.hpp"
 #include "cluster/submit.hpp"
@@ -29,6 +31,62 @@ struct SubmitArgs {
 struct StatusArgs {
   std::string run_dir;
 };
+
+struct SimulateArgs {
+  std::vector<std::string> traces;
+  std::string workers = "16,128,1024,10000";
+  std::string policies = "static,pool,split,steal";
+  std::string cost = "nodes";
+  std::int64_t rounds = 4;
+};
+
+// "16,128,1024": each a whole number of workers in 1..10^9.
+std::vector<std::int64_t> worker_counts(const std::string& text) {
+  std::vector<std::int64_t> out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    out.push_back(parse_integer(std::string_view(text).substr(from, comma - from), 1, 1'000'000'000, "--workers"));
+    if (comma == std::string::npos) return out;
+    from = comma + 1;
+  }
+}
+
+void run_simulate(const SimulateArgs& a, const Context& ctx) {
+  const std::vector<std::int64_t> workers = worker_counts(a.workers);
+  std::vector<cluster::SchedulePolicy> policies;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = a.policies.find(',', from);
+    policies.push_back(cluster::policy_from_name(a.policies.substr(from, comma - from)));
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  if (a.rounds < 1 || a.rounds > 1000) throw InputError(fmt::format("--rounds must be 1..1000, got {}", a.rounds));
+  const cluster::Trace trace = cluster::read_trace(a.traces, a.cost);
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<cluster::SimResult> results;
+  for (std::int64_t p : workers)
+    for (cluster::SchedulePolicy pol : policies) {
+      results.push_back(cluster::simulate(trace, pol, p, int(a.rounds)));
+      rows.push_back(cluster::to_json(results.back()));
+    }
+  std::size_t pieces = 0;
+  for (const auto& u : trace.units) pieces += std::max<std::size_t>(1, u.pieces.size());
+  nlohmann::json j = {{"traces", a.traces},          {"cost", a.cost},        {"mode", trace.first ? "first" : "exhaustive"},
+                      {"units", trace.units.size()}, {"pieces", pieces},      {"work", trace.work()},
+                      {"largest_piece", trace.largest_piece()}, {"results", rows}};
+  emit(ctx, j, [&] {
+    fmt::print("{}: {} run, {} units, {} pieces, work {:.6g} {}, largest piece {:.3g}\n", trace.files,
+               trace.first ? "first-mode" : "exhaustive", trace.units.size(), pieces, trace.work(), a.cost,
+               trace.largest_piece());
+    fmt::print("{:>8} {:<7} {:>12} {:>12} {:>12} {:>10} {:>6} {:>8}\n", "workers", "policy", "makespan", "ideal",
+               "bound", "efficiency", "rounds", "steals");
+    for (const auto& r : results)
+      fmt::print("{:>8} {:<7} {:>12.4g} {:>12.4g} {:>12.4g} {:>9.1f}% {:>6} {:>8}\n", r.workers,
+                 cluster::policy_name(r.policy), r.makespan, r.ideal, r.bound, 100 * r.efficiency, r.rounds, r.steals);
+  });
+}
 
 // A field name with '-' for '_'.
 std::string dashed(std::string name) {
@@ -185,6 +243,28 @@ void add_status(CLI::App& cluster, Context& ctx) {
   cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_status(*a, ctx); }); });
 }
 
+void add_simulate(CLI::App& cluster, Context& ctx) {
+  auto* cmd = cluster.add_subcommand(
+      "simulate",
+      "Replay a run's trace (pack --trace FILE) under scheduling policies on P workers: makespan against the ideal "
+      "(work / P)");
+  auto a = std::make_shared<SimulateArgs>();
+  cmd->add_option("trace", a->traces, "Trace files (JSON lines of pack --trace; several: the ranks or shards of one run)")
+      ->required();
+  cmd->add_option("--workers", a->workers, "Worker counts P, comma-separated")->capture_default_str();
+  cmd->add_option("--policy", a->policies,
+                  "Policies, comma-separated: static (i mod P), pool (whole subproblems on demand), split (rounds of "
+                  "arrays, a shard past its share leaves its open subtrees to the next), steal (pool, then the later "
+                  "half of a busy worker's open pieces)")
+      ->capture_default_str();
+  cmd->add_option("--cost", a->cost, "The work of a unit: nodes (deterministic) or seconds (as measured)")
+      ->capture_default_str();
+  cmd->add_option("--rounds", a->rounds, "split: the most arrays (the last runs to the end)")->capture_default_str();
+  add_json_flag(cmd, ctx);
+  cmd->footer("What a trace can model: see cluster/schedule_sim.hpp (pieces are not split; latencies are 0).");
+  cmd->callback([a, &ctx] { run_simulate(*a, ctx); });
+}
+
 }  // namespace
 
 cluster::ShardCommandWords pack_shard_words() {
@@ -203,6 +283,7 @@ void add_cluster_commands(CLI::App& app, Context& ctx) {
   cluster->require_subcommand(1);
   add_submit(*cluster, ctx);
   add_status(*cluster, ctx);
+  add_simulate(*cluster, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -12,6 +12,8 @@
 #include "cli/command.hpp"
 #include "cli/flag_terms.hpp"
 #include "cli/run_options.hpp"
+#include "checkpoints/checkpoint.hpp"
+#include "cluster/mpi_work.hpp"
 #include "packing/pack.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -29,6 +31,8 @@ struct PackArgs {
   double estimate_seconds = 5;    // the slice that measures each candidate's node rate
   bool quiet = false;
   bool stats = false;         // --stats: the engine's counters (solver/search_stats.hpp)
+  bool mpi = false;           // --mpi: one MPI job, ranks share the subproblems (cluster/mpi_work.hpp)
+  std::string trace;          // --trace FILE: every subproblem's nodes and seconds (solver/run_trace.hpp)
   std::string formulation = "auto";  // --formulation WORD, parsed into request.formulation
   RunOptions run = [] {  // into request.run
     RunOptions r;
@@ -189,6 +193,14 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   if (cmd.count("--checkpoint-every")) req.checkpoint_every = a.run.checkpoint_every;
   req.formulation = parse_formulation(a.formulation, !req.lift.empty());
   req.run.progress = !a.quiet;
+  int rank = 0;
+  if (a.mpi) {
+    req.run.work = cluster::start_mpi_work();
+    rank = req.run.work->rank();
+    if (rank != 0) req.run.progress = false;  // the root reports for the job
+  }
+  if (!a.trace.empty())  // an MPI rank R > 0 traces to TRACE.rank-R, like its checkpoint
+    req.run.trace = std::make_shared<RunTrace>(rank == 0 ? a.trace : rank_checkpoint_path(a.trace, rank));
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
   if (!a.portfolio_stats.empty()) req.portfolio_stats = a.portfolio_stats.front();
   if (cmd.count("--estimate")) return print_estimate(req, a, ctx);
@@ -203,8 +215,12 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
                                  "\n");
   };
   bool out_written = false;
-  if (!a.out.empty()) req.write_found = [&](const Tiling& t) { write_out(t), out_written = true; };
+  if (!a.out.empty() && rank == 0) req.write_found = [&](const Tiling& t) { write_out(t), out_written = true; };
   PackOutcome o = run_pack(req, given);
+  if (rank != 0) {  // another rank of an MPI job: the root prints the job's result
+    if (o.interrupted) throw Interrupted(interrupted_message(o.signal, "rank checkpoint written"));
+    return;
+  }
   std::string out_file;
   if (!a.out.empty() && !o.result.found.empty()) {
     if (!out_written) write_out(o.result.found.front());
@@ -273,6 +289,14 @@ void add_pack_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--portfolio-stats", a->portfolio_stats,
                   "Portfolio statistics file (default $TILEKIT_PORTFOLIO_STATS or ~/.local/share/tilekit/"
                   "portfolio-stats.json); with --portfolio-report repeatable: the files are added up");
+  cmd->add_flag("--mpi", a->mpi,
+                "Run as one MPI job (mpirun/srun -n RANKS tilekit pack --mpi ...; count mode): the ranks take "
+                "subproblems from a pool on rank 0, each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
+                "--resume F continues with any number of ranks, rank 0 alone prints and writes the database");
+  cmd->add_option("--trace", a->trace,
+                  "Write a trace of the run to this file (JSON lines, rewritten whole at every checkpoint and at the "
+                  "end): every subproblem or restart dive with its owner, nodes, seconds and the cost of its pieces, "
+                  "for `tilekit cluster simulate`");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   cmd->add_flag("--stats", a->stats,
                 "Print the engine's statistics (nodes, decisions, propagations, prunes per rule, backtracks, "

@@ -336,6 +336,18 @@ PackOutcome run_pack(PackRequest request, const PackFields& given) {
   // alone applies again (a run setting, so a flag given on resume replaces it).
   nlohmann::json stored = identity;
   stored["time_limit"] = a.run.time_limit;
+  if (a.run.work) {  // an MPI job (cluster/mpi_work.hpp): one count shared by its ranks
+    if (o.mode != SearchMode::Count) throw RequestError("mode", "an MPI run counts: `mode` must be count");
+    if (a.run.shard.count != 1)
+      throw RequestError("shard", "an MPI run shares its work among its ranks dynamically: no `shard`");
+    if (a.run.work->rank() != 0) {  // the root alone writes the database
+      out.method = "search";
+      out.result = solve_checkpointed(problem, o, stored);
+      out.signal = out.result.signal ? out.result.signal : SignalCatcher::caught();
+      out.interrupted = out.result.interrupted || SignalCatcher::caught() != 0;
+      return out;
+    }
+  }
 
   ResultsDb db(a.db.empty() ? ResultsDb::default_path() : a.db);
   out.db_path = db.path();

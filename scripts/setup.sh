@@ -14,7 +14,8 @@ PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt
       jq dpkg-dev  # the install and Debian package tests (tests/install/install-test.sh)
       ninja-build  # the build (scripts/build.sh)
       chromium     # the browser test of `texture preview`
-      nodejs)      # the preview page's JavaScript against its golden vectors (tests/render/preview_golden.test.js)
+      nodejs       # the preview page's JavaScript against its golden vectors (tests/render/preview_golden.test.js)
+      openmpi-bin libopenmpi-dev)  # `pack --mpi` (cluster/mpi_work.*) and its mpirun tests (optional in the build)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

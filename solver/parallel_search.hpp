@@ -15,6 +15,9 @@
 //  - a monitor thread prints progress, writes checkpoints every `checkpoint_every` seconds,
 //    and stops the workers on a signal or the time limit (then writes a final checkpoint).
 //    The first checkpoint is written before any work, so a run killed at once can resume.
+//  - scale-out (run_settings.hpp): with `run.trace` every subproblem (dive) run is a line of the
+//    trace (run_trace.hpp); with `run.work` the workers take their subproblems from a WorkSource
+//    (several processes of one MPI job) instead of the shard's list.
 //  - statistics (search_stats.hpp): each worker's SubtreeSearch counts in plain integers; a
 //    worker adds them to the run's total once, when it leaves (under stats_mu_).
 //
@@ -141,8 +144,22 @@ class ParallelSearch {
     std::uint64_t seen_epoch;
     std::uint64_t node_limit = 0;
     bool hit_limit = false;
+    // The trace's pieces (run_trace.hpp): a new one starts at every node at most piece_depth deep
+    // (an inner node above that depth is a piece of one node).
+    std::size_t piece_depth = 0;  // 0: no pieces
+    std::uint64_t piece_nodes = 0;
+    std::chrono::steady_clock::time_point piece_start{};
+    std::vector<std::pair<std::uint64_t, double>> pieces{};
+    void cut_piece(std::uint64_t nodes) {
+      const auto now = std::chrono::steady_clock::now();
+      if (nodes > piece_nodes)
+        pieces.emplace_back(nodes - piece_nodes, std::chrono::duration<double>(now - piece_start).count());
+      piece_nodes = nodes;
+      piece_start = now;
+    }
     bool at_node(const std::vector<Decision>& path, const SearchCounters& c) {
       if ((c.nodes & 1023) == 0) slot.live_nodes.store(c.nodes, std::memory_order_relaxed);
+      if (path.size() <= piece_depth) cut_piece(c.nodes);
       if (s.stop_.requested()) {
         publish(path, c, s.epoch_.load());
         return false;
@@ -222,9 +239,16 @@ class ParallelSearch {
     std::stable_sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.index < b.index; });
     assert(std::adjacent_find(jobs.begin(), jobs.end(),
                               [](const Job& a, const Job& b) { return a.index == b.index; }) == jobs.end());
+    if (WorkSource* w = cfg_.run.work.get()) {  // the root hands these out to every process
+      std::vector<WorkItem> items;
+      for (Job& j : jobs) items.push_back({j.index, std::move(j.resume), j.counted});
+      jobs.clear();
+      w->start(subs_.size(), hash, std::move(items));
+    }
     jobs_ = std::move(jobs);
     split_nodes_ = split_nodes;
     shard_total_ = out.shard_subproblems;
+    trace_search(subs_.size(), split_nodes);
     checkpoint(true);  // the first checkpoint, before any work
 
     run_workers([this](int tid) { worker_subproblems(tid); });
@@ -239,7 +263,49 @@ class ParallelSearch {
       }
     out.subproblems_done = done_in_shard();
     assert(out.subproblems_done <= out.shard_subproblems);
+    if (WorkSource* w = cfg_.run.work.get()) {  // every process's counts, summed on the root
+      bool complete = false;
+      SearchCounters mine = out.counts;
+      if (w->rank() != 0) mine.nodes -= split_nodes_;  // every rank splits; the root's split is counted
+      out.counts = w->finish(mine, stop_.requested(), complete);
+      if (complete) out.subproblems_done = out.shard_subproblems;  // by all ranks together
+      finalize(out, complete);
+      return;
+    }
     finalize(out, out.subproblems_done == out.shard_subproblems);
+  }
+
+  std::string owner() const {
+    if (cfg_.run.work) return fmt::format("rank {}", cfg_.run.work->rank());
+    return fmt::format("{}/{}", cfg_.run.shard.index, cfg_.run.shard.count);
+  }
+
+  void trace_search(std::uint64_t subproblems, std::uint64_t split_nodes) {
+    if (!cfg_.run.trace) return;
+    cfg_.run.trace->add(fmt::format(
+        R"({{"type":"search","title":"{}","mode":"{}","subproblems":{},"threads":{},"owner":"{}","split_nodes":{},"resumed":{}}})",
+        json_text(cfg_.title), cfg_.mode == SearchMode::First ? "first" : "count", subproblems, cfg_.run.threads, owner(), split_nodes, cfg_.resume != nullptr));
+  }
+
+  // `s` with the characters JSON escapes escaped (titles are ASCII words and spaces).
+  static std::string json_text(const std::string& s) {
+    std::string o;
+    for (char ch : s) {
+      if (ch == '"' || ch == '\\') o += '\\';
+      if (static_cast<unsigned char>(ch) < 0x20) continue;
+      o += ch;
+    }
+    return o;
+  }
+
+  void trace_subproblem(const Job& job, const SearchCounters& c, double seconds, Control& ctl) {
+    std::string path, pieces;
+    for (const Decision& d : subs_[job.index]) path += fmt::format("{}{}={}", path.empty() ? "" : " ", d.var, d.value);
+    for (const auto& [n, t] : ctl.pieces) pieces += fmt::format("{}[{},{:.6g}]", pieces.empty() ? "" : ",", n, t);
+    cfg_.run.trace->add(fmt::format(
+        R"({{"type":"subproblem","title":"{}","index":{},"path":"{}","owner":"{}","nodes":{},"seconds":{:.6g},"solutions":{},"resumed":{},"pieces":[{}]}})",
+        json_text(cfg_.title), job.index, path, owner(), c.nodes - job.counted.nodes, seconds,
+        c.solutions - job.counted.solutions, !job.resume.empty(), pieces));
   }
 
   bool mine(std::uint64_t i) const { return cfg_.run.shard.owns(i); }
@@ -256,10 +322,19 @@ class ParallelSearch {
     MergeStats merge{*this, dfs};
     for (;;) {
       Job job;
+      if (WorkSource* w = cfg_.run.work.get()) {  // another process may hand it out: ask the source
+        WorkItem item;
+        if (stop_.requested() || !w->next(item)) return;
+        job = {item.index, std::move(item.resume), item.counted};
+      }
       {
         std::lock_guard lock(mu_);
-        if (next_job_ >= jobs_.size() || stop_.requested()) return;
-        job = jobs_[next_job_++];
+        if (cfg_.run.work && (job.index >= subs_.size() || finished_[job.index]))
+          throw InputError(fmt::format("work source handed out subproblem {} twice or out of range", job.index));
+        if (!cfg_.run.work) {
+          if (next_job_ >= jobs_.size() || stop_.requested()) return;
+          job = jobs_[next_job_++];
+        }
         std::lock_guard sl(slot.mu);
         slot.active = true;
         slot.snap.index = job.index;
@@ -270,8 +345,18 @@ class ParallelSearch {
       Control ctl{*this, slot, job.index, slot.epoch};
       SearchCounters c = job.counted;
       M m = root_;
+      const auto t0 = std::chrono::steady_clock::now();
+      if (cfg_.run.trace) {
+        ctl.piece_depth = subs_[job.index].size() + kTracePieceDepth;
+        ctl.piece_nodes = c.nodes;
+        ctl.piece_start = t0;
+      }
       SubtreeOutcome o = dfs.run(m, subs_[job.index], job.resume, c, ctl);
       if (o == SubtreeOutcome::Stopped) return;  // the slot keeps the published snapshot
+      if (cfg_.run.trace) {
+        ctl.cut_piece(c.nodes);
+        trace_subproblem(job, c, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), ctl);
+      }
       std::lock_guard lock(mu_);
       assert(!finished_[job.index] && "a subproblem is finished once");
       finished_[job.index] = true;
@@ -295,6 +380,7 @@ class ParallelSearch {
       restart_nodes_ = r->restart_nodes;
     }
     checkpoint(true);  // the first checkpoint, before any work
+    trace_search(0, 0);
     run_workers([this](int tid) { worker_restarts(tid); });
     out.restarts = next_restart_.load();
     out.counts.nodes = restart_nodes_.load();
@@ -326,7 +412,13 @@ class ParallelSearch {
       Control ctl{*this, slot, 0, epoch_.load()};
       ctl.node_limit = luby_limit(k + 1, cfg_.restart_base);
       SearchCounters c;
+      const auto t0 = std::chrono::steady_clock::now();
       SubtreeOutcome o = dfs.run(m, {}, {}, c, ctl);
+      if (cfg_.run.trace)
+        cfg_.run.trace->add(fmt::format(
+            R"({{"type":"dive","title":"{}","dive":{},"owner":"{}","nodes":{},"seconds":{:.6g},"found":{}}})",
+            json_text(cfg_.title), r, owner(), c.nodes,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), c.solutions > 0));
       // A dive cut short by a stop (time limit, signal, a portfolio slice's end) is not done: a
       // resume runs it again, so the natural-order dive 0 and the long Luby dives are never lost.
       if (!(o == SubtreeOutcome::Stopped && !ctl.hit_limit && stop_.requested())) slot.dive.store(kNoDive);
@@ -479,6 +571,12 @@ class ParallelSearch {
       // Resumed subproblems not yet picked up by a worker keep their paths.
       for (std::size_t j = next_job_; j < jobs_.size(); ++j)
         if (!jobs_[j].resume.empty()) st.in_flight.push_back({jobs_[j].index, jobs_[j].resume, jobs_[j].counted});
+      if (cfg_.run.work) {
+        for (WorkItem& w : cfg_.run.work->queued_resumed())
+          if (!finished_[w.index]) st.in_flight.push_back({w.index, std::move(w.resume), w.counted});
+        std::sort(st.in_flight.begin(), st.in_flight.end(),
+                  [](const InFlightSubproblem& a, const InFlightSubproblem& b) { return a.index < b.index; });
+      }
     }
     st.restarts = first_unfinished_dive();
     st.restart_nodes = restart_nodes_.load();
@@ -486,6 +584,7 @@ class ParallelSearch {
     const double write_start = elapsed();
     if (cfg_.flush) cfg_.flush();
     cfg_.save(st);
+    if (cfg_.run.trace) cfg_.run.trace->write();
     ++checkpoints_;
     std::lock_guard lock(stats_mu_);  // workers may be merging their counters meanwhile
     stats_.checkpoint_seconds += elapsed() - write_start;
@@ -498,6 +597,7 @@ class ParallelSearch {
     out.complete = exhausted && (why == StopReason::None || why == StopReason::Exhausted);
     if (cfg_.mode == SearchMode::First && cfg_.restarts) out.complete = why == StopReason::Exhausted;
     if (cfg_.save) checkpoint(true);
+    else if (cfg_.run.trace) cfg_.run.trace->write();
   }
 
   M root_;

@@ -2,9 +2,12 @@
 // RunSettings: how a search runs, as opposed to what it searches (solver/problem.hpp).
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "base/parse.hpp"
+#include "solver/run_trace.hpp"
+#include "solver/work_source.hpp"
 
 namespace tilekit {
 
@@ -28,6 +31,13 @@ struct RunSettings {
   // true the search stops as soon as it looks, neither complete nor timed out nor interrupted.
   const std::atomic<bool>* cancel = nullptr;
   bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+  // ---- scale-out ----
+  // Record every subproblem (dive) this process runs, with its nodes and seconds (run_trace.hpp);
+  // shared by the searches of one run (the portfolio's slices). Null: no trace.
+  std::shared_ptr<RunTrace> trace;
+  // Take subproblems from this source instead of the shard's fixed list (an MPI job,
+  // work_source.hpp); count mode only. Null: the shard's list.
+  std::shared_ptr<WorkSource> work;
 };
 
 }  // namespace tilekit

@@ -1,5 +1,7 @@
 #include "solver/search_state.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -73,6 +75,44 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
     throw InputError(fmt::format("{} restarts is more than the limit of {}", st.restarts, kMaxRestarts));
   if (!std::isfinite(st.seconds) || st.seconds < 0)
     throw InputError(fmt::format("its time so far ({} s) is not a non-negative number", st.seconds));
+}
+
+void merge_search_states(SearchState& into, const SearchState& from) {
+  if (from.fingerprint != into.fingerprint || from.subproblem_count != into.subproblem_count ||
+      from.subproblem_hash != into.subproblem_hash || from.finished.size() != into.finished.size())
+    throw InputError("the checkpoints to merge belong to different searches");
+  std::vector<SearchCounters> each(into.finished.size());
+  auto spread = [&](const SearchState& st) {
+    for (std::size_t i = 0, k = 0; i < st.finished.size(); ++i)
+      if (st.finished[i]) each[i] = st.finished_each.at(k++);
+  };
+  spread(from);
+  spread(into);  // into's own counts win (they are equal for a deterministic search)
+  std::vector<bool> finished(into.finished.size());
+  for (std::size_t i = 0; i < finished.size(); ++i) finished[i] = into.finished[i] || from.finished[i];
+  std::vector<InFlightSubproblem> flight;
+  const std::vector<InFlightSubproblem>* lists[] = {&into.in_flight, &from.in_flight};
+  for (const std::vector<InFlightSubproblem>* list : lists)
+    for (const InFlightSubproblem& f : *list) {
+      if (f.index >= finished.size() || finished[f.index]) continue;
+      auto same = std::find_if(flight.begin(), flight.end(), [&](const InFlightSubproblem& g) { return g.index == f.index; });
+      if (same == flight.end())
+        flight.push_back(f);
+      else if (f.counted.nodes > same->counted.nodes)
+        *same = f;
+    }
+  std::sort(flight.begin(), flight.end(),
+            [](const InFlightSubproblem& a, const InFlightSubproblem& b) { return a.index < b.index; });
+  into.finished = std::move(finished);
+  into.finished_each.clear();
+  into.finished_counts = {};
+  for (std::size_t i = 0; i < into.finished.size(); ++i)
+    if (into.finished[i]) {
+      into.finished_each.push_back(each[i]);
+      into.finished_counts += each[i];
+    }
+  into.in_flight = std::move(flight);
+  into.seconds = std::max(into.seconds, from.seconds);
 }
 
 }  // namespace tilekit

@@ -79,6 +79,13 @@ inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 // uninterrupted result. Throws InputError naming the first problem found.
 void check_search_state(const SearchState& state, std::uint64_t subproblems = 0, int shard_index = 0,
                         int shard_count = 1);
+// Adds `from` (another process's state of the same search: an MPI rank's checkpoint) to `into`:
+// a subproblem finished in either is finished, with its own counts; one in flight in either and
+// finished in neither stays in flight at the snapshot that counted more nodes. Idempotent, so
+// merging stale or repeated files never counts a subproblem twice. InputError unless both have
+// the same fingerprint and subproblem list.
+void merge_search_states(SearchState& into, const SearchState& from);
+
 // The portfolio's resumable state (solver/portfolio.hpp): where the schedule stands and, per
 // candidate, what it used and its own engine state.
 struct PortfolioCandidateState {

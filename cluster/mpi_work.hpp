@@ -1,0 +1,26 @@
+#pragma once
+// One `tilekit pack --mpi` run as one MPI job: every rank runs the same search (the same
+// subproblem list), its threads take subproblems from a dynamic pool that the root rank (0)
+// holds and hands out one at a time on request (a dynamic work pool: subproblems are not split
+// further, an open subtree is never stolen from a busy rank). Each rank checkpoints what it ran
+// to its own file; the root's file is the run's (`--checkpoint F`: rank R > 0 writes F.rank-R), and
+// a resume with any number of ranks merges F and every F.rank-* (checkpoints/checkpoint.hpp).
+// At the end every rank sends its counters to the root, which alone stores the result.
+//
+// MPI calls are serialised by one mutex (MPI_THREAD_SERIALIZED); every wait polls with short
+// sleeps instead of MPI's busy waiting, so an idle rank or the root's dispatcher costs no core.
+// Without MPI (the build found none) start_mpi_work() throws InputError.
+#include <memory>
+
+#include "solver/work_source.hpp"
+
+namespace tilekit::cluster {
+
+// Whether this build has MPI.
+bool mpi_built();
+
+// Initialises MPI (once per process; finalised when the last reference goes) and returns this
+// rank's work source.
+std::shared_ptr<WorkSource> start_mpi_work();
+
+}  // namespace tilekit::cluster
