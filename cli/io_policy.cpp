@@ -51,6 +51,7 @@ constexpr std::array kRules = {
     Rule{"*", "--checkpoint", PathRole::Output},
     Rule{"*", "--plot", PathRole::Output},
     Rule{"*", "--pegs-out", PathRole::Output},
+    Rule{"*", "--trace", PathRole::Output},
     Rule{"*", "--picture", PathRole::Output},
     Rule{"*", "--zoneplate", PathRole::Output},
     Rule{"points analyze", "--spectrum", PathRole::Output},
