@@ -261,7 +261,9 @@ void add_simulate(CLI::App& cluster, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--rounds", a->rounds, "split: the most arrays (the last runs to the end)")->capture_default_str();
   add_json_flag(cmd, ctx);
-  cmd->footer("What a trace can model: see cluster/schedule_sim.hpp (pieces are not split; latencies are 0).");
+  cmd->footer(
+      "What a trace can model: pieces are not split further and latencies are 0, so each figure is an upper bound "
+      "for its policy (cluster/schedule_sim.hpp).\nExit codes: 0 ok, 2 bad input (a trace that cannot be read).");
   cmd->callback([a, &ctx] { run_simulate(*a, ctx); });
 }
 

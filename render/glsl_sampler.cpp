@@ -113,8 +113,8 @@ std::string glsl_sampler_file(const TextureAtlas& a, const RenderOptions& o, Sha
       : language == ShaderLanguage::GlslVulkan ? "GLSL 4.50 (Vulkan)"
       : language == ShaderLanguage::Hlsl       ? "HLSL (Shader Model 5+)"
                                                : "WGSL (WebGPU)",
-      a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours, a.tile_px, a.lookup.source,
-      a.lookup.how);
+      a.lookup.rows, a.lookup.cols, kind_name(a.lookup.kind), a.lookup.colours, a.tile_px,
+      comment_text(a.lookup.source), comment_text(a.lookup.how));  // the user's text (a manifest's)
   switch (language) {
     case ShaderLanguage::GlslEs:
       g += "// Paste after `#version 300 es` and `precision highp float; precision highp int;`.\n"
