@@ -13,6 +13,7 @@
 #include "base/progress.hpp"
 #include "base/random.hpp"
 #include "base/run_control.hpp"
+#include "base/signals.hpp"
 #include "solver/dfs.hpp"
 #include "solver/parallel_search.hpp"
 
@@ -298,6 +299,16 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
       checkpoint(b);
     const FillWindow block{(b / nbc) * B, (b % nbc) * B, std::min(B, req.rows - (b / nbc) * B),
                            std::min(B, req.cols - (b % nbc) * B)};
+    // Between blocks too: a block is often filled before its search first polls for a stop.
+    const bool signalled = req.run.catch_signals && SignalCatcher::caught() != 0;
+    if (signalled || deadline.expired()) {
+      out.interrupted = signalled;
+      out.timed_out = !signalled;
+      out.signal = signalled ? SignalCatcher::caught() : 0;
+      out.window = block;
+      checkpoint(b);
+      return finish();
+    }
     int margin = 0;
     for (int attempt = 0;; ++attempt) {
       FillWindow w = block;

@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <chrono>
-#include <filesystem>
 #include <set>
 #include <string>
 #include <thread>
@@ -149,11 +149,20 @@ TEST(FillKill, A4096FillStoppedAndResumedEqualsTheWholeRun) {
   ASSERT_EQ(whole.code, 0) << whole.err;
   const std::string ck = d / "f.ckpt";
   std::vector<std::string> args{"fill", "--set", wfc("Knots"), "--subset", "Standard", "--size", "4096x4096", "--torus",
-                                "--seed", "11", "--checkpoint", ck, "--checkpoint-every", "2", "--json", "--quiet"};
+                                "--seed", "11", "--checkpoint", ck, "--checkpoint-every", "0.2", "--json", "--quiet"};
   const pid_t pid = spawn_tilekit(args, d / "out", d / "err");
   ASSERT_GT(pid, 0);
   ASSERT_TRUE(wait_until_catching(pid, SIGTERM, 30));
-  std::this_thread::sleep_for(std::chrono::seconds(8));
+  // Stopped as soon as a checkpoint written during the work replaces the one written before it
+  // (every 0.2 s; each is renamed into place, a new inode), however fast or loaded the machine.
+  const auto inode = [&] {
+    struct stat st {};
+    return ::stat(ck.c_str(), &st) == 0 ? st.st_ino : ino_t(0);
+  };
+  ino_t first = 0;
+  for (int i = 0; i < 600 && (first = inode()) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_NE(first, ino_t(0)) << "no checkpoint after 30 s";
+  for (int i = 0; i < 600 && inode() == first; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   kill(pid, SIGTERM);
   ASSERT_EQ(wait_exit(pid), 3) << slurp(d / "err");
   EXPECT_NE(slurp(d / "err").find("checkpoint written to"), std::string::npos);
