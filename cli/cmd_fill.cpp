@@ -4,6 +4,11 @@
 // a WFC simple tiled model) by the engine's fill model (tilemap/fill_job.hpp).
 #include <fmt/format.h>
 
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/error.hpp"
 #include "base/hash.hpp"
 #include "base/parse.hpp"
 #include "base/signals.hpp"

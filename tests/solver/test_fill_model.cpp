@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/error.hpp"
 #include "solver/fill_search.hpp"
 
 namespace tilekit::test {
