@@ -35,8 +35,8 @@ LiftSpec parse_lift_spec(const std::string& text) {
       if (used != value.size() || m < 1 || m > 255) throw fail("the base colour count must be an integer in 1..255");
       spec.base_colours = std::uint32_t(m);
       have_m = true;
-    } else if (key == "base") {
-      spec.base_file = text.substr(at + 5);  // the rest of the text, commas included
+    } else if (key == "base" && eq != std::string::npos) {
+      spec.base_file = text.substr(at + eq + 1);  // the rest of the text, commas included
       if (spec.base_file.empty()) throw fail("base= needs a packing file");
       break;
     } else {

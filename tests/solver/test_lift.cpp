@@ -52,7 +52,7 @@ TEST(LiftSpec, ParsesTheBaseColourCountAndFile) {
   EXPECT_EQ(s.base_colours, 2u);
   EXPECT_EQ(s.base_file, "b.json");
   EXPECT_EQ(s.text(), "m=2,base=b.json");
-  for (const char* bad : {"", "m=0", "x", "4,q=1", "m=4,base="}) EXPECT_THROW(parse_lift_spec(bad), InputError) << bad;
+  for (const char* bad : {"", "m=0", "x", "4,q=1", "m=4,base=", "m=4,base", "base"}) EXPECT_THROW(parse_lift_spec(bad), InputError) << bad;
 }
 
 TEST(LiftProblem, NeedsAMultipleOfTheBaseColours) {
