@@ -65,6 +65,8 @@ void print_verify(const VerifyReport& rep) {
 
 void run_verify_command(const VerifyArgs& a, const Context& ctx) {
   VerifyRequest req = a.req;
+  if (req.options.route == "torus" && (!a.run.checkpoint.empty() || !a.run.resume.empty()))
+    throw InputError("--checkpoint and --resume belong to the transducer route; the torus route keeps no checkpoint");
   apply_verify_run(a.run, req.options);
   req.options.progress = !a.quiet;
   req.options.decide.catch_signals = true;
@@ -94,7 +96,7 @@ void run_verify_command(const VerifyArgs& a, const Context& ctx) {
     throw Interrupted(interrupted_message(
         r.signal, kept ? "checkpoint written to " + ck + " (continue with --resume " + ck + ")"
                        : std::string(ck.empty() ? "nothing kept (use --checkpoint F to resume the transducer route)"
-                                                : "nothing kept (the torus route keeps no checkpoint)")));
+                                                : "nothing kept (no checkpoint had been written yet)")));
   }
 }
 

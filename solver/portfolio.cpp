@@ -351,6 +351,8 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
       };
     }
   }
+  // A resumed engine reports its nodes cumulatively, the resumed state's included.
+  const std::uint64_t nodes_before = o.resume_state ? counted_nodes(*o.resume_state) : 0;
   SearchResult r = cand.run(p_, o);
   assert(r.found.size() <= 1);
   bool success = !r.found.empty();
@@ -362,7 +364,7 @@ void Scheduler::slice(std::size_t i, double seconds, int threads) {
   std::lock_guard lock(mu_);
   PortfolioCandidateState& cs = state_.candidates[i];
   cs.slices += 1;
-  cs.nodes += r.nodes;
+  cs.nodes += r.nodes - std::min(r.nodes, nodes_before);
   cs.seconds += r.seconds;
   out_.stats += r.stats;
   // A slice cut short by a signal or by the other lane's solution says nothing about the candidate.

@@ -77,6 +77,12 @@ void check_search_state(const SearchState& st, std::uint64_t subproblems, int sh
     throw InputError(fmt::format("its time so far ({} s) is not a non-negative number", st.seconds));
 }
 
+std::uint64_t counted_nodes(const SearchState& state) {
+  std::uint64_t n = state.restart_nodes + state.finished_counts.nodes;
+  for (const InFlightSubproblem& f : state.in_flight) n += f.counted.nodes;
+  return n;
+}
+
 void merge_search_states(SearchState& into, const SearchState& from) {
   if (from.fingerprint != into.fingerprint || from.subproblem_count != into.subproblem_count ||
       from.subproblem_hash != into.subproblem_hash || from.finished.size() != into.finished.size())

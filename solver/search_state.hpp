@@ -79,6 +79,9 @@ inline constexpr std::uint64_t kMaxRestarts = std::uint64_t(1) << 40;
 // uninterrupted result. Throws InputError naming the first problem found.
 void check_search_state(const SearchState& state, std::uint64_t subproblems = 0, int shard_index = 0,
                         int shard_count = 1);
+// The nodes a state has counted (restarts, finished subproblems and those in flight): what a
+// search resumed from it reports on top of its own work.
+std::uint64_t counted_nodes(const SearchState& state);
 // Adds `from` (another process's state of the same search: an MPI rank's checkpoint) to `into`:
 // a subproblem finished in either is finished, with its own counts; one in flight in either and
 // finished in neither stays in flight at the snapshot that counted more nodes. Idempotent, so

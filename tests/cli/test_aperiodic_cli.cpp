@@ -100,6 +100,10 @@ TEST(AperiodicCli, BadInputExitsWithCode2AndAClearMessage) {
   EXPECT_EQ(run_cli("aperiodic verify culik-13 --max-period 0").code, 2);
   EXPECT_EQ(run_cli("aperiodic verify culik-13 --route sideways").code, 2);
   EXPECT_EQ(run_cli("aperiodic verify culik-13 --time-limit -1").code, 2);
+  auto torus_ck = run_cli("aperiodic verify culik-13 --route torus --checkpoint " + d / "v.ckpt");
+  EXPECT_EQ(torus_ck.code, 2);
+  EXPECT_NE(torus_ck.err.find("torus route keeps no checkpoint"), std::string::npos) << torus_ck.err;
+  EXPECT_FALSE(std::filesystem::exists(d / "v.ckpt"));
 }
 
 TEST(AperiodicVerifyCli, FindsThePeriodOfASetBuiltToBePeriodic) {
