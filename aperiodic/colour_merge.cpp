@@ -13,6 +13,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "base/signals.hpp"
+
 namespace tilekit {
 
 namespace {
@@ -218,6 +220,7 @@ MergeSearch least_colour_merge(const std::vector<CornerTile>& tiles, bool allow_
     const std::vector<Colour> cs = colours_of(nodes[i].tiles);
     for (std::size_t a = 0; a < cs.size(); ++a)
       for (std::size_t b = a + 1; b < cs.size(); ++b) {
+        throw_if_interrupted();  // a whole search takes minutes on a large set
         bool conj = false;
         std::optional<std::vector<CornerTile>> r;
         // (radius, margin) pairs, cheapest check first; past the first only for merges that save tiles.

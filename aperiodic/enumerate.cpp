@@ -88,7 +88,13 @@ std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const s
   std::vector<Child> out;
   for (const std::string& step : steps_of(set.kind(), operations_of(o))) {
     if (stop()) return out;
-    std::optional<StepResult> r = apply_step(set, step);
+    std::optional<StepResult> r;
+    try {
+      r = apply_step(set, step);  // a long step (a merge search, a 5x5 prune) stops on a signal
+    } catch (const Interrupted&) {
+      if (!stop()) throw;  // stop() records the signal, and the batch is dropped
+      return out;
+    }
     if (!r) continue;
     Child c{step, r->label, r->argument, std::nullopt, {}};
     if (r->set.size() <= o.max_tiles) {

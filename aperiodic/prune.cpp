@@ -14,6 +14,7 @@
 #include <unordered_set>
 
 #include "base/error.hpp"
+#include "base/signals.hpp"
 
 namespace tilekit {
 
@@ -91,8 +92,10 @@ std::vector<std::size_t> surroundable(const std::vector<WangTile>& w, int patch_
   });
   std::vector<std::size_t> out;
   std::vector<int> grid(std::size_t(side * side), -1);
+  std::uint64_t calls = 0;
   std::function<bool(std::size_t)> place = [&](std::size_t i) {
     if (i == order.size()) return true;
+    if (++calls % (1u << 16) == 0) throw_if_interrupted();  // one tile's search can take minutes
     const auto [y, x] = order[i];
     auto at = [&](int yy, int xx) {
       return yy < 0 || xx < 0 || yy >= side || xx >= side ? -1 : grid[std::size_t(yy * side + xx)];
@@ -110,6 +113,7 @@ std::vector<std::size_t> surroundable(const std::vector<WangTile>& w, int patch_
     return false;
   };
   for (std::size_t k = 0; k < w.size(); ++k) {
+    throw_if_interrupted();
     std::fill(grid.begin(), grid.end(), -1);
     grid[std::size_t(c * side + c)] = int(k);
     if (place(1)) out.push_back(k);

@@ -3,16 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "aperiodic/canonical.hpp"
+#include "aperiodic/colour_merge.hpp"
 #include "aperiodic/convert.hpp"
 #include "aperiodic/enumerate.hpp"
 #include "aperiodic/prune.hpp"
 #include "aperiodic/steps.hpp"
 #include "base/error.hpp"
+#include "base/signals.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -35,6 +38,19 @@ TEST(StrongerPrune, FiveByFivePatchesTakeTheNinetyTwoSetToEightyNine) {
   EXPECT_EQ(links.back().tiles, 89u);
   EXPECT_EQ(links.back().label, "conjugate");
   EXPECT_EQ(links.back().hash, canonical_form(set89).hash);
+}
+
+// The long steps (the 5x5 surround, a colour-merge search) stop at a signal instead of running
+// on for minutes (`aperiodic enumerate` then drops the batch and writes its checkpoint).
+TEST(StrongerPrune, ASignalStopsTheLongStepsPartWay) {
+  TileSet set92;
+  replay_chain("jeandel-rao-11-variant-2", {"blocks", "to-wang", "horizontal+prune"}, &set92);
+  const TileSet corner = resolve_tile_set("complete-corner-2");
+  SignalCatcher catcher;
+  ASSERT_EQ(std::raise(SIGTERM), 0);
+  PruneReport rep;
+  EXPECT_THROW(prune(set92, 3, &rep, 2), Interrupted);
+  EXPECT_THROW(least_colour_merge(corner.corner_tiles(), false, 1, 0, 8), Interrupted);
 }
 
 TEST(StrongerPrune, FiveByFiveSurroundIsTheThreeByThreeOneAtRadiusOne) {
