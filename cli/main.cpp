@@ -24,7 +24,7 @@ namespace {
 // files and exits 3 with one line saying what was kept.
 bool is_long_job(std::string_view cmd, std::string_view sub) {
   return cmd == "pack" || (cmd == "aperiodic" && (sub == "enumerate" || sub == "verify")) ||
-         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles") ||
+         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && (sub == "tiles" || sub == "terrain")) ||
          cmd == "fill";
 }
 

@@ -8,6 +8,7 @@
 // Every input is checked before anything is written; every file is written atomically.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "tilesets/tile_grid.hpp"
 
@@ -20,6 +21,7 @@ struct TilesetRequest {
   int tile_px = 32;       // built-in tiles only (drawn tiles keep their size)
   std::string name;       // "": "corner-C" or "wang-C"
   std::string out_dir;    // created if missing
+  std::vector<std::string> colour_names;  // the Wang colours' names by colour (empty: built-in or "colour k")
 };
 
 struct TilesetOutcome {

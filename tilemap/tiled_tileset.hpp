@@ -30,6 +30,8 @@ struct TsxFile {
   std::string image;  // the sheet PNG, relative to the .tsx
   int tile_px = 32;
   bool builtin_colours = true;  // colours named after atlas/render.hpp's palette ("red", ...)
+  // Names of the Wang colours by colour (terrains: "grass", "sand"); empty: as builtin_colours says.
+  std::vector<std::string> colour_names;
 };
 
 // Tiled 1.8's tileset file: the image, then a Wang set of type "corner" or "edge" with one
