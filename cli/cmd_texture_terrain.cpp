@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 struct TerrainArgs {
   std::vector<std::string> terrains;
-  std::string out, tiled, name;
+  std::string out, tiled, name, seams = "cut";
   SynthesisOptions synthesis = [] {
     SynthesisOptions o;
     o.tile_px = 64;
@@ -85,7 +85,7 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
   // The sheet's packing (tilemap/tiled_tileset.hpp): the same layout the Tiled tileset gets.
   const tilemap::TiledSheet sheet = tilemap::sheet_layout(TileKind::Corner, o.colours);
   const AtlasLookup lookup = lookup_from_packing(sheet.packing, "construct", sheet.how, sheet.closed_form);
-  const TerrainTileSet r = synthesize_terrain_tiles(terrains, o);
+  const TerrainTileSet r = synthesize_terrain_tiles(terrains, o, a.seams == "straight");
   const TextureTileSet& s = r.set;
   nlohmann::json tj = nlohmann::json::array();
   for (std::size_t k = 0; k < terrains.size(); ++k)
@@ -96,6 +96,7 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
                   {"texel_fraction", r.texel_fraction[k]},
                   {"cut_error", r.cut_error[k]}});
   const nlohmann::json report = {{"terrains", tj},
+                                 {"seams", a.seams},
                                  {"terrain_seam_step", r.seam_step},
                                  {"terrain_mean_step", r.terrain_step},
                                  {"sheet_packing", {{"rows", sheet.packing.rows}, {"cols", sheet.packing.cols},
@@ -158,6 +159,11 @@ void add_texture_terrain(CLI::App& texture, Context& ctx) {
   add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed, a->run);
   cmd->add_option("--search", a->synthesis.search,
                   "Candidate shared samples per sample and round (0: the first random draw, no search)")
+      ->capture_default_str();
+  cmd->add_option("--seams", a->seams,
+                  "cut: terrain boundaries along minimum-error cuts through the textures; straight: on the tiles' "
+                  "middle lines (the baseline)")
+      ->check(CLI::IsMember({"cut", "straight"}))
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr and no summary on stdout");
   add_json_flag(cmd, ctx);

@@ -55,8 +55,13 @@ CutPath terrain_cut(const SeamRows& s, int n) {
 
 class TerrainSynthesis {
  public:
-  TerrainSynthesis(std::vector<TextureTileSet> sets, int margin, int threads)
-      : threads_(threads), sets_(std::move(sets)), c_(sets_[0].colours), n_(sets_[0].tile_px), mb_(margin), w_(n_ / 4) {}
+  TerrainSynthesis(std::vector<TextureTileSet> sets, int margin, int threads, bool straight)
+      : threads_(threads),
+        sets_(std::move(sets)),
+        c_(sets_[0].colours),
+        n_(sets_[0].tile_px),
+        mb_(margin),
+        w_(straight ? 0 : n_ / 4) {}
 
   TerrainTileSet run() {
     border_cuts();
@@ -112,7 +117,6 @@ class TerrainSynthesis {
     cost += border_cost_;
     rows += border_rows_;
     r.seam_step = rows ? cost / double(rows) : 0.0;
-    r.seams = seams_;
     for (const TextureTileSet& x : sets_) {
       r.cut_error.push_back(x.cut_error);
       s.cut_error += x.cut_error;
@@ -154,7 +158,6 @@ class TerrainSynthesis {
         CutPath vc = terrain_cut(s, n_);
         border_cost_ += h.cost + vc.cost;
         border_rows_ += std::size_t(4 * mb_);
-        seams_ += 2;
         hcut_[std::size_t(a) * c_ + b] = std::move(h.pos);
         vcut_[std::size_t(a) * c_ + b] = std::move(vc.pos);
       }
@@ -265,10 +268,10 @@ class TerrainSynthesis {
   int threads_;
   std::vector<TextureTileSet> sets_;
   std::uint32_t c_;
-  int n_, mb_, w_;
+  int n_, mb_, w_;  // w_: how far a cut may stray from the tile's middle line
   std::vector<std::vector<int>> hcut_, vcut_;  // by a * C + b
   double border_cost_ = 0;
-  std::size_t border_rows_ = 0, seams_ = 0;
+  std::size_t border_rows_ = 0;
 };
 
 bool valid_terrain_name(const std::string& s) {
@@ -296,7 +299,8 @@ void check_terrain_options(const std::vector<TerrainTexture>& terrains, const Sy
   }
 }
 
-TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o) {
+TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o,
+                                        bool straight_seams) {
   o.colours = std::uint32_t(terrains.size());
   check_terrain_options(terrains, o);
   const auto t0 = std::chrono::steady_clock::now();
@@ -309,7 +313,7 @@ TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terra
     sets.push_back(synthesize_corner_tiles(terrains[k].exemplar, one));
     margin = std::min(margin, TileGeometry(o.tile_px, sets.back().thin_bands).margin);
   }
-  TerrainTileSet r = TerrainSynthesis(std::move(sets), margin, o.threads).run();
+  TerrainTileSet r = TerrainSynthesis(std::move(sets), margin, o.threads, straight_seams).run();
   r.set.seed = o.seed;
   for (const TerrainTexture& t : terrains) {
     r.names.push_back(t.name);

@@ -44,7 +44,6 @@ struct TerrainTileSet {
   std::vector<double> texel_fraction;   // per terrain: the fraction of all texels it shows
   double seam_step = 0;                 // mean step per channel shown across a terrain seam, per seam texel
   double terrain_step = 0;              // mean step per channel between 4-neighbours inside the terrains' tiles
-  std::size_t seams = 0;                // cuts computed (border cuts and the cuts inside tiles)
 };
 
 // InputError (exit 2) for fewer than kMinTerrains or more than kMaxTerrains terrains, two with one
@@ -54,7 +53,9 @@ struct TerrainTileSet {
 void check_terrain_options(const std::vector<TerrainTexture>& terrains, const SynthesisOptions& o);
 
 // o.colours is set to the number of terrains; o.kind must be corner. Terrain k's set is seeded by
-// derive_seed(o.seed, k), so the result is the same bytes on any thread count.
-TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o);
+// derive_seed(o.seed, k), so the result is the same bytes on any thread count. `straight_seams`:
+// the baseline, every terrain boundary on the tile's middle lines (no cut searched).
+TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o,
+                                        bool straight_seams = false);
 
 }  // namespace tilekit
