@@ -5,6 +5,7 @@
 // a Tiled tileset (tilemap/tiled_files.hpp) whose Wang colours are the terrains.
 #include <fmt/format.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -120,6 +121,17 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
     req.name = a.name.empty() ? "terrain-" + joined(names, "-") : a.name;
     req.out_dir = a.tiled;
     req.colour_names = names;
+    // each terrain's display colour in Tiled: the mean colour of its tile alone (all four corners k)
+    for (std::uint32_t k = 0; k < o.colours; ++k) {
+      const Image& tile = s.tiles[corner_index(CornerTile{k, k, k, k}, o.colours)];
+      std::array<double, 3> sum{};
+      for (int y = 0; y < tile.height; ++y)
+        for (int x = 0; x < tile.width; ++x)
+          for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += tile.at(x, y)[c];
+      const double texels = double(tile.width) * double(tile.height);
+      req.colour_rgb.push_back({std::uint8_t(sum[0] / texels + 0.5), std::uint8_t(sum[1] / texels + 0.5),
+                                std::uint8_t(sum[2] / texels + 0.5)});
+    }
     const tilemap::TilesetOutcome t = tilemap::write_tiled_tileset(req);
     j["tiled"] = {{"name", t.name}, {"tsx", t.tsx_path}, {"png", t.png_path}, {"rows", t.rows}, {"cols", t.cols}};
   }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "image/image.hpp"
 #include "tilesets/tile_grid.hpp"
 
 namespace tilekit::tilemap {
@@ -22,6 +23,7 @@ struct TilesetRequest {
   std::string name;       // "": "corner-C" or "wang-C"
   std::string out_dir;    // created if missing
   std::vector<std::string> colour_names;  // the Wang colours' names by colour (empty: built-in or "colour k")
+  std::vector<Rgb> colour_rgb;            // their display colours (empty: the pictures' palette)
 };
 
 struct TilesetOutcome {

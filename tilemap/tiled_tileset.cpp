@@ -58,7 +58,7 @@ std::string tsx_text(const TiledSheet& sheet, const TsxFile& f) {
     s += fmt::format("   <wangcolor name=\"{}\" color=\"{}\" tile=\"{}\" probability=\"1\"/>\n",
                      c < f.colour_names.size() ? xml_escape(f.colour_names[c], "a colour name")
                                                : colour_name(c, f.builtin_colours),
-                     atlas::hex(atlas::palette_colour(c)),
+                     atlas::hex(c < f.colour_rgb.size() ? f.colour_rgb[c] : atlas::palette_colour(c)),
                      sheet.tile_id[uniform_tile(p.colours, c)]);
   for (std::size_t k = 0; k < p.cells.size(); ++k)
     s += fmt::format("   <wangtile tileid=\"{}\" wangid=\"{}\"/>\n", k,

@@ -75,6 +75,14 @@ TEST(TerrainCli, WritesTheSetTheSheetAndATilesetTiledReads) {
   ASSERT_EQ(colours.size(), 3u);
   EXPECT_EQ(colours.at(0).at("name"), "red");
   EXPECT_EQ(colours.at(2).at("name"), "blue");
+  // each Wang colour is drawn in its terrain's mean colour: terrain k's channel k dominates
+  for (int k = 0; k < 3; ++k) {
+    const std::string hex = colours.at(std::size_t(k)).at("color").get<std::string>();  // "#rrggbb"
+    ASSERT_EQ(hex.size(), 7u) << hex;
+    int ch[3];
+    for (int c = 0; c < 3; ++c) ch[c] = std::stoi(hex.substr(std::size_t(1 + 2 * c), 2), nullptr, 16);
+    for (int c = 0; c < 3; ++c) EXPECT_TRUE(c == k || ch[k] > ch[c]) << "terrain " << k << " " << hex;
+  }
   // Every tile's corners in the sheet PNG show the terrain its wangid names (entries 7, 1, 5, 3:
   // top-left, top-right, bottom-left, bottom-right; colours from 1).
   const Image sheet = read_image(png, 4);
