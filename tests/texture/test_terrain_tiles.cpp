@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/error.hpp"
@@ -149,6 +150,20 @@ TEST(TerrainTiles, RealTexturesJoinSeamlesslyOnTheSheetAndInAStochasticMap) {
     EXPECT_LE(st.seam_ratio, 1.10) << "C=" << c;
     EXPECT_GT(st.seam_ratio, 0.5) << "C=" << c;
   }
+}
+
+TEST(TerrainTiles, TheSameSeedGivesTheSameTilesOnAnyThreadCount) {
+  SynthesisOptions o = small_options(TileKind::Corner, 2, 32, 1);
+  const TerrainTileSet one = synthesize_terrain_tiles(channel_terrains(2), o);
+  o.threads = 3;
+  const TerrainTileSet three = synthesize_terrain_tiles(channel_terrains(2), o);
+  ASSERT_EQ(one.set.tiles.size(), three.set.tiles.size());
+  for (std::size_t t = 0; t < one.set.tiles.size(); ++t) {
+    EXPECT_EQ(one.set.tiles[t].pixels, three.set.tiles[t].pixels) << "tile " << t;
+    EXPECT_EQ(one.set.sources[t], three.set.sources[t]) << "tile " << t;
+  }
+  o.seed = 6;
+  EXPECT_NE(synthesize_terrain_tiles(channel_terrains(2), o).set.tiles[5].pixels, one.set.tiles[5].pixels);
 }
 
 TEST(TerrainTiles, RefusesWhatItCannotMake) {

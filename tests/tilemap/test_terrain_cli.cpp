@@ -6,8 +6,10 @@
 // which terrain it is). Bad input: exit 2, one line, nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "image/image.hpp"
 #include "tests/texture/texture_fixtures.hpp"
