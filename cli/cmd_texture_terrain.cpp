@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 
 struct TerrainArgs {
   std::vector<std::string> terrains;
-  std::string out, tiled, name, seams = "cut";
+  std::string out, tiled, name, seams = "graph-cut";
   SynthesisOptions synthesis = [] {
     SynthesisOptions o;
     o.tile_px = 64;
@@ -86,7 +86,9 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
   // The sheet's packing (tilemap/tiled_tileset.hpp): the same layout the Tiled tileset gets.
   const tilemap::TiledSheet sheet = tilemap::sheet_layout(TileKind::Corner, o.colours);
   const AtlasLookup lookup = lookup_from_packing(sheet.packing, "construct", sheet.how, sheet.closed_form);
-  const TerrainTileSet r = synthesize_terrain_tiles(terrains, o, a.seams == "straight");
+  const TerrainTileSet r = synthesize_terrain_tiles(
+      terrains, o,
+      a.seams == "straight" ? TerrainSeams::Straight : a.seams == "cut" ? TerrainSeams::Cut : TerrainSeams::GraphCut);
   const TextureTileSet& s = r.set;
   nlohmann::json tj = nlohmann::json::array();
   for (std::size_t k = 0; k < terrains.size(); ++k)
@@ -173,9 +175,10 @@ void add_texture_terrain(CLI::App& texture, Context& ctx) {
                   "Candidate shared samples per sample and round (0: the first random draw, no search)")
       ->capture_default_str();
   cmd->add_option("--seams", a->seams,
-                  "cut: terrain boundaries along minimum-error cuts through the textures; straight: on the tiles' "
-                  "middle lines (the baseline)")
-      ->check(CLI::IsMember({"cut", "straight"}))
+                  "graph-cut: terrain boundaries along minimum-error cuts through the textures, refined by a graph "
+                  "cut in tiles of two terrains; cut: the cuts alone; straight: on the tiles' middle lines (the "
+                  "baseline)")
+      ->check(CLI::IsMember({"graph-cut", "cut", "straight"}))
       ->capture_default_str();
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr and no summary on stdout");
   add_json_flag(cmd, ctx);

@@ -12,6 +12,7 @@
 #include "base/parallel.hpp"
 #include "base/random.hpp"
 #include "base/signals.hpp"
+#include "texture/graph_cut.hpp"
 #include "texture/seam_cut.hpp"
 
 namespace tilekit {
@@ -55,13 +56,14 @@ CutPath terrain_cut(const SeamRows& s, int n) {
 
 class TerrainSynthesis {
  public:
-  TerrainSynthesis(std::vector<TextureTileSet> sets, int margin, int threads, bool straight)
+  TerrainSynthesis(std::vector<TextureTileSet> sets, int margin, int threads, TerrainSeams seams)
       : threads_(threads),
+        graph_cut_(seams == TerrainSeams::GraphCut),
         sets_(std::move(sets)),
         c_(sets_[0].colours),
         n_(sets_[0].tile_px),
         mb_(margin),
-        w_(straight ? 0 : n_ / 4) {}
+        w_(seams == TerrainSeams::Straight ? 0 : n_ / 4) {}
 
   TerrainTileSet run() {
     border_cuts();
@@ -84,11 +86,11 @@ class TerrainSynthesis {
     s.tiles.assign(count, Image{n_, n_, std::vector<std::uint8_t>(px * 4)});
     s.sources.assign(count, std::vector<std::uint32_t>(px, 0));
     std::vector<std::vector<std::size_t>> shown(count, std::vector<std::size_t>(c_, 0));
-    std::vector<std::pair<double, std::size_t>> seam(count);  // summed cut cost, cut rows
+    std::vector<std::pair<double, std::size_t>> seam(count);  // per tile: summed step across terrains, pairs
     parallel_for(std::int64_t(count), threads_, [&](std::int64_t ti) {
       throw_if_interrupted();
       const TileIndex t = TileIndex(ti);
-      const std::vector<Colour> label = tile_labels(t, seam[t]);
+      const std::vector<Colour> label = tile_labels(t);
       for (std::size_t i = 0; i < px; ++i) {
         const Colour k = label[i];
         const TextureTileSet& from = sets_[k];
@@ -99,6 +101,17 @@ class TerrainSynthesis {
                               : kCentreBit | (std::uint32_t(k * count) + (src - from.shared_sources));
         ++shown[t][k];
       }
+      // the step shown between 4-neighbours of different terrains
+      const int n = n_;
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const std::size_t i = std::size_t(y) * std::size_t(n) + std::size_t(x);
+          for (const std::size_t j : {x + 1 < n ? i + 1 : i, y + 1 < n ? i + std::size_t(n) : i})
+            if (j != i && label[i] != label[j]) {
+              seam[t].first += channel_step(s.tiles[t].pixels.data() + 4 * i, s.tiles[t].pixels.data() + 4 * j);
+              ++seam[t].second;
+            }
+        }
     });
     // terrain k's centre patch of tile t: shared_sources + k * count + t
     for (auto& v : s.sources)
@@ -114,8 +127,6 @@ class TerrainSynthesis {
     double cost = 0;
     std::size_t rows = 0;
     for (const auto& [c, n] : seam) cost += c, rows += n;
-    cost += border_cost_;
-    rows += border_rows_;
     r.seam_step = rows ? cost / double(rows) : 0.0;
     for (const TextureTileSet& x : sets_) {
       r.cut_error.push_back(x.cut_error);
@@ -156,8 +167,6 @@ class TerrainSynthesis {
         s.left = [&, v, a](int r, int q) { return px(a, v, across(r), q); };
         s.right = [&, v, b](int r, int q) { return px(b, v, across(r), q); };
         CutPath vc = terrain_cut(s, n_);
-        border_cost_ += h.cost + vc.cost;
-        border_rows_ += std::size_t(4 * mb_);
         hcut_[std::size_t(a) * c_ + b] = std::move(h.pos);
         vcut_[std::size_t(a) * c_ + b] = std::move(vc.pos);
       }
@@ -166,7 +175,7 @@ class TerrainSynthesis {
   // A cut inside tile t from `first` (the border's cut, its last row next to the tile's inside, or
   // -1 for none) over rows whose pixels `left`/`right` give, each row r within lo..hi, ending
   // within one of `last` (or anywhere for -1).
-  std::vector<int> inner_cut(SeamRows s, int first, int last, std::pair<double, std::size_t>& cost) const {
+  std::vector<int> inner_cut(SeamRows s, int first, int last) const {
     if (first >= 0) {
       s.lo[0] = std::max(s.lo[0], first - 1);
       s.hi[0] = std::min(s.hi[0], first + 1);
@@ -175,14 +184,62 @@ class TerrainSynthesis {
       s.lo.back() = std::max(s.lo.back(), last - 1);
       s.hi.back() = std::min(s.hi.back(), last + 1);
     }
-    const CutPath p = terrain_cut(s, n_);
-    cost.first += p.cost;
-    cost.second += std::size_t(s.rows);
-    return p.pos;
+    return terrain_cut(s, n_).pos;
   }
 
-  // The terrain of every texel of tile t (row-major).
-  std::vector<Colour> tile_labels(TileIndex t, std::pair<double, std::size_t>& cost) const {
+  // The terrain of every texel of tile t (row-major): the cuts, refined by a graph cut in a tile
+  // of two terrains.
+  std::vector<Colour> tile_labels(TileIndex t) const {
+    std::vector<Colour> label = cut_labels(t);
+    const CornerTile c = corner_tile(t, c_);
+    const std::set<Colour> terrains = {c.nw, c.ne, c.sw, c.se};
+    if (graph_cut_ && terrains.size() == 2) refine(t, *terrains.begin(), *terrains.rbegin(), label);
+    return label;
+  }
+
+  // Graph-cut patch merging (graph_cut.hpp, Kwatra et al. 2003) of S_b's tile over S_a's where
+  // the cuts put terrain b: free in a band of n/8 (Chebyshev) around the cuts' boundary, at least
+  // `margin` from every border (so the texels a border decides stay as they are), b forced
+  // everywhere else the cuts put it. The frame the graph cut may not hold (the first column and
+  // row, the last two) shows what the cuts chose.
+  void refine(TileIndex t, Colour a, Colour b, std::vector<Colour>& label) const {
+    const int n = n_, reach = std::max(1, n / 8);
+    const std::size_t px = std::size_t(n) * std::size_t(n);
+    auto index = [n](int x, int y) { return std::size_t(y) * std::size_t(n) + std::size_t(x); };
+    std::vector<std::uint8_t> near(px, 0);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const bool edge = (x + 1 < n && label[index(x, y)] != label[index(x + 1, y)]) ||
+                          (y + 1 < n && label[index(x, y)] != label[index(x, y + 1)]);
+        if (!edge) continue;
+        for (int v = std::max(0, y - reach); v <= std::min(n - 1, y + reach); ++v)
+          for (int u = std::max(0, x - reach); u <= std::min(n - 1, x + reach); ++u) near[index(u, v)] = 1;
+      }
+    Image A = sets_[a].tiles[t];
+    const Image& B = sets_[b].tiles[t];
+    std::vector<std::uint8_t> region(px, 0), forced(px, 0);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const std::size_t i = index(x, y);
+        const int depth = std::min({x, y, n - 1 - x, n - 1 - y});
+        if (x < 1 || y < 1 || x > n - 3 || y > n - 3) {  // graph_cut_merge's frame
+          if (label[i] == b) std::copy_n(B.at(x, y), 4, A.at(x, y));
+        } else if (near[i] && depth >= mb_) {
+          region[i] = 1;
+        } else if (label[i] == b) {
+          region[i] = forced[i] = 1;
+        }
+      }
+    const GraphCutResult r = graph_cut_merge(A, B, region, forced);
+    // Forced texels keep b whatever the flow's colouring says: Boost's Boykov-Kolmogorov leaves some
+    // of them outside its source tree (seen on real textures), and those next to a border must
+    // stay as the border decided.
+    for (std::size_t i = 0; i < px; ++i)
+      if (region[i]) label[i] = forced[i] || r.take_new[i] ? b : a;
+  }
+
+  // The terrain of every texel of tile t by the cuts alone.
+  std::vector<Colour> cut_labels(TileIndex t) const {
     const CornerTile c = corner_tile(t, c_);
     const int n = n_, h = n / 2, mb = mb_;
     const bool N = c.nw != c.ne, S = c.sw != c.se, W = c.nw != c.sw, E = c.ne != c.se;
@@ -214,7 +271,7 @@ class TerrainSynthesis {
       for (int x = 0; x < mb; ++x) cut[std::size_t(x)] = west[std::size_t(mb + x)];
       for (int x = n - mb; x < n; ++x) cut[std::size_t(x)] = east[std::size_t(x - (n - mb))];
       const std::vector<int> mid =
-          inner_cut(rows_of(false, c.nw, c.sw, mb, 1, n - 2 * mb), west.back(), east.front(), cost);
+          inner_cut(rows_of(false, c.nw, c.sw, mb, 1, n - 2 * mb), west.back(), east.front());
       std::copy(mid.begin(), mid.end(), cut.begin() + mb);
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) at(x, y) = y < cut[std::size_t(x)] ? c.nw : c.sw;
@@ -225,7 +282,7 @@ class TerrainSynthesis {
       for (int y = 0; y < mb; ++y) cut[std::size_t(y)] = north[std::size_t(mb + y)];
       for (int y = n - mb; y < n; ++y) cut[std::size_t(y)] = south[std::size_t(y - (n - mb))];
       const std::vector<int> mid =
-          inner_cut(rows_of(true, c.nw, c.ne, mb, 1, n - 2 * mb), north.back(), south.front(), cost);
+          inner_cut(rows_of(true, c.nw, c.ne, mb, 1, n - 2 * mb), north.back(), south.front());
       std::copy(mid.begin(), mid.end(), cut.begin() + mb);
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) at(x, y) = x < cut[std::size_t(y)] ? c.nw : c.ne;
@@ -247,7 +304,7 @@ class TerrainSynthesis {
         s.lo[std::size_t(k)] = std::max(h - w_, h - d);
         s.hi[std::size_t(k)] = std::min(h + w_, h + d);
       }
-      const std::vector<int> mid = inner_cut(std::move(s), far_side ? border.front() : border.back(), -1, cost);
+      const std::vector<int> mid = inner_cut(std::move(s), far_side ? border.front() : border.back(), -1);
       std::copy(mid.begin(), mid.end(), out.begin() + mb);
     };
     if (N) half(true, c.nw, c.ne, north, false, vn);
@@ -266,12 +323,11 @@ class TerrainSynthesis {
   }
 
   int threads_;
+  bool graph_cut_;
   std::vector<TextureTileSet> sets_;
   std::uint32_t c_;
   int n_, mb_, w_;  // w_: how far a cut may stray from the tile's middle line
   std::vector<std::vector<int>> hcut_, vcut_;  // by a * C + b
-  double border_cost_ = 0;
-  std::size_t border_rows_ = 0;
 };
 
 bool valid_terrain_name(const std::string& s) {
@@ -300,7 +356,7 @@ void check_terrain_options(const std::vector<TerrainTexture>& terrains, const Sy
 }
 
 TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o,
-                                        bool straight_seams) {
+                                        TerrainSeams seams) {
   o.colours = std::uint32_t(terrains.size());
   check_terrain_options(terrains, o);
   const auto t0 = std::chrono::steady_clock::now();
@@ -313,7 +369,7 @@ TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terra
     sets.push_back(synthesize_corner_tiles(terrains[k].exemplar, one));
     margin = std::min(margin, TileGeometry(o.tile_px, sets.back().thin_bands).margin);
   }
-  TerrainTileSet r = TerrainSynthesis(std::move(sets), margin, o.threads, straight_seams).run();
+  TerrainTileSet r = TerrainSynthesis(std::move(sets), margin, o.threads, seams).run();
   r.set.seed = o.seed;
   for (const TerrainTexture& t : terrains) {
     r.names.push_back(t.name);

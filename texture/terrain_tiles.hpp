@@ -42,7 +42,7 @@ struct TerrainTileSet {
   std::vector<std::string> names;
   std::vector<double> cut_error;        // per terrain: its own set's boundary-cut error (tile_synthesis.hpp)
   std::vector<double> texel_fraction;   // per terrain: the fraction of all texels it shows
-  double seam_step = 0;                 // mean step per channel shown across a terrain seam, per seam texel
+  double seam_step = 0;                 // mean step per channel between 4-neighbours of two terrains in a tile
   double terrain_step = 0;              // mean step per channel between 4-neighbours inside the terrains' tiles
 };
 
@@ -52,10 +52,15 @@ struct TerrainTileSet {
 // (check_synthesis_options).
 void check_terrain_options(const std::vector<TerrainTexture>& terrains, const SynthesisOptions& o);
 
+// How the boundary between two terrains runs inside a tile: on the tile's middle lines (the
+// baseline), along minimum-error cuts (seam_cut.hpp), or those cuts refined, in tiles of two
+// terrains, by a graph cut (graph_cut.hpp) in a band of n/8 around them, free to leave the
+// row-by-row path and go round a stone.
+enum class TerrainSeams { Straight, Cut, GraphCut };
+
 // o.colours is set to the number of terrains; o.kind must be corner. Terrain k's set is seeded by
-// derive_seed(o.seed, k), so the result is the same bytes on any thread count. `straight_seams`:
-// the baseline, every terrain boundary on the tile's middle lines (no cut searched).
+// derive_seed(o.seed, k), so the result is the same bytes on any thread count.
 TerrainTileSet synthesize_terrain_tiles(const std::vector<TerrainTexture>& terrains, SynthesisOptions o,
-                                        bool straight_seams = false);
+                                        TerrainSeams seams = TerrainSeams::GraphCut);
 
 }  // namespace tilekit
