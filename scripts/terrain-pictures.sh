@@ -35,12 +35,12 @@ cp "$work/c2/sheet.png" "$img/terrain-2-sheet.png"
   echo '</map>'
 } > "$work/c2-tiled/wrap.tmx"
 QT_QPA_PLATFORM=offscreen tmxrasterizer "$work/c2-tiled/wrap.tmx" "$img/terrain-2-wrapped.png"
-for seams in cut straight; do
+for seams in graph-cut straight; do
   "$tk" texture terrain --terrain grass=grass --terrain dirt=oa-dirt --terrain gravel=gravel --seed 1 --seams "$seams" \
     --tile-px 48 --out "$work/c3-$seams" --quiet
   "$tk" texture atlas "$work/c3-$seams" --out "$work/c3-$seams-atlas/atlas.png" --quiet
 done
-cp "$work/c3-cut/sheet.png" "$img/terrain-3-sheet.png"
-"$tk" texture render --atlas "$work/c3-cut-atlas/atlas.png" --size 384x384 --seed 2 --out "$img/terrain-3-map.png" --quiet
+cp "$work/c3-graph-cut/sheet.png" "$img/terrain-3-sheet.png"
+"$tk" texture render --atlas "$work/c3-graph-cut-atlas/atlas.png" --size 384x384 --seed 2 --out "$img/terrain-3-map.png" --quiet
 "$tk" texture render --atlas "$work/c3-straight-atlas/atlas.png" --size 384x384 --seed 2 --out "$img/terrain-3-straight.png" --quiet
 echo "terrain-pictures: $img/terrain-{2-sheet,2-wrapped,3-sheet,3-map,3-straight}.png"

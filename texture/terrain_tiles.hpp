@@ -21,7 +21,9 @@
 // Inside a tile whose four corners make two halves (a a / b b), one cut runs from border to border;
 // otherwise each of the four half-lines from a border's middle to the tile's centre is a cut
 // confined to its quarter of the tile (the triangle between the centre and that border), which
-// it leaves only at the centre, so the four always meet there.
+// it leaves only at the centre, so the four always meet there. In a tile of two terrains a graph
+// cut (graph_cut.hpp, Kwatra et al. 2003) then moves the boundary freely within n/8 of the cuts and
+// at least `margin` from every border, where a row-by-row path cannot go (round a stone).
 #include <string>
 #include <vector>
 
