@@ -124,10 +124,10 @@ class TerrainSynthesis {
       for (std::uint32_t id : s.sources[t]) shared += id < s.shared_sources;
     }
     s.shared_fraction = double(shared) / double(px * count);
-    double cost = 0;
-    std::size_t rows = 0;
-    for (const auto& [c, n] : seam) cost += c, rows += n;
-    r.seam_step = rows ? cost / double(rows) : 0.0;
+    double steps = 0;
+    std::size_t pairs = 0;
+    for (const auto& [step, count_pairs] : seam) steps += step, pairs += count_pairs;
+    r.seam_step = pairs ? steps / double(pairs) : 0.0;
     for (const TextureTileSet& x : sets_) {
       r.cut_error.push_back(x.cut_error);
       s.cut_error += x.cut_error;
