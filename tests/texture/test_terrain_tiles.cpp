@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "base/error.hpp"
-#include "base/random.hpp"
 #include "tests/texture/texture_fixtures.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/terrain_tiles.hpp"
