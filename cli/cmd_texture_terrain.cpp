@@ -68,6 +68,49 @@ std::string joined(const std::vector<std::string>& names, const char* sep) {
   return s;
 }
 
+// The Tiled tileset of the set written to a.out: its Wang colours named after the terrains and
+// drawn in each terrain's mean colour (that of its tile alone, all four corners k).
+nlohmann::json write_tiled(const TerrainArgs& a, const TextureTileSet& s, const std::vector<std::string>& names) {
+  tilemap::TilesetRequest req;
+  req.kind = TileKind::Corner;
+  req.colours = s.colours;
+  req.tiles_dir = a.out;
+  req.name = a.name.empty() ? "terrain-" + joined(names, "-") : a.name;
+  req.out_dir = a.tiled;
+  req.colour_names = names;
+  for (std::uint32_t k = 0; k < s.colours; ++k) {
+    const Image& tile = s.tiles[corner_index(CornerTile{k, k, k, k}, s.colours)];
+    std::array<double, 3> sum{};
+    for (int y = 0; y < tile.height; ++y)
+      for (int x = 0; x < tile.width; ++x)
+        for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += tile.at(x, y)[c];
+    const double texels = double(tile.width) * double(tile.height);
+    req.colour_rgb.push_back({std::uint8_t(sum[0] / texels + 0.5), std::uint8_t(sum[1] / texels + 0.5),
+                              std::uint8_t(sum[2] / texels + 0.5)});
+  }
+  const tilemap::TilesetOutcome t = tilemap::write_tiled_tileset(req);
+  return {{"name", t.name}, {"tsx", t.tsx_path}, {"png", t.png_path}, {"rows", t.rows}, {"cols", t.cols}};
+}
+
+// What tiles.json and --json add to a texture tile set's report.
+nlohmann::json terrain_report(const TerrainTileSet& r, const std::vector<TerrainTexture>& terrains,
+                              const tilemap::TiledSheet& sheet, const std::string& seams) {
+  nlohmann::json tj = nlohmann::json::array();
+  for (std::size_t k = 0; k < terrains.size(); ++k)
+    tj.push_back({{"colour", k},
+                  {"name", r.names[k]},
+                  {"exemplar", terrains[k].exemplar.name},
+                  {"tileable", terrains[k].exemplar.wrap_w > 0},
+                  {"texel_fraction", r.texel_fraction[k]},
+                  {"cut_error", r.cut_error[k]}});
+  return {{"terrains", tj},
+          {"seams", seams},
+          {"terrain_seam_step", r.seam_step},
+          {"terrain_mean_step", r.terrain_step},
+          {"sheet_packing", {{"rows", sheet.packing.rows}, {"cols", sheet.packing.cols}, {"how", sheet.how}}},
+          {"packed_sheet", "sheet.png"}};
+}
+
 void run_terrain(const TerrainArgs& a, const Context& ctx) {
   std::vector<TerrainTexture> terrains;
   std::vector<std::string> names;
@@ -90,21 +133,7 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
       terrains, o,
       a.seams == "straight" ? TerrainSeams::Straight : a.seams == "cut" ? TerrainSeams::Cut : TerrainSeams::GraphCut);
   const TextureTileSet& s = r.set;
-  nlohmann::json tj = nlohmann::json::array();
-  for (std::size_t k = 0; k < terrains.size(); ++k)
-    tj.push_back({{"colour", k},
-                  {"name", r.names[k]},
-                  {"exemplar", terrains[k].exemplar.name},
-                  {"tileable", terrains[k].exemplar.wrap_w > 0},
-                  {"texel_fraction", r.texel_fraction[k]},
-                  {"cut_error", r.cut_error[k]}});
-  const nlohmann::json report = {{"terrains", tj},
-                                 {"seams", a.seams},
-                                 {"terrain_seam_step", r.seam_step},
-                                 {"terrain_mean_step", r.terrain_step},
-                                 {"sheet_packing", {{"rows", sheet.packing.rows}, {"cols", sheet.packing.cols},
-                                                    {"how", sheet.how}}},
-                                 {"packed_sheet", "sheet.png"}};
+  const nlohmann::json report = terrain_report(r, terrains, sheet, a.seams);
   write_tile_set(s, a.out, joined(names, ","), [&](const std::string& dir, nlohmann::json& manifest) {
     manifest.update(report);
     write_png((fs::path(dir) / "sheet.png").string(), atlas_from_tile_images(lookup, dir));
@@ -115,28 +144,7 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
   j["packed_sheet"] = (fs::path(a.out) / "sheet.png").string();
   j["sheet"] = (fs::path(a.out) / "tileset.png").string();
   j["threads"] = o.threads;
-  if (!a.tiled.empty()) {
-    tilemap::TilesetRequest req;
-    req.kind = TileKind::Corner;
-    req.colours = o.colours;
-    req.tiles_dir = a.out;
-    req.name = a.name.empty() ? "terrain-" + joined(names, "-") : a.name;
-    req.out_dir = a.tiled;
-    req.colour_names = names;
-    // each terrain's display colour in Tiled: the mean colour of its tile alone (all four corners k)
-    for (std::uint32_t k = 0; k < o.colours; ++k) {
-      const Image& tile = s.tiles[corner_index(CornerTile{k, k, k, k}, o.colours)];
-      std::array<double, 3> sum{};
-      for (int y = 0; y < tile.height; ++y)
-        for (int x = 0; x < tile.width; ++x)
-          for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += tile.at(x, y)[c];
-      const double texels = double(tile.width) * double(tile.height);
-      req.colour_rgb.push_back({std::uint8_t(sum[0] / texels + 0.5), std::uint8_t(sum[1] / texels + 0.5),
-                                std::uint8_t(sum[2] / texels + 0.5)});
-    }
-    const tilemap::TilesetOutcome t = tilemap::write_tiled_tileset(req);
-    j["tiled"] = {{"name", t.name}, {"tsx", t.tsx_path}, {"png", t.png_path}, {"rows", t.rows}, {"cols", t.cols}};
-  }
+  if (!a.tiled.empty()) j["tiled"] = write_tiled(a, s, names);
   emit(ctx, j, [&] {
     if (a.quiet) return;
     fmt::print("{}: {} terrain tiles over {} terrains ({}), {}x{} px ({:.2f} s)\n", a.out, s.tiles.size(),
