@@ -129,9 +129,10 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
   // The sheet's packing (tilemap/tiled_tileset.hpp): the same layout the Tiled tileset gets.
   const tilemap::TiledSheet sheet = tilemap::sheet_layout(TileKind::Corner, o.colours);
   const AtlasLookup lookup = lookup_from_packing(sheet.packing, "construct", sheet.how, sheet.closed_form);
-  const TerrainTileSet r = synthesize_terrain_tiles(
-      terrains, o,
-      a.seams == "straight" ? TerrainSeams::Straight : a.seams == "cut" ? TerrainSeams::Cut : TerrainSeams::GraphCut);
+  const TerrainTileSet r = synthesize_terrain_tiles(terrains, o,
+                                                    a.seams == "straight" ? TerrainSeams::Straight
+                                                    : a.seams == "cut"    ? TerrainSeams::Cut
+                                                                          : TerrainSeams::GraphCut);
   const TextureTileSet& s = r.set;
   const nlohmann::json report = terrain_report(r, terrains, sheet, a.seams);
   write_tile_set(s, a.out, joined(names, ","), [&](const std::string& dir, nlohmann::json& manifest) {
@@ -162,8 +163,9 @@ void run_terrain(const TerrainArgs& a, const Context& ctx) {
 
 void add_texture_terrain(CLI::App& texture, Context& ctx) {
   auto* cmd = texture.add_subcommand(
-      "terrain", "Synthesise terrain transition tiles: the complete corner set over C terrain textures, joined along "
-                 "seams through the textures");
+      "terrain",
+      "Synthesise terrain transition tiles: the complete corner set over C terrain textures, joined along "
+      "seams through the textures");
   auto a = std::make_shared<TerrainArgs>();
   cmd->add_option("--terrain", a->terrains,
                   "A terrain, NAME=FILE[:tileable] (2 to 6 of them; corner colour k is the k-th): FILE a texture "

@@ -71,7 +71,8 @@ constexpr std::array kRules = {
     Rule{"*", "--density-image", PathRole::Input},
     Rule{"*", "--labels", PathRole::Input},
     Rule{"*", "--cells", PathRole::Input},
-    Rule{"texture terrain", "--terrain", PathRole::Input},  // NAME=FILE[:tileable]: the FILE
+    // NAME=FILE[:tileable]: the FILE (declared_paths)
+    Rule{"texture terrain", "--terrain", PathRole::Input},
 };
 
 std::optional<PathRole> role_of(const std::string& cmd, const std::string& name) {

@@ -50,7 +50,7 @@ CutPath terrain_cut(const SeamRows& s, int n) {
       const std::size_t i = std::size_t(r) * std::size_t(n) + std::size_t(q);
       b.cost[i] = channel_step(s.left(r, q - 1), s.right(r, q));
       if (r == 0) continue;
-      b.rise[i] = channel_step(s.right(r - 1, q - 1), s.left(r, q - 1));  // from q - 1 above
+      b.rise[i] = channel_step(s.right(r - 1, q - 1), s.left(r, q - 1));         // from q - 1 above
       if (q + 1 < n) b.fall[i] = channel_step(s.left(r - 1, q), s.right(r, q));  // from q + 1 above
     }
   }
@@ -273,8 +273,7 @@ class TerrainSynthesis {
       std::vector<int> cut(static_cast<std::size_t>(n), 0);
       for (int x = 0; x < mb; ++x) cut[std::size_t(x)] = west[std::size_t(mb + x)];
       for (int x = n - mb; x < n; ++x) cut[std::size_t(x)] = east[std::size_t(x - (n - mb))];
-      const std::vector<int> mid =
-          inner_cut(rows_of(false, c.nw, c.sw, mb, 1, n - 2 * mb), west.back(), east.front());
+      const std::vector<int> mid = inner_cut(rows_of(false, c.nw, c.sw, mb, 1, n - 2 * mb), west.back(), east.front());
       std::copy(mid.begin(), mid.end(), cut.begin() + mb);
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) at(x, y) = y < cut[std::size_t(x)] ? c.nw : c.sw;
@@ -284,8 +283,7 @@ class TerrainSynthesis {
       std::vector<int> cut(static_cast<std::size_t>(n), 0);
       for (int y = 0; y < mb; ++y) cut[std::size_t(y)] = north[std::size_t(mb + y)];
       for (int y = n - mb; y < n; ++y) cut[std::size_t(y)] = south[std::size_t(y - (n - mb))];
-      const std::vector<int> mid =
-          inner_cut(rows_of(true, c.nw, c.ne, mb, 1, n - 2 * mb), north.back(), south.front());
+      const std::vector<int> mid = inner_cut(rows_of(true, c.nw, c.ne, mb, 1, n - 2 * mb), north.back(), south.front());
       std::copy(mid.begin(), mid.end(), cut.begin() + mb);
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) at(x, y) = x < cut[std::size_t(y)] ? c.nw : c.ne;
@@ -298,12 +296,13 @@ class TerrainSynthesis {
     auto half = [&](bool vertical, Colour l, Colour r, const std::vector<int>& border, bool far_side,
                     std::vector<int>& out) {
       // far_side: the border at row n (south or east): rows run inwards from n-1
-      for (int k = 0; k < mb; ++k) out[std::size_t(k)] = far_side ? border[std::size_t(mb - 1 - k)] : border[std::size_t(mb + k)];
+      for (int k = 0; k < mb; ++k)
+        out[std::size_t(k)] = far_side ? border[std::size_t(mb - 1 - k)] : border[std::size_t(mb + k)];
       const int rows = h - mb;
       SeamRows s = far_side ? rows_of(vertical, l, r, n - 1 - mb, -1, rows) : rows_of(vertical, l, r, mb, 1, rows);
       for (int k = 0; k < rows; ++k) {
-        const int y = far_side ? n - 1 - mb - k : mb + k;      // the row in the tile
-        const int d = far_side ? y - h : h - 1 - y;             // rows between it and the centre
+        const int y = far_side ? n - 1 - mb - k : mb + k;  // the row in the tile
+        const int d = far_side ? y - h : h - 1 - y;        // rows between it and the centre
         s.lo[std::size_t(k)] = std::max(h - w_, h - d);
         s.hi[std::size_t(k)] = std::min(h + w_, h + d);
       }
@@ -329,14 +328,14 @@ class TerrainSynthesis {
   bool graph_cut_;
   std::vector<TextureTileSet> sets_;
   std::uint32_t c_;
-  int n_, mb_, w_;  // w_: how far a cut may stray from the tile's middle line
+  int n_, mb_, w_;                             // w_: how far a cut may stray from the tile's middle line
   std::vector<std::vector<int>> hcut_, vcut_;  // by a * C + b
 };
 
 bool valid_terrain_name(const std::string& s) {
   return !s.empty() && s.size() <= 64 && std::all_of(s.begin(), s.end(), [](char ch) {
-    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' ||
-           ch == '_' || ch == '.';
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' ||
+           ch == '.';
   });
 }
 
@@ -344,8 +343,8 @@ bool valid_terrain_name(const std::string& s) {
 
 void check_terrain_options(const std::vector<TerrainTexture>& terrains, const SynthesisOptions& o) {
   if (terrains.size() < kMinTerrains || terrains.size() > kMaxTerrains)
-    throw InputError(fmt::format("a terrain set needs {} to {} terrains, got {}", kMinTerrains, kMaxTerrains,
-                                 terrains.size()));
+    throw InputError(
+        fmt::format("a terrain set needs {} to {} terrains, got {}", kMinTerrains, kMaxTerrains, terrains.size()));
   if (o.kind != TileKind::Corner) throw InputError("terrain sets are corner sets (corner colour k: terrain k)");
   std::set<std::string> names;
   for (const TerrainTexture& t : terrains) {

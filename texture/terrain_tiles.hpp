@@ -42,10 +42,10 @@ inline constexpr std::uint32_t kMinTerrains = 2, kMaxTerrains = 6;
 struct TerrainTileSet {
   TextureTileSet set;  // method "terrain-corner"; colours = terrains; sources as in TextureTileSet
   std::vector<std::string> names;
-  std::vector<double> cut_error;        // per terrain: its own set's boundary-cut error (tile_synthesis.hpp)
-  std::vector<double> texel_fraction;   // per terrain: the fraction of all texels it shows
-  double seam_step = 0;                 // mean step per channel between 4-neighbours of two terrains in a tile
-  double terrain_step = 0;              // mean step per channel between 4-neighbours inside the terrains' tiles
+  std::vector<double> cut_error;       // per terrain: its own set's boundary-cut error (tile_synthesis.hpp)
+  std::vector<double> texel_fraction;  // per terrain: the fraction of all texels it shows
+  double seam_step = 0;                // mean step per channel between 4-neighbours of two terrains in a tile
+  double terrain_step = 0;             // mean step per channel between 4-neighbours inside the terrains' tiles
 };
 
 // InputError (exit 2) for fewer than kMinTerrains or more than kMaxTerrains terrains, two with one

@@ -22,8 +22,11 @@ struct TilesetRequest {
   int tile_px = 32;       // built-in tiles only (drawn tiles keep their size)
   std::string name;       // "": "corner-C" or "wang-C"
   std::string out_dir;    // created if missing
-  std::vector<std::string> colour_names;  // the Wang colours' names by colour (empty: built-in or "colour k")
-  std::vector<Rgb> colour_rgb;            // their display colours (empty: the pictures' palette)
+
+  // The Wang colours' names by colour (empty: built-in or "colour k") and their display colours
+  // (empty: the pictures' palette).
+  std::vector<std::string> colour_names;
+  std::vector<Rgb> colour_rgb;
 };
 
 struct TilesetOutcome {

@@ -127,7 +127,7 @@ TEST_P(RunSignals, TextureTilesLeavesTheOldSetWhole) {
 // neither the tile set folder nor the Tiled folder is written, no temp folder stays.
 TEST_P(RunSignals, TextureTerrainStopsAndWritesNothing) {
   TempDir d;
-  std::vector<std::string> args{"texture", "terrain", "--tile-px", "64",          "--threads", "2",
+  std::vector<std::string> args{"texture", "terrain", "--tile-px", "64",        "--threads", "2",
                                 "--out",   d / "set", "--tiled",   d / "tiled", "--quiet"};
   for (std::uint32_t k = 0; k < 4; ++k) {
     tilekit::Image ex{96, 96, std::vector<std::uint8_t>(96 * 96 * 4)};

@@ -102,10 +102,10 @@ TEST(TerrainCli, BadInputExits2WithOneLineAndWritesNothing) {
   const std::string red = write_channel_texture(d / "r.png", 0), green = write_channel_texture(d / "g.png", 1);
   const std::string out = " --out " + q(d / "out");
   for (const std::string& args : std::vector<std::string>{
-           "texture terrain --terrain red=" + q(red) + out,                                   // one terrain
-           "texture terrain --terrain red --terrain green=" + q(green) + out,                 // no =FILE
+           "texture terrain --terrain red=" + q(red) + out,                    // one terrain
+           "texture terrain --terrain red --terrain green=" + q(green) + out,  // no =FILE
            "texture terrain --terrain red=" + q(red) + " --terrain green=" + q(d / "none.png") + out,
-           "texture terrain --terrain red=" + q(red) + " --terrain red=" + q(green) + out,    // one name twice
+           "texture terrain --terrain red=" + q(red) + " --terrain red=" + q(green) + out,  // one name twice
            "texture terrain --terrain 'r d'=" + q(red) + " --terrain green=" + q(green) + out,
            "texture terrain --terrain red=" + q(red) + " --terrain green=" + q(green) + " --tile-px 31" + out,
            "texture terrain --terrain red=" + q(red) + " --terrain green=" + q(green) + " --out " + q(red)}) {
