@@ -465,6 +465,7 @@ void add_texture_commands(CLI::App& app, Context& ctx) {
   auto* texture = app.add_subcommand("texture", "Texture tiles from an exemplar, atlases from packings, renders");
   texture->require_subcommand(1);
   add_tiles(*texture, ctx);
+  add_texture_terrain(*texture, ctx);
   add_atlas(*texture, ctx);
   add_transfer(*texture, ctx);
   add_texture_render(*texture, ctx);

@@ -18,6 +18,7 @@ namespace tilekit::cli {
 void add_texture_render(CLI::App& texture, Context& ctx);
 void add_texture_preview(CLI::App& texture, Context& ctx);
 void add_texture_analyze(CLI::App& texture, Context& ctx);  // cmd_texture_analyze.cpp
+void add_texture_terrain(CLI::App& texture, Context& ctx);  // cmd_texture_terrain.cpp
 
 struct SourceArgs {
   std::string method = "tiles", atlas, exemplar, hash = "long-period";

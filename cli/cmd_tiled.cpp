@@ -50,7 +50,7 @@ void add_tiled_set_options(CLI::App* cmd, TiledSetArgs& a) {
 }
 
 tilemap::TilesetRequest tileset_request(const TiledSetArgs& a) {
-  return {a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, a.tiles, a.tile_px, a.name, a.out};
+  return {a.kind == "wang" ? TileKind::Wang : TileKind::Corner, a.colours, a.tiles, a.tile_px, a.name, a.out, {}, {}};
 }
 
 nlohmann::json tileset_json(const tilemap::TilesetOutcome& o, const TiledSetArgs& a) {

@@ -26,6 +26,8 @@ struct Rule {
 constexpr std::array kRules = {
     // Folders replaced whole (base/atomic_file.hpp AtomicFolder) or made with their scripts.
     Rule{"texture tiles", "--out", PathRole::OutputFolder},
+    Rule{"texture terrain", "--out", PathRole::OutputFolder},
+    Rule{"texture terrain", "--tiled", PathRole::OutputFolder},
     Rule{"tiled tileset", "--out", PathRole::OutputFolder},
     Rule{"tiled map", "--out", PathRole::OutputFolder},
     Rule{"cluster submit", "--run-dir", PathRole::OutputFolder},
@@ -69,6 +71,8 @@ constexpr std::array kRules = {
     Rule{"*", "--density-image", PathRole::Input},
     Rule{"*", "--labels", PathRole::Input},
     Rule{"*", "--cells", PathRole::Input},
+    // NAME=FILE[:tileable]: the FILE (declared_paths)
+    Rule{"texture terrain", "--terrain", PathRole::Input},
 };
 
 std::optional<PathRole> role_of(const std::string& cmd, const std::string& name) {
@@ -113,6 +117,12 @@ std::vector<IoPath> declared_paths(const CLI::App& leaf, const std::string& cmd)
     if (!role) continue;
     for (const std::string& value : opt->results()) {
       if (value.empty()) continue;
+      if (name == "--terrain") {  // NAME=FILE[:tileable] (cli/cmd_texture_terrain.cpp)
+        std::string file = value.substr(std::min(value.size(), value.find('=') + 1));
+        if (file.size() > 9 && file.ends_with(":tileable")) file.resize(file.size() - 9);
+        if (!file.empty()) paths.push_back({name, file, *role, ""});
+        continue;
+      }
       // A checkpoint is read whole on --resume and written again in its place.
       paths.push_back({name, value, *role, name == "--checkpoint" ? "--resume" : ""});
       if (name == "--atlas" || (cmd == "texture atlas" && name == "--out")) {

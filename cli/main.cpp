@@ -24,8 +24,8 @@ namespace {
 // files and exits 3 with one line saying what was kept.
 bool is_long_job(std::string_view cmd, std::string_view sub) {
   return cmd == "pack" || (cmd == "aperiodic" && (sub == "enumerate" || sub == "verify")) ||
-         (cmd == "points" && (sub == "tiles" || sub == "generate")) || (cmd == "texture" && sub == "tiles") ||
-         cmd == "fill";
+         (cmd == "points" && (sub == "tiles" || sub == "generate")) ||
+         (cmd == "texture" && (sub == "tiles" || sub == "terrain")) || cmd == "fill";
 }
 
 // Signals are caught before anything else, so that no signal finds the default handler,

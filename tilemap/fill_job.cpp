@@ -249,7 +249,7 @@ void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vect
   if (ls.source == "blob") throw RequestError("tiled", "`tiled`: no Tiled sheet for the blob set yet (its Wang set is mixed)");
   if (s.horizontal_radix() != s.vertical_radix() || s.horizontal_radix() > kMaxSheetColours)
     throw InputError("a Tiled sheet needs one colour radix of at most 64 colours");
-  const TilesetOutcome ts = write_tiled_tileset({s.kind(), s.horizontal_radix(), "", req.tile_px, "", dir});
+  const TilesetOutcome ts = write_tiled_tileset({s.kind(), s.horizontal_radix(), "", req.tile_px, "", dir, {}, {}});
   const Tiling t = as_tiling(s, map, rows, cols, req.torus);
   o.tsx = ts.tsx_path;
   o.tmx = (std::filesystem::path(dir) / (file_stem(ts.name) + "-fill.tmx")).string();

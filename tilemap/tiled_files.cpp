@@ -71,7 +71,14 @@ TilesetFiles make_tileset(const TilesetRequest& req) {
     o.tile_px = img.width / f.sheet.packing.cols;
     f.png = encode_png(img);
   }
-  f.tsx = tsx_text(f.sheet, {o.name, stem + ".png", o.tile_px, req.tiles_dir.empty()});
+  if (!req.colour_names.empty() && req.colour_names.size() != req.colours)
+    throw RequestError("colour_names",
+                       fmt::format("{} colour names for {} colours", req.colour_names.size(), req.colours));
+  if (!req.colour_rgb.empty() && req.colour_rgb.size() != req.colours)
+    throw RequestError("colour_rgb",
+                       fmt::format("{} display colours for {} colours", req.colour_rgb.size(), req.colours));
+  f.tsx =
+      tsx_text(f.sheet, {o.name, stem + ".png", o.tile_px, req.tiles_dir.empty(), req.colour_names, req.colour_rgb});
   return f;
 }
 

@@ -8,7 +8,9 @@
 // Every input is checked before anything is written; every file is written atomically.
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "image/image.hpp"
 #include "tilesets/tile_grid.hpp"
 
 namespace tilekit::tilemap {
@@ -20,6 +22,11 @@ struct TilesetRequest {
   int tile_px = 32;       // built-in tiles only (drawn tiles keep their size)
   std::string name;       // "": "corner-C" or "wang-C"
   std::string out_dir;    // created if missing
+
+  // The Wang colours' names by colour (empty: built-in or "colour k") and their display colours
+  // (empty: the pictures' palette).
+  std::vector<std::string> colour_names;
+  std::vector<Rgb> colour_rgb;
 };
 
 struct TilesetOutcome {

@@ -55,9 +55,11 @@ std::string tsx_text(const TiledSheet& sheet, const TsxFile& f) {
       name, f.tile_px, f.tile_px, p.cells.size(), p.cols, xml_escape(f.image, "the sheet's file name"),
       p.cols * f.tile_px, p.rows * f.tile_px, name, wang_type_name(p.kind));
   for (Colour c = 0; c < p.colours; ++c)
-    s += fmt::format("   <wangcolor name=\"{}\" color=\"{}\" tile=\"{}\" probability=\"1\"/>\n",
-                     colour_name(c, f.builtin_colours), atlas::hex(atlas::palette_colour(c)),
-                     sheet.tile_id[uniform_tile(p.colours, c)]);
+    s += fmt::format(
+        "   <wangcolor name=\"{}\" color=\"{}\" tile=\"{}\" probability=\"1\"/>\n",
+        c < f.colour_names.size() ? xml_escape(f.colour_names[c], "a colour name") : colour_name(c, f.builtin_colours),
+        atlas::hex(c < f.colour_rgb.size() ? f.colour_rgb[c] : atlas::palette_colour(c)),
+        sheet.tile_id[uniform_tile(p.colours, c)]);
   for (std::size_t k = 0; k < p.cells.size(); ++k)
     s += fmt::format("   <wangtile tileid=\"{}\" wangid=\"{}\"/>\n", k,
                      format_wang_id(wang_id_of(p.kind, p.colours, p.cells[k])));

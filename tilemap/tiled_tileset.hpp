@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "image/image.hpp"
 #include "tilesets/tile_grid.hpp"
 
 namespace tilekit::tilemap {
@@ -30,6 +31,10 @@ struct TsxFile {
   std::string image;  // the sheet PNG, relative to the .tsx
   int tile_px = 32;
   bool builtin_colours = true;  // colours named after atlas/render.hpp's palette ("red", ...)
+  // Names of the Wang colours by colour (terrains: "grass", "sand"); empty: as builtin_colours says.
+  std::vector<std::string> colour_names;
+  // The Wang colours' display colours by colour (a terrain's mean colour); empty: the pictures' palette.
+  std::vector<Rgb> colour_rgb;
 };
 
 // Tiled 1.8's tileset file: the image, then a Wang set of type "corner" or "edge" with one

@@ -128,6 +128,10 @@ TEST_F(IoPolicy, AnOutputOverAnInputIsExitTwoForEveryCommandWithAnOutput) {
   // A folder output that holds an input.
   expect_refused("texture tiles --exemplar @/X/ex.png --colors 2 --out @/X", "holds");
   expect_refused("texture tiles --exemplar @/X/ex.png --colors 2 --out @", "holds");
+  // `texture terrain`: the FILE of NAME=FILE[:tileable] is the input.
+  expect_refused("texture terrain --terrain a=@/I.png --terrain b=@/X/ex.png:tileable --out @/X", "holds");
+  expect_refused("texture terrain --terrain a=@/I.png --terrain b=@/X/ex.png --out @/T --tiled @/X", "holds");
+  expect_refused("texture terrain --terrain a=@/I.png --terrain b=@/X/ex.png --out @/T --tiled @/T", "the same file");
 }
 
 TEST_F(IoPolicy, ACheckpointMayBeResumedAndWrittenAgainInPlace) {

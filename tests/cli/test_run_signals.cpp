@@ -123,6 +123,27 @@ TEST_P(RunSignals, TextureTilesLeavesTheOldSetWhole) {
   EXPECT_EQ(hidden_leftovers(d.path), std::vector<std::string>{});
 }
 
+// A terrain set of 4 terrains (256 tiles of 64 px from four synthesised corner sets, seconds):
+// neither the tile set folder nor the Tiled folder is written, no temp folder stays.
+TEST_P(RunSignals, TextureTerrainStopsAndWritesNothing) {
+  TempDir d;
+  std::vector<std::string> args{"texture", "terrain", "--tile-px", "64",        "--threads", "2",
+                                "--out",   d / "set", "--tiled",   d / "tiled", "--quiet"};
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    tilekit::Image ex{96, 96, std::vector<std::uint8_t>(96 * 96 * 4)};
+    for (std::size_t i = 0; i < ex.pixels.size(); ++i) ex.pixels[i] = std::uint8_t(((i + 977 * k) * 2654435761u) >> 13);
+    const std::string file = d / ("t" + std::to_string(k) + ".png");
+    tilekit::write_png(file, ex);
+    args.insert(args.end(), {"--terrain", "t" + std::to_string(k) + "=" + file});
+  }
+  const SignalledRun s = signal_job(d, args, GetParam(), 300);
+  expect_interrupted(s, GetParam(), "nothing kept");
+  EXPECT_LT(s.seconds, 10);
+  EXPECT_FALSE(fs::exists(d / "set"));
+  EXPECT_FALSE(fs::exists(d / "tiled"));
+  EXPECT_EQ(hidden_leftovers(d.path), std::vector<std::string>{});
+}
+
 // `pack --estimate` with 2^31 probes per candidate ran without bound: a signal ends it, and so
 // does --time-limit.
 TEST_P(RunSignals, PackEstimateStopsOnASignalAndAtItsTimeLimit) {

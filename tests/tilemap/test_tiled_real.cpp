@@ -22,7 +22,7 @@ nlohmann::json exported(const std::string& what, const std::string& in, const st
 }
 
 tilemap::TilesetRequest request(TileKind kind, std::uint32_t colours, const std::string& out, int px = 8) {
-  return {kind, colours, "", px, "", out};
+  return {kind, colours, "", px, "", out, {}, {}};
 }
 
 TEST(TiledReal, EverySheetTilesSeamlesslyOnTheTorusInTiledsExport) {

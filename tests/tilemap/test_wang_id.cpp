@@ -80,7 +80,7 @@ TEST(TsxText, ReadsBackAsTheCompleteSetWithItsNameEscaped) {
   for (const TileKind kind : {TileKind::Corner, TileKind::Wang}) {
     const TiledSheet s = sheet_layout(kind, 3);
     const std::string name = "grass <&> \"sand\"";
-    const std::string text = tsx_text(s, {name, "x&y.png", 16, true});
+    const std::string text = tsx_text(s, {name, "x&y.png", 16, true, {}, {}});
     pugi::xml_document doc;
     ASSERT_TRUE(doc.load_string(text.c_str()));
     EXPECT_EQ(std::string(doc.child("tileset").attribute("name").value()), name);
