@@ -9,6 +9,7 @@
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 #include <cassert>
 #include <cmath>
+#include <vector>
 
 #include "texture/exemplar.hpp"
 
@@ -97,10 +98,26 @@ GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector
   r.nodes = nodes;
   r.cost = double(flow) / kScale;
   r.take_new.assign(region.size(), 0);
-  auto colour = boost::get(boost::vertex_color, g);
-  // After the flow, the source tree (black) is the source side of a minimum cut: those pixels take B.
+  // The source side of a minimum cut is what the source still reaches through edges with residual
+  // capacity: those pixels take B. (The colour map the algorithm leaves is not used: its source
+  // tree was seen to miss forced pixels, whose source edges can never be saturated.)
+  auto residual = boost::get(boost::edge_residual_capacity, g);
+  std::vector<std::uint8_t> reached(std::size_t(nodes) + 2, 0);
+  std::vector<std::size_t> stack{source};
+  reached[source] = 1;
+  while (!stack.empty()) {
+    const std::size_t u = stack.back();
+    stack.pop_back();
+    for (auto [e, end] = boost::out_edges(u, g); e != end; ++e) {
+      const std::size_t v = boost::target(*e, g);
+      if (!reached[v] && boost::get(residual, *e) > 0) {
+        reached[v] = 1;
+        stack.push_back(v);
+      }
+    }
+  }
   for (std::size_t i = 0; i < region.size(); ++i)
-    if (node[i] >= 0 && boost::get(colour, std::size_t(node[i])) == boost::black_color) r.take_new[i] = 1;
+    if (node[i] >= 0 && reached[std::size_t(node[i])]) r.take_new[i] = 1;
   return r;
 }
 

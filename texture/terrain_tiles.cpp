@@ -234,11 +234,8 @@ class TerrainSynthesis {
         }
       }
     const GraphCutResult r = graph_cut_merge(A, B, region, forced);
-    // Forced texels keep b whatever the flow's colouring says: Boost's Boykov-Kolmogorov leaves some
-    // of them outside its source tree (seen on real textures), and those next to a border must
-    // stay as the border decided.
     for (std::size_t i = 0; i < px; ++i)
-      if (region[i]) label[i] = forced[i] || r.take_new[i] ? b : a;
+      if (region[i]) label[i] = r.take_new[i] ? b : a;  // forced texels take b (the cut honours them)
   }
 
   // The terrain of every texel of tile t by the cuts alone.

@@ -4,9 +4,12 @@
 // at mip level 2, where the atlas' neighbours are not the rendered ones beyond their margin.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numeric>
+#include <random>
 
 #include "render/cpu_renderer.hpp"
+#include "texture/exemplar.hpp"
 #include "texture/graph_cut.hpp"
 #include "texture/seam_cut.hpp"
 #include "texture/texture_analysis.hpp"
@@ -33,6 +36,41 @@ TEST(GraphCut, KeepCostPullsTheCutTowardsTheNewPatch) {
   EXPECT_LT(taken(free), 36u * 36u);
   EXPECT_EQ(taken(pulled), 36u * 36u);  // keeping any pixel costs more than any seam
   EXPECT_GE(taken(graph_cut_merge(a, b, region, forced, 2.0)), taken(free));
+}
+
+// The labelling returned is a minimum cut: every forced pixel takes B, and what the labelling
+// costs (seams between differing neighbours, a neighbour outside the region keeping A, and
+// keep_cost per free pixel left to A) is the max-flow value, on random regions and forced sets.
+TEST(GraphCut, TheLabellingIsAMinimumCutThatHonoursEveryForcedPixel) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 24;
+    const Image a = test::synthetic_image(n, n, 10 + trial), b = test::synthetic_image(n, n, 50 + trial);
+    std::vector<std::uint8_t> region(n * n, 0), forced(n * n, 0);
+    for (int y = 2; y < n - 3; ++y)
+      for (int x = 2; x < n - 3; ++x) {
+        region[std::size_t(y * n + x)] = rng() % 8 != 0;
+        forced[std::size_t(y * n + x)] = region[std::size_t(y * n + x)] && rng() % 6 == 0;
+      }
+    const double keep = trial % 2 ? 3.0 : 0.0;
+    const GraphCutResult r = graph_cut_merge(a, b, region, forced, keep);
+    auto q = [](double m) { return double(std::llround(m * 16.0)); };  // the cut's integer units
+    double cost = 0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const std::size_t i = std::size_t(y * n + x);
+        if (forced[i]) {
+          EXPECT_EQ(r.take_new[i], 1) << "trial " << trial << " pixel " << x << "," << y;
+        }
+        if (region[i] && !forced[i] && !r.take_new[i]) cost += q(keep);
+        for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          const std::size_t j = std::size_t((y + dy) * n + x + dx);
+          if (x + dx >= n || y + dy >= n || (!region[i] && !region[j]) || r.take_new[i] == r.take_new[j]) continue;
+          cost += q(colour_distance(a.at(x, y), b.at(x + dx, y + dy)) + colour_distance(b.at(x, y), a.at(x + dx, y + dy)));
+        }
+      }
+    EXPECT_DOUBLE_EQ(cost / 16.0, r.cost) << "trial " << trial;
+  }
 }
 
 // A cut along pixel columns that moves between rows pays what the move shows: with the moves
