@@ -23,7 +23,8 @@ namespace {
 struct FillArgs {
   std::string set, subset, wangset, size, cells, png, map_json, tiled;
   std::vector<std::string> weights;
-  bool torus = false, cover = false;
+  bool torus = false, cover = false, sat = false;
+  std::string cnf, order = "scanline";
   int block = 0, tile_px = 16;
   std::uint64_t dives = 64;
   RunOptions run;
@@ -62,7 +63,8 @@ nlohmann::json fill_json(const FillArgs& a, const tilemap::FillJobOutcome& o) {
                       {"fixed", o.fixed},      {"blocks", f.blocks},      {"grown", f.grown},
                       {"nodes", f.nodes},      {"restarts", f.restarts},  {"seconds", f.seconds},
                       {"resumed", f.resumed},  {"checkpoints", f.checkpoints},
-                      {"interrupted", f.interrupted}, {"timed_out", f.timed_out}};
+                      {"interrupted", f.interrupted}, {"timed_out", f.timed_out},
+                      {"method", a.sat ? "sat" : "search"}, {"order", a.order}};
   if (!f.found)
     j["region"] = {{"row", f.window.row}, {"col", f.window.col}, {"rows", f.window.rows}, {"cols", f.window.cols},
                    {"proved", f.proved_impossible}};
@@ -90,12 +92,20 @@ void run_fill_cmd(const FillArgs& a, const CLI::App& cmd, const Context& ctx) {
   req.torus = a.torus;
   req.cells = a.cells, req.weights = parse_weights(a.weights);
   req.cover = a.cover;
+  req.sat = a.sat, req.out_cnf = a.cnf;
+  req.order = a.order == "entropy" ? FillOrder::Entropy : FillOrder::Scanline;
   req.block = a.block, req.dives = a.dives, req.tile_px = a.tile_px;
   req.out_png = a.png, req.out_json = a.map_json, req.out_tiled = a.tiled;
   a.run.apply(req.run, cmd);
   req.run.catch_signals = true;
   req.run.progress = !ctx.quiet && !ctx.json;
   const tilemap::FillJobOutcome o = tilemap::run_fill(req);
+  if (!o.cnf.empty()) {
+    emit(ctx, nlohmann::json{{"set", a.set}, {"size", fmt::format("{}x{}", o.cols, o.rows)}, {"cnf", o.cnf},
+                             {"variables", o.cnf_variables}, {"clauses", o.cnf_clauses}, {"fixed", o.fixed}},
+         [&] { fmt::print("CNF of the {}x{} fill: {} variables, {} clauses -> {}\n", o.cols, o.rows, o.cnf_variables, o.cnf_clauses, o.cnf); });
+    return;
+  }
   const FillMapOutcome& f = o.fill;
   emit(ctx, fill_json(a, o), [&] {
     if (f.found)
@@ -113,7 +123,7 @@ void run_fill_cmd(const FillArgs& a, const CLI::App& cmd, const Context& ctx) {
   if (f.timed_out) throw NotFound(fmt::format("no fill found within --time-limit {} s", a.run.time_limit));
   if (f.proved_impossible)
     throw NotFound("no fill exists: the " + window_text(f.window) + " cannot be completed " +
-                   (a.cover ? "holding every tile" : "around its fixed cells"));
+                   (a.cover ? "holding every tile" : "around its fixed cells") + (a.sat ? " (cadical: UNSATISFIABLE)" : ""));
   throw NotFound("no fill found: the " + window_text(f.window) + " could not be completed (not proved impossible)");
 }
 
@@ -149,6 +159,17 @@ void add_fill_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--dives", a->dives, "Restarts of a block before it grows into its neighbours")
       ->check(CLI::Range(1, 1 << 30))
       ->capture_default_str();
+  cmd->add_option("--order", a->order,
+                  "Which cell the search fills next: scanline (fewest tiles left, ties in scanline order) or entropy "
+                  "(least entropy of the weights left, ties by seeded noise, as WFC)")
+      ->check(CLI::IsMember({"scanline", "entropy"}))
+      ->capture_default_str();
+  cmd->add_flag("--sat", a->sat,
+                "Decide the whole map with the SAT solver cadical (one run; an UNSAT answer refutes every map of the "
+                "request) instead of the fill model's search");
+  cmd->add_option("--cnf", a->cnf,
+                  "Write the request as DIMACS CNF (variable 1 + cell * tiles + tile) for any SAT solver, and search "
+                  "nothing");
   add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed | RunOptionFlags::TimeLimit |
                            RunOptionFlags::Checkpoint,
                   a->run);

@@ -126,6 +126,7 @@ std::string fingerprint(const FillMapRequest& req, int block) {
   }
   h.add(std::uint64_t(req.rows)).add(std::uint64_t(req.cols)).add(req.torus ? 1 : 0).add(std::uint64_t(block));
   h.add(req.dives).add(req.run.seed).add(req.cover ? 1 : 0);
+  if (req.order == FillOrder::Entropy) h.add(0xE);  // Scanline: the fingerprint of checkpoints before the option
   for (int f : req.fixed) h.add(std::uint64_t(std::int64_t(f)), 4);
   return fmt::format("{:016x}", h.mixed());
 }
@@ -333,7 +334,8 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
           saved[std::size_t(i) * std::size_t(w.cols) + std::size_t(j)] = out.map[std::size_t(m)];
           out.map[std::size_t(m)] = -1;
         }
-      const FillRegion reg = make_region(req.rules, g, w, fixed, &out.map, req.cover);
+      FillRegion reg = make_region(req.rules, g, w, fixed, &out.map, req.cover);
+      reg.order = req.order;
       RunSettings rs = req.run;
       rs.seed = derive_seed(req.run.seed, std::uint64_t(b) * 64 + std::uint64_t(attempt));
       rs.progress = req.run.progress && blocks == 1;

@@ -15,6 +15,7 @@
 #include "base/error.hpp"
 #include "base/input.hpp"
 #include "image/image.hpp"
+#include "solver/fill_sat.hpp"
 #include "tilemap/blob_set.hpp"
 #include "tilemap/tiled_files.hpp"
 #include "tilemap/tiled_tileset.hpp"
@@ -449,12 +450,20 @@ FillJobOutcome run_fill(const FillJobRequest& req_in) {
   o.rows = req.height, o.cols = req.width;
   mr.block = req.block;
   mr.cover = req.cover;
+  mr.order = req.order;
   mr.dives = req.dives;
   mr.run = req.run;
   o.source = ls.source;
   o.names = ls.names;
   o.weights = ls.weights;
-  o.fill = fill_map(mr);
+  if (!req.out_cnf.empty()) {
+    write_file_atomic(req.out_cnf, fill_cnf_text(mr, &o.cnf_variables, &o.cnf_clauses));
+    o.cnf = req.out_cnf;
+    return o;
+  }
+  if (req.sat && (!req.run.checkpoint_path.empty() || !req.run.resume_path.empty()))
+    throw RequestError("sat", "`sat` runs cadical once over the whole map: it takes no `checkpoint` or `resume`");
+  o.fill = req.sat ? fill_by_sat(mr) : fill_map(mr);
   if (!o.fill.found) return o;
   const std::vector<int>& map = o.fill.map;
   // the independent check, then the fixed cells

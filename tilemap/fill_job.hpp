@@ -39,6 +39,9 @@ struct FillJobRequest {
   int block = 0;
   std::uint64_t dives = 64;
   bool cover = false;  // every tile at least once (FillMapRequest::cover)
+  FillOrder order = FillOrder::Scanline;  // the fill model's cell order
+  bool sat = false;    // search with cadical (solver/fill_sat.hpp) instead of the fill model
+  std::string out_cnf;  // "" or: write the request's CNF here and search nothing
   RunSettings run;
   std::string out_png, out_json, out_tiled;  // "" = not written; out_tiled a folder
   int tile_px = 16;                          // pictures of Tilekit/Tiled sets (WFC tiles keep theirs)
@@ -54,6 +57,8 @@ struct FillJobOutcome {
   std::size_t fixed = 0;              // fixed cells
   int rows = 0, cols = 0;             // the map's size
   std::string png, json, tmx, tsx;
+  std::string cnf;  // the CNF written (no search made)
+  std::uint64_t cnf_variables = 0, cnf_clauses = 0;
 };
 
 FillJobOutcome run_fill(const FillJobRequest& req);
