@@ -24,7 +24,7 @@ struct FillArgs {
   std::string set, subset, wangset, size, cells, png, map_json, tiled;
   std::vector<std::string> weights;
   bool torus = false, cover = false, sat = false;
-  std::string cnf, order = "scanline";
+  std::string cnf, order = "auto";
   int block = 0, tile_px = 16;
   std::uint64_t dives = 64;
   RunOptions run;
@@ -93,7 +93,7 @@ void run_fill_cmd(const FillArgs& a, const CLI::App& cmd, const Context& ctx) {
   req.cells = a.cells, req.weights = parse_weights(a.weights);
   req.cover = a.cover;
   req.sat = a.sat, req.out_cnf = a.cnf;
-  req.order = a.order == "entropy" ? FillOrder::Entropy : FillOrder::Scanline;
+  req.order = a.order == "entropy" ? FillOrder::Entropy : a.order == "scanline" ? FillOrder::Scanline : FillOrder::Auto;
   req.block = a.block, req.dives = a.dives, req.tile_px = a.tile_px;
   req.out_png = a.png, req.out_json = a.map_json, req.out_tiled = a.tiled;
   a.run.apply(req.run, cmd);
@@ -160,9 +160,11 @@ void add_fill_command(CLI::App& app, Context& ctx) {
       ->check(CLI::Range(1, 1 << 30))
       ->capture_default_str();
   cmd->add_option("--order", a->order,
-                  "Which cell the search fills next: scanline (fewest tiles left, ties in scanline order) or entropy "
-                  "(least entropy of the weights left, ties by seeded noise, as WFC)")
-      ->check(CLI::IsMember({"scanline", "entropy"}))
+                  "Which cell the search fills next: entropy (least entropy of the weights left on the growing "
+                  "region's frontier, ties by seeded noise, as WFC: frequencies close to the weights), scanline (fewest "
+                  "tiles left, ties in scanline order: faster on large maps), or auto (entropy for a map searched in "
+                  "one block, scanline for a map filled in blocks)")
+      ->check(CLI::IsMember({"auto", "scanline", "entropy"}))
       ->capture_default_str();
   cmd->add_flag("--sat", a->sat,
                 "Decide the whole map with the SAT solver cadical (one run; an UNSAT answer refutes every map of the "

@@ -44,7 +44,8 @@ FillModel::FillModel(const FillRegion& region)
       wrap_rows_(region.wrap_rows),
       wrap_cols_(region.wrap_cols) {
   if (rows_ < 1 || cols_ < 1) throw InputError(fmt::format("a fill region of {}x{} cells", rows_, cols_));
-  mode_ = region.order;
+  mode_ = region.order == FillOrder::Entropy ? FillOrder::Entropy : FillOrder::Scanline;
+  filled_near_.assign(std::size_t(cells_), 0);
   for (int t = 0; t < rules_->tiles(); ++t) {
     wlogw_.push_back(rules_->weight(t) * std::log(rules_->weight(t)));
     if (rules_->weight(t) != rules_->weight(0)) equal_weights_ = false;
@@ -117,7 +118,11 @@ std::uint64_t FillModel::tie(int cell) const {
 // WaveFunctionCollapse, Model.cs). With equal weights it is log(count): the count orders alike.
 double FillModel::rank(int cell) const {
   const int n = count_[std::size_t(cell)];
-  if (mode_ == FillOrder::Scanline || equal_weights_ || n <= 1) return double(n);
+  if (mode_ == FillOrder::Scanline) return double(n);
+  // Entropy: the frontier first (cells beside a filled one or with tiles ruled out), so that one
+  // region grows; WFC's order over the whole map starts islands that collide on large maps.
+  const double away = filled_near_[std::size_t(cell)] > 0 || n < rules_->tiles() ? 0 : 1e6;
+  if (equal_weights_ || n <= 1) return away + double(n);
   const std::uint64_t* d = &dom_[std::size_t(cell) * std::size_t(words_)];
   double sw = 0, swl = 0;
   for (int w = 0; w < words_; ++w)
@@ -126,7 +131,7 @@ double FillModel::rank(int cell) const {
       sw += rules_->weight(t);
       swl += wlogw_[std::size_t(t)];
     }
-  return std::log(sw) - swl / sw;
+  return away + std::log(sw) - swl / sw;
 }
 
 void FillModel::set_value_seed(std::uint64_t seed) {
@@ -274,6 +279,10 @@ bool FillModel::assign(int cell, int tile) {
   assigned_[std::size_t(cell)] = 1;
   single_.assign(std::size_t(words_), 0);
   single_[std::size_t(tile) >> 6] = std::uint64_t(1) << (tile & 63);
+  if (mode_ == FillOrder::Entropy)
+    for (int d = 0; d < kFillDirs; ++d)
+      if (const int y = neighbour(cell, d); y >= 0 && ++filled_near_[std::size_t(y)] == 1 && !assigned_[std::size_t(y)])
+        push_key(y);
   if (!restrict(cell, single_.data())) return false;
   if (!queued_[std::size_t(cell)]) {
     queued_[std::size_t(cell)] = 1;
@@ -297,6 +306,9 @@ void FillModel::unassign(int cell, int /*tile*/) {
     set_count(c, n);
   }
   assigned_[std::size_t(cell)] = 0;
+  if (mode_ == FillOrder::Entropy)
+    for (int d = 0; d < kFillDirs; ++d)
+      if (const int y = neighbour(cell, d); y >= 0) --filled_near_[std::size_t(y)];
   cover_failed_ = false;
   push_key(cell);
 }

@@ -60,9 +60,13 @@ class FillRules {
 
 // Which unassigned cell a dive fills next. Scanline: the fewest tiles left, ties in scanline
 // order (a region grows from its filled borders). Entropy: the least Shannon entropy of the
-// weights left (Gumin's WaveFunctionCollapse; the fewest tiles when the weights are equal), ties
-// by seeded noise, so the map grows from many places at once, as WFC's does.
-enum class FillOrder { Scanline, Entropy };
+// weights left (Gumin's WaveFunctionCollapse; the fewest tiles when the weights are equal) among
+// the frontier (cells beside a filled one or with tiles ruled out; elsewhere only when it is
+// empty), ties by seeded noise: one region grows in a random order rather than a scan from a
+// corner (WFC's order over the whole map starts islands that collide on large maps).
+// Auto (a map request only, solver/fill_search.hpp): Entropy for a map searched as one region,
+// Scanline for a map filled in blocks.
+enum class FillOrder { Scanline, Entropy, Auto };
 
 // One region to fill: rows x cols cells, each with an initial domain (empty vector: every tile).
 struct FillRegion {
@@ -120,7 +124,8 @@ class FillModel {
   using Key = std::tuple<double, std::uint64_t, int, int>;
   FillOrder mode_ = FillOrder::Scanline;
   bool equal_weights_ = true;
-  std::vector<double> wlogw_;  // w log w per tile (Entropy)
+  std::vector<double> wlogw_;     // w log w per tile (Entropy)
+  std::vector<int> filled_near_;  // assigned neighbours per cell (Entropy: ties beside them first)
   std::priority_queue<Key, std::vector<Key>, std::greater<Key>> order_;
   void push_key(int cell);
   void rebuild_order();

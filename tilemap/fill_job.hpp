@@ -39,7 +39,7 @@ struct FillJobRequest {
   int block = 0;
   std::uint64_t dives = 64;
   bool cover = false;  // every tile at least once (FillMapRequest::cover)
-  FillOrder order = FillOrder::Scanline;  // the fill model's cell order
+  FillOrder order = FillOrder::Auto;  // the fill model's cell order
   bool sat = false;    // search with cadical (solver/fill_sat.hpp) instead of the fill model
   std::string out_cnf;  // "" or: write the request's CNF here and search nothing
   RunSettings run;
