@@ -121,10 +121,6 @@ PaintedMap parse_painted_map(const std::string& text, const std::string& path) {
   m.tile_height = positive_attribute(map, "tileheight", path);
   if (std::int64_t(m.width) * m.height > (std::int64_t(1) << 28))
     throw InputError(fmt::format("{}: {}x{} cells is too large a map", path, m.width, m.height));
-  for (const pugi::xml_node ts : map.children("tileset")) m.tilesets.push_back(tileset_ref(ts, path));
-  if (m.tilesets.empty()) throw InputError(fmt::format("{}: the map uses no tileset", path));
-  std::sort(m.tilesets.begin(), m.tilesets.end(),
-            [](const TmxTilesetRef& a, const TmxTilesetRef& b) { return a.firstgid < b.firstgid; });
   const pugi::xml_node layer = map.child("layer");
   if (!layer) throw InputError(fmt::format("{}: the map has no tile layer", path));
   m.layer = layer.attribute("name").value();
@@ -156,6 +152,11 @@ PaintedMap parse_painted_map(const std::string& text, const std::string& path) {
       throw InputError(fmt::format("{}: the cell at column {}, row {} is flipped or rotated; Tilekit fills with the "
                                    "tiles as drawn",
                                    where, k % std::size_t(m.width), k / std::size_t(m.width)));
+  // the tilesets last, so that a map's own problems are named first (and fuzzed without files)
+  for (const pugi::xml_node ts : map.children("tileset")) m.tilesets.push_back(tileset_ref(ts, path));
+  if (m.tilesets.empty()) throw InputError(fmt::format("{}: the map uses no tileset", path));
+  std::sort(m.tilesets.begin(), m.tilesets.end(),
+            [](const TmxTilesetRef& a, const TmxTilesetRef& b) { return a.firstgid < b.firstgid; });
   return m;
 }
 
