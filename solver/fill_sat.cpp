@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <vector>
 
 #include "base/error.hpp"
@@ -29,8 +30,9 @@ void check_request(const FillMapRequest& req) {
   if (req.rows < 1 || req.cols < 1) throw RequestError("size", "`size` must be at least 1x1");
   const std::uint64_t n = std::uint64_t(req.rows) * std::uint64_t(req.cols), T = std::uint64_t(req.rules->tiles());
   if (n * T * T > kMaxFillCnfWork || n * T >= (std::uint64_t(1) << 30))
-    throw RequestError("sat", fmt::format("`sat`: a {}x{} map of {} tiles is too large a CNF (cells x tiles^2 above 2^28)",
-                                          req.cols, req.rows, T));
+    throw RequestError(
+        "sat", fmt::format("`sat`: a {}x{} map of {} tiles is too large a CNF (cells x tiles^2 above 2^28)", req.cols,
+                           req.rows, T));
   if (!req.fixed.empty() && req.fixed.size() != n) throw InputError("the fixed cells do not match the map's size");
   for (int f : req.fixed)
     if (f < -1 || f >= int(T)) throw InputError(fmt::format("fixed tile {} is not in the set", f));
@@ -113,7 +115,8 @@ FillMapOutcome fill_by_sat(const FillMapRequest& req) {
   const Deadline deadline(req.run.time_limit, t0);
   StopToken token;
   auto stop = [&] { return req.run.cancelled() || poll_stop(token, deadline, req.run.catch_signals); };
-  const SatRun run = run_cadical(cnf, deadline.limited() ? std::max(1.0, deadline.seconds_left()) : 0, req.run.seed, stop);
+  const SatRun run =
+      run_cadical(cnf, deadline.limited() ? std::max(1.0, deadline.seconds_left()) : 0, req.run.seed, stop);
   FillMapOutcome out;
   const int n = req.rows * req.cols, T = req.rules->tiles();
   out.blocks = 1;

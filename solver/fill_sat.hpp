@@ -30,7 +30,8 @@ inline constexpr std::uint64_t kMaxFillCnfWork = std::uint64_t(1) << 28;
 CnfBuilder fill_cnf(const FillMapRequest& req);
 
 // DIMACS text of fill_cnf(req) with comment lines that say what the variables mean.
-std::string fill_cnf_text(const FillMapRequest& req, std::uint64_t* variables = nullptr, std::uint64_t* clauses = nullptr);
+std::string fill_cnf_text(const FillMapRequest& req, std::uint64_t* variables = nullptr,
+                          std::uint64_t* clauses = nullptr);
 
 // One cadical run over fill_cnf(req) with the run's seed, time limit and signals. found: the map;
 // UNSAT: proved_impossible with the whole map as the window; neither: timed_out or interrupted.

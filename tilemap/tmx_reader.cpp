@@ -28,16 +28,19 @@ int positive_attribute(const pugi::xml_node n, const char* name, const std::stri
     used = 0;
   }
   if (text.empty() || used != text.size() || v < 1 || v > kMaxSide)
-    throw InputError(fmt::format("{}: {}=\"{}\" is not a whole number from 1 to {}", where, name, text.substr(0, 32), kMaxSide));
+    throw InputError(
+        fmt::format("{}: {}=\"{}\" is not a whole number from 1 to {}", where, name, text.substr(0, 32), kMaxSide));
   return int(v);
 }
 
 // One gid of the layer's text: a decimal number below 2^32.
 std::uint32_t parse_gid(const std::string& token, const std::string& where, std::size_t k) {
   std::uint64_t v = 0;
-  if (token.empty() || token.size() > 10) throw InputError(fmt::format("{}: cell {} is \"{}\", not a gid", where, k, token.substr(0, 16)));
+  if (token.empty() || token.size() > 10)
+    throw InputError(fmt::format("{}: cell {} is \"{}\", not a gid", where, k, token.substr(0, 16)));
   for (char c : token) {
-    if (c < '0' || c > '9') throw InputError(fmt::format("{}: cell {} is \"{}\", not a gid", where, k, token.substr(0, 16)));
+    if (c < '0' || c > '9')
+      throw InputError(fmt::format("{}: cell {} is \"{}\", not a gid", where, k, token.substr(0, 16)));
     v = v * 10 + std::uint64_t(c - '0');
   }
   if (v > 0xFFFFFFFFull) throw InputError(fmt::format("{}: cell {}: gid {} is above 2^32", where, k, token));
@@ -83,9 +86,10 @@ TmxTilesetRef tileset_ref(const pugi::xml_node ts, const std::string& map_path) 
   ref.firstgid = std::uint32_t(fg);
   ref.source = ts.attribute("source").value();
   if (ref.source.empty())
-    throw InputError(fmt::format("{} at firstgid {} is embedded in the map; Tilekit reads tilesets from their own "
-                                 ".tsx files (in Tiled: Export Tileset, then use the file)",
-                                 where, fg));
+    throw InputError(
+        fmt::format("{} at firstgid {} is embedded in the map; Tilekit reads tilesets from their own "
+                    ".tsx files (in Tiled: Export Tileset, then use the file)",
+                    where, fg));
   ref.path = (std::filesystem::path(map_path).parent_path() / ref.source).string();
   ref.text = read_input_file(ref.path, "Tiled tileset", kMaxTsxBytes);
   pugi::xml_document doc;
@@ -103,18 +107,22 @@ TmxTilesetRef tileset_ref(const pugi::xml_node ts, const std::string& map_path) 
 PaintedMap parse_painted_map(const std::string& text, const std::string& path) {
   require_utf8(text, path);
   pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+  const pugi::xml_parse_result parsed =
+      doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
   if (!parsed) throw InputError(fmt::format("{}: not XML ({} at byte {})", path, parsed.description(), parsed.offset));
   const pugi::xml_node map = doc.child("map");
   if (!map) throw InputError(fmt::format("{}: no <map> element (not a Tiled map)", path));
   PaintedMap m;
   m.path = path;
   if (std::string(map.attribute("infinite").value()) == "1")
-    throw InputError(fmt::format("{}: an infinite map; Tilekit fills maps of a fixed size (Map > Map Properties > "
-                                 "Infinite off)", path));
+    throw InputError(
+        fmt::format("{}: an infinite map; Tilekit fills maps of a fixed size (Map > Map Properties > "
+                    "Infinite off)",
+                    path));
   const std::string orientation = map.attribute("orientation").value();
   if (orientation != "orthogonal")
-    throw InputError(fmt::format("{}: orientation \"{}\"; Tilekit fills orthogonal maps", path, orientation.substr(0, 32)));
+    throw InputError(
+        fmt::format("{}: orientation \"{}\"; Tilekit fills orthogonal maps", path, orientation.substr(0, 32)));
   m.width = positive_attribute(map, "width", path);
   m.height = positive_attribute(map, "height", path);
   m.tile_width = positive_attribute(map, "tilewidth", path);
@@ -149,9 +157,10 @@ PaintedMap parse_painted_map(const std::string& text, const std::string& path) {
     throw InputError(fmt::format("{}: {} cells, the map is {}x{}", where, m.gids.size(), m.width, m.height));
   for (std::size_t k = 0; k < cells; ++k)
     if (m.gids[k] & kFlipBits)
-      throw InputError(fmt::format("{}: the cell at column {}, row {} is flipped or rotated; Tilekit fills with the "
-                                   "tiles as drawn",
-                                   where, k % std::size_t(m.width), k / std::size_t(m.width)));
+      throw InputError(
+          fmt::format("{}: the cell at column {}, row {} is flipped or rotated; Tilekit fills with the "
+                      "tiles as drawn",
+                      where, k % std::size_t(m.width), k / std::size_t(m.width)));
   // the tilesets last, so that a map's own problems are named first (and fuzzed without files)
   for (const pugi::xml_node ts : map.children("tileset")) m.tilesets.push_back(tileset_ref(ts, path));
   if (m.tilesets.empty()) throw InputError(fmt::format("{}: the map uses no tileset", path));

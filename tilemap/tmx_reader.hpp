@@ -24,11 +24,11 @@ struct TmxTilesetRef {
 
 struct PaintedMap {
   std::string path;
-  int width = 0, height = 0;          // cells
+  int width = 0, height = 0;            // cells
   int tile_width = 0, tile_height = 0;  // pixels
-  std::vector<std::uint32_t> gids;    // row by row; 0 empty
+  std::vector<std::uint32_t> gids;      // row by row; 0 empty
   std::vector<TmxTilesetRef> tilesets;  // by firstgid, increasing
-  std::string layer;                  // the name of the layer read
+  std::string layer;                    // the name of the layer read
 };
 
 PaintedMap read_painted_map(const std::string& path);

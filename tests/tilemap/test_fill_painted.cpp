@@ -106,7 +106,8 @@ TEST(FillPainted, ATiledMapIsFilledAroundItsPaintedCells) {
 TEST(FillPainted, AWfcMapPaintedInTiledIsFilledAndDrawnAsTiledDrawsIt) {
   if (!tiled::installed()) GTEST_SKIP() << tiled::kSkip;
   TempDir d;
-  CliResult r = run_cli("fill --set " + q(wfc_xml("Knots")) + " --size 12x9 --seed 3 --tiled " + q(d / "a") + " --json");
+  CliResult r =
+      run_cli("fill --set " + q(wfc_xml("Knots")) + " --size 12x9 --seed 3 --tiled " + q(d / "a") + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string full_tmx = slurp(r.json().at("tmx").get<std::string>());
   const std::vector<long long> painted = painting(csv_of(full_tmx), 12);
@@ -149,7 +150,7 @@ TEST(FillPainted, BadPaintedMapsExit2NamingTheProblem) {
     v[cell] = gid;
     write_text(d / ("a/" + name), with_csv(tmx, v, 6));
   };
-  variant("past.tmx", 0, 82);            // corner-3.tsx holds 81 tiles
+  variant("past.tmx", 0, 82);             // corner-3.tsx holds 81 tiles
   variant("flipped.tmx", 1, 2147483650);  // gid 2, flipped horizontally
   std::string other = tmx;
   other.replace(other.find("corner-3.tsx"), 12, "missing.tsx");

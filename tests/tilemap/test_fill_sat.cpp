@@ -15,13 +15,15 @@
 namespace tilekit::test {
 namespace {
 
-bool have_cadical() { return std::system("command -v cadical >/dev/null 2>&1") == 0; }
+bool have_cadical() {
+  return std::system("command -v cadical >/dev/null 2>&1") == 0;
+}
 
 TEST(FillSat, TheBlobSheetFitsOnA48CellTorusAnd47x1IsRefuted) {
   if (!have_cadical()) GTEST_SKIP() << "cadical is not installed (apt-get install cadical; scripts/setup.sh does)";
   TempDir d;
-  CliResult r = run_cli("fill --set blob-47 --size 8x6 --torus --cover --sat --seed 1 --map-json " + q(d / "b.json") +
-                        " --json");
+  CliResult r =
+      run_cli("fill --set blob-47 --size 8x6 --torus --cover --sat --seed 1 --map-json " + q(d / "b.json") + " --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.json().at("valid").get<bool>());
   EXPECT_EQ(r.json().at("method"), "sat");
