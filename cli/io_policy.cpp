@@ -61,6 +61,7 @@ constexpr std::array kRules = {
     Rule{"points objects", "--texture", PathRole::Output},
     Rule{"fill", "--png", PathRole::Output},
     Rule{"fill", "--map-json", PathRole::Output},
+    Rule{"fill", "--cnf", PathRole::Output},
     // Files read.
     Rule{"*", "--resume", PathRole::Input},
     Rule{"*", "--set", PathRole::Input},

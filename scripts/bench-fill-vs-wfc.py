@@ -10,6 +10,7 @@ the frequency of each oriented tile and its share of the weights (0 = exactly th
 Prints a Markdown table (BENCHMARKS.md). Usage:
   NODE_PATH=$(bash scripts/npm-deps.sh)/node_modules python3 scripts/bench-fill-vs-wfc.py \
       [--seeds 100] [--large 128:20,512:3,1024:1] [--limit 10] [--large-limit 60] [--no-reference]
+      [--orders scanline,entropy] [--only 'Circuit,Knots T'] [--no-npm]
 """
 import argparse, json, os, statistics, subprocess, sys, time
 
@@ -33,11 +34,11 @@ def tv(counts, weights):
     return 0.5 * sum(abs(c / n - x / w) for c, x in zip(counts, weights)) if n else float("nan")
 
 
-def ours(tilekit, s, sub, size, periodic, seeds, limit):
+def ours(tilekit, s, sub, size, periodic, seeds, limit, order="auto"):
     runs, counts, weights = [], None, None
     for seed in range(1, seeds + 1):
         cmd = [tilekit, "fill", "--set", os.path.join(DATA, s + ".xml"), "--size", f"{size}x{size}", "--seed", str(seed),
-               "--time-limit", str(limit), "--json", "--quiet"]
+               "--time-limit", str(limit), "--order", order, "--json", "--quiet"]
         if sub: cmd += ["--subset", sub]
         if periodic: cmd.append("--torus")
         p = subprocess.run(cmd, capture_output=True, text=True)
@@ -81,24 +82,35 @@ def main():
     ap.add_argument("--large-limit", type=float, default=60)
     ap.add_argument("--no-reference", action="store_true", help="only the larger sizes")
     ap.add_argument("--first", type=int, default=0, help="start at this reference sample (0-based)")
+    ap.add_argument("--orders", default="auto", help="tilekit fill --order values, one row each (auto,scanline,entropy)")
+    ap.add_argument("--only", default="", help="reference samples to run, e.g. 'Circuit,Knots T' (default: all)")
+    ap.add_argument("--no-npm", action="store_true", help="Tilekit's rows only")
     a = ap.parse_args()
+    orders = [o for o in a.orders.split(",") if o]
+    only = [x.strip() for x in a.only.split(",") if x.strip()]
+
+    def both(name, s, sub, size, periodic, seeds, limit):
+        w = None
+        for o in orders:
+            r, c, w = ours(a.tilekit, s, sub, size, periodic, seeds, limit, o)
+            row(name, size, "tilekit fill" + ("" if orders == ["auto"] else f" --order {o}"), r, c, w, limit)
+        if not a.no_npm:
+            r2, c2, note = npm(s, sub, size, periodic, seeds, limit)
+            row(name, size, "npm wavefunctioncollapse", r2, c2, w, limit, note)
+
     print("| sample | size | filler | filled | median s | p95 s | TV(freq, weights) | limit s |")
     print("|---|---|---|---|---|---|---|---|")
     for s, sub, size, periodic in ([] if a.no_reference else SAMPLES[a.first:]):
+        if only and (s + (f" {sub}" if sub else "")) not in only: continue
         name = s + (f" {sub}" if sub else "") + (" (torus)" if periodic else "")
-        r, c, w = ours(a.tilekit, s, sub, size, periodic, a.seeds, a.limit)
-        row(name, size, "tilekit fill", r, c, w, a.limit)
-        r2, c2, note = npm(s, sub, size, periodic, a.seeds, a.limit)
-        row(name, size, "npm wavefunctioncollapse", r2, c2, w, a.limit, note)
+        both(name, s, sub, size, periodic, a.seeds, a.limit)
     for spec in a.large.split(","):
         if not spec: continue
         size, seeds = (int(x) for x in spec.split(":"))
         for s, sub, periodic in LARGE:
+            if only and (s + (f" {sub}" if sub else "")) not in only: continue
             name = s + (f" {sub}" if sub else "") + (" (torus)" if periodic else "")
-            r, c, w = ours(a.tilekit, s, sub, size, periodic, seeds, a.large_limit)
-            row(name, size, "tilekit fill", r, c, w, a.large_limit)
-            r2, c2, note = npm(s, sub, size, periodic, seeds, a.large_limit)
-            row(name, size, "npm wavefunctioncollapse", r2, c2, w, a.large_limit, note)
+            both(name, s, sub, size, periodic, seeds, a.large_limit)
 
 
 if __name__ == "__main__":

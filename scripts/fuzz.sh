@@ -146,6 +146,10 @@ PY
   fi
   # chain records: the embedded one
   seed smallest_record "$root/aperiodic/data/smallest-chain.json"
+  # maps painted in Tiled: a filled corner map, and the same in Tiled's XML layer format
+  "$tk" fill --set complete-corner-2 --size 5x4 --seed 3 --tiled "$s/tmx" --quiet >/dev/null && seed tiled_map "$s/tmx/corner-2-fill.tmx"
+  printf '<map orientation="orthogonal" width="2" height="1" tilewidth="8" tileheight="8">\n <tileset firstgid="1" source="t.tsx"/>\n <layer name="a" width="2" height="1"><data><tile gid="3"/><tile/></data></layer>\n</map>\n' \
+    >"$s/xml.tmx" && seed tiled_map "$s/xml.tmx"
 }
 make_seeds
 

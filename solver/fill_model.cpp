@@ -44,6 +44,12 @@ FillModel::FillModel(const FillRegion& region)
       wrap_rows_(region.wrap_rows),
       wrap_cols_(region.wrap_cols) {
   if (rows_ < 1 || cols_ < 1) throw InputError(fmt::format("a fill region of {}x{} cells", rows_, cols_));
+  mode_ = region.order == FillOrder::Entropy ? FillOrder::Entropy : FillOrder::Scanline;
+  filled_near_.assign(std::size_t(cells_), 0);
+  for (int t = 0; t < rules_->tiles(); ++t) {
+    wlogw_.push_back(rules_->weight(t) * std::log(rules_->weight(t)));
+    if (rules_->weight(t) != rules_->weight(0)) equal_weights_ = false;
+  }
   const std::size_t n = std::size_t(cells_) * std::size_t(words_);
   if (!region.domains.empty() && region.domains.size() != n)
     throw InputError("a fill region's domains do not match its size");
@@ -104,7 +110,28 @@ FillModel::FillModel(const FillRegion& region)
 }
 
 std::uint64_t FillModel::tie(int cell) const {
+  if (mode_ == FillOrder::Entropy) return mix_seed(seed_ ^ mix_seed(std::uint64_t(cell) + 0x9e3779b97f4a7c15ull));
   return std::uint64_t(cell);  // scanline among equals: a block grows from its filled borders
+}
+
+// WFC's entropy of a cell: log(sum w) - (sum w log w) / (sum w) over the tiles left (Gumin,
+// WaveFunctionCollapse, Model.cs). With equal weights it is log(count): the count orders alike.
+double FillModel::rank(int cell) const {
+  const int n = count_[std::size_t(cell)];
+  if (mode_ == FillOrder::Scanline) return double(n);
+  // Entropy: the frontier first (cells beside a filled one or with tiles ruled out), so that one
+  // region grows; WFC's order over the whole map starts islands that collide on large maps.
+  const double away = filled_near_[std::size_t(cell)] > 0 || n < rules_->tiles() ? 0 : 1e6;
+  if (equal_weights_ || n <= 1) return away + double(n);
+  const std::uint64_t* d = &dom_[std::size_t(cell) * std::size_t(words_)];
+  double sw = 0, swl = 0;
+  for (int w = 0; w < words_; ++w)
+    for (std::uint64_t bits = d[w]; bits; bits &= bits - 1) {
+      const int t = w * 64 + std::countr_zero(bits);
+      sw += rules_->weight(t);
+      swl += wlogw_[std::size_t(t)];
+    }
+  return away + std::log(sw) - swl / sw;
 }
 
 void FillModel::set_value_seed(std::uint64_t seed) {
@@ -116,13 +143,13 @@ void FillModel::rebuild_order() {
   std::vector<Key> keys;
   keys.reserve(std::size_t(cells_));
   for (int c = 0; c < cells_; ++c)
-    if (!assigned_[std::size_t(c)]) keys.emplace_back(count_[std::size_t(c)], tie(c), c);
+    if (!assigned_[std::size_t(c)]) keys.emplace_back(rank(c), tie(c), c, count_[std::size_t(c)]);
   order_ = decltype(order_)(std::greater<Key>(), std::move(keys));
 }
 
 void FillModel::push_key(int cell) {
   if (order_.size() > 8 * std::size_t(cells_) + 1024) rebuild_order();  // too many stale entries
-  order_.emplace(count_[std::size_t(cell)], tie(cell), cell);
+  order_.emplace(rank(cell), tie(cell), cell, count_[std::size_t(cell)]);
 }
 
 int FillModel::neighbour(int cell, int d) const {
@@ -220,7 +247,7 @@ bool FillModel::propagate() {
 int FillModel::branch(std::vector<int>& values) {
   values.clear();
   while (!order_.empty()) {
-    const auto& [k, h, c] = order_.top();
+    const auto& [r, h, c, k] = order_.top();
     if (!assigned_[std::size_t(c)] && k == count_[std::size_t(c)]) break;
     order_.pop();
   }
@@ -252,6 +279,10 @@ bool FillModel::assign(int cell, int tile) {
   assigned_[std::size_t(cell)] = 1;
   single_.assign(std::size_t(words_), 0);
   single_[std::size_t(tile) >> 6] = std::uint64_t(1) << (tile & 63);
+  if (mode_ == FillOrder::Entropy)
+    for (int d = 0; d < kFillDirs; ++d)
+      if (const int y = neighbour(cell, d); y >= 0 && ++filled_near_[std::size_t(y)] == 1 && !assigned_[std::size_t(y)])
+        push_key(y);
   if (!restrict(cell, single_.data())) return false;
   if (!queued_[std::size_t(cell)]) {
     queued_[std::size_t(cell)] = 1;
@@ -275,6 +306,9 @@ void FillModel::unassign(int cell, int /*tile*/) {
     set_count(c, n);
   }
   assigned_[std::size_t(cell)] = 0;
+  if (mode_ == FillOrder::Entropy)
+    for (int d = 0; d < kFillDirs; ++d)
+      if (const int y = neighbour(cell, d); y >= 0) --filled_near_[std::size_t(y)];
   cover_failed_ = false;
   push_key(cell);
 }

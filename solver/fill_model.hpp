@@ -58,6 +58,16 @@ class FillRules {
   std::vector<std::uint64_t> allow_;
 };
 
+// Which unassigned cell a dive fills next. Scanline: the fewest tiles left, ties in scanline
+// order (a region grows from its filled borders). Entropy: the least Shannon entropy of the
+// weights left (Gumin's WaveFunctionCollapse; the fewest tiles when the weights are equal) among
+// the frontier (cells beside a filled one or with tiles ruled out; elsewhere only when it is
+// empty), ties by seeded noise: one region grows in a random order rather than a scan from a
+// corner (WFC's order over the whole map starts islands that collide on large maps).
+// Auto (a map request only, solver/fill_search.hpp): Entropy for a map searched as one region,
+// Scanline for a map filled in blocks.
+enum class FillOrder { Scanline, Entropy, Auto };
+
 // One region to fill: rows x cols cells, each with an initial domain (empty vector: every tile).
 struct FillRegion {
   std::shared_ptr<const FillRules> rules;
@@ -67,6 +77,7 @@ struct FillRegion {
   // Every tile at least once (a sheet that holds the whole set): a tile that no cell's domain
   // holds any more is a dead end (prune `TileUsed`'s counterpart, counted as ClassCheck).
   bool cover = false;
+  FillOrder order = FillOrder::Scanline;
 };
 
 class FillModel {
@@ -92,6 +103,7 @@ class FillModel {
   bool restrict(int cell, const std::uint64_t* keep);  // dom &= keep (trailed); false when emptied
   void set_count(int cell, int n);
   std::uint64_t tie(int cell) const;
+  double rank(int cell) const;  // the order's first key: tiles left, or the entropy of their weights
   int neighbour(int cell, int d) const;
 
   std::shared_ptr<const FillRules> rules_;
@@ -107,9 +119,13 @@ class FillModel {
   };
   std::vector<Change> trail_;
   std::vector<std::size_t> marks_;  // trail size at each assign
-  // (count, tie, cell) of the unassigned cells, smallest first: a lazy heap, an entry pushed at
-  // every change of a cell's count and dropped when it is stale (the cell assigned, its count changed)
-  using Key = std::tuple<int, std::uint64_t, int>;
+  // (rank, tie, cell, count) of the unassigned cells, smallest first: a lazy heap, an entry pushed
+  // at every change of a cell's count and dropped when it is stale (the cell assigned, its count changed)
+  using Key = std::tuple<double, std::uint64_t, int, int>;
+  FillOrder mode_ = FillOrder::Scanline;
+  bool equal_weights_ = true;
+  std::vector<double> wlogw_;     // w log w per tile (Entropy)
+  std::vector<int> filled_near_;  // assigned neighbours per cell (Entropy: ties beside them first)
   std::priority_queue<Key, std::vector<Key>, std::greater<Key>> order_;
   void push_key(int cell);
   void rebuild_order();

@@ -115,7 +115,7 @@ FillRegion make_region(const std::shared_ptr<const FillRules>& rules, const Geom
   return reg;
 }
 
-std::string fingerprint(const FillMapRequest& req, int block) {
+std::string fingerprint(const FillMapRequest& req, int block, FillOrder order) {
   StableHash h;
   const FillRules& r = *req.rules;
   h.add(std::uint64_t(r.tiles()));
@@ -126,6 +126,7 @@ std::string fingerprint(const FillMapRequest& req, int block) {
   }
   h.add(std::uint64_t(req.rows)).add(std::uint64_t(req.cols)).add(req.torus ? 1 : 0).add(std::uint64_t(block));
   h.add(req.dives).add(req.run.seed).add(req.cover ? 1 : 0);
+  if (order == FillOrder::Entropy) h.add(0xE);  // Scanline: the fingerprint of checkpoints before the option
   for (int f : req.fixed) h.add(std::uint64_t(std::int64_t(f)), 4);
   return fmt::format("{:016x}", h.mixed());
 }
@@ -263,7 +264,9 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
   if (req.cover && blocks > 1)
     throw RequestError("cover", fmt::format("`cover` needs the map in one block (at most {0}x{0} cells, or `block` 0 and a "
                                             "map of at most 128x128)", B));
-  const std::string fp = fingerprint(req, B);
+  // Auto: WFC's order where the map is one search (its frequencies), the scan in blocks (its speed).
+  const FillOrder order = req.order != FillOrder::Auto ? req.order : blocks == 1 ? FillOrder::Entropy : FillOrder::Scanline;
+  const std::string fp = fingerprint(req, B, order);
 
   FillMapOutcome out;
   out.map.assign(n, -1);
@@ -333,7 +336,8 @@ FillMapOutcome fill_map(const FillMapRequest& req) {
           saved[std::size_t(i) * std::size_t(w.cols) + std::size_t(j)] = out.map[std::size_t(m)];
           out.map[std::size_t(m)] = -1;
         }
-      const FillRegion reg = make_region(req.rules, g, w, fixed, &out.map, req.cover);
+      FillRegion reg = make_region(req.rules, g, w, fixed, &out.map, req.cover);
+      reg.order = order;
       RunSettings rs = req.run;
       rs.seed = derive_seed(req.run.seed, std::uint64_t(b) * 64 + std::uint64_t(attempt));
       rs.progress = req.run.progress && blocks == 1;

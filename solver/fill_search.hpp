@@ -54,6 +54,7 @@ struct FillMapRequest {
   // torus without fixed cells tile 0 is placed at (0, 0): every such sheet has a translate with
   // it there, so a refutation covers every sheet of the size.
   bool cover = false;
+  FillOrder order = FillOrder::Auto;  // which cell a dive fills next (solver/fill_model.hpp)
   RunSettings run;         // threads, seed, time limit, checkpoint/resume files and interval, signals
 };
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <pugixml.hpp>
@@ -14,9 +15,11 @@
 #include "base/error.hpp"
 #include "base/input.hpp"
 #include "image/image.hpp"
+#include "solver/fill_sat.hpp"
 #include "tilemap/blob_set.hpp"
 #include "tilemap/tiled_files.hpp"
 #include "tilemap/tiled_tileset.hpp"
+#include "tilemap/tmx_reader.hpp"
 #include "tilemap/tsx_reader.hpp"
 #include "tilemap/wfc_tileset.hpp"
 #include "tilemap/xml_text.hpp"
@@ -176,14 +179,22 @@ Image wfc_picture(const WfcTileset& w, const std::vector<int>& map, int rows, in
   return img;
 }
 
-std::string gid_tmx(const std::vector<int>& gids, int rows, int cols, int tw, int th, const std::string& tsx) {
+struct TmxTilesetLine {
+  std::uint32_t firstgid;
+  std::string source;
+};
+
+std::string gid_tmx(const std::vector<std::uint32_t>& gids, int rows, int cols, int tw, int th,
+                    const std::vector<TmxTilesetLine>& tilesets) {
   std::string s = fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<map version=\"1.8\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"{0}\" height=\"{1}\" "
-      "tilewidth=\"{2}\" tileheight=\"{3}\" infinite=\"0\" nextlayerid=\"2\" nextobjectid=\"1\">\n"
-      " <tileset firstgid=\"1\" source=\"{4}\"/>\n"
-      " <layer id=\"1\" name=\"tiles\" width=\"{0}\" height=\"{1}\">\n  <data encoding=\"csv\">\n",
-      cols, rows, tw, th, xml_escape(tsx, "the tileset's file name"));
+      "tilewidth=\"{2}\" tileheight=\"{3}\" infinite=\"0\" nextlayerid=\"2\" nextobjectid=\"1\">\n",
+      cols, rows, tw, th);
+  for (const TmxTilesetLine& t : tilesets)
+    s += fmt::format(" <tileset firstgid=\"{}\" source=\"{}\"/>\n", t.firstgid,
+                     xml_escape(t.source, "the tileset's file name"));
+  s += fmt::format(" <layer id=\"1\" name=\"tiles\" width=\"{}\" height=\"{}\">\n  <data encoding=\"csv\">\n", cols, rows);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       s += std::to_string(gids[std::size_t(r) * std::size_t(cols) + std::size_t(c)]);
@@ -202,11 +213,124 @@ void make_dir(const std::string& dir) {
     throw InputError(fmt::format("{}: cannot make the output folder ({})", dir, ec ? ec.message() : "not a folder"));
 }
 
+// The fixed cells of a map painted in Tiled: each gid's tile of the map's tileset, matched to the
+// fill set's tile. WFC sets: the sheet `--tiled` writes (tile id = the tile's number, the tileset
+// as many tiles as the set). Tilekit and Tiled sets: the tileset's Wang set, a tile matched by its
+// wangid (its edge labels), so a sheet Tilekit wrote, the user's own .tsx and its variants all map.
+struct PaintedCells {
+  PaintedMap map;
+  std::vector<int> cells;                  // fill tile per cell, -1 free
+  std::vector<std::uint32_t> gid_of_tile;  // the smallest gid showing each fill tile (0: none)
+};
+
+// Tile id -> fill tile of one tileset of the map ("" reason) or why it has none.
+struct TilesetTiles {
+  std::vector<int> tile;  // by tile id; -1 none
+  std::string why;        // the whole tileset is unusable
+};
+
+TilesetTiles tileset_tiles(const LoadedSet& ls, const TmxTilesetRef& ref, const std::string& wangset) {
+  TilesetTiles out;
+  out.tile.assign(std::size_t(ref.tilecount), -1);
+  const int n = int(ls.names.size());
+  if (ls.wfc) {
+    if (ref.tilecount != n)
+      out.why = fmt::format("{} has {} tiles, the WFC set {} (paint with the sheet Tilekit writes beside a filled WFC map)", ref.source,
+                            ref.tilecount, n);
+    else
+      for (int t = 0; t < n; ++t) out.tile[std::size_t(t)] = t;
+    return out;
+  }
+  std::optional<ImportedWangSet> imported;
+  try {
+    std::error_code ec;
+    const bool same = !ls.tsx_path.empty() && std::filesystem::equivalent(ls.tsx_path, ref.path, ec);
+    imported = parse_tiled_wang_set(ref.text, ref.path, same ? wangset : "");
+  } catch (const InputError& e) {
+    out.why = e.what();
+    return out;
+  }
+  if (imported->set.kind() != ls.set->kind()) {
+    out.why = fmt::format("{}'s Wang set is of type {}, the fill set is a {} set", ref.source, imported->type,
+                          ls.set->kind() == TileKind::Corner ? "corner" : "Wang (edge)");
+    return out;
+  }
+  std::map<std::array<std::uint64_t, 4>, int> by_labels;
+  for (std::size_t k = 0; k < ls.set->size(); ++k) by_labels.emplace(edge_labels(*ls.set, k), int(k));
+  for (const auto& [id, k] : imported->tile_of_id) {
+    if (id >= ref.tilecount) continue;
+    auto it = by_labels.find(edge_labels(imported->set, k));
+    if (it != by_labels.end()) out.tile[std::size_t(id)] = it->second;
+  }
+  return out;
+}
+
+PaintedCells read_painted_cells(const LoadedSet& ls, const FillJobRequest& req, int rows, int cols, std::size_t& fixed) {
+  PaintedCells pc{read_painted_map(req.cells), {}, std::vector<std::uint32_t>(ls.names.size(), 0)};
+  const PaintedMap& m = pc.map;
+  if (ls.source == "blob")
+    throw RequestError("cells", "`cells`: the blob set has no Tiled tileset to paint with; use a cells file");
+  if (m.width != cols || m.height != rows)
+    throw RequestError("size", fmt::format("`size` is {}x{}, the painted map {} is {}x{}", cols, rows, req.cells,
+                                           m.width, m.height));
+  std::vector<TilesetTiles> tiles;
+  for (const TmxTilesetRef& ref : m.tilesets) {
+    tiles.push_back(tileset_tiles(ls, ref, req.wangset));
+    for (std::size_t id = 0; id < tiles.back().tile.size(); ++id) {
+      const int t = tiles.back().tile[id];
+      const std::uint32_t gid = ref.firstgid + std::uint32_t(id);
+      if (t >= 0 && (pc.gid_of_tile[std::size_t(t)] == 0 || gid < pc.gid_of_tile[std::size_t(t)]))
+        pc.gid_of_tile[std::size_t(t)] = gid;
+    }
+  }
+  pc.cells.assign(m.gids.size(), -1);
+  for (std::size_t i = 0; i < m.gids.size(); ++i) {
+    const std::uint32_t gid = m.gids[i];
+    if (gid == 0) continue;
+    const std::string at = fmt::format("{}: the cell at column {}, row {} (gid {})", req.cells, i % std::size_t(cols),
+                                       i / std::size_t(cols), gid);
+    const int ts = tileset_of_gid(m, gid);
+    if (ts < 0) throw InputError(at + " is in none of the map's tilesets");
+    const TmxTilesetRef& ref = m.tilesets[std::size_t(ts)];
+    const std::uint32_t id = gid - ref.firstgid;
+    if (id >= std::uint32_t(ref.tilecount))
+      throw InputError(fmt::format("{}: tile {} is past the {} tiles of {}", at, id, ref.tilecount, ref.source));
+    const TilesetTiles& tt = tiles[std::size_t(ts)];
+    if (!tt.why.empty()) throw InputError(fmt::format("{} is no tile of the set: {}", at, tt.why));
+    if (tt.tile[id] < 0)
+      throw InputError(fmt::format("{}: tile {} of {} is no tile of the set {}", at, id, ref.source, req.set));
+    pc.cells[i] = tt.tile[id];
+    ++fixed;
+  }
+  return pc;
+}
+
+// The filled map as a .tmx over the painted map's own tilesets: painted cells keep their gid, each
+// filled cell gets the smallest gid showing its tile.
+void write_painted_tmx(const PaintedCells& pc, const FillJobRequest& req, const std::vector<int>& map,
+                       const std::vector<std::string>& names, FillJobOutcome& o) {
+  std::vector<std::uint32_t> gids(map.size());
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    gids[i] = pc.map.gids[i] != 0 ? pc.map.gids[i] : pc.gid_of_tile[std::size_t(map[i])];
+    if (gids[i] == 0) throw std::logic_error("no gid for tile " + names[std::size_t(map[i])]);
+  }
+  make_dir(req.out_tiled);
+  std::vector<TmxTilesetLine> lines;
+  for (const TmxTilesetRef& ref : pc.map.tilesets)
+    lines.push_back({ref.firstgid, std::filesystem::relative(std::filesystem::absolute(ref.path),
+                                                             std::filesystem::absolute(req.out_tiled))
+                                       .string()});
+  o.tmx = (std::filesystem::path(req.out_tiled) / (file_stem(std::filesystem::path(req.cells).stem().string()) + "-fill.tmx"))
+              .string();
+  o.tsx = pc.map.tilesets.front().path;
+  write_file_atomic(o.tmx, gid_tmx(gids, pc.map.height, pc.map.width, pc.map.tile_width, pc.map.tile_height, lines));
+}
+
 // The Tiled files of a fill: a tileset and NAME-fill.tmx in `dir`.
 void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vector<int>& map, FillJobOutcome& o) {
   const std::string& dir = req.out_tiled;
   const int rows = req.height, cols = req.width;
-  std::vector<int> gids(map.size());
+  std::vector<std::uint32_t> gids(map.size());
   if (ls.wfc) {
     const WfcTileset& w = *ls.wfc;
     const int n = int(w.names.size()), px = w.tile_px;
@@ -221,13 +345,13 @@ void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vect
         "<tileset version=\"1.8\" name=\"{}\" tilewidth=\"{}\" tileheight=\"{}\" tilecount=\"{}\" columns=\"{}\">\n"
         " <image source=\"{}\" width=\"{}\" height=\"{}\"/>\n</tileset>\n",
         xml_escape(stem, "the tileset name"), px, px, n, n, xml_escape(stem + ".png", "the sheet's file name"), n * px, px);
-    for (std::size_t i = 0; i < map.size(); ++i) gids[i] = map[i] + 1;
+    for (std::size_t i = 0; i < map.size(); ++i) gids[i] = std::uint32_t(map[i] + 1);
     make_dir(dir);
     o.tsx = (std::filesystem::path(dir) / (stem + ".tsx")).string();
     write_png((std::filesystem::path(dir) / (stem + ".png")).string(), sheet);
     write_file_atomic(o.tsx, tsx);
     o.tmx = (std::filesystem::path(dir) / (stem + "-fill.tmx")).string();
-    write_file_atomic(o.tmx, gid_tmx(gids, rows, cols, px, px, stem + ".tsx"));
+    write_file_atomic(o.tmx, gid_tmx(gids, rows, cols, px, px, {{1, stem + ".tsx"}}));
     return;
   }
   if (ls.tiled) {
@@ -236,13 +360,13 @@ void write_tiled(const LoadedSet& ls, const FillJobRequest& req, const std::vect
     doc.load_buffer(text.data(), text.size());
     const int tw = doc.child("tileset").attribute("tilewidth").as_int(16);
     const int th = doc.child("tileset").attribute("tileheight").as_int(16);
-    for (std::size_t i = 0; i < map.size(); ++i) gids[i] = ls.tiled->tile_ids[std::size_t(map[i])] + 1;
+    for (std::size_t i = 0; i < map.size(); ++i) gids[i] = std::uint32_t(ls.tiled->tile_ids[std::size_t(map[i])] + 1);
     make_dir(dir);
     const std::string rel = std::filesystem::relative(std::filesystem::absolute(ls.tsx_path),
                                                       std::filesystem::absolute(dir)).string();
     o.tsx = ls.tsx_path;
     o.tmx = (std::filesystem::path(dir) / (file_stem(ls.set->name()) + "-fill.tmx")).string();
-    write_file_atomic(o.tmx, gid_tmx(gids, rows, cols, tw, th, rel));
+    write_file_atomic(o.tmx, gid_tmx(gids, rows, cols, tw, th, {{1, rel}}));
     return;
   }
   const TileSet& s = *ls.set;
@@ -292,8 +416,18 @@ std::string check_pair_fill(const std::vector<int>& map, int rows, int cols, boo
   return "";
 }
 
-FillJobOutcome run_fill(const FillJobRequest& req) {
-  if (req.width < 1 || req.height < 1) throw RequestError("size", "`size` must be at least 1x1");
+bool is_tmx(const std::string& path) { return ends_with(path, ".tmx"); }
+
+FillJobOutcome run_fill(const FillJobRequest& req_in) {
+  FillJobRequest req = req_in;
+  const bool painted = is_tmx(req.cells);
+  if (painted && req.width == 0 && req.height == 0) {  // the size of the painted map
+    const PaintedMap m = read_painted_map(req.cells);
+    req.width = m.width, req.height = m.height;
+  }
+  if (req.width < 1 || req.height < 1)
+    throw RequestError("size", painted || req.width || req.height ? "`size` must be at least 1x1"
+                                                                  : "`size` is needed unless `cells` is a Tiled map (.tmx)");
   LoadedSet ls = load_set(req);
   for (const auto& [name, w] : req.weights) {
     const std::vector<int> ts = tiles_named(ls, name);
@@ -306,15 +440,30 @@ FillJobOutcome run_fill(const FillJobRequest& req) {
   mr.rows = req.height;
   mr.cols = req.width;
   mr.torus = req.torus;
-  if (!req.cells.empty()) mr.fixed = read_cells(ls, req.cells, req.height, req.width, o.fixed);
+  std::optional<PaintedCells> pc;
+  if (painted) {
+    pc = read_painted_cells(ls, req, req.height, req.width, o.fixed);
+    mr.fixed = pc->cells;
+  } else if (!req.cells.empty()) {
+    mr.fixed = read_cells(ls, req.cells, req.height, req.width, o.fixed);
+  }
+  o.rows = req.height, o.cols = req.width;
   mr.block = req.block;
   mr.cover = req.cover;
+  mr.order = req.order;
   mr.dives = req.dives;
   mr.run = req.run;
   o.source = ls.source;
   o.names = ls.names;
   o.weights = ls.weights;
-  o.fill = fill_map(mr);
+  if (!req.out_cnf.empty()) {
+    write_file_atomic(req.out_cnf, fill_cnf_text(mr, &o.cnf_variables, &o.cnf_clauses));
+    o.cnf = req.out_cnf;
+    return o;
+  }
+  if (req.sat && (!req.run.checkpoint_path.empty() || !req.run.resume_path.empty()))
+    throw RequestError("sat", "`sat` runs cadical once over the whole map: it takes no `checkpoint` or `resume`");
+  o.fill = req.sat ? fill_by_sat(mr) : fill_map(mr);
   if (!o.fill.found) return o;
   const std::vector<int>& map = o.fill.map;
   // the independent check, then the fixed cells
@@ -333,6 +482,11 @@ FillJobOutcome run_fill(const FillJobRequest& req) {
     for (std::size_t t = 0; t < o.counts.size(); ++t)
       if (o.counts[t] == 0) throw std::logic_error("the sheet misses tile " + ls.names[t]);
   o.valid = true;
+  if (pc && !req.out_tiled.empty())  // before any file is written: every filled tile has a gid to show it
+    for (int t : map)
+      if (pc->gid_of_tile[std::size_t(t)] == 0)
+        throw InputError(fmt::format("{}: tile {} of the fill has no tile in the map's tilesets", req.cells,
+                                     ls.names[std::size_t(t)]));
   // outputs, each written atomically
   if (!req.out_png.empty()) {
     if (ls.wfc) {
@@ -356,7 +510,12 @@ FillJobOutcome run_fill(const FillJobRequest& req) {
     write_file_atomic(req.out_json, j.dump() + "\n");
     o.json = req.out_json;
   }
-  if (!req.out_tiled.empty()) write_tiled(ls, req, map, o);
+  if (!req.out_tiled.empty()) {
+    if (pc)
+      write_painted_tmx(*pc, req, map, ls.names, o);
+    else
+      write_tiled(ls, req, map, o);
+  }
   return o;
 }
 

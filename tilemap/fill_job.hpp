@@ -13,6 +13,12 @@
 // Fixed cells come from a cells file: one line per map row, one token per cell, "." a free cell,
 // else the tile's number in the fill set or, for a WFC set, its name ("corner" is "corner 0",
 // "corner 1" is written "corner:1"); blank lines and lines starting with '#' are skipped.
+// Or from a map painted in Tiled (a .tmx, tilemap/tmx_reader.hpp; its size is the map's): empty
+// cells are free, a painted cell's gid is its tileset's tile, matched to the fill set by its
+// wangid (Tilekit and Tiled sets: a sheet Tilekit wrote or the user's own Wang set) or by tile id
+// (WFC sets: the sheet `--tiled` writes). The filled map is then written as a .tmx over the painted
+// map's own tilesets (painted cells keep their gids).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -26,13 +32,16 @@ struct FillJobRequest {
   std::string set;      // a tile set name or file, a .tsx or a WFC .xml
   std::string subset;   // WFC only: a subset of the XML ("" every tile)
   std::string wangset;  // .tsx only: the Wang set's name ("" the first)
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // 0x0 with a painted .tmx: the map's size
   bool torus = false;
-  std::string cells;                                  // fixed cells file ("" none)
+  std::string cells;                                  // fixed cells file or painted .tmx ("" none)
   std::vector<std::pair<std::string, double>> weights;  // tile (number or WFC name) -> weight
   int block = 0;
   std::uint64_t dives = 64;
   bool cover = false;  // every tile at least once (FillMapRequest::cover)
+  FillOrder order = FillOrder::Auto;  // the fill model's cell order
+  bool sat = false;    // search with cadical (solver/fill_sat.hpp) instead of the fill model
+  std::string out_cnf;  // "" or: write the request's CNF here and search nothing
   RunSettings run;
   std::string out_png, out_json, out_tiled;  // "" = not written; out_tiled a folder
   int tile_px = 16;                          // pictures of Tilekit/Tiled sets (WFC tiles keep theirs)
@@ -46,7 +55,10 @@ struct FillJobOutcome {
   std::vector<std::uint64_t> counts;  // found: cells per tile
   bool valid = false;                 // found and passed the independent validator
   std::size_t fixed = 0;              // fixed cells
+  int rows = 0, cols = 0;             // the map's size
   std::string png, json, tmx, tsx;
+  std::string cnf;  // the CNF written (no search made)
+  std::uint64_t cnf_variables = 0, cnf_clauses = 0;
 };
 
 FillJobOutcome run_fill(const FillJobRequest& req);

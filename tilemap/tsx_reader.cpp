@@ -87,6 +87,7 @@ ImportedWangSet parse_tiled_wang_set(const std::string& text, const std::string&
   const auto colours = std::uint32_t(out.colour_names.size());
   if (colours == 0) throw InputError(fmt::format("{}: the Wang set has no colours", where));
   std::map<TileIndex, int> first_id;  // tile index -> first Tiled tile id, in index order
+  std::map<int, TileIndex> index_of_id;  // every tile id -> its tile index
   std::vector<CornerTile> corner;
   std::vector<WangTile> wang;
   for (const pugi::xml_node wt : ws.children("wangtile")) {
@@ -94,6 +95,8 @@ ImportedWangSet parse_tiled_wang_set(const std::string& text, const std::string&
     const std::string at = fmt::format("{}, tile {}", where, id);
     const WangId wid = parse_wang_id(wt.attribute("wangid").value(), at);
     ++out.wang_tiles;
+    if (index_of_id.count(id))
+      throw InputError(fmt::format("{}: tile {} has two <wangtile> entries", where, id));
     TileIndex index = 0;
     if (kind == TileKind::Corner) {
       const CornerTile t = corner_tile_of(wid, colours, at);
@@ -104,6 +107,7 @@ ImportedWangSet parse_tiled_wang_set(const std::string& text, const std::string&
       index = wang_index(t, colours);
       if (first_id.emplace(index, id).second) wang.push_back(t);
     }
+    index_of_id[id] = index;
   }
   if (first_id.empty()) throw InputError(fmt::format("{}: the Wang set has no tiles (no <wangtile>)", where));
   const std::string name = ws.attribute("name").value();
@@ -111,6 +115,7 @@ ImportedWangSet parse_tiled_wang_set(const std::string& text, const std::string&
                                      : TileSet::wang(std::move(wang), name, origin, colours, colours);
   out.tile_ids.reserve(out.set.size());
   for (std::size_t k = 0; k < out.set.size(); ++k) out.tile_ids.push_back(first_id.at(out.set.index_of(k)));
+  for (const auto& [id, index] : index_of_id) out.tile_of_id[id] = *out.set.find_index(index);
   return out;
 }
 

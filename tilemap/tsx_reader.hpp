@@ -7,6 +7,7 @@
 // (or none of the given name), a "mixed" set, an entry unset where the type needs a colour or
 // set where it needs none, a colour above the set's, no tiles.
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct ImportedWangSet {
   std::string type;                       // "corner" or "edge"
   std::vector<std::string> colour_names;  // colour k of the set is Tiled's colour k + 1
   std::vector<int> tile_ids;              // Tiled tile id of tile k of the set (its first variant)
+  std::map<int, std::size_t> tile_of_id;  // every Tiled tile id with a wangid -> its tile k (variants too)
   std::size_t wang_tiles = 0;             // <wangtile> entries read (variants included)
 };
 

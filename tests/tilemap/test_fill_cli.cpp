@@ -27,7 +27,7 @@ TEST(FillCli, HelpAndOneJsonObject) {
   const CliResult h = run_cli("fill --help");
   EXPECT_EQ(h.code, 0);
   for (const char* flag : {"--set", "--size", "--torus", "--cells", "--weight", "--threads", "--seed", "--time-limit",
-                           "--checkpoint", "--resume", "--png", "--tiled", "--json"})
+                           "--checkpoint", "--resume", "--png", "--tiled", "--json", "--order", "--sat", "--cnf"})
     EXPECT_NE(h.out.find(flag), std::string::npos) << flag;
   const CliResult r = run_cli("fill --set complete-corner-3 --size 20x11 --torus --seed 4 --json");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -82,7 +82,7 @@ TEST(FillCli, BadInputExits2AndWritesNothing) {
   for (const std::string& args : std::vector<std::string>{"--set " + q(wfc("Knots")) + " --subset NoSuch --size 8x8", "--set " + q(wfc("Knots")) + " --size 2x2 --cells " + q(d / "short.cells"),
         "--set " + q(wfc("Knots")) + " --size 2x2 --cells " + q(d / "name.cells"), "--set complete-corner-2 --size 0x3",
         "--set complete-corner-2 --size 4x4 --subset Dense", "--set complete-corner-2 --size 4x4 --weight 3=-1",
-        "--set no-such-set --size 4x4", "--set complete-corner-2 --size 4x4 --time-limit nan"}) {
+        "--set no-such-set --size 4x4", "--set complete-corner-2 --size 4x4 --time-limit nan", "--set complete-corner-2 --size 4x4 --order random"}) {
     const CliResult r = run_cli("fill " + args + " --png " + q(d / "o.png"));
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(d / "o.png")) << args;
