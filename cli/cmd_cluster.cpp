@@ -130,10 +130,17 @@ void print_dry_run(const cluster::ClusterPlan& p, const Context& ctx) {
   const auto scripts = cluster::job_scripts(p);
   nlohmann::json js = nlohmann::json::object();
   for (const auto& s : scripts) js[(dir / s.name).string()] = s.text;
-  emit(ctx, {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"scripts", js}},
+  emit(ctx,
+       {{"dry_run", true},
+        {"run_dir", p.run_dir},
+        {"shards", p.shards},
+        {"mpi", p.mpi},
+        {"tilekit", p.tilekit},
+        {"scripts", js}},
        [&] {
          for (const auto& s : scripts) fmt::print("==> {} <==\n{}\n", (dir / s.name).string(), s.text);
-         fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
+         fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's sbatch {} run)\n",
+                    p.mpi ? "call" : "calls");
        });
 }
 
@@ -141,6 +148,21 @@ void run_submit(const SubmitArgs& a, const Context& ctx) {
   const cluster::ClusterPlan p = cluster::make_plan(a.request);
   if (a.dry_run) return print_dry_run(p, ctx);
   const cluster::Submission s = cluster::submit_run(p, a.sbatch);
+  if (p.mpi)
+    return emit(ctx,
+                {{"run_dir", p.run_dir},
+                 {"mpi_job", s.array_job},
+                 {"nodes", p.nodes},
+                 {"ntasks", p.ntasks},
+                 {"launcher", p.launcher},
+                 {"tilekit", p.tilekit},
+                 {"submissions", s.submissions}},
+                [&] {
+                  fmt::print("submitted one MPI job to Slurm: job {}, {} ranks on {} nodes ({})\n", s.array_job,
+                             p.ntasks, p.nodes, p.launcher == "srun" ? "srun --mpi=" + p.srun_mpi : p.launcher);
+                  fmt::print("the ranks run {} pack --mpi\nrun directory: {}\nprogress: tilekit cluster status --run-dir {}\n",
+                             p.tilekit, p.run_dir, cluster::shell_quote(p.run_dir));
+                });
   emit(ctx,
        {{"run_dir", p.run_dir},
         {"shards", p.shards},
@@ -173,8 +195,13 @@ std::string value_or_dash(const std::optional<T>& v) {
 void print_status(const cluster::RunStatus& r) {
   std::string args;
   for (const auto& a : r.pack_args) args += " " + a;
-  fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n", r.run_dir, args,
-             r.shards, r.done, r.checkpointed, r.started, r.pending);
+  if (r.mpi_ranks)
+    fmt::print("run {} (tilekit pack --mpi{}), one MPI job of {} ranks (shard 0 below: the ranks' checkpoints "
+               "merged)\n",
+               r.run_dir, args, r.mpi_ranks);
+  else
+    fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n", r.run_dir,
+               args, r.shards, r.done, r.checkpointed, r.started, r.pending);
   fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", "shard", "state", "attempts", "exit 3s", "last exit",
              "solutions", "checkpoint (progress so far)");
   for (const auto& s : r.per_shard) {
@@ -183,7 +210,9 @@ void print_status(const cluster::RunStatus& r) {
     if (!s.attempts_error.empty()) fmt::print("       attempts unreadable: {}\n", s.attempts_error);
   }
   fmt::print("solutions in done shards: {}\n", r.solutions_in_done_shards);
-  if (!r.merged_solutions)
+  if (r.mpi_ranks)
+    ;  // no merge: rank 0 writes the one database
+  else if (!r.merged_solutions)
     fmt::print("merged: not yet (the merge job runs when every shard ended with exit 0)\n");
   else
     fmt::print("merged: {} distinct solutions ({} up to symmetry) in {}\n", *r.merged_solutions,
@@ -199,7 +228,8 @@ void run_status(const StatusArgs& a, const Context& ctx) {
 void add_submit(CLI::App& cluster, Context& ctx) {
   auto* cmd = cluster.add_subcommand(
       "submit",
-      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
+      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` (or, with --mpi, one MPI job's "
+      "script) and queue them with sbatch");
   auto a = std::make_shared<SubmitArgs>();
   cluster::SubmitRequest& r = a->request;
   r.words = pack_shard_words();
@@ -210,11 +240,22 @@ void add_submit(CLI::App& cluster, Context& ctx) {
                   "--pack-arg=--size=RxS; required)");
   cmd->add_option("--colors", r.colors, "pack: number of colours C (required)");
   cmd->add_option("--method", r.method, "Passed to pack: auto, search or construct");
-  cmd->add_option("--mode", r.mode, "Passed to pack: first, count or all")->capture_default_str();
+  cmd->add_option("--mode", r.mode, "Passed to pack: first, count or all (default: all; count with --mpi)");
   cmd->add_option("--seed", r.seed, "Passed to pack");
   cmd->add_option("--pack-arg", r.shard_args,
                   "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
-  cmd->add_option("--shards", plan.shards, "Number of shards = array tasks")->required();
+  cmd->add_option("--shards", plan.shards, "Number of shards = array tasks (required without --mpi)");
+  cmd->add_flag("--mpi", plan.mpi,
+                "One MPI job instead of an array: `srun tilekit pack --mpi` with --ntasks ranks on --nodes nodes of "
+                "one allocation (count mode; Open MPI with PMIx)");
+  cmd->add_option("--nodes", plan.nodes, "--mpi: nodes of the allocation")->capture_default_str();
+  cmd->add_option("--ntasks", plan.ntasks, "--mpi: MPI ranks (default: --nodes)");
+  cmd->add_option("--launcher", plan.launcher,
+                  "--mpi: how the ranks start: srun (srun --mpi=SRUN_MPI) or mpirun (Open MPI's, inside the "
+                  "allocation)")
+      ->capture_default_str();
+  cmd->add_option("--srun-mpi", plan.srun_mpi, "--mpi with srun: Slurm's MPI plugin (srun --mpi=list)")
+      ->capture_default_str();
   cmd->add_option("--cpus-per-task", plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
   cmd->add_option("--time", plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")
       ->capture_default_str();
@@ -232,7 +273,13 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--sbatch", a->sbatch, "The sbatch command")->capture_default_str();
   cmd->add_flag("--dry-run", a->dry_run, "Print the scripts; write and queue nothing");
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_submit(*a, ctx); }); });
+  cmd->callback([a, cmd, &ctx] {
+    // pack --mpi counts: the default mode of an MPI run
+    if (a->request.settings.mpi && cmd->count("--mode") == 0) a->request.mode = "count";
+    if (!a->request.settings.mpi && cmd->count("--shards") == 0)
+      throw InputError("cluster submit: --shards is required (or --mpi for one MPI job)");
+    with_cluster_errors_in_flags([&] { run_submit(*a, ctx); });
+  });
 }
 
 void add_status(CLI::App& cluster, Context& ctx) {
@@ -276,8 +323,9 @@ cluster::ShardCommandWords pack_shard_words() {
           .mode = "--mode",
           .seed = "--seed",
           .window = "--window",
+          .mpi = "--mpi",
           .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
-                        "--portfolio-stats"}};
+                        "--portfolio-stats", "--mpi"}};
 }
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {

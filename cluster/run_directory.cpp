@@ -36,6 +36,7 @@ std::optional<RunFile> read_run_file(const fs::path& p) {
     s->array();
     r.submissions = s->raw();
   }
+  if (auto m = j.find("mpi")) r.mpi_ranks = int(m->at("ntasks").integer(1, kMaxShards));
   if (auto c = j.find("command")) {
     std::vector<std::string> words;
     for (std::size_t i = 0, n = c->array(1, 8); i < n; ++i) words.push_back((*c)[i].string(64));
@@ -57,6 +58,11 @@ nlohmann::json run_record(const ClusterPlan& p) {
           {"max_requeues", p.max_requeues},
           {"checkpoint_every", p.checkpoint_every},
           {"partition", p.partition},
+          {"mpi", p.mpi ? nlohmann::json{{"nodes", p.nodes},
+                                         {"ntasks", p.ntasks},
+                                         {"launcher", p.launcher},
+                                         {"srun_mpi", p.srun_mpi}}
+                        : nlohmann::json(nullptr)},
           {"submissions", nlohmann::json::array()}};
 }
 

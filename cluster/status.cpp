@@ -12,6 +12,7 @@
 #include "checkpoints/checkpoint.hpp"
 #include "cluster/run_directory.hpp"
 #include "base/run_control.hpp"
+#include "solver/search_state.hpp"
 
 namespace tilekit::cluster {
 namespace fs = std::filesystem;
@@ -58,11 +59,14 @@ nlohmann::json or_null(const std::optional<T>& v) {
 
 }  // namespace
 
-ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard) {
+ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard, bool with_rank_files) {
   ShardProgress p;
   SearchState st;
   try {
     st = read_checkpoint(file.string());
+    // An MPI run: each rank's file holds what it ran (merging is idempotent, as on --resume).
+    if (with_rank_files)
+      for (const std::string& f : rank_checkpoint_files(file.string())) merge_search_states(st, read_checkpoint(f));
   } catch (const std::exception& e) {
     p.error = e.what();
     return p;
@@ -102,7 +106,7 @@ void read_attempts(const fs::path& path, ShardStatus& s) {
   }
 }
 
-ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack) {
+ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack, bool mpi) {
   ShardStatus s;
   s.shard = shard.index;
   read_attempts(shard_file(dir, shard.index, ".attempts"), s);
@@ -119,7 +123,7 @@ ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack)
   s.complete = member<bool>(done, "complete", &nlohmann::json::is_boolean);
   if (has_ckpt) {
     if (pack) {
-      s.progress = checkpoint_progress(ckpt, shard);
+      s.progress = checkpoint_progress(ckpt, shard, mpi);
     } else {
       s.progress = ShardProgress{};
       s.progress->error = "an enumerate checkpoint (progress lines: the shard's log)";
@@ -138,8 +142,9 @@ RunStatus read_run_status(const std::string& run_dir) {
   r.pack_args = run->pack_args;
   r.pack = run->pack;
   r.submissions = run->submissions;
+  r.mpi_ranks = run->mpi_ranks;
   for (int i = 0; i < r.shards; ++i) {
-    ShardStatus s = shard_status(dir, ShardSpec{i, r.shards}, r.pack);
+    ShardStatus s = shard_status(dir, ShardSpec{i, r.shards}, r.pack, r.mpi_ranks > 0);
     int& count = s.state == "done"           ? r.done
                  : s.state == "checkpointed" ? r.checkpointed
                  : s.state == "started"      ? r.started
@@ -180,6 +185,7 @@ nlohmann::json to_json(const RunStatus& r) {
   for (const ShardStatus& s : r.per_shard) shards.push_back(to_json(s));
   return {{"run_dir", r.run_dir},
           {"shards", r.shards},
+          {"mpi_ranks", r.mpi_ranks ? nlohmann::json(r.mpi_ranks) : nlohmann::json(nullptr)},
           {"pack_args", r.pack_args},
           {"done", r.done},
           {"checkpointed", r.checkpointed},

@@ -39,6 +39,7 @@ struct RunStatus {
   int shards = 0;
   std::vector<std::string> pack_args;
   bool pack = true;  // shards of `tilekit pack` (else `aperiodic enumerate`)
+  int mpi_ranks = 0;  // an MPI run (`cluster submit --mpi`): its ranks; it is shard 0 of 1
   int done = 0, checkpointed = 0, started = 0, pending = 0;
   std::uint64_t solutions_in_done_shards = 0;
   // From merged.json (`db stats`): solutions stored, each once, and how many of them differ up
@@ -48,15 +49,17 @@ struct RunStatus {
   std::vector<ShardStatus> per_shard;
 };
 
-// Progress of `shard` from the checkpoint file at `path` (a pack shard's).
-ShardProgress checkpoint_progress(const std::filesystem::path& path, const ShardSpec& shard);
+// Progress of `shard` from the checkpoint file at `path` (a pack shard's); `with_rank_files`: an
+// MPI run's, merged with every `path`.rank-R beside it (checkpoints/checkpoint.hpp).
+ShardProgress checkpoint_progress(const std::filesystem::path& path, const ShardSpec& shard,
+                                  bool with_rank_files = false);
 
 // Attempts of shard-I.attempts: one JSON line per attempt with an integer "exit"; lines cut short
 // by a kill are skipped. Sets attempts, checkpointed_exits and last_exit, or attempts_error.
 void read_attempts(const std::filesystem::path& path, ShardStatus& status);
 
 // Shard `shard` of the run in `run_dir` (`pack`: its checkpoints are pack's).
-ShardStatus shard_status(const std::filesystem::path& run_dir, const ShardSpec& shard, bool pack);
+ShardStatus shard_status(const std::filesystem::path& run_dir, const ShardSpec& shard, bool pack, bool mpi = false);
 
 // The run in `run_dir`. Throws NotFound when it has no run.json, InputError when that is broken.
 RunStatus read_run_status(const std::string& run_dir);

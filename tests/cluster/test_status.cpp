@@ -111,7 +111,7 @@ TEST(ClusterRunStatus, JsonHasTheKeysTheCommandPrints) {
   const nlohmann::json j = cluster::to_json(cluster::read_run_status(d / "r"));
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{"checkpointed", "done", "merged_orbits", "merged_solutions", "pack_args",
+  EXPECT_EQ(keys, (std::vector<std::string>{"checkpointed", "done", "merged_orbits", "merged_solutions", "mpi_ranks", "pack_args",
                                             "pending", "per_shard", "run_dir", "shards", "solutions_in_done_shards",
                                             "started", "submissions"}));
   keys.clear();
