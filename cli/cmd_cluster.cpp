@@ -16,7 +16,9 @@
 #include "cluster/schedule_sim.hpp"
 #include "cli/shard_words.hpp"
 #include "cluster/status.hpp"
+#include "cluster/split.hpp"
 #include "cluster/submit.hpp"
+#include "cluster/run_directory.hpp"
 
 namespace tilekit::cli {
 namespace fs = std::filesystem;
@@ -183,8 +185,9 @@ std::string checkpoint_text(const cluster::ShardStatus& s) {
   if (!s.checkpoint_age_seconds || !s.progress) return "-";
   const cluster::ShardProgress& p = *s.progress;
   if (!p.error.empty()) return fmt::format("unreadable: {}", p.error);
-  return fmt::format("{}/{} subproblems ({:.1f}%), {} solutions, {} nodes; written {} s ago", p.subproblems_done,
-                     p.subproblems, 100 * p.fraction, p.solutions, p.nodes, *s.checkpoint_age_seconds);
+  return fmt::format("{}/{} subproblems ({:.1f}%), {} solutions, {} nodes; written {} s ago{}", p.subproblems_done,
+                     p.subproblems, 100 * p.fraction, p.solutions, p.nodes, *s.checkpoint_age_seconds,
+                     p.eta_seconds ? fmt::format("; ETA ~{:.0f} s", *p.eta_seconds) : std::string());
 }
 
 template <class T>
@@ -210,6 +213,12 @@ void print_status(const cluster::RunStatus& r) {
     if (!s.attempts_error.empty()) fmt::print("       attempts unreadable: {}\n", s.attempts_error);
   }
   fmt::print("solutions in done shards: {}\n", r.solutions_in_done_shards);
+  fmt::print("work done: {} nodes; outstanding: {}; ETA: {}\n", r.work_done_nodes,
+             r.work_outstanding_nodes ? fmt::format("~{:.3g} nodes (open subproblems at the mean finished size)",
+                                                    *r.work_outstanding_nodes)
+                                      : std::string("not yet known (a shard has no finished subproblem)"),
+             r.eta_seconds ? fmt::format("~{:.0f} s (the slowest shard at its node rate so far)", *r.eta_seconds)
+                           : std::string("-"));
   if (r.mpi_ranks)
     ;  // no merge: rank 0 writes the one database
   else if (!r.merged_solutions)
@@ -245,6 +254,12 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--pack-arg", r.shard_args,
                   "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
   cmd->add_option("--shards", plan.shards, "Number of shards = array tasks (required without --mpi)");
+  cmd->add_option("--split-after", plan.split_after,
+                  "Adaptive splitting: each shard (and each later work unit) stops after this many seconds; the merge "
+                  "job splits what it left into --split-ways units, queued as a follow-up array (0 = never)")
+      ->capture_default_str();
+  cmd->add_option("--split-ways", plan.split_ways, "Units an unfinished shard or unit becomes in the next round")
+      ->capture_default_str();
   cmd->add_flag("--mpi", plan.mpi,
                 "One MPI job instead of an array: `srun tilekit pack --mpi` with --ntasks ranks on --nodes nodes of "
                 "one allocation (count mode; Open MPI with PMIx)");
@@ -290,6 +305,40 @@ void add_status(CLI::App& cluster, Context& ctx) {
   cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_status(*a, ctx); }); });
 }
 
+struct SplitArgs {
+  std::string run_dir;
+  std::int64_t after_round = 0;
+};
+
+void add_split(CLI::App& cluster, Context& ctx) {
+  auto* cmd = cluster.add_subcommand(
+      "split",
+      "A split run's next round (the merge job runs it): the shards now complete get their result, what is "
+      "unfinished becomes the work units of the next array (units/round-R.tsv)");
+  auto a = std::make_shared<SplitArgs>();
+  cmd->add_option("--run-dir", a->run_dir, "The run directory given to submit")->required();
+  cmd->add_option("--after-round", a->after_round, "The round that just ended (0 = the first array)")
+      ->capture_default_str();
+  add_json_flag(cmd, ctx);
+  cmd->footer("Exit codes: 0 ok (units: 0 when nothing is left), 2 bad input, 4 no run directory.");
+  cmd->callback([a, &ctx] {
+    const auto run = cluster::read_run_file(fs::path(a->run_dir) / "run.json");
+    if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", a->run_dir));
+    if (!run->split_ways) throw InputError(fmt::format("{}: not a split run (submit it with --split-after)", a->run_dir));
+    if (a->after_round < 0 || a->after_round >= 1000)
+      throw InputError(fmt::format("--after-round must be 0..999, got {}", a->after_round));
+    const cluster::RoundPlan plan = cluster::next_round(a->run_dir, int(a->after_round), run->split_ways);
+    emit(ctx, cluster::to_json(plan), [&] {
+      std::string done;
+      for (int s : plan.completed) done += fmt::format(" {}", s);
+      fmt::print("after round {}: {} unfinished subproblems; shards complete now:{}\n", a->after_round,
+                 plan.unfinished, done.empty() ? " none" : done);
+      fmt::print("round {}: {} work units{}\n", plan.round, plan.units.size(),
+                 plan.units.empty() ? "" : fmt::format(" in {}/units/round-{}.tsv", a->run_dir, plan.round));
+    });
+  });
+}
+
 void add_simulate(CLI::App& cluster, Context& ctx) {
   auto* cmd = cluster.add_subcommand(
       "simulate",
@@ -325,7 +374,7 @@ cluster::ShardCommandWords pack_shard_words() {
           .window = "--window",
           .mpi = "--mpi",
           .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
-                        "--portfolio-stats", "--mpi"}};
+                        "--portfolio-stats", "--mpi", "--part", "--time-limit"}};
 }
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {
@@ -334,6 +383,7 @@ void add_cluster_commands(CLI::App& app, Context& ctx) {
   add_submit(*cluster, ctx);
   add_status(*cluster, ctx);
   add_simulate(*cluster, ctx);
+  add_split(*cluster, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -97,6 +97,7 @@ std::string pack_array_script(const ClusterPlan& p) {
           "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n");
   s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
   s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
+  s += variable("SPLIT_AFTER", fmt::format("{}", p.split_after));
   s += bash_array("COMMAND", p.command);
   s += bash_array("PACK_ARGS", p.pack_args);
   s += "\n" + body("pack-array");
@@ -153,6 +154,7 @@ std::string merge_script(const ClusterPlan& p) {
           "# Queued after the shard array: sbatch "
           "--dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +  // not a tilekit flag
           "# (afterok: it starts only when every shard task ended with exit code 0).\n");
+  s += variable("SPLIT_AFTER", fmt::format("{}", p.split_after));
   s += "\n" + body("merge");
   return s;
 }

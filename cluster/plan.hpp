@@ -27,6 +27,11 @@ struct ClusterPlan {
   // `nodes` nodes of one allocation, each rank with cpus_per_task threads, started by `launcher`:
   // "srun" (srun's `--mpi=` set to `srun_mpi`, PMIx by default) or "mpirun" (Open MPI's, inside
   // the allocation). `shards` is 1 then: the run's files are shard 0's.
+  // Adaptive splitting (cluster/split.hpp): each shard (and each work unit of the follow-up
+  // arrays) stops after `split_after` seconds (0 = never: a plain array) and the merge job splits
+  // what it left into `split_ways` units per unfinished unit, as the next array.
+  double split_after = 0;
+  int split_ways = 4;
   bool mpi = false;
   int nodes = 1;
   int ntasks = 0;  // ranks; 0 = `nodes` (make_plan fills it in)

@@ -32,6 +32,7 @@ struct RunFile {
   std::vector<std::string> pack_args;
   nlohmann::json submissions = nlohmann::json::array();
   bool pack = true;  // the shards run `tilekit pack` (else `aperiodic enumerate`)
+  int split_ways = 0;  // a split run's (`cluster submit --split-after`); 0 = not split
   int mpi_ranks = 0;  // an MPI run's ranks (`cluster submit --mpi`: one shard, shard 0); 0 = a job array
 };
 
