@@ -320,7 +320,7 @@ void add_split(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--after-round", a->after_round, "The round that just ended (0 = the first array)")
       ->capture_default_str();
   add_json_flag(cmd, ctx);
-  cmd->footer("Exit codes: 0 ok (units: 0 when nothing is left), 2 bad input, 4 no run directory.");
+  cmd->footer("Exit codes: 0 ok (units: 0 when nothing is left), 1 no run directory, 2 bad input.");
   cmd->callback([a, &ctx] {
     const auto run = cluster::read_run_file(fs::path(a->run_dir) / "run.json");
     if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", a->run_dir));

@@ -14,6 +14,9 @@
 #     is cancelled (scancel: checkpoint, exit 3, no requeue); `cluster submit` again with 1 rank
 #     resumes from the merged rank files and completes: 303,264.
 #  3. mpirun inside the allocation (--launcher mpirun): the C=2 Wang count, 203,520.
+#  4. Adaptive splitting of a job array (no MPI: `--split-after`, cluster/split.hpp): the C=2 Wang
+#     count in 2 shards stopped after 3 ms each; the merge job queues the split units as a
+#     follow-up array and itself after it, and merges when nothing is left: 203,520.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -166,3 +169,19 @@ log "case 3: MPI job $j4 (mpirun, 2 ranks)"
 check "3: the MPI job completed (mpirun)" equals "$(wait_final "$j4")" COMPLETED
 check "3: 203520 solutions" equals "$(json_value "$r3/shards/shard-0.done.json" solutions)" 203520
 check "3: the ranks were started by mpirun" grep -q "starting (resume: false): mpirun -np 2" "$r3"/logs/pack-mpi-"$j4".out
+
+# ---- 4. adaptive splitting of a job array: follow-up arrays queued by the merge job ------------
+r4=$work/wang2-split
+out=$("$TK" cluster submit --kind wang --colors 2 --mode count --shards 2 --split-after 0.003 --split-ways 2 \
+  --time 5 --run-dir "$r4" --json)
+m4=$({ grep -o '"merge_job":"[0-9]*"' <<<"$out" || true; } | { grep -o '[0-9][0-9]*' || true; })
+log "case 4: split run, first merge job $m4"
+check "4: the first merge job completed" equals "$(wait_final "$m4")" COMPLETED
+# The last merge job is the one whose log says it merged.
+while ! grep -qs "the shards reported" "$r4"/logs/merge-*.out && (($(time_left) > 0)); do sleep 1; done
+check "4: round 1 of split units ran" test -s "$r4/units/round-1.tsv"
+check "4: the merge job queued the follow-up array and merged at the end" \
+  grep -qs "the shards reported 203520 solutions in all" "$r4"/logs/merge-*.out
+sum4=$(cat "$r4"/shards/shard-0.done.json "$r4"/shards/shard-1.done.json 2>/dev/null | grep -o '"solutions":[0-9]*' |
+  cut -d: -f2 | paste -sd+ | bc)
+check "4: 203520 solutions from the split shards' results" equals "${sum4:-}" 203520
