@@ -203,7 +203,10 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   }
   if (!a.part.empty()) {
     if (a.mpi) throw InputError("--part: a work unit of a split job array runs without --mpi");
-    if (req.mode == "first") throw InputError("--part: a split shard counts or lists all (--mode count or all)");
+    // (first mode's restarts do not take their work from a source; a resume without --mode
+    // takes the checkpoint's, which a split run's units always give)
+    if (cmd.count("--mode") && req.mode == "first")
+      throw InputError("--part: a split shard counts or lists all (--mode count or all)");
     const ShardSpec p = parse_shard(a.part, "--part");
     req.run.work = cluster::part_work(req.run.shard, ShardPart{p.index, p.count});
   }
