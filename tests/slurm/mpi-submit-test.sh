@@ -23,7 +23,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 TK=${TILEKIT_BINARY:-$root/build/tilekit}
 PATH="$(dirname "$(readlink -f "$TK")"):$PATH"
 SLURM=$root/scripts/slurm/local-slurm.sh
-DEADLINE=$((SECONDS + ${TILEKIT_SLURM_TEST_BUDGET:-280}))
+DEADLINE=$((SECONDS + ${TILEKIT_SLURM_MPI_TEST_BUDGET:-420}))  # about 2 minutes on a quiet machine
 passed=0
 failed=0
 # Slurm runs these jobs as root here; Open MPI refuses root unless told (the jobs inherit this).
