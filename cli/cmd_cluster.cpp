@@ -162,8 +162,8 @@ void run_submit(const SubmitArgs& a, const Context& ctx) {
                 [&] {
                   fmt::print("submitted one MPI job to Slurm: job {}, {} ranks on {} nodes ({})\n", s.array_job,
                              p.ntasks, p.nodes, p.launcher == "srun" ? "srun --mpi=" + p.srun_mpi : p.launcher);
-                  fmt::print("the ranks run {} pack --mpi\nrun directory: {}\nprogress: tilekit cluster status --run-dir {}\n",
-                             p.tilekit, p.run_dir, cluster::shell_quote(p.run_dir));
+                  fmt::print("the ranks run {} pack --mpi\nrun directory: {}\n", p.tilekit, p.run_dir);
+                  fmt::print("progress: tilekit cluster status --run-dir {}\n", cluster::shell_quote(p.run_dir));
                 });
   emit(ctx,
        {{"run_dir", p.run_dir},
@@ -219,9 +219,8 @@ void print_status(const cluster::RunStatus& r) {
                                       : std::string("not yet known (a shard has no finished subproblem)"),
              r.eta_seconds ? fmt::format("~{:.0f} s (the slowest shard at its node rate so far)", *r.eta_seconds)
                            : std::string("-"));
-  if (r.mpi_ranks)
-    ;  // no merge: rank 0 writes the one database
-  else if (!r.merged_solutions)
+  if (r.mpi_ranks) return;  // no merge: rank 0 writes the one database
+  if (!r.merged_solutions)
     fmt::print("merged: not yet (the merge job runs when every shard ended with exit 0)\n");
   else
     fmt::print("merged: {} distinct solutions ({} up to symmetry) in {}\n", *r.merged_solutions,
@@ -378,7 +377,7 @@ cluster::ShardCommandWords pack_shard_words() {
 }
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {
-  auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array");
+  auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array (or one MPI job)");
   cluster->require_subcommand(1);
   add_submit(*cluster, ctx);
   add_status(*cluster, ctx);
