@@ -78,6 +78,22 @@ struct ShardSpec {
   bool operator==(const ShardSpec&) const = default;
 };
 
+// Part `part` of `parts` of a shard: the work unit of an adaptively split job array (cluster/
+// split.hpp). A shard that ran past its time budget leaves its unfinished pieces to a follow-up
+// array, whose task J of K takes the pieces i of the shard with (i / count) % K == J. Splitting
+// a part again is a finer part of the same shard: part J of K split L ways gives parts J + K*M
+// of K*L (M < L), each a subset of part J; so the parts of one round never overlap.
+struct ShardPart {
+  int part = 0, parts = 1;
+  bool owns(std::uint64_t i, const ShardSpec& shard) const {
+    return shard.owns(i) && (i / std::uint64_t(shard.count)) % std::uint64_t(parts) == std::uint64_t(part);
+  }
+  // Sub-part `m` of this part split `ways` ways.
+  ShardPart refined(int m, int ways) const { return {part + parts * m, parts * ways}; }
+  bool valid() const { return parts >= 1 && parts <= kMaxShards && part >= 0 && part < parts; }
+  bool operator==(const ShardPart&) const = default;
+};
+
 // ---- stopping ----
 
 enum class StopReason : int { None = 0, Found, Signal, TimeLimit, Error, Exhausted, Cancelled };

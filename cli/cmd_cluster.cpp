@@ -16,7 +16,9 @@
 #include "cluster/schedule_sim.hpp"
 #include "cli/shard_words.hpp"
 #include "cluster/status.hpp"
+#include "cluster/split.hpp"
 #include "cluster/submit.hpp"
+#include "cluster/run_directory.hpp"
 
 namespace tilekit::cli {
 namespace fs = std::filesystem;
@@ -130,10 +132,17 @@ void print_dry_run(const cluster::ClusterPlan& p, const Context& ctx) {
   const auto scripts = cluster::job_scripts(p);
   nlohmann::json js = nlohmann::json::object();
   for (const auto& s : scripts) js[(dir / s.name).string()] = s.text;
-  emit(ctx, {{"dry_run", true}, {"run_dir", p.run_dir}, {"shards", p.shards}, {"tilekit", p.tilekit}, {"scripts", js}},
+  emit(ctx,
+       {{"dry_run", true},
+        {"run_dir", p.run_dir},
+        {"shards", p.shards},
+        {"mpi", p.mpi},
+        {"tilekit", p.tilekit},
+        {"scripts", js}},
        [&] {
          for (const auto& s : scripts) fmt::print("==> {} <==\n{}\n", (dir / s.name).string(), s.text);
-         fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's two sbatch calls run)\n");
+         fmt::print("(dry run: nothing written or queued; without --dry-run, submit.sh's sbatch {} run)\n",
+                    p.mpi ? "call" : "calls");
        });
 }
 
@@ -141,6 +150,21 @@ void run_submit(const SubmitArgs& a, const Context& ctx) {
   const cluster::ClusterPlan p = cluster::make_plan(a.request);
   if (a.dry_run) return print_dry_run(p, ctx);
   const cluster::Submission s = cluster::submit_run(p, a.sbatch);
+  if (p.mpi)
+    return emit(ctx,
+                {{"run_dir", p.run_dir},
+                 {"mpi_job", s.array_job},
+                 {"nodes", p.nodes},
+                 {"ntasks", p.ntasks},
+                 {"launcher", p.launcher},
+                 {"tilekit", p.tilekit},
+                 {"submissions", s.submissions}},
+                [&] {
+                  fmt::print("submitted one MPI job to Slurm: job {}, {} ranks on {} nodes ({})\n", s.array_job,
+                             p.ntasks, p.nodes, p.launcher == "srun" ? "srun --mpi=" + p.srun_mpi : p.launcher);
+                  fmt::print("the ranks run {} pack --mpi\nrun directory: {}\n", p.tilekit, p.run_dir);
+                  fmt::print("progress: tilekit cluster status --run-dir {}\n", cluster::shell_quote(p.run_dir));
+                });
   emit(ctx,
        {{"run_dir", p.run_dir},
         {"shards", p.shards},
@@ -161,8 +185,9 @@ std::string checkpoint_text(const cluster::ShardStatus& s) {
   if (!s.checkpoint_age_seconds || !s.progress) return "-";
   const cluster::ShardProgress& p = *s.progress;
   if (!p.error.empty()) return fmt::format("unreadable: {}", p.error);
-  return fmt::format("{}/{} subproblems ({:.1f}%), {} solutions, {} nodes; written {} s ago", p.subproblems_done,
-                     p.subproblems, 100 * p.fraction, p.solutions, p.nodes, *s.checkpoint_age_seconds);
+  return fmt::format("{}/{} subproblems ({:.1f}%), {} solutions, {} nodes; written {} s ago{}", p.subproblems_done,
+                     p.subproblems, 100 * p.fraction, p.solutions, p.nodes, *s.checkpoint_age_seconds,
+                     p.eta_seconds ? fmt::format("; ETA ~{:.0f} s", *p.eta_seconds) : std::string());
 }
 
 template <class T>
@@ -173,8 +198,13 @@ std::string value_or_dash(const std::optional<T>& v) {
 void print_status(const cluster::RunStatus& r) {
   std::string args;
   for (const auto& a : r.pack_args) args += " " + a;
-  fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n", r.run_dir, args,
-             r.shards, r.done, r.checkpointed, r.started, r.pending);
+  if (r.mpi_ranks)
+    fmt::print("run {} (tilekit pack --mpi{}), one MPI job of {} ranks (shard 0 below: the ranks' checkpoints "
+               "merged)\n",
+               r.run_dir, args, r.mpi_ranks);
+  else
+    fmt::print("run {} (tilekit pack{}), {} shards: {} done, {} checkpointed, {} started, {} pending\n", r.run_dir,
+               args, r.shards, r.done, r.checkpointed, r.started, r.pending);
   fmt::print("{:>5}  {:<12} {:>8} {:>9} {:>9} {:>12}  {}\n", "shard", "state", "attempts", "exit 3s", "last exit",
              "solutions", "checkpoint (progress so far)");
   for (const auto& s : r.per_shard) {
@@ -183,6 +213,13 @@ void print_status(const cluster::RunStatus& r) {
     if (!s.attempts_error.empty()) fmt::print("       attempts unreadable: {}\n", s.attempts_error);
   }
   fmt::print("solutions in done shards: {}\n", r.solutions_in_done_shards);
+  fmt::print("work done: {} nodes; outstanding: {}; ETA: {}\n", r.work_done_nodes,
+             r.work_outstanding_nodes ? fmt::format("~{:.3g} nodes (open subproblems at the mean finished size)",
+                                                    *r.work_outstanding_nodes)
+                                      : std::string("not yet known (a shard has no finished subproblem)"),
+             r.eta_seconds ? fmt::format("~{:.0f} s (the slowest shard at its node rate so far)", *r.eta_seconds)
+                           : std::string("-"));
+  if (r.mpi_ranks) return;  // no merge: rank 0 writes the one database
   if (!r.merged_solutions)
     fmt::print("merged: not yet (the merge job runs when every shard ended with exit 0)\n");
   else
@@ -199,7 +236,8 @@ void run_status(const StatusArgs& a, const Context& ctx) {
 void add_submit(CLI::App& cluster, Context& ctx) {
   auto* cmd = cluster.add_subcommand(
       "submit",
-      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` and queue them with sbatch");
+      "Write the job-array, merge and submit scripts for a sharded `tilekit pack` (or, with --mpi, one MPI job's "
+      "script) and queue them with sbatch");
   auto a = std::make_shared<SubmitArgs>();
   cluster::SubmitRequest& r = a->request;
   r.words = pack_shard_words();
@@ -210,11 +248,28 @@ void add_submit(CLI::App& cluster, Context& ctx) {
                   "--pack-arg=--size=RxS; required)");
   cmd->add_option("--colors", r.colors, "pack: number of colours C (required)");
   cmd->add_option("--method", r.method, "Passed to pack: auto, search or construct");
-  cmd->add_option("--mode", r.mode, "Passed to pack: first, count or all")->capture_default_str();
+  cmd->add_option("--mode", r.mode, "Passed to pack: first, count or all (default: all; count with --mpi)");
   cmd->add_option("--seed", r.seed, "Passed to pack");
   cmd->add_option("--pack-arg", r.shard_args,
                   "Another argument of the shard command for every shard, e.g. --pack-arg=--max-depth=3 (repeatable)");
-  cmd->add_option("--shards", plan.shards, "Number of shards = array tasks")->required();
+  cmd->add_option("--shards", plan.shards, "Number of shards = array tasks (required without --mpi)");
+  cmd->add_option("--split-after", plan.split_after,
+                  "Adaptive splitting: each shard (and each later work unit) stops after this many seconds; the merge "
+                  "job splits what it left into --split-ways units, queued as a follow-up array (0 = never)")
+      ->capture_default_str();
+  cmd->add_option("--split-ways", plan.split_ways, "Units an unfinished shard or unit becomes in the next round")
+      ->capture_default_str();
+  cmd->add_flag("--mpi", plan.mpi,
+                "One MPI job instead of an array: `srun tilekit pack --mpi` with --ntasks ranks on --nodes nodes of "
+                "one allocation (count mode; Open MPI with PMIx)");
+  cmd->add_option("--nodes", plan.nodes, "--mpi: nodes of the allocation")->capture_default_str();
+  cmd->add_option("--ntasks", plan.ntasks, "--mpi: MPI ranks (default: --nodes)");
+  cmd->add_option("--launcher", plan.launcher,
+                  "--mpi: how the ranks start: srun (srun --mpi=SRUN_MPI) or mpirun (Open MPI's, inside the "
+                  "allocation)")
+      ->capture_default_str();
+  cmd->add_option("--srun-mpi", plan.srun_mpi, "--mpi with srun: Slurm's MPI plugin (srun --mpi=list)")
+      ->capture_default_str();
   cmd->add_option("--cpus-per-task", plan.cpus_per_task, "Cores per shard (OMP_NUM_THREADS)")->capture_default_str();
   cmd->add_option("--time", plan.time, "Wall time of one attempt (Slurm format: M, H:M:S, D-H:M:S)")
       ->capture_default_str();
@@ -232,7 +287,13 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--sbatch", a->sbatch, "The sbatch command")->capture_default_str();
   cmd->add_flag("--dry-run", a->dry_run, "Print the scripts; write and queue nothing");
   add_json_flag(cmd, ctx);
-  cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_submit(*a, ctx); }); });
+  cmd->callback([a, cmd, &ctx] {
+    // pack --mpi counts: the default mode of an MPI run
+    if (a->request.settings.mpi && cmd->count("--mode") == 0) a->request.mode = "count";
+    if (!a->request.settings.mpi && cmd->count("--shards") == 0)
+      throw InputError("cluster submit: --shards is required (or --mpi for one MPI job)");
+    with_cluster_errors_in_flags([&] { run_submit(*a, ctx); });
+  });
 }
 
 void add_status(CLI::App& cluster, Context& ctx) {
@@ -241,6 +302,40 @@ void add_status(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--run-dir", a->run_dir, "The run directory given to submit")->required();
   add_json_flag(cmd, ctx);
   cmd->callback([a, &ctx] { with_cluster_errors_in_flags([&] { run_status(*a, ctx); }); });
+}
+
+struct SplitArgs {
+  std::string run_dir;
+  std::int64_t after_round = 0;
+};
+
+void add_split(CLI::App& cluster, Context& ctx) {
+  auto* cmd = cluster.add_subcommand(
+      "split",
+      "A split run's next round (the merge job runs it): the shards now complete get their result, what is "
+      "unfinished becomes the work units of the next array (units/round-R.tsv)");
+  auto a = std::make_shared<SplitArgs>();
+  cmd->add_option("--run-dir", a->run_dir, "The run directory given to submit")->required();
+  cmd->add_option("--after-round", a->after_round, "The round that just ended (0 = the first array)")
+      ->capture_default_str();
+  add_json_flag(cmd, ctx);
+  cmd->footer("Exit codes: 0 ok (units: 0 when nothing is left), 1 no run directory, 2 bad input.");
+  cmd->callback([a, &ctx] {
+    const auto run = cluster::read_run_file(fs::path(a->run_dir) / "run.json");
+    if (!run) throw NotFound(fmt::format("{}: no run.json (not a `tilekit cluster submit` run directory)", a->run_dir));
+    if (!run->split_ways) throw InputError(fmt::format("{}: not a split run (submit it with --split-after)", a->run_dir));
+    if (a->after_round < 0 || a->after_round >= 1000)
+      throw InputError(fmt::format("--after-round must be 0..999, got {}", a->after_round));
+    const cluster::RoundPlan plan = cluster::next_round(a->run_dir, int(a->after_round), run->split_ways);
+    emit(ctx, cluster::to_json(plan), [&] {
+      std::string done;
+      for (int s : plan.completed) done += fmt::format(" {}", s);
+      fmt::print("after round {}: {} unfinished subproblems; shards complete now:{}\n", a->after_round,
+                 plan.unfinished, done.empty() ? " none" : done);
+      fmt::print("round {}: {} work units{}\n", plan.round, plan.units.size(),
+                 plan.units.empty() ? "" : fmt::format(" in {}/units/round-{}.tsv", a->run_dir, plan.round));
+    });
+  });
 }
 
 void add_simulate(CLI::App& cluster, Context& ctx) {
@@ -276,16 +371,18 @@ cluster::ShardCommandWords pack_shard_words() {
           .mode = "--mode",
           .seed = "--seed",
           .window = "--window",
+          .mpi = "--mpi",
           .per_shard = {"--shard", "--checkpoint", "--checkpoint-every", "--resume", "--db", "--threads", "--json",
-                        "--portfolio-stats"}};
+                        "--portfolio-stats", "--mpi", "--part", "--time-limit"}};
 }
 
 void add_cluster_commands(CLI::App& app, Context& ctx) {
-  auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array");
+  auto* cluster = app.add_subcommand("cluster", "Run a sharded `tilekit pack` as a Slurm job array (or one MPI job)");
   cluster->require_subcommand(1);
   add_submit(*cluster, ctx);
   add_status(*cluster, ctx);
   add_simulate(*cluster, ctx);
+  add_split(*cluster, ctx);
 }
 
 }  // namespace tilekit::cli

@@ -14,6 +14,7 @@
 #include "cli/run_options.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "cluster/mpi_work.hpp"
+#include "cluster/part_work.hpp"
 #include "packing/pack.hpp"
 #include "tilesets/tile_set_io.hpp"
 #include "tilesets/validator.hpp"
@@ -32,6 +33,7 @@ struct PackArgs {
   bool quiet = false;
   bool stats = false;         // --stats: the engine's counters (solver/search_stats.hpp)
   bool mpi = false;           // --mpi: one MPI job, ranks share the subproblems (cluster/mpi_work.hpp)
+  std::string part;           // --part J/K: a work unit of a split shard (cluster/part_work.hpp)
   std::string trace;          // --trace FILE: every subproblem's nodes and seconds (solver/run_trace.hpp)
   std::string formulation = "auto";  // --formulation WORD, parsed into request.formulation
   RunOptions run = [] {  // into request.run
@@ -199,6 +201,15 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
     rank = req.run.work->rank();
     if (rank != 0) req.run.progress = false;  // the root reports for the job
   }
+  if (!a.part.empty()) {
+    if (a.mpi) throw InputError("--part: a work unit of a split job array runs without --mpi");
+    // (first mode's restarts do not take their work from a source; a resume without --mode
+    // takes the checkpoint's, which a split run's units always give)
+    if (cmd.count("--mode") && req.mode == "first")
+      throw InputError("--part: a split shard counts or lists all (--mode count or all)");
+    const ShardSpec p = parse_shard(a.part, "--part");
+    req.run.work = cluster::part_work(req.run.shard, ShardPart{p.index, p.count});
+  }
   if (!a.trace.empty())  // an MPI rank R > 0 traces to TRACE.rank-R, like its checkpoint
     req.run.trace = std::make_shared<RunTrace>(rank == 0 ? a.trace : rank_checkpoint_path(a.trace, rank));
   if (a.portfolio_stats.size() > 1) throw InputError("--portfolio-stats: a run writes one statistics file");
@@ -293,6 +304,9 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                 "Run as one MPI job (mpirun/srun -n RANKS tilekit pack --mpi ...; count mode): the ranks take "
                 "subproblems from a pool on rank 0, each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
                 "--resume F continues with any number of ranks, rank 0 alone prints and writes the database");
+  cmd->add_option("--part", a->part,
+                  "J/K: of --shard I/N, run only the subproblems i with (i / N) % K == J (a work unit of a split job "
+                  "array, tilekit cluster submit --split-after); --resume F merges every F.rank-* beside F first");
   cmd->add_option("--trace", a->trace,
                   "Write a trace of the run to this file (JSON lines, rewritten whole at every checkpoint and at the "
                   "end): every subproblem or restart dive with its owner, nodes, seconds and the cost of its pieces, "

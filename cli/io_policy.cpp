@@ -32,6 +32,7 @@ constexpr std::array kRules = {
     Rule{"tiled map", "--out", PathRole::OutputFolder},
     Rule{"cluster submit", "--run-dir", PathRole::OutputFolder},
     Rule{"cluster status", "--run-dir", PathRole::Input},
+    Rule{"cluster split", "--run-dir", PathRole::Input},  // the run directory, its units written inside
     Rule{"fill", "--tiled", PathRole::OutputFolder},
     Rule{"texture atlas", "--out", PathRole::OutputInNewFolder},  // its folder is made, as texture tiles' is
     // The record a run writes, and the records others read.

@@ -97,9 +97,45 @@ std::string pack_array_script(const ClusterPlan& p) {
           "# Queue it with submit.sh (it also queues the merge job), or: sbatch pack-array.sbatch\n");
   s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
   s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
+  s += variable("SPLIT_AFTER", fmt::format("{}", p.split_after));
   s += bash_array("COMMAND", p.command);
   s += bash_array("PACK_ARGS", p.pack_args);
   s += "\n" + body("pack-array");
+  return s;
+}
+
+std::string pack_mpi_script(const ClusterPlan& p) {
+  const bool srun = p.launcher == "srun";
+  std::vector<Directive> ds = {
+      {"job-name=" + p.job_name, "the name squeue shows"},
+      {fmt::format("nodes={}", p.nodes), "one allocation of this many nodes..."},
+      {fmt::format("ntasks={}", p.ntasks), "...for this many MPI ranks of one tilekit pack run"},
+      {fmt::format("cpus-per-task={}", p.cpus_per_task),
+       "threads per rank (OMP_NUM_THREADS = SLURM_CPUS_PER_TASK)"},
+      {"time=" + p.time, "wall time of one attempt; a requeued attempt gets it anew"},
+      {fmt::format("signal=B:USR1@{}", p.signal_seconds),
+       fmt::format("USR1 to this script {} s (to 60 s more) before the limit: every rank checkpoints, exit 3",
+                   p.signal_seconds)},
+      {"requeue", "let the job requeue itself after exit 3 and resume"},
+      {"open-mode=append", "every attempt appends to the same log"},
+      {"chdir=" + p.run_dir, "working directory, on the shared filesystem"},
+      {"output=" + p.run_dir + "/logs/pack-mpi-%j.out", "log of job %j"},
+  };
+  std::string s = script_head(
+      p, std::move(ds),
+      fmt::format("# Tilekit MPI run, written by `tilekit cluster submit` (tilekit {}).\n", version_line()) +
+          "# Queue it with submit.sh, or: sbatch pack-mpi.sbatch\n");
+  s += variable("MAX_REQUEUES", std::to_string(p.max_requeues));
+  s += variable("CHECKPOINT_EVERY", fmt::format("{}", p.checkpoint_every));
+  s += variable("LAUNCHER", p.launcher);
+  s += "# How the ranks start: " +
+       std::string(srun ? "srun with Slurm's MPI plugin below (Open MPI built with PMIx: pmix)"
+                        : "Open MPI's mpirun, which reads the allocation from Slurm") +
+       "\n";
+  s += variable("SRUN_MPI", p.srun_mpi);
+  s += bash_array("COMMAND", p.command);
+  s += bash_array("PACK_ARGS", p.pack_args);
+  s += "\n" + body("pack-mpi");
   return s;
 }
 
@@ -118,6 +154,7 @@ std::string merge_script(const ClusterPlan& p) {
           "# Queued after the shard array: sbatch "
           "--dependency=afterok:ARRAY_JOB_ID merge.sbatch\n" +  // not a tilekit flag
           "# (afterok: it starts only when every shard task ended with exit code 0).\n");
+  s += variable("SPLIT_AFTER", fmt::format("{}", p.split_after));
   s += "\n" + body("merge");
   return s;
 }
@@ -138,7 +175,21 @@ std::string submit_script(const ClusterPlan& p) {
   return s;
 }
 
+std::string mpi_submit_script(const ClusterPlan& p) {
+  std::string s = "#!/bin/bash\n";
+  s += fmt::format("# Queues the Tilekit MPI run in {}: one job of {} ranks on {} nodes.\n", p.run_dir, p.ntasks,
+                   p.nodes);
+  s += "# Run it again to resume the run from its checkpoints (any number of ranks).\n";
+  s += "set -euo pipefail\n";
+  s += "cd " + shell_quote(p.run_dir) + "\n";
+  s += "job=$(sbatch --parsable pack-mpi.sbatch)\n";  // not a tilekit flag
+  s += "job=${job%%;*}  # --parsable prints ID or ID;CLUSTER\n";  // not a tilekit flag
+  s += "echo \"tilekit: MPI job $job\"\n";
+  return s;
+}
+
 std::vector<JobScript> job_scripts(const ClusterPlan& p) {
+  if (p.mpi) return {{"pack-mpi.sbatch", pack_mpi_script(p)}, {"submit.sh", mpi_submit_script(p)}};
   return {
       {"pack-array.sbatch", pack_array_script(p)}, {"merge.sbatch", merge_script(p)}, {"submit.sh", submit_script(p)}};
 }

@@ -18,13 +18,17 @@ std::string shell_quote(std::string_view text);
 std::string pack_array_script(const ClusterPlan& plan);
 std::string merge_script(const ClusterPlan& plan);
 std::string submit_script(const ClusterPlan& plan);
+// An MPI plan's (plan.mpi): one job that starts `ntasks` ranks of `tilekit pack --mpi` with srun
+// (or mpirun) inside its allocation, checkpointing and requeueing itself like an array task.
+std::string pack_mpi_script(const ClusterPlan& plan);
+std::string mpi_submit_script(const ClusterPlan& plan);
 
 // One script of the run directory: its file name there and its text.
 struct JobScript {
   std::string name;  // "pack-array.sbatch", "merge.sbatch", "submit.sh"
   std::string text;
 };
-// The three scripts, in that order.
+// The three scripts, in that order; an MPI plan's two: "pack-mpi.sbatch", "submit.sh".
 std::vector<JobScript> job_scripts(const ClusterPlan& plan);
 
 // The embedded bodies scripts/slurm/NAME.body.sh, named NAME ("pack-array", "merge"). Defined in

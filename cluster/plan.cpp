@@ -29,6 +29,8 @@ bool enumerate_run(const SubmitRequest& r) {
 // The shard command and the arguments the request gives it (before --pack-arg).
 void set_shard_command(const SubmitRequest& r, ClusterPlan& p) {
   if (enumerate_run(r)) {
+    if (r.settings.mpi) throw InputError("`mpi` runs `pack` only (`command` enumerate has no MPI run)");
+    if (r.settings.split_after > 0) throw InputError("`split_after` splits `pack` shards only (not `command` enumerate)");
     // `tilekit aperiodic enumerate` shards like pack (aperiodic/enumerate.hpp); its options come
     // with --pack-arg.
     if (!r.kind.empty() || r.colors != 0 || !r.method.empty() || !r.seed.empty())
@@ -48,6 +50,11 @@ void set_shard_command(const SubmitRequest& r, ClusterPlan& p) {
   if (r.colors < 1) throw InputError("`colors` must be at least 1");
   p.pack_args = {w.kind, r.kind, w.colours, std::to_string(r.colors)};
   if (!r.method.empty()) p.pack_args.insert(p.pack_args.end(), {w.method, r.method});
+  if (r.settings.split_after > 0 && r.mode != "count" && r.mode != "all")
+    throw InputError(fmt::format("`split_after`: a split run counts or lists all (`mode` count or all), got `mode` {}",
+                                 r.mode));
+  if (r.settings.mpi && r.mode != "count")
+    throw InputError(fmt::format("`mpi` runs count only (`pack {}` counts), got `mode` {}", w.mpi, r.mode));
   p.pack_args.insert(p.pack_args.end(), {w.mode, r.mode});
   if (!r.seed.empty()) p.pack_args.insert(p.pack_args.end(), {w.seed, r.seed});
 }
@@ -111,6 +118,7 @@ ClusterPlan make_plan(const SubmitRequest& r, const PlanEnvironment& env) {
                : enumerate_run(r)  ? std::string("tk-enumerate")
                                    : fmt::format("tk-{}{}", r.kind, r.colors);
   p.merge_time = r.merge_time.empty() ? p.time : r.merge_time;
+  if (p.mpi && p.ntasks == 0) p.ntasks = p.nodes;
   p.signal_seconds = r.signal_seconds > 0 ? r.signal_seconds : default_signal_seconds(parse_slurm_time(p.time));
   check_plan(p);
   return p;
@@ -120,6 +128,23 @@ void check_plan(const ClusterPlan& p) {
   if (p.shards < 1 || p.shards > kMaxShards)
     throw InputError(fmt::format("`shards` must be between 1 and {}", kMaxShards));
   if (p.cpus_per_task < 1) throw InputError("`cpus_per_task` must be at least 1");
+  if (p.mpi) {
+    if (p.shards != 1) throw InputError("`mpi` runs one job: `shards` must be 1 (the ranks share the work)");
+    if (p.nodes < 1 || p.nodes > kMaxShards) throw InputError(fmt::format("`nodes` must be between 1 and {}", kMaxShards));
+    if (p.ntasks < p.nodes || p.ntasks > kMaxShards)
+      throw InputError(fmt::format("`ntasks` must be between `nodes` ({}) and {}", p.nodes, kMaxShards));
+    if (p.launcher != "srun" && p.launcher != "mpirun")
+      throw InputError(fmt::format("`launcher` must be srun or mpirun, got '{}'", p.launcher));
+    if (p.srun_mpi.empty() || p.srun_mpi.size() > 32 ||
+        p.srun_mpi.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+      throw InputError(fmt::format("`srun_mpi` '{}': expected an MPI plugin name such as pmix or pmi2", p.srun_mpi));
+  }
+  if (!(p.split_after >= 0) || !(p.split_after <= kMaxCheckpointSeconds))
+    throw InputError(fmt::format("`split_after` must be 0 (no splitting) or a number of seconds up to a year, got {}",
+                                 p.split_after));
+  if (p.split_ways < 2 || p.split_ways > 1000)
+    throw InputError(fmt::format("`split_ways` must be between 2 and 1000, got {}", p.split_ways));
+  if (p.split_after > 0 && p.mpi) throw InputError("`split_after` splits a job array; an `mpi` run shares its work");
   if (p.max_requeues < 0) throw InputError("`max_requeues` must not be negative");
   // NaN fails every comparison: !(x > 0) refuses it with the non-positive ones.
   if (!(p.checkpoint_every > 0) || !(p.checkpoint_every <= kMaxCheckpointSeconds))

@@ -23,6 +23,20 @@ struct ClusterPlan {
   int max_requeues = 10;
   double checkpoint_every = 300;         // seconds between periodic checkpoints
   std::vector<std::string> sbatch_args;  // extra directives, e.g. "--account=proj"
+  // One MPI job (`pack --mpi`, cluster/mpi_work.hpp) instead of an array: `ntasks` ranks on
+  // `nodes` nodes of one allocation, each rank with cpus_per_task threads, started by `launcher`:
+  // "srun" (srun's `--mpi=` set to `srun_mpi`, PMIx by default) or "mpirun" (Open MPI's, inside
+  // the allocation). `shards` is 1 then: the run's files are shard 0's.
+  // Adaptive splitting (cluster/split.hpp): each shard (and each work unit of the follow-up
+  // arrays) stops after `split_after` seconds (0 = never: a plain array) and the merge job splits
+  // what it left into `split_ways` units per unfinished unit, as the next array.
+  double split_after = 0;
+  int split_ways = 4;
+  bool mpi = false;
+  int nodes = 1;
+  int ntasks = 0;  // ranks; 0 = `nodes` (make_plan fills it in)
+  std::string launcher = "srun";
+  std::string srun_mpi = "pmix";
 };
 
 // The longest checkpoint interval a plan takes: a year (a longer one would never fire, and
@@ -37,6 +51,7 @@ inline constexpr std::size_t kMaxShardArgs = 4096, kMaxShardArgBytes = 4096;
 struct ShardCommandWords {
   std::string kind, colours, method, mode, seed;  // the flag that sets each request field
   std::string window;                             // the flag a window run's shard_args must give
+  std::string mpi;                                // the flag of an MPI run (`pack --mpi`)
   std::vector<std::string> per_shard;             // flags the job scripts set: refused in shard_args
 };
 

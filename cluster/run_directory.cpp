@@ -36,6 +36,8 @@ std::optional<RunFile> read_run_file(const fs::path& p) {
     s->array();
     r.submissions = s->raw();
   }
+  if (auto sp = j.find("split")) r.split_ways = int(sp->at("ways").integer(2, 1000));
+  if (auto m = j.find("mpi")) r.mpi_ranks = int(m->at("ntasks").integer(1, kMaxShards));
   if (auto c = j.find("command")) {
     std::vector<std::string> words;
     for (std::size_t i = 0, n = c->array(1, 8); i < n; ++i) words.push_back((*c)[i].string(64));
@@ -57,6 +59,13 @@ nlohmann::json run_record(const ClusterPlan& p) {
           {"max_requeues", p.max_requeues},
           {"checkpoint_every", p.checkpoint_every},
           {"partition", p.partition},
+          {"split", p.split_after > 0 ? nlohmann::json{{"after", p.split_after}, {"ways", p.split_ways}}
+                                      : nlohmann::json(nullptr)},
+          {"mpi", p.mpi ? nlohmann::json{{"nodes", p.nodes},
+                                         {"ntasks", p.ntasks},
+                                         {"launcher", p.launcher},
+                                         {"srun_mpi", p.srun_mpi}}
+                        : nlohmann::json(nullptr)},
           {"submissions", nlohmann::json::array()}};
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The run directory of a cluster run and what it holds:
 //   run.json                   the run file: the plan's identity and the submissions so far
-//   pack-array.sbatch, merge.sbatch, submit.sh   the job scripts (job_scripts.hpp)
+//   pack-array.sbatch, merge.sbatch, submit.sh   the job scripts (job_scripts.hpp); an MPI run's
+//                              pack-mpi.sbatch and submit.sh (its files are shard 0's)
 //   shards/shard-I.{ckpt,sqlite,attempts,done.json,stats.json}   what shard I's task writes
 //                              (scripts/slurm/pack-array.body.sh)
 //   merged.sqlite, merged.json what the merge job writes
@@ -31,6 +32,8 @@ struct RunFile {
   std::vector<std::string> pack_args;
   nlohmann::json submissions = nlohmann::json::array();
   bool pack = true;  // the shards run `tilekit pack` (else `aperiodic enumerate`)
+  int split_ways = 0;  // a split run's (`cluster submit --split-after`); 0 = not split
+  int mpi_ranks = 0;  // an MPI run's ranks (`cluster submit --mpi`: one shard, shard 0); 0 = a job array
 };
 
 // The run file at `path`; nullopt when there is none. Throws InputError when it is not one.

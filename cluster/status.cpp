@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <string_view>
@@ -12,6 +13,7 @@
 #include "checkpoints/checkpoint.hpp"
 #include "cluster/run_directory.hpp"
 #include "base/run_control.hpp"
+#include "solver/search_state.hpp"
 
 namespace tilekit::cluster {
 namespace fs = std::filesystem;
@@ -58,11 +60,14 @@ nlohmann::json or_null(const std::optional<T>& v) {
 
 }  // namespace
 
-ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard) {
+ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard, bool with_rank_files) {
   ShardProgress p;
   SearchState st;
   try {
     st = read_checkpoint(file.string());
+    // An MPI run: each rank's file holds what it ran (merging is idempotent, as on --resume).
+    if (with_rank_files)
+      for (const std::string& f : rank_checkpoint_files(file.string())) merge_search_states(st, read_checkpoint(f));
   } catch (const std::exception& e) {
     p.error = e.what();
     return p;
@@ -78,6 +83,26 @@ ShardProgress checkpoint_progress(const fs::path& file, const ShardSpec& shard) 
   p.nodes = c.nodes;
   p.seconds = st.seconds;
   p.fraction = p.subproblems ? double(p.subproblems_done) / double(p.subproblems) : 0.0;
+  // What is left: each open subproblem as large as the mean finished one (less what the open
+  // ones counted already), at the node rate of the run so far.
+  p.open = p.subproblems - p.subproblems_done;
+  if (p.subproblems_done > 0) {
+    std::uint64_t counted_open = 0, finished_nodes = 0;
+    for (const auto& f : st.in_flight)
+      if (shard.owns(f.index)) counted_open += f.counted.nodes;
+    for (std::uint64_t k = 0, each = 0; k < st.finished.size() && each < st.finished_each.size(); ++k)
+      if (st.finished[k]) {
+        if (shard.owns(k)) finished_nodes += st.finished_each[each].nodes;
+        ++each;
+      }
+    const double mean = double(finished_nodes) / double(p.subproblems_done);
+    p.remaining_nodes = std::max(0.0, double(p.open) * mean - double(counted_open));
+  }
+  if (p.seconds > 0 && p.nodes > 0) p.node_rate = double(p.nodes) / p.seconds;
+  if (p.open == 0)
+    p.eta_seconds = 0.0;
+  else if (p.remaining_nodes && p.node_rate > 0)
+    p.eta_seconds = *p.remaining_nodes / p.node_rate;
   return p;
 }
 
@@ -102,7 +127,7 @@ void read_attempts(const fs::path& path, ShardStatus& s) {
   }
 }
 
-ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack) {
+ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack, bool mpi) {
   ShardStatus s;
   s.shard = shard.index;
   read_attempts(shard_file(dir, shard.index, ".attempts"), s);
@@ -112,14 +137,16 @@ ShardStatus shard_status(const fs::path& dir, const ShardSpec& shard, bool pack)
   if (fs::exists(ckpt, ec)) s.checkpoint_age_seconds = age_seconds(ckpt);
   const bool has_ckpt = s.checkpoint_age_seconds.has_value();
   s.state = done                                                                    ? "done"
+            : fs::exists(shard_file(dir, shard.index, ".split.json"), ec)            ? "split"
             : has_ckpt                                                              ? "checkpointed"
             : s.attempts || fs::exists(shard_file(dir, shard.index, ".sqlite"), ec) ? "started"
                                                                                     : "pending";
   s.solutions = member<std::uint64_t>(done, "solutions", &nlohmann::json::is_number_unsigned);
   s.complete = member<bool>(done, "complete", &nlohmann::json::is_boolean);
+  s.done_nodes = member<std::uint64_t>(done, "nodes", &nlohmann::json::is_number_unsigned);
   if (has_ckpt) {
     if (pack) {
-      s.progress = checkpoint_progress(ckpt, shard);
+      s.progress = checkpoint_progress(ckpt, shard, mpi);
     } else {
       s.progress = ShardProgress{};
       s.progress->error = "an enumerate checkpoint (progress lines: the shard's log)";
@@ -138,15 +165,41 @@ RunStatus read_run_status(const std::string& run_dir) {
   r.pack_args = run->pack_args;
   r.pack = run->pack;
   r.submissions = run->submissions;
+  r.mpi_ranks = run->mpi_ranks;
   for (int i = 0; i < r.shards; ++i) {
-    ShardStatus s = shard_status(dir, ShardSpec{i, r.shards}, r.pack);
-    int& count = s.state == "done"           ? r.done
-                 : s.state == "checkpointed" ? r.checkpointed
+    ShardStatus s = shard_status(dir, ShardSpec{i, r.shards}, r.pack, r.mpi_ranks > 0 || run->split_ways > 0);
+    int& count = s.state == "done"                                  ? r.done
+                 : s.state == "checkpointed" || s.state == "split" ? r.checkpointed
                  : s.state == "started"      ? r.started
                                              : r.pending;
     ++count;
     if (s.solutions) r.solutions_in_done_shards += *s.solutions;
     r.per_shard.push_back(std::move(s));
+  }
+  // Across the run: work done and outstanding (nodes), and when the last shard ends.
+  bool known = r.pack, all_done = true;
+  double outstanding = 0, eta = 0;
+  for (const ShardStatus& s : r.per_shard) {
+    if (s.state == "done") {
+      r.work_done_nodes += s.done_nodes.value_or(0);
+      continue;
+    }
+    all_done = false;
+    const ShardProgress* p = s.progress && s.progress->error.empty() ? &*s.progress : nullptr;
+    if (p) r.work_done_nodes += p->nodes;
+    if (!p || !p->remaining_nodes || !p->eta_seconds) {
+      known = false;  // a shard not started, or none of its subproblems finished yet
+      continue;
+    }
+    outstanding += *p->remaining_nodes;
+    eta = std::max(eta, *p->eta_seconds);
+  }
+  if (all_done) {
+    r.work_outstanding_nodes = 0.0;
+    r.eta_seconds = 0.0;
+  } else if (known) {
+    r.work_outstanding_nodes = outstanding;
+    r.eta_seconds = eta;
   }
   const auto merged = read_job_result(dir / "merged.json");
   r.merged_solutions = member<std::uint64_t>(merged, "solutions", &nlohmann::json::is_number_unsigned);
@@ -156,9 +209,16 @@ RunStatus read_run_status(const std::string& run_dir) {
 
 nlohmann::json to_json(const ShardProgress& p) {
   if (!p.error.empty()) return {{"error", p.error}};
-  return {{"subproblems", p.subproblems}, {"subproblems_done", p.subproblems_done},
-          {"solutions", p.solutions},     {"nodes", p.nodes},
-          {"seconds", p.seconds},         {"fraction", p.fraction}};
+  return {{"subproblems", p.subproblems},
+          {"subproblems_done", p.subproblems_done},
+          {"solutions", p.solutions},
+          {"nodes", p.nodes},
+          {"seconds", p.seconds},
+          {"fraction", p.fraction},
+          {"open_subproblems", p.open},
+          {"remaining_nodes", or_null(p.remaining_nodes)},
+          {"node_rate", p.node_rate},
+          {"eta_seconds", or_null(p.eta_seconds)}};
 }
 
 nlohmann::json to_json(const ShardStatus& s) {
@@ -180,6 +240,7 @@ nlohmann::json to_json(const RunStatus& r) {
   for (const ShardStatus& s : r.per_shard) shards.push_back(to_json(s));
   return {{"run_dir", r.run_dir},
           {"shards", r.shards},
+          {"mpi_ranks", r.mpi_ranks ? nlohmann::json(r.mpi_ranks) : nlohmann::json(nullptr)},
           {"pack_args", r.pack_args},
           {"done", r.done},
           {"checkpointed", r.checkpointed},
@@ -188,6 +249,9 @@ nlohmann::json to_json(const RunStatus& r) {
           {"solutions_in_done_shards", r.solutions_in_done_shards},
           {"merged_solutions", or_null(r.merged_solutions)},
           {"merged_orbits", or_null(r.merged_orbits)},
+          {"work_done_nodes", r.work_done_nodes},
+          {"work_outstanding_nodes", or_null(r.work_outstanding_nodes)},
+          {"eta_seconds", or_null(r.eta_seconds)},
           {"submissions", r.submissions},
           {"per_shard", shards}};
 }

@@ -42,6 +42,11 @@ void write_script(const fs::path& path, const std::string& text) {
 nlohmann::json resumed_record(const ClusterPlan& p, const fs::path& dir) {
   nlohmann::json record = run_record(p);
   if (auto old = read_run_file(dir / "run.json")) {
+    // An MPI run resumes on any number of nodes and ranks (the root merges the ranks' files).
+    const auto is_mpi = [](const nlohmann::json& j) { return j.contains("mpi") && !j["mpi"].is_null(); };
+    if (is_mpi(old->doc) != is_mpi(record))
+      throw InputError(fmt::format("{} holds {} run; pick another `run_dir`", p.run_dir,
+                                   is_mpi(old->doc) ? "an MPI" : "a job-array"));
     for (const char* key : {"shards", "pack_args"})
       if (old->doc[key] != record[key])
         throw InputError(fmt::format("{} holds a different run ({}: {} vs {}); pick another `run_dir`", p.run_dir, key,
@@ -89,12 +94,18 @@ Submission submit_run(const ClusterPlan& p, const std::string& sbatch_command) {
     fs::create_directories(dir / "logs");
     for (const JobScript& s : job_scripts(p)) made.push_back(dir / s.name), write_script(dir / s.name, s.text);
     write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
-    out.array_job = sbatch(sbatch_command, {(dir / "pack-array.sbatch").string()});
+    out.array_job = sbatch(sbatch_command, {(dir / (p.mpi ? "pack-mpi.sbatch" : "pack-array.sbatch")).string()});
   } catch (...) {
     if (fresh && !had_dir) fs::remove_all(dir, ec);
     if (fresh && had_dir)
       for (const fs::path& f : made) fs::remove_all(f, ec);
     throw;
+  }
+  if (p.mpi) {  // one job, no merge: rank 0 writes the run's one database
+    record["submissions"].push_back({{"mpi_job", out.array_job}, {"time", utc_now()}});
+    write_file_atomic((dir / "run.json").string(), record.dump(2) + "\n");
+    out.submissions = record["submissions"].size();
+    return out;
   }
   const std::string after = "--dependency=afterok:" + out.array_job;  // sbatch's: not a tilekit flag
   try {

@@ -10,7 +10,7 @@
 namespace tilekit::cluster {
 
 struct Submission {
-  std::string array_job, merge_job;  // Slurm job ids
+  std::string array_job, merge_job;  // Slurm job ids; an MPI run's job is array_job, merge_job ""
   std::size_t submissions = 0;       // submissions of this run so far, this one included
 };
 

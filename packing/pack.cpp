@@ -336,7 +336,9 @@ PackOutcome run_pack(PackRequest request, const PackFields& given) {
   // alone applies again (a run setting, so a flag given on resume replaces it).
   nlohmann::json stored = identity;
   stored["time_limit"] = a.run.time_limit;
-  if (a.run.work) {  // an MPI job (cluster/mpi_work.hpp): one count shared by its ranks
+  // An MPI job (cluster/mpi_work.hpp) of several ranks: one count shared by its ranks (one
+  // process with a work source, a part of a split shard, cluster/part_work.hpp, runs as any).
+  if (a.run.work && a.run.work->ranks() > 1) {
     if (o.mode != SearchMode::Count) throw RequestError("mode", "an MPI run counts: `mode` must be count");
     if (a.run.shard.count != 1)
       throw RequestError("shard", "an MPI run shares its work among its ranks dynamically: no `shard`");

@@ -10,7 +10,8 @@
 #   2. every libFuzzer harness of fuzz/ through fuzz_driver of the Release build: its seeds, then
 #      seeded mutants, FUZZ_SECONDS each (default 5), two at a time (scripts/fuzz.sh --driver);
 #   3. the end-to-end test against a real single-node Slurm (tests/slurm/cluster-test.sh; needs
-#      root, 2-3 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm. It
+#      root, 2-3 minutes; then tests/slurm/mpi-submit-test.sh, `cluster submit --mpi` with srun,
+#      about 2 minutes), under flock /tmp/tilekit-slurm.lock: the machine has one Slurm. It
 #      waits on Slurm (a wall-time limit of one minute, requeues) for more than half of its time,
 #      so it starts right after the build and runs beside steps 1 and 2; its output is printed
 #      when it ends, with its own time.
@@ -59,7 +60,9 @@ start_slurm() {  # the real-Slurm test in the background, its output and exit co
   rm -f "$slurm_log" "$slurm_log.end"
   (
     t0=$SECONDS rc=0
-    flock /tmp/tilekit-slurm.lock bash "$root/tests/slurm/cluster-test.sh" >"$slurm_log" 2>&1 || rc=$?
+    # the job-array test, then `cluster submit --mpi` (srun --mpi=pmix), under one lock
+    flock /tmp/tilekit-slurm.lock bash -c 'bash "$1/tests/slurm/cluster-test.sh"; a=$?
+      bash "$1/tests/slurm/mpi-submit-test.sh"; b=$?; exit $((a > b ? a : b))' _ "$root" >"$slurm_log" 2>&1 || rc=$?
     echo "$rc $((SECONDS - t0))" >"$slurm_log.end"
   ) &
   slurm_pid=$!

@@ -1,6 +1,6 @@
 # ---- body of the shard array task (scripts/slurm/pack-array.body.sh) ----
 # Expects, set above by `tilekit cluster submit`: TILEKIT (the binary), RUN_DIR (on the shared
-# filesystem), SHARDS, MAX_REQUEUES, CHECKPOINT_EVERY and the arrays COMMAND (`pack` or
+# filesystem), SHARDS, MAX_REQUEUES, CHECKPOINT_EVERY, SPLIT_AFTER and the arrays COMMAND (`pack` or
 # `aperiodic enumerate`) and PACK_ARGS (its arguments).
 #
 # One array task = one shard I of N (I = SLURM_ARRAY_TASK_ID). Each shard owns its files:
@@ -21,20 +21,39 @@
 # stays cancelled, and Slurm brings back a requeued or preempted one by itself.
 set -uo pipefail
 
-shard=${SLURM_ARRAY_TASK_ID:?"submit this script with sbatch --array=0-$((SHARDS - 1))"}
-task="${SLURM_ARRAY_JOB_ID:-$SLURM_JOB_ID}_${shard}"
+task_index=${SLURM_ARRAY_TASK_ID:?"submit this script with sbatch --array=0-$((SHARDS - 1))"}
+task="${SLURM_ARRAY_JOB_ID:-$SLURM_JOB_ID}_${task_index}"
 attempt=${SLURM_RESTART_COUNT:-0}
 export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}
-
+# A split run (SPLIT_AFTER > 0, cluster/split.hpp): round 0 is this array (task I = shard I);
+# round R >= 1 (sbatch --array=0-(U-1) pack-array.sbatch R, queued by the merge job) runs
+# the units of RUN_DIR/units/round-R.tsv, task T = line T+1 "SHARD PART PARTS".
+round=${1:-0}
 dir="$RUN_DIR/shards"
-ckpt="$dir/shard-$shard.ckpt"
-db="$dir/shard-$shard.sqlite"
-done_file="$dir/shard-$shard.done.json"
-attempts="$dir/shard-$shard.attempts"
+if ((round > 0)); then
+  unit_line=$(sed -n "$((task_index + 1))p" "$RUN_DIR/units/round-$round.tsv")
+  read -r shard part parts <<<"$unit_line"
+  [ -n "${parts:-}" ] || { echo "no unit $task_index in $RUN_DIR/units/round-$round.tsv" >&2; exit 2; }
+  unit=$((round * 10000000 + task_index))  # cluster/split.hpp, unit_id()
+  # The unit resumes from the shard's checkpoint merged with every part's file beside it, and
+  # writes its own such file (shard-I.ckpt.rank-UNIT): `pack --part` (cluster/part_work.hpp).
+  resume_from="$dir/shard-$shard.ckpt"
+  ckpt="$resume_from.rank-$unit"
+  db="$dir/shard-$shard.part-$unit.sqlite"
+  done_file="$dir/shard-$shard.part-$unit.json"
+  attempts="$dir/shard-$shard.part-$unit.attempts"
+else
+  shard=$task_index
+  ckpt="$dir/shard-$shard.ckpt"
+  db="$dir/shard-$shard.sqlite"
+  done_file="$dir/shard-$shard.done.json"
+  attempts="$dir/shard-$shard.attempts"
+fi
+split_file="$dir/shard-$shard.split.json"
 stats="$dir/shard-$shard.stats.json"
 
-say() { printf '%s tilekit shard %s/%s (task %s, attempt %s): %s\n' "$(date -u +%FT%TZ)" \
-  "$shard" "$SHARDS" "$task" "$attempt" "$*"; }
+say() { printf '%s tilekit shard %s/%s%s (task %s, attempt %s): %s\n' "$(date -u +%FT%TZ)" \
+  "$shard" "$SHARDS" "$( ((round == 0)) || echo " part $part/$parts, round $round")" "$task" "$attempt" "$*"; }
 # A number from tilekit's one-line JSON result $2 (null if absent).
 number() { local v; v=$(grep -o "\"$1\":[0-9.eE+-]*" "$2" 2>/dev/null | head -n 1 | cut -d: -f2); echo "${v:-null}"; }
 record() {  # record EXIT RESUMED [RESULT_JSON]: one line per attempt in shard-I.attempts
@@ -65,17 +84,22 @@ trap 'on_signal TERM' TERM
 mkdir -p "$dir"
 
 # A requeue after the shard had finished (or a resubmitted run) must not count it twice.
-if [ -s "$done_file" ]; then
-  say "already complete ($done_file); nothing to do"
+if [ -s "$done_file" ] || { ((round == 0)) && [ -s "$split_file" ]; }; then
+  say "already complete or split ($done_file); nothing to do"
   record 0 false
   exit 0
 fi
 
 args=("${PACK_ARGS[@]}" --threads "$OMP_NUM_THREADS" --shard "$shard/$SHARDS"
       --checkpoint "$ckpt" --checkpoint-every "$CHECKPOINT_EVERY" --db "$db" --json)
-[ "${COMMAND[*]}" != pack ] || args+=(--portfolio-stats "$stats")
+[ "${COMMAND[*]}" != pack ] || ((round > 0)) || args+=(--portfolio-stats "$stats")
+# The share of a split run: stop after SPLIT_AFTER seconds, leaving the rest to the next round.
+[ "${SPLIT_AFTER:-0}" = 0 ] || args+=(--time-limit "$SPLIT_AFTER")
 resumed=false
-if [ -s "$ckpt" ]; then
+if ((round > 0)); then
+  args+=(--part "$part/$parts" --resume "$resume_from")
+  resumed=true
+elif [ -s "$ckpt" ]; then
   args+=(--resume "$ckpt")
   resumed=true
 fi
@@ -122,6 +146,13 @@ trap - USR1 TERM
 
 case $rc in
   0)
+    if ((round == 0)) && [ "${SPLIT_AFTER:-0}" != 0 ] && grep -q '"timed_out":true' "$done_file.tmp"; then
+      # Past its share: the merge job splits what is left (cluster split) into the next round.
+      mv -f "$done_file.tmp" "$split_file"
+      record 0 "$resumed" "$split_file"
+      say "ran its share ($SPLIT_AFTER s); left the rest to the next round: $(cat "$split_file")"
+      exit 0
+    fi
     mv -f "$done_file.tmp" "$done_file"
     record 0 "$resumed" "$done_file"
     say "complete: $(cat "$done_file")"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 
@@ -200,6 +201,36 @@ TEST(ClusterStatus, AFifoAsAttemptsFileIsReportedNotWaitedOn) {
 TEST(ClusterStatus, NoRunDirectoryIsNotFound) {
   TempDir d;
   EXPECT_EQ(run_cli("cluster status --run-dir " + d / "none").code, 1);
+}
+
+TEST(ClusterSubmit, MpiDryRunIsOneSrunJobInCountModeAndItsRefusalsAreExitTwo) {
+  TempDir d;
+  auto r = run_cli("cluster submit --mpi --nodes 2 --ntasks 4 --kind wang --colors 2 --time 10 --run-dir " + d / "run" +
+                   " --dry-run --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = r.json();
+  ASSERT_EQ(j["scripts"].size(), 2u);
+  const std::string job = j["scripts"][d / "run/pack-mpi.sbatch"];
+  for (const char* part : {"#SBATCH --nodes=2 ", "#SBATCH --ntasks=4 ", "PACK_ARGS=(--kind wang --colors 2 --mode count)",
+                           "LAUNCHER=srun", "SRUN_MPI=pmix"})
+    EXPECT_NE(job.find(part), std::string::npos) << part;
+  EXPECT_FALSE(std::filesystem::exists(d / "run"));
+  for (const std::string bad : {"--mpi --mode all", "--mpi --shards 2", "--mpi --ntasks 1 --nodes 2",
+                                "--mpi --launcher ibrun", "--shards 2 --split-after -1", "--shards 2 --split-ways 1",
+                                "--mpi --split-after 5", "--shards 2 --split-after 5 --mode first", ""}) {
+    auto b = run_cli("cluster submit --kind wang --colors 2 " + bad + " --run-dir " + d / "run" + " --dry-run");
+    EXPECT_EQ(b.code, 2) << bad << ": " << b.err;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << bad << ": " << b.err;
+  }
+}
+
+TEST(ClusterSplit, ARunThatIsNotSplitIsExitTwoAndNoRunIsNotFound) {
+  TempDir d;
+  write_text(d / "run.json", R"({"shards": 2, "pack_args": ["--kind","wang","--colors","2"]})");
+  auto r = run_cli("cluster split --run-dir " + d.path.string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("not a split run"), std::string::npos) << r.err;
+  EXPECT_EQ(run_cli("cluster split --run-dir " + d / "none").code, 1);
 }
 
 }  // namespace

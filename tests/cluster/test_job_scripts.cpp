@@ -144,5 +144,48 @@ TEST(ClusterJobScripts, BashSeesTheShardArgumentsAndPathsExactlyAsPlanned) {
   EXPECT_EQ(out, "</opt/my tilekit/tilekit><aperiodic><enumerate><--set><it's a set><--note=$HOME `x` \"q\"><>");
 }
 
+cluster::ClusterPlan sample_mpi_plan(const std::string& run_dir) {
+  cluster::ClusterPlan p = sample_plan(run_dir);
+  p.pack_args = {"--kind", "wang", "--colors", "2", "--mode", "count"};
+  p.shards = 1;
+  p.mpi = true;
+  p.nodes = 2;
+  p.ntasks = 8;
+  return p;
+}
+
+TEST(ClusterJobScripts, MpiRunIsOneJobOfRanksStartedBySrunWithPmix) {
+  TempDir d;
+  const auto scripts = cluster::job_scripts(sample_mpi_plan(d.path.string()));
+  ASSERT_EQ(scripts.size(), 2u);
+  EXPECT_EQ(scripts[0].name, "pack-mpi.sbatch");
+  EXPECT_EQ(scripts[1].name, "submit.sh");
+  const std::string& s = scripts[0].text;
+  for (const char* part : {"#SBATCH --nodes=2 ", "#SBATCH --ntasks=8 ", "#SBATCH --cpus-per-task=3 ",
+                           "#SBATCH --time=2:00:00 ", "#SBATCH --signal=B:USR1@90 ", "#SBATCH --requeue ",
+                           "#SBATCH --partition=long ", "#SBATCH --account=proj ", "\nLAUNCHER=srun\n",
+                           "\nSRUN_MPI=pmix\n", "\nMAX_REQUEUES=5\n", "\nCHECKPOINT_EVERY=0.25\n",
+                           "PACK_ARGS=(--kind wang --colors 2 --mode count)\n", "srun --mpi=\"$SRUN_MPI\"",
+                           "--mpi --threads", "--resume \"$ckpt\"", "scontrol requeue"})
+    EXPECT_TRUE(has(s, part)) << part;
+  EXPECT_FALSE(has(s, "--array"));  // not a tilekit flag
+  EXPECT_TRUE(has(scripts[1].text, "sbatch --parsable pack-mpi.sbatch"));  // not a tilekit flag
+  EXPECT_FALSE(has(scripts[1].text, "merge"));
+  const std::regex commented(R"(^#SBATCH --\S+ +# \S.*$)");
+  for (const auto& script : scripts) {
+    std::istringstream in(script.text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.starts_with("#SBATCH")) {
+        EXPECT_TRUE(std::regex_match(line, commented)) << line;
+      }
+    }
+    write_text(d / "check.sh", script.text);
+    EXPECT_EQ(std::system(("bash -n " + d / "check.sh").c_str()), 0) << script.name;
+  }
+  cluster::ClusterPlan m = sample_mpi_plan(d.path.string());
+  m.launcher = "mpirun";
+  EXPECT_TRUE(has(cluster::pack_mpi_script(m), "\nLAUNCHER=mpirun\n"));
+}
+
 }  // namespace
 }  // namespace tilekit

@@ -176,5 +176,37 @@ TEST(ClusterPlan, JobsRunTheTilekitOnPathElseThisOne) {
   EXPECT_EQ(cluster::make_plan(r, {"", TILEKIT_BINARY}).tilekit, self);
 }
 
+TEST(ClusterPlan, MpiRunIsOneCountJobOfRanksAndRefusesWhatPackMpiCannotRun) {
+  TempDir d;
+  cluster::SubmitRequest r = wang2(d / "r");
+  r.mode = "count";
+  r.settings.mpi = true;
+  r.settings.nodes = 2;
+  cluster::ClusterPlan p = cluster::make_plan(r);
+  EXPECT_EQ(p.ntasks, 2);  // default: one rank per node
+  EXPECT_EQ(p.shards, 1);
+  EXPECT_EQ(p.launcher, "srun");
+  EXPECT_EQ(p.srun_mpi, "pmix");
+  EXPECT_EQ(p.pack_args, (std::vector<std::string>{"--kind", "wang", "--colors", "2", "--mode", "count"}));
+  const cluster::SubmitRequest ok = r;
+  std::vector<std::pair<std::string, std::function<void(cluster::SubmitRequest&)>>> cases = {
+      {"`mode` all", [](auto& r) { r.mode = "all"; }},
+      {"`shards` must be 1", [](auto& r) { r.settings.shards = 4; }},
+      {"`nodes`", [](auto& r) { r.settings.nodes = 0; }},
+      {"`ntasks`", [](auto& r) { r.settings.ntasks = 1; }},  // fewer ranks than nodes
+      {"`launcher`", [](auto& r) { r.settings.launcher = "ibrun"; }},
+      {"`srun_mpi`", [](auto& r) { r.settings.srun_mpi = "pmix --x"; }},
+      {"`srun_mpi`", [](auto& r) { r.settings.srun_mpi = ""; }},
+      {"`shard_args` --mpi", [](auto& r) { r.shard_args = {"--mpi"}; }},
+      {"`command` enumerate has no MPI run",
+       [](auto& r) { r.command = "enumerate", r.kind = "", r.colors = 0, r.mode = "all"; }},
+  };
+  for (auto& [what, change] : cases) {
+    cluster::SubmitRequest bad = ok;
+    change(bad);
+    EXPECT_NE(refusal(bad).find(what), std::string::npos) << what << ": " << refusal(bad);
+  }
+}
+
 }  // namespace
 }  // namespace tilekit

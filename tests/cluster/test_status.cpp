@@ -111,9 +111,10 @@ TEST(ClusterRunStatus, JsonHasTheKeysTheCommandPrints) {
   const nlohmann::json j = cluster::to_json(cluster::read_run_status(d / "r"));
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  EXPECT_EQ(keys, (std::vector<std::string>{"checkpointed", "done", "merged_orbits", "merged_solutions", "pack_args",
-                                            "pending", "per_shard", "run_dir", "shards", "solutions_in_done_shards",
-                                            "started", "submissions"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"checkpointed", "done", "eta_seconds", "merged_orbits",
+                                            "merged_solutions", "mpi_ranks", "pack_args", "pending", "per_shard",
+                                            "run_dir", "shards", "solutions_in_done_shards", "started", "submissions",
+                                            "work_done_nodes", "work_outstanding_nodes"}));
   keys.clear();
   for (const auto& [k, v] : j["per_shard"][0].items()) keys.push_back(k);
   EXPECT_EQ(keys, (std::vector<std::string>{"attempts", "checkpoint_age_seconds", "checkpointed_exits", "complete",
@@ -134,6 +135,16 @@ TEST(ClusterRunStatus, ProgressCountsOnlyTheSubproblemsTheShardOwns) {
   EXPECT_EQ(p.solutions, 9u + 5u);  // the finished ones and what the one in flight found so far
   EXPECT_EQ(p.nodes, 317u);
   EXPECT_DOUBLE_EQ(p.seconds, 2.5);
+  // Outstanding: subproblem 4, as large as the mean finished one of the shard (100 nodes), less
+  // the 17 it counted; at 317 nodes / 2.5 s.
+  EXPECT_EQ(p.open, 1u);
+  ASSERT_TRUE(p.remaining_nodes);
+  EXPECT_DOUBLE_EQ(*p.remaining_nodes, 83.0);
+  EXPECT_DOUBLE_EQ(p.node_rate, 317.0 / 2.5);
+  ASSERT_TRUE(p.eta_seconds);
+  EXPECT_DOUBLE_EQ(*p.eta_seconds, 83.0 / (317.0 / 2.5));
+  // Shard 2 of 3 finished none of its subproblems: no estimate yet.
+  EXPECT_FALSE(cluster::checkpoint_progress(d / "ckpt", ShardSpec{2, 3}).remaining_nodes);
   // Shard 0 of 3 owns 0, 3, 6 and 9; shard 2 of 3 owns 2, 5 and 8.
   EXPECT_EQ(cluster::checkpoint_progress(d / "ckpt", ShardSpec{0, 3}).subproblems, 4u);
   EXPECT_EQ(cluster::checkpoint_progress(d / "ckpt", ShardSpec{0, 3}).subproblems_done, 1u);
@@ -232,6 +243,26 @@ TEST(ClusterRunStatus, RunFileMissingIsNotFoundAndAFifoIsBadInput) {
   fs::remove(d / "r/run.json");
   write_text(d / "r/run.json", R"({"shards": 0, "pack_args": []})");
   EXPECT_THROW(cluster::read_run_status(d / "r"), InputError);
+}
+
+TEST(ClusterRunStatus, RunEtaIsTheSlowestShardsAndUnknownUntilEveryShardHasAnEstimate) {
+  TempDir d;
+  make_run(d, 3);
+  write_checkpoint(shard(d, 1, ".ckpt"), sample_state());  // shard 1: ETA 83 / 126.8 s
+  write_text(shard(d, 0, ".done.json"), R"({"solutions": 5, "nodes": 40, "complete": true})");
+  cluster::RunStatus r = cluster::read_run_status(d / "r");
+  EXPECT_EQ(r.work_done_nodes, 40u + 317u);
+  EXPECT_FALSE(r.eta_seconds);  // shard 2 has not started
+  EXPECT_FALSE(r.work_outstanding_nodes);
+  write_text(shard(d, 2, ".done.json"), R"({"solutions": 7, "nodes": 60, "complete": true})");
+  r = cluster::read_run_status(d / "r");
+  ASSERT_TRUE(r.eta_seconds);
+  EXPECT_DOUBLE_EQ(*r.eta_seconds, 83.0 / (317.0 / 2.5));
+  EXPECT_DOUBLE_EQ(*r.work_outstanding_nodes, 83.0);
+  EXPECT_EQ(r.work_done_nodes, 40u + 317u + 60u);
+  const nlohmann::json j = cluster::to_json(r);
+  EXPECT_DOUBLE_EQ(j["eta_seconds"].get<double>(), *r.eta_seconds);
+  EXPECT_EQ(j["per_shard"][1]["progress"]["open_subproblems"], 1);
 }
 
 }  // namespace

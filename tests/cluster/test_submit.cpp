@@ -20,6 +20,10 @@ using test::slurp;
 using test::TempDir;
 using test::write_text;
 
+bool has_text(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
 // An sbatch that appends its arguments to LOG and prints job ids 100, 101, ... (as "ID;cluster").
 std::string fake_sbatch(const TempDir& d) {
   const std::string path = d / "sbatch", log = d / "sbatch.log", next = d / "next-id";
@@ -111,6 +115,41 @@ TEST(ClusterSubmitRun, SbatchMissingIsNotFoundAndOneThatPrintsNoJobIdIsBadInput)
   EXPECT_THROW(cluster::submit_run(plan_in(d / "queued"), "/bin/false"), InputError);
   EXPECT_TRUE(fs::exists(d / "queued/run.json"));
   EXPECT_TRUE(fs::exists(d / "queued/pack-array.sbatch"));
+}
+
+TEST(ClusterSubmitRun, MpiRunQueuesOneJobAndResumesOnOtherRanksButNotAsAnArray) {
+  TempDir d;
+  const std::string sbatch = fake_sbatch(d);
+  cluster::SubmitRequest r;
+  r.words = cli::pack_shard_words();
+  r.kind = "wang";
+  r.colors = 2;
+  r.mode = "count";
+  r.run_dir = d / "run";
+  r.tilekit = TILEKIT_BINARY;
+  r.settings.mpi = true;
+  r.settings.ntasks = 4;
+  const cluster::Submission s = cluster::submit_run(cluster::make_plan(r), sbatch);
+  EXPECT_EQ(s.array_job, "100");
+  EXPECT_EQ(s.merge_job, "");
+  EXPECT_EQ(slurp(d / "sbatch.log"), "--parsable " + d / "run/pack-mpi.sbatch\n");
+  EXPECT_FALSE(fs::exists(d / "run/merge.sbatch"));
+  auto run = cluster::read_run_file(d / "run/run.json");
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->mpi_ranks, 4);
+  EXPECT_EQ(run->submissions[0]["mpi_job"], "100");
+  r.settings.ntasks = 1;  // the same run on another number of ranks resumes it
+  EXPECT_EQ(cluster::submit_run(cluster::make_plan(r), sbatch).submissions, 2u);
+  EXPECT_EQ(cluster::read_run_file(d / "run/run.json")->mpi_ranks, 1);
+  EXPECT_TRUE(has_text(slurp(d / "run/pack-mpi.sbatch"), "#SBATCH --ntasks=1 "));
+  r.settings.mpi = false;  // an array in an MPI run's directory: refused
+  r.settings.shards = 1;
+  try {
+    cluster::submit_run(cluster::make_plan(r), sbatch);
+    ADD_FAILURE() << "an array was queued in an MPI run's directory";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("an MPI run"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
