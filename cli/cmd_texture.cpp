@@ -58,8 +58,8 @@ Image exemplar_at_depth(const std::string& path_or_name, const Exemplar& e) {
   return img;
 }
 
-// A material set (texture/material.hpp): the synthesis on the features of every map (or the
-// albedo alone: --map-cost albedo), every map's tiles copied at the recorded texels.
+// A material set (texture/material.hpp): the synthesis on the albedo with every map's term in its
+// seam costs (or the albedo alone: --map-cost albedo), every map's tiles copied at the recorded texels.
 struct MaterialRun {
   std::vector<MaterialMap> maps;
   Image albedo;  // at its own depth
@@ -80,15 +80,11 @@ TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const 
                  sizes[k].first, sizes[k].second, w, h, m.maps[k].space == ColourSpace::Normal ? ", renormalised" : "");
   SynthesisOptions so = o;
   so.record_coords = true;
-  TextureTileSet s;
-  nlohmann::json explained = nullptr;
   if (a.map_cost == "all" && !m.maps.empty()) {
-    const MaterialFeatures f = material_features(m.albedo.to_depth(8), a.albedo_weight, m.maps);
-    explained = f.explained;
-    s = synthesize_tiles(exemplar_from_image(f.image, e.name, tileable), so);
-  } else {
-    s = synthesize_tiles(e, so);
+    so.cost_maps = seam_cost_maps(m.maps);
+    so.colour_weight = a.albedo_weight;
   }
+  TextureTileSet s = synthesize_tiles(e, so);
   const Image albedo = map_as_sampled(m.albedo, tileable, s.perspective, s.exemplar_scale);
   s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
   if (s.sampled.width > 0) s.sampled = albedo.to_depth(8);
@@ -105,7 +101,6 @@ TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const 
   m.report = {{"maps", maps},
               {"map_cost", m.maps.empty() ? "albedo" : a.map_cost},
               {"albedo_weight", a.albedo_weight},
-              {"feature_variance_explained", explained},
               {"bits", m.albedo.depth},
               {"exemplar_size", {w, h}},
               {"coords", "coords"}};
@@ -233,11 +228,13 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                   "called normal); tiles in DIR/maps/NAME/, aligned texel for texel with the exemplar's")
       ->type_name("NAME=FILE[:ROLE[:WEIGHT]]");
   cmd->add_option("--map-cost", a->map_cost,
-                  "all: samples and cuts weigh every map (normals as vectors); albedo: the exemplar alone")
+                  "all: the seam costs of samples and cuts add each map's term (WEIGHT x its step in units of its "
+                  "mean step; normals as vectors) to the exemplar's; albedo: the exemplar alone")
       ->check(CLI::IsMember({"all", "albedo"}))
       ->capture_default_str();
   cmd->add_option("--albedo-weight", a->albedo_weight,
-                  "The exemplar's weight beside the maps' (each map's is its WEIGHT)")
+                  "With --map-cost all, the weight of the exemplar's own term in the seam costs (each map's is its "
+                  "WEIGHT, default 1)")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_flag("--coords", a->coords,
@@ -250,7 +247,7 @@ void add_tiles(CLI::App& texture, Context& ctx) {
 struct AtlasArgs {
   std::string dir, out, db, hash = "long-period", color_space;
   std::uint64_t seed = 1;
-  bool no_db = false, power_of_two = false;
+  bool no_db = false, power_of_two = false, no_toksvig = false;
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
@@ -302,6 +299,25 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     if (a.power_of_two) ma = resample_to_power_of_two(ma);
     map_atlases.push_back({d.filename().string(), std::move(ma)});
   }
+  // Toksvig (texture/mipmap.hpp, toksvig_chain): the length the normal map's mips lose is folded
+  // into the mips of the map called roughness, unless --no-toksvig.
+  std::string toksvig_from;
+  const auto named = [&](const std::string& name) {
+    return std::find_if(map_atlases.begin(), map_atlases.end(), [&](const MapAtlas& ma) { return ma.name == name; });
+  };
+  if (const auto rough = named("roughness"); !a.no_toksvig && rough != map_atlases.end()) {
+    auto normal = named("normal");
+    if (normal == map_atlases.end() || normal->atlas.colour_space != ColourSpace::Normal)
+      normal = std::find_if(map_atlases.begin(), map_atlases.end(),
+                            [](const MapAtlas& ma) { return ma.atlas.colour_space == ColourSpace::Normal; });
+    if (normal != map_atlases.end() && rough->atlas.colour_space != ColourSpace::Normal) {
+      std::vector<Image> chain = toksvig_chain(rough->atlas.levels[0], normal->atlas.levels, MipEdge::Wrap);
+      if (chain.size() == rough->atlas.levels.size()) {
+        rough->atlas.levels = std::move(chain);
+        toksvig_from = normal->name;
+      }
+    }
+  }
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro), shaders_of(atlas));
   nlohmann::json maps = nlohmann::json::object();
   for (const MapAtlas& ma : map_atlases) {
@@ -313,6 +329,7 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                      {"manifest", mf.manifest},
                      {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},
                      {"bits", ma.atlas.levels[0].depth}};
+    if (ma.name == "roughness") maps[ma.name]["toksvig"] = toksvig_from.empty() ? nullptr : nlohmann::json(toksvig_from);
   }
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
@@ -347,8 +364,11 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
         f.ktx2, colour_space_name(atlas.colour_space), f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
     fmt::print("colour space {}, {} bits\n", colour_space_name(atlas.colour_space), atlas.levels[0].depth);
     for (const auto& [name, mj] : maps.items())
-      fmt::print("map {}: {} ({}, {} bits)\n", name, mj["out"].get<std::string>(),
-                 mj["colour_space"].get<std::string>(), mj["bits"].get<int>());
+      fmt::print("map {}: {} ({}, {} bits{})\n", name, mj["out"].get<std::string>(),
+                 mj["colour_space"].get<std::string>(), mj["bits"].get<int>(),
+                 name == "roughness" && !toksvig_from.empty()
+                     ? fmt::format("; mips widened by the length map {}'s mips lose, Toksvig", toksvig_from)
+                     : "");
   });
 }
 
@@ -362,6 +382,9 @@ void add_atlas(CLI::App& texture, Context& ctx) {
                   "atlas.glsl, atlas.vk.glsl, atlas.hlsl and atlas.wgsl go beside it, and atlas-NAME.png (and so on) "
                   "for every map of a material set (DIR/maps/NAME, DIR/coords)")
       ->required();
+  cmd->add_flag("--no-toksvig", a->no_toksvig,
+                "Keep a material's roughness mips plain averages (by default, when DIR/maps has a map called "
+                "roughness and a normal map, the length the normal mips lose widens the roughness mips: Toksvig)");
   cmd->add_option("--color-space", a->color_space,
                   "How the levels are averaged and stored (default: the tile set's, from its tiles.json): srgb, "
                   "colour in linear light (atlas.ktx2 RGBA8 sRGB); linear, data such as roughness or height; normal, "

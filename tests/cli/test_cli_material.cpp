@@ -98,5 +98,34 @@ TEST(CliMaterial, BadMapsAndPeriodsAreExitTwoAndQuietPrintsNothing) {
   EXPECT_EQ(read_json(d / "o/tiles.json")["period"][0], 24.0);
 }
 
+// `texture atlas` of a material with a normal map and a map called roughness folds the length the
+// normal mips lose into the roughness mips (Toksvig); --no-toksvig keeps plain averages.
+TEST(CliMaterial, AtlasFoldsTheNormalsLostLengthIntoRoughness) {
+  TempDir d;
+  write_png(d / "albedo.png", test::synthetic_image(96, 96, 11));
+  write_png(d / "normal.png", normal_map_from_height(test::synthetic_image(96, 96, 12), 40, false));
+  write_png(d / "roughness.png", Image(96, 96, Rgb{77, 77, 77}));
+  const auto t = run_cli("texture tiles --exemplar " + (d / "albedo.png") + " --map normal=" + (d / "normal.png") +
+                         " --map roughness=" + (d / "roughness.png") +
+                         " --colors 2 --tile-px 32 --search 8 --period off --quiet --out " + (d / "mat"));
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto on = run_cli("texture atlas " + (d / "mat") + " --out " + (d / "on/atlas.png") + " --json");
+  ASSERT_EQ(on.code, 0) << on.err;
+  EXPECT_EQ(on.json()["maps"]["roughness"]["toksvig"], "normal");
+  const auto off = run_cli("texture atlas " + (d / "mat") + " --no-toksvig --out " + (d / "off/atlas.png") + " --json");
+  ASSERT_EQ(off.code, 0) << off.err;
+  EXPECT_TRUE(off.json()["maps"]["roughness"]["toksvig"].is_null());
+  EXPECT_EQ(read_image(d / "on/atlas-roughness.png").pixels, read_image(d / "off/atlas-roughness.png").pixels);
+  const auto mean = [](const Image& img) {
+    double sum = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) sum += img.at(x, y)[0];
+    return sum / (double(img.width) * img.height);
+  };
+  const double widened = mean(read_image(d / "on/atlas-roughness.mip2.png"));
+  EXPECT_NEAR(mean(read_image(d / "off/atlas-roughness.mip2.png")), 77, 0.5);
+  EXPECT_GT(widened, 80);
+}
+
 }  // namespace
 }  // namespace tilekit
