@@ -5,7 +5,8 @@
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
-//                visibility, histogram distance, lattice peak. Goals (corner, C = 4, 64 px): grid
+//                visibility, histogram distance, lattice peak, line continuity (held-out ufo-*
+//                textures, scripts/fetch-textures.sh --held-out, as tori). Goals (corner, C = 4, 64 px): grid
 //                repetition <= 0.05 with seam ratio <= 1.10, cut visibility <= 1.5.
 //   naive/...    the baseline of the same run: random crops of the exemplar abutted (no cuts, no
 //                lattice repetition, visible seams)
@@ -53,7 +54,8 @@ Exemplar texture(const std::string& name) {
     fmt::print(stderr, "bench_texture_quality: {} not fetched: run scripts/fetch-textures.sh\n", name);
     std::exit(1);
   }
-  return load_exemplar(name);
+  // the held-out game textures (scripts/fetch-textures.sh --held-out, ufo-*) are made to repeat
+  return load_exemplar(real_texture_path(name), is_tileable_real_texture(name) || name.rfind("ufo-", 0) == 0);
 }
 
 nlohmann::json measures(const TextureAnalysis& a) {
@@ -64,6 +66,7 @@ nlohmann::json measures(const TextureAnalysis& a) {
   if (a.seam_ratio) j["seam_ratio"] = *a.seam_ratio;
   if (a.cut_visibility) j["cut_visibility"] = *a.cut_visibility;
   if (a.histogram_distance) j["histogram_distance"] = *a.histogram_distance;
+  if (a.line_continuity) j["line_continuity"] = *a.line_continuity;
   return j;
 }
 

@@ -13,6 +13,7 @@
 #include "base/error.hpp"
 #include "base/json_input.hpp"
 #include "cli/command.hpp"
+#include "cli/numeric_flags.hpp"
 #include "cli/packing_lookup.hpp"
 #include "cli/run_options.hpp"
 #include "image/image.hpp"
@@ -32,7 +33,7 @@ HashKind hash_option(const std::string& name) {
 }
 
 struct TilesArgs {
-  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto";
+  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto", tile_px = "128";
   SynthesisOptions synthesis;  // kind, threads, seed, progress and keep_period come from the fields here
   RunOptions run = [] {
     RunOptions r;
@@ -124,13 +125,33 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
     o.period_override = {x, y};
   }
   o.rectify = a.perspective == "auto";
+  std::string tile_text = a.tile_px;
+  if (tile_text != "auto") {  // an integer, through the same strict parse as every numeric flag
+    if (!cli::strict_number(tile_text, "INT").empty() || std::stoll(tile_text) < 0 || std::stoll(tile_text) > 1 << 20)
+      throw InputError(fmt::format("--tile-px '{}': expected auto or an even number of pixels in 16..1024", a.tile_px));
+    o.tile_px = int(std::stoll(tile_text));
+  }
   const Exemplar e = load_exemplar(a.exemplar, a.tileable);
+  nlohmann::json tile_choice = nullptr;
+  if (tile_text == "auto") {  // from the feature scale (texture/exemplar.hpp)
+    ExemplarPeriod p;
+    if (o.keep_period) p = dominant_period(e);
+    if (o.period_override[0] > 0 || o.period_override[1] > 0) p.x = o.period_override[0], p.y = o.period_override[1];
+    const TileSizeChoice c = choose_tile_size(e, p);
+    o.tile_px = c.tile_px;
+    tile_choice = {{"tile_px", c.tile_px},
+                   {"reason", c.reason},
+                   {"feature_px", c.feature_px},
+                   {"period", c.period}};
+    if (!a.quiet) fmt::print(stderr, "texture tiles: --tile-px auto: {}\n", c.reason);
+  }
   MaterialRun m;
   for (const std::string& spec : a.maps) m.maps.push_back(parse_material_map(spec));
   m.albedo = exemplar_at_depth(a.exemplar, e);
   const bool material = !m.maps.empty() || m.albedo.depth == 16 || a.coords;
   const TextureTileSet s = material ? synthesize_material(a, e, o, m) : synthesize_tiles(e, o);
   write_tile_set(s, a.out, e.name, [&](const std::string& dir, nlohmann::json& manifest) {
+    if (!tile_choice.is_null()) manifest["tile_px_auto"] = tile_choice;
     if (!material) return;
     manifest.update(m.report);
     nlohmann::json base = manifest;
@@ -152,6 +173,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   });
   nlohmann::json j = tile_set_json(s);
   if (material) j.update(m.report);
+  if (!tile_choice.is_null()) j["tile_px_auto"] = tile_choice;
   if (const std::string why = o.keep_period ? structure_message(s.period) : ""; !why.empty())
     fmt::print(stderr, "texture tiles: {}\n", why);
   j["exemplar"] = e.name;
@@ -198,7 +220,12 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       ->check(CLI::IsMember({"corner", "wang"}))
       ->capture_default_str();
   cmd->add_option("--colors", a->synthesis.colours, "Colours C: the complete set has C^4 tiles")->required();
-  cmd->add_option("--tile-px", a->synthesis.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
+  cmd->add_option("--tile-px", a->tile_px,
+                  "Tile size in pixels (even, 16..1024), or auto: from the exemplar's feature scale (a multiple of its "
+                  "period near 128, else two features across by its luminance autocorrelation; 64..512), the "
+                  "choice and its reason on stderr and in tiles.json")
+      ->type_name("PX|auto")
+      ->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")
       ->required();
   add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed, a->run);
