@@ -11,7 +11,8 @@
 //   naive/...    the baseline of the same run: random crops of the exemplar abutted (no cuts, no
 //                lattice repetition, visible seams)
 //   speed/...    with --speed R: corner C = 4 synthesis on one thread, median of R runs (goal < 10 s)
-// --out DIR writes every render as DIR/TEXTURE-KIND-cC.png (the README's pictures).
+// --out DIR writes every render as DIR/TEXTURE-KIND-cC.png (the README's pictures) and the naive
+// mosaic as DIR/TEXTURE-naive.png.
 #include <fmt/format.h>
 
 #include <cstring>
@@ -107,7 +108,7 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
 }
 
 // Random px-square crops of the exemplar abutted on the lattice (the naive mosaic).
-void naive(const std::string& name, const Exemplar& e, int px, int size, int threads) {
+void naive(const std::string& name, const Exemplar& e, int px, int size, int threads, const std::string& out) {
   Image img(size, size);
   for (int r = 0; r * px < size; ++r)
     for (int c = 0; c * px < size; ++c) {
@@ -119,6 +120,7 @@ void naive(const std::string& name, const Exemplar& e, int px, int size, int thr
         }
     }
   const TextureAnalysis a = analyze_texture(img, Lattice::square(px), &e.image, nullptr, threads);
+  if (!out.empty()) write_png(fmt::format("{}/{}-naive.png", out, name), img);
   nlohmann::json j = {{"case", fmt::format("naive/{}", name)}, {"texture", name}, {"tile_px", px}};
   j.update(measures(a));
   print(j);
@@ -220,7 +222,7 @@ int main(int argc, char** argv) {
       speed(name, e, px, reps);
       continue;
     }
-    naive(name, e, px, size, threads);
+    naive(name, e, px, size, threads, out);
     naive_in_phase(name, e, px, size, threads, out);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)
