@@ -47,7 +47,7 @@ if [ "${1:-}" = --held-out ]; then
   exit 0
 fi
 "$root/scripts/fetch-textures.sh"
-"$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --out "$work/tiles" --quiet
+"$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --wide-bands --out "$work/tiles" --quiet
 "$tk" texture atlas "$work/tiles" --out "$work/atlas.png" --no-db
 view=(--size 640x360 --scale 1 --tilt 2 --quiet)
 cp "$work/tiles/tileset.png" "$img/texture-gravel-corner-tiles.png"
