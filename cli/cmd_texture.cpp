@@ -116,7 +116,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.progress = !a.quiet;
   o.keep_period = a.period != "off";
   if (a.thin_bands && a.wide_bands) throw InputError("--thin-bands and --wide-bands: choose one");
-  o.thin_bands = !a.wide_bands;  // thin by default: less grid repetition on every texture measured
+  o.thin_bands = !a.wide_bands;                   // thin by default: less grid repetition on every texture measured
   if (a.period != "auto" && a.period != "off") {  // X,Y in pixels (0: none along that axis)
     double x = 0, y = 0;
     char tail = 0;
@@ -141,10 +141,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
     if (o.period_override[0] > 0 || o.period_override[1] > 0) p.x = o.period_override[0], p.y = o.period_override[1];
     const TileSizeChoice c = choose_tile_size(e, p);
     o.tile_px = c.tile_px;
-    tile_choice = {{"tile_px", c.tile_px},
-                   {"reason", c.reason},
-                   {"feature_px", c.feature_px},
-                   {"period", c.period}};
+    tile_choice = {{"tile_px", c.tile_px}, {"reason", c.reason}, {"feature_px", c.feature_px}, {"period", c.period}};
     if (!a.quiet) fmt::print(stderr, "texture tiles: --tile-px auto: {}\n", c.reason);
   }
   MaterialRun m;
@@ -365,7 +362,8 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                      {"manifest", mf.manifest},
                      {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},
                      {"bits", ma.atlas.levels[0].depth}};
-    if (ma.name == "roughness") maps[ma.name]["toksvig"] = toksvig_from.empty() ? nullptr : nlohmann::json(toksvig_from);
+    if (ma.name == "roughness")
+      maps[ma.name]["toksvig"] = toksvig_from.empty() ? nullptr : nlohmann::json(toksvig_from);
   }
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},

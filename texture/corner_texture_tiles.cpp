@@ -126,7 +126,8 @@ class CornerSynthesis {
         const int q = m + p;
         if (!shown) {
           band.at(r, p) =
-              (x_.distance(band_px(q - 1, t), corner_px(q - 1, t)) + x_.distance(band_px(q, t), corner_px(q, t))) / unit;
+              (x_.distance(band_px(q - 1, t), corner_px(q - 1, t)) + x_.distance(band_px(q, t), corner_px(q, t))) /
+              unit;
           continue;
         }
         band.at(r, p) = x_.step(corner_px(q - 1, t), band_px(q, t)) / unit;

@@ -216,11 +216,11 @@ TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period)
     if (!found) c.feature_px = lowest_at;  // never that low (slow shading): where it is lowest
   }
   c.tile_px = clamp(int(std::ceil(2 * c.feature_px / 32)) * 32);
-  c.reason = fmt::format("features up to about {:.0f} px across (where the luminance autocorrelation falls to {:g}): "
-                         "{} px tiles{}",
-                         c.feature_px, kFeatureCorrelation, c.tile_px,
-                         c.tile_px >= int(std::ceil(2 * c.feature_px)) ? " hold two across"
-                                                                        : " (the most this exemplar allows)");
+  c.reason = fmt::format(
+      "features up to about {:.0f} px across (where the luminance autocorrelation falls to {:g}): "
+      "{} px tiles{}",
+      c.feature_px, kFeatureCorrelation, c.tile_px,
+      c.tile_px >= int(std::ceil(2 * c.feature_px)) ? " hold two across" : " (the most this exemplar allows)");
   return c;
 }
 

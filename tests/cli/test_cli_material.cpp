@@ -151,8 +151,8 @@ TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   EXPECT_EQ(g.json()["tile_px"], 64);
   EXPECT_NE(g.err.find("features up to about"), std::string::npos) << g.err;
   for (const char* bad : {"abc", "-64", "0x40", "99999999999999999999"})
-    EXPECT_EQ(run_cli("texture tiles --exemplar " + (d / "grain.png") + " --tile-px " + bad + " --out " + (d / "x")).code,
-              2)
+    EXPECT_EQ(
+        run_cli("texture tiles --exemplar " + (d / "grain.png") + " --tile-px " + bad + " --out " + (d / "x")).code, 2)
         << bad;
 }
 

@@ -19,8 +19,8 @@
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
-#include "tiling/direct_tiling.hpp"
 #include "texture_fixtures.hpp"
+#include "tiling/direct_tiling.hpp"
 
 namespace tilekit {
 namespace {
@@ -273,7 +273,8 @@ TEST(ColourMips, ToksvigWidensRoughnessWhereTheNormalsDisagree) {
     }
     EXPECT_EQ(chain[k].sample(0, 0, 3), 255u);
   }
-  EXPECT_TRUE(toksvig_chain(Image(32, 32), mip_chain(bumpy, MipEdge::Wrap, ColourSpace::Normal), MipEdge::Wrap).empty());
+  EXPECT_TRUE(
+      toksvig_chain(Image(32, 32), mip_chain(bumpy, MipEdge::Wrap, ColourSpace::Normal), MipEdge::Wrap).empty());
 }
 
 TEST(MaterialSet, SixteenBitRampSurvivesTilesAtlasAndMips) {
