@@ -79,10 +79,11 @@ SynthesisOptions options() {
 TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<MaterialMap>& maps) {
   const SynthesisOptions o = options();
   if (!all_maps) return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), o);
+  SynthesisOptions with = o;
   const char* w = std::getenv("TILEKIT_ALBEDO_WEIGHT");  // --albedo-weight
-  const MaterialFeatures f = material_features(h.albedo, w ? std::atof(w) : kAlbedoWeight,
-                                               std::getenv("TILEKIT_NO_MAPS") ? std::vector<MaterialMap>{} : maps);
-  return synthesize_tiles(exemplar_from_image(f.image, h.name, true), o);
+  with.colour_weight = w ? std::atof(w) : kAlbedoWeight;
+  with.cost_maps = seam_cost_maps(maps);
+  return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), with);
 }
 
 // The window lit through its normal map.

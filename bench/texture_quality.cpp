@@ -5,12 +5,14 @@
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
-//                visibility, histogram distance, lattice peak. Goals (corner, C = 4, 64 px): grid
+//                visibility, histogram distance, lattice peak, line continuity (held-out ufo-*
+//                textures, scripts/fetch-textures.sh --held-out, as tori). Goals (corner, C = 4, 64 px): grid
 //                repetition <= 0.05 with seam ratio <= 1.10, cut visibility <= 1.5.
 //   naive/...    the baseline of the same run: random crops of the exemplar abutted (no cuts, no
 //                lattice repetition, visible seams)
 //   speed/...    with --speed R: corner C = 4 synthesis on one thread, median of R runs (goal < 10 s)
-// --out DIR writes every render as DIR/TEXTURE-KIND-cC.png (the README's pictures).
+// --out DIR writes every render as DIR/TEXTURE-KIND-cC.png (the README's pictures) and the naive
+// mosaic as DIR/TEXTURE-naive.png.
 #include <fmt/format.h>
 
 #include <cstring>
@@ -53,7 +55,8 @@ Exemplar texture(const std::string& name) {
     fmt::print(stderr, "bench_texture_quality: {} not fetched: run scripts/fetch-textures.sh\n", name);
     std::exit(1);
   }
-  return load_exemplar(name);
+  // the held-out game textures (scripts/fetch-textures.sh --held-out, ufo-*) are made to repeat
+  return load_exemplar(real_texture_path(name), is_tileable_real_texture(name) || name.rfind("ufo-", 0) == 0);
 }
 
 nlohmann::json measures(const TextureAnalysis& a) {
@@ -64,6 +67,7 @@ nlohmann::json measures(const TextureAnalysis& a) {
   if (a.seam_ratio) j["seam_ratio"] = *a.seam_ratio;
   if (a.cut_visibility) j["cut_visibility"] = *a.cut_visibility;
   if (a.histogram_distance) j["histogram_distance"] = *a.histogram_distance;
+  if (a.line_continuity) j["line_continuity"] = *a.line_continuity;
   return j;
 }
 
@@ -104,7 +108,7 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
 }
 
 // Random px-square crops of the exemplar abutted on the lattice (the naive mosaic).
-void naive(const std::string& name, const Exemplar& e, int px, int size, int threads) {
+void naive(const std::string& name, const Exemplar& e, int px, int size, int threads, const std::string& out) {
   Image img(size, size);
   for (int r = 0; r * px < size; ++r)
     for (int c = 0; c * px < size; ++c) {
@@ -116,6 +120,7 @@ void naive(const std::string& name, const Exemplar& e, int px, int size, int thr
         }
     }
   const TextureAnalysis a = analyze_texture(img, Lattice::square(px), &e.image, nullptr, threads);
+  if (!out.empty()) write_png(fmt::format("{}/{}-naive.png", out, name), img);
   nlohmann::json j = {{"case", fmt::format("naive/{}", name)}, {"texture", name}, {"tile_px", px}};
   j.update(measures(a));
   print(j);
@@ -217,7 +222,7 @@ int main(int argc, char** argv) {
       speed(name, e, px, reps);
       continue;
     }
-    naive(name, e, px, size, threads);
+    naive(name, e, px, size, threads, out);
     naive_in_phase(name, e, px, size, threads, out);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)

@@ -13,6 +13,7 @@
 #include "base/error.hpp"
 #include "base/json_input.hpp"
 #include "cli/command.hpp"
+#include "cli/numeric_flags.hpp"
 #include "cli/packing_lookup.hpp"
 #include "cli/run_options.hpp"
 #include "image/image.hpp"
@@ -32,14 +33,14 @@ HashKind hash_option(const std::string& name) {
 }
 
 struct TilesArgs {
-  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto";
+  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto", tile_px = "128";
   SynthesisOptions synthesis;  // kind, threads, seed, progress and keep_period come from the fields here
   RunOptions run = [] {
     RunOptions r;
     r.seed = SynthesisOptions{}.seed;
     return r;
   }();
-  bool tileable = false, quiet = false, coords = false;
+  bool tileable = false, quiet = false, coords = false, thin_bands = false, wide_bands = false;
   std::vector<std::string> maps;
   std::string map_cost = "all";
   double albedo_weight = 1;
@@ -58,8 +59,8 @@ Image exemplar_at_depth(const std::string& path_or_name, const Exemplar& e) {
   return img;
 }
 
-// A material set (texture/material.hpp): the synthesis on the features of every map (or the
-// albedo alone: --map-cost albedo), every map's tiles copied at the recorded texels.
+// A material set (texture/material.hpp): the synthesis on the albedo with every map's term in its
+// seam costs (or the albedo alone: --map-cost albedo), every map's tiles copied at the recorded texels.
 struct MaterialRun {
   std::vector<MaterialMap> maps;
   Image albedo;  // at its own depth
@@ -80,15 +81,11 @@ TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const 
                  sizes[k].first, sizes[k].second, w, h, m.maps[k].space == ColourSpace::Normal ? ", renormalised" : "");
   SynthesisOptions so = o;
   so.record_coords = true;
-  TextureTileSet s;
-  nlohmann::json explained = nullptr;
   if (a.map_cost == "all" && !m.maps.empty()) {
-    const MaterialFeatures f = material_features(m.albedo.to_depth(8), a.albedo_weight, m.maps);
-    explained = f.explained;
-    s = synthesize_tiles(exemplar_from_image(f.image, e.name, tileable), so);
-  } else {
-    s = synthesize_tiles(e, so);
+    so.cost_maps = seam_cost_maps(m.maps);
+    so.colour_weight = a.albedo_weight;
   }
+  TextureTileSet s = synthesize_tiles(e, so);
   const Image albedo = map_as_sampled(m.albedo, tileable, s.perspective, s.exemplar_scale);
   s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
   if (s.sampled.width > 0) s.sampled = albedo.to_depth(8);
@@ -105,7 +102,6 @@ TextureTileSet synthesize_material(const TilesArgs& a, const Exemplar& e, const 
   m.report = {{"maps", maps},
               {"map_cost", m.maps.empty() ? "albedo" : a.map_cost},
               {"albedo_weight", a.albedo_weight},
-              {"feature_variance_explained", explained},
               {"bits", m.albedo.depth},
               {"exemplar_size", {w, h}},
               {"coords", "coords"}};
@@ -119,6 +115,8 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   o.seed = a.run.seed;
   o.progress = !a.quiet;
   o.keep_period = a.period != "off";
+  if (a.thin_bands && a.wide_bands) throw InputError("--thin-bands and --wide-bands: choose one");
+  o.thin_bands = !a.wide_bands;                   // thin by default: less grid repetition on every texture measured
   if (a.period != "auto" && a.period != "off") {  // X,Y in pixels (0: none along that axis)
     double x = 0, y = 0;
     char tail = 0;
@@ -129,13 +127,30 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
     o.period_override = {x, y};
   }
   o.rectify = a.perspective == "auto";
+  std::string tile_text = a.tile_px;
+  if (tile_text != "auto") {  // an integer, through the same strict parse as every numeric flag
+    if (!cli::strict_number(tile_text, "INT").empty() || std::stoll(tile_text) < 0 || std::stoll(tile_text) > 1 << 20)
+      throw InputError(fmt::format("--tile-px '{}': expected auto or an even number of pixels in 16..1024", a.tile_px));
+    o.tile_px = int(std::stoll(tile_text));
+  }
   const Exemplar e = load_exemplar(a.exemplar, a.tileable);
+  nlohmann::json tile_choice = nullptr;
+  if (tile_text == "auto") {  // from the feature scale (texture/exemplar.hpp)
+    ExemplarPeriod p;
+    if (o.keep_period) p = dominant_period(e);
+    if (o.period_override[0] > 0 || o.period_override[1] > 0) p.x = o.period_override[0], p.y = o.period_override[1];
+    const TileSizeChoice c = choose_tile_size(e, p);
+    o.tile_px = c.tile_px;
+    tile_choice = {{"tile_px", c.tile_px}, {"reason", c.reason}, {"feature_px", c.feature_px}, {"period", c.period}};
+    if (!a.quiet) fmt::print(stderr, "texture tiles: --tile-px auto: {}\n", c.reason);
+  }
   MaterialRun m;
   for (const std::string& spec : a.maps) m.maps.push_back(parse_material_map(spec));
   m.albedo = exemplar_at_depth(a.exemplar, e);
   const bool material = !m.maps.empty() || m.albedo.depth == 16 || a.coords;
   const TextureTileSet s = material ? synthesize_material(a, e, o, m) : synthesize_tiles(e, o);
   write_tile_set(s, a.out, e.name, [&](const std::string& dir, nlohmann::json& manifest) {
+    if (!tile_choice.is_null()) manifest["tile_px_auto"] = tile_choice;
     if (!material) return;
     manifest.update(m.report);
     nlohmann::json base = manifest;
@@ -157,6 +172,7 @@ void run_tiles(const TilesArgs& a, const Context& ctx) {
   });
   nlohmann::json j = tile_set_json(s);
   if (material) j.update(m.report);
+  if (!tile_choice.is_null()) j["tile_px_auto"] = tile_choice;
   if (const std::string why = o.keep_period ? structure_message(s.period) : ""; !why.empty())
     fmt::print(stderr, "texture tiles: {}\n", why);
   j["exemplar"] = e.name;
@@ -202,8 +218,16 @@ void add_tiles(CLI::App& texture, Context& ctx) {
   cmd->add_option("--kind", a->kind, "corner (Ng et al., thesis 5.3) or wang (Cohen et al. 2003)")
       ->check(CLI::IsMember({"corner", "wang"}))
       ->capture_default_str();
-  cmd->add_option("--colors", a->synthesis.colours, "Colours C: the complete set has C^4 tiles")->required();
-  cmd->add_option("--tile-px", a->synthesis.tile_px, "Tile size in pixels (even, 16..1024)")->capture_default_str();
+  cmd->add_option("--colors", a->synthesis.colours,
+                  "Colours C: the complete set has C^4 tiles (4 recommended: grid repetition 0.02-0.03 with thin "
+                  "bands on every irregular texture measured, against 0.03-0.04 for C = 3)")
+      ->required();
+  cmd->add_option("--tile-px", a->tile_px,
+                  "Tile size in pixels (even, 16..1024), or auto: from the exemplar's feature scale (a multiple of its "
+                  "period near 128, else two features across by its luminance autocorrelation; 64..512), the "
+                  "choice and its reason on stderr and in tiles.json")
+      ->type_name("PX|auto")
+      ->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")
       ->required();
   add_run_options(cmd, RunOptionFlags::Threads | RunOptionFlags::Seed, a->run);
@@ -214,9 +238,13 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--centre-cuts", a->synthesis.centre_cuts, "Of those, how many get the full graph cut")
       ->capture_default_str();
-  cmd->add_flag("--thin-bands", a->synthesis.thin_bands,
-                "Share fewer texels (margin 3n/64, a wide cut zone pulled to the centre): less grid repetition, "
-                "but mip level 2 next to a border is no longer exact (not for a periodic exemplar)");
+  cmd->add_flag("--thin-bands", a->thin_bands,
+                "The default (BENCHMARKS.md, \"defaults by measurement\"): share fewer texels (margin 3n/64, a "
+                "wide cut zone pulled to the centre): less grid repetition, but mip level 2 next to a border is no "
+                "longer exact; a periodic exemplar keeps wide bands");
+  cmd->add_flag("--wide-bands", a->wide_bands,
+                "The bands before thin ones were the default (margin 5n/64): mip levels 0-2 exact next to a border, "
+                "cuts a little less visible, more grid repetition");
   cmd->add_option("--period", a->period,
                   "auto: keep a periodic exemplar's structure (resample it to whole periods per tile, samples in "
                   "phase); off: never; X,Y: this period in pixels (0: none along that axis), e.g. brick courses "
@@ -233,11 +261,13 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                   "called normal); tiles in DIR/maps/NAME/, aligned texel for texel with the exemplar's")
       ->type_name("NAME=FILE[:ROLE[:WEIGHT]]");
   cmd->add_option("--map-cost", a->map_cost,
-                  "all: samples and cuts weigh every map (normals as vectors); albedo: the exemplar alone")
+                  "all: the seam costs of samples and cuts add each map's term (WEIGHT x its step in units of its "
+                  "mean step; normals as vectors) to the exemplar's; albedo: the exemplar alone")
       ->check(CLI::IsMember({"all", "albedo"}))
       ->capture_default_str();
   cmd->add_option("--albedo-weight", a->albedo_weight,
-                  "The exemplar's weight beside the maps' (each map's is its WEIGHT)")
+                  "With --map-cost all, the weight of the exemplar's own term in the seam costs (each map's is its "
+                  "WEIGHT, default 1)")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   cmd->add_flag("--coords", a->coords,
@@ -250,7 +280,7 @@ void add_tiles(CLI::App& texture, Context& ctx) {
 struct AtlasArgs {
   std::string dir, out, db, hash = "long-period", color_space;
   std::uint64_t seed = 1;
-  bool no_db = false, power_of_two = false;
+  bool no_db = false, power_of_two = false, no_toksvig = false;
 };
 
 void run_atlas(const AtlasArgs& a, const Context& ctx) {
@@ -302,6 +332,25 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
     if (a.power_of_two) ma = resample_to_power_of_two(ma);
     map_atlases.push_back({d.filename().string(), std::move(ma)});
   }
+  // Toksvig (texture/mipmap.hpp, toksvig_chain): the length the normal map's mips lose is folded
+  // into the mips of the map called roughness, unless --no-toksvig.
+  std::string toksvig_from;
+  const auto named = [&](const std::string& name) {
+    return std::find_if(map_atlases.begin(), map_atlases.end(), [&](const MapAtlas& ma) { return ma.name == name; });
+  };
+  if (const auto rough = named("roughness"); !a.no_toksvig && rough != map_atlases.end()) {
+    auto normal = named("normal");
+    if (normal == map_atlases.end() || normal->atlas.colour_space != ColourSpace::Normal)
+      normal = std::find_if(map_atlases.begin(), map_atlases.end(),
+                            [](const MapAtlas& ma) { return ma.atlas.colour_space == ColourSpace::Normal; });
+    if (normal != map_atlases.end() && rough->atlas.colour_space != ColourSpace::Normal) {
+      std::vector<Image> chain = toksvig_chain(rough->atlas.levels[0], normal->atlas.levels, MipEdge::Wrap);
+      if (chain.size() == rough->atlas.levels.size()) {
+        rough->atlas.levels = std::move(chain);
+        toksvig_from = normal->name;
+      }
+    }
+  }
   const AtlasFiles f = write_texture_atlas(atlas, a.out, glsl_sampler_file(atlas, ro), shaders_of(atlas));
   nlohmann::json maps = nlohmann::json::object();
   for (const MapAtlas& ma : map_atlases) {
@@ -313,6 +362,8 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
                      {"manifest", mf.manifest},
                      {"colour_space", std::string(colour_space_name(ma.atlas.colour_space))},
                      {"bits", ma.atlas.levels[0].depth}};
+    if (ma.name == "roughness")
+      maps[ma.name]["toksvig"] = toksvig_from.empty() ? nullptr : nlohmann::json(toksvig_from);
   }
   nlohmann::json j = {{"out", f.levels[0]},
                       {"levels", f.levels},
@@ -347,8 +398,11 @@ void run_atlas(const AtlasArgs& a, const Context& ctx) {
         f.ktx2, colour_space_name(atlas.colour_space), f.manifest, f.header, f.glsl, f.shaders[0], f.shaders[1], f.shaders[2]);
     fmt::print("colour space {}, {} bits\n", colour_space_name(atlas.colour_space), atlas.levels[0].depth);
     for (const auto& [name, mj] : maps.items())
-      fmt::print("map {}: {} ({}, {} bits)\n", name, mj["out"].get<std::string>(),
-                 mj["colour_space"].get<std::string>(), mj["bits"].get<int>());
+      fmt::print("map {}: {} ({}, {} bits{})\n", name, mj["out"].get<std::string>(),
+                 mj["colour_space"].get<std::string>(), mj["bits"].get<int>(),
+                 name == "roughness" && !toksvig_from.empty()
+                     ? fmt::format("; mips widened by the length map {}'s mips lose, Toksvig", toksvig_from)
+                     : "");
   });
 }
 
@@ -362,6 +416,9 @@ void add_atlas(CLI::App& texture, Context& ctx) {
                   "atlas.glsl, atlas.vk.glsl, atlas.hlsl and atlas.wgsl go beside it, and atlas-NAME.png (and so on) "
                   "for every map of a material set (DIR/maps/NAME, DIR/coords)")
       ->required();
+  cmd->add_flag("--no-toksvig", a->no_toksvig,
+                "Keep a material's roughness mips plain averages (by default, when DIR/maps has a map called "
+                "roughness and a normal map, the length the normal mips lose widens the roughness mips: Toksvig)");
   cmd->add_option("--color-space", a->color_space,
                   "How the levels are averaged and stored (default: the tile set's, from its tiles.json): srgb, "
                   "colour in linear light (atlas.ktx2 RGBA8 sRGB); linear, data such as roughness or height; normal, "

@@ -9,8 +9,8 @@
 # (tiles on their square lattice, hex and hpn on their own triangle lattice of side cell_px),
 # seam ratio (square lattices only), cut visibility (tiles: with the labels of the same view;
 # hex and hpn blend and have no cuts) and histogram distance.
-# Tiles come twice, from the same run: `tiles` (the default bands) and `tiles-thin` (`texture tiles
-# --thin-bands`; a periodic exemplar keeps the default bands, so its two are the same).
+# Tiles come twice, from the same run: `tiles` (`texture tiles --wide-bands`) and `tiles-thin`
+# (`--thin-bands`, the default; a periodic exemplar keeps wide bands, so its two are the same).
 # Usage: scripts/texture-compare.sh [EXEMPLAR...]   (default: every PNG in the texture cache)
 #   TILEKIT_COMPARE_OUT  output folder (default: out/texture-compare in the repository)
 # Writes OUT/NAME/{flat,tilted}-METHOD.png (METHOD: tiles, tiles-thin, hex, hpn), OUT/results.jsonl (one JSON object per texture and
@@ -38,7 +38,7 @@ for ex in "$@"; do
   mkdir -p "$dir"
   echo "texture-compare: $name" >&2
   for bands in tiles tiles-thin; do
-    thin=()
+    thin=(--wide-bands)
     [ "$bands" = tiles-thin ] && thin=(--thin-bands)
     "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 "${thin[@]}" \
       --out "$dir/$bands" --quiet >/dev/null

@@ -17,7 +17,7 @@ export LP_NUM_THREADS=${LP_NUM_THREADS:-2}
 mkdir -p "$out"
 field() { sed -n "s/.*\"$1\":\"\\{0,1\\}\\([^,\"}]*\\).*/\\1/p" <<<"$2"; }
 [ -f "$out/atlas.json" ] || {
-  "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 --out "$out/tiles" --quiet >/dev/null
+  "$tk" texture tiles --exemplar "$ex" --kind corner --colors 4 --tile-px 64 --seed 1 --wide-bands --out "$out/tiles" --quiet >/dev/null
   "$tk" texture atlas "$out/tiles" --out "$out/atlas.png" --no-db >/dev/null
 }
 view=(--size 1024x576 --scale 1 --tilt 3 --seed 1 --quiet --glsl --frames "$frames" --json)

@@ -15,6 +15,11 @@
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
 #       the borders, the corner squares, a centre patch per tile);
 #   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
+#   texture-heldout-{ufo-brick,ufo-wood,ufo-dirt}-{tiles,hex,hpn,naive}.png  (--held-out: only
+#       these) flat 256x256 renders of held-out textures (scripts/fetch-textures.sh --held-out),
+#       side by side: corner tiles (C = 4, 64 px, --thin-bands, which a periodic exemplar ignores),
+#       hex tiling, histogram-preserving blending and the naive mosaic of random 64-px crops
+#       (build/bench_texture_quality's, so that needs the benchmarks built).
 # The exemplars are never copied into the repository (scripts/fetch-textures.sh caches them).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -22,8 +27,27 @@ tk="$root/build/tilekit"
 img="$root/docs/images"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+if [ "${1:-}" = --held-out ]; then
+  "$root/scripts/fetch-textures.sh" --held-out
+  cache=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
+  for t in ufo-brick ufo-wood ufo-dirt; do
+    ex="$cache/$t.png"
+    "$tk" texture tiles --exemplar "$ex" --tileable --kind corner --colors 4 --tile-px 64 --seed 1 --thin-bands \
+      --out "$work/$t/tiles" --quiet
+    "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
+    "$tk" texture render --atlas "$work/$t/atlas.png" --size 256x256 --out "$img/texture-heldout-$t-tiles.png" --quiet
+    for m in hex hpn; do
+      "$tk" texture render --method "$m" --exemplar "$ex" --size 256x256 --quiet --out "$img/texture-heldout-$t-$m.png"
+    done
+    "$root/build/bench_texture_quality" --textures "$t" --kinds corner --colors 2 --size 256 --threads 2 \
+      --out "$work" >/dev/null
+    cp "$work/$t-naive.png" "$img/texture-heldout-$t-naive.png"
+  done
+  echo "texture-pictures: $img/texture-heldout-*.png"
+  exit 0
+fi
 "$root/scripts/fetch-textures.sh"
-"$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --out "$work/tiles" --quiet
+"$tk" texture tiles --exemplar gravel --kind corner --colors 2 --tile-px 64 --seed 1 --wide-bands --out "$work/tiles" --quiet
 "$tk" texture atlas "$work/tiles" --out "$work/atlas.png" --no-db
 view=(--size 640x360 --scale 1 --tilt 2 --quiet)
 cp "$work/tiles/tileset.png" "$img/texture-gravel-corner-tiles.png"

@@ -126,17 +126,17 @@ class CornerSynthesis {
         const int q = m + p;
         if (!shown) {
           band.at(r, p) =
-              (colour_distance(band_px(q - 1, t), corner_px(q - 1, t)) + colour_distance(band_px(q, t), corner_px(q, t))) /
+              (x_.distance(band_px(q - 1, t), corner_px(q - 1, t)) + x_.distance(band_px(q, t), corner_px(q, t))) /
               unit;
           continue;
         }
-        band.at(r, p) = channel_step(corner_px(q - 1, t), band_px(q, t)) / unit;
+        band.at(r, p) = x_.step(corner_px(q - 1, t), band_px(q, t)) / unit;
         if (r == 0) continue;
         // boundary q - 1 in row r - 1, q in row r: pixel q - 1 is the band's above, the corner's here
         const std::size_t i = std::size_t(r) * std::size_t(band.width) + std::size_t(p);
-        band.rise[i] = channel_step(band_px(q - 1, t - 1), corner_px(q - 1, t)) / unit;
+        band.rise[i] = x_.step(band_px(q - 1, t - 1), corner_px(q - 1, t)) / unit;
         // q + 1 in row r - 1, q in row r: pixel q is the corner's above, the band's here
-        band.fall[i] = channel_step(corner_px(q, t - 1), band_px(q, t)) / unit;
+        band.fall[i] = x_.step(corner_px(q, t - 1), band_px(q, t)) / unit;
       }
     }
     return min_error_cut(band);
@@ -263,7 +263,9 @@ class CornerSynthesis {
 
 TextureTileSet synthesize_corner_tiles(const Exemplar& e, const SynthesisOptions& o) {
   check_synthesis_options(e, o);
-  return CornerSynthesis(e, o).run();
+  SynthesisOptions with = o;
+  with.record_coords = o.record_coords || !o.cost_maps.empty();  // the maps' costs look texels up by them
+  return CornerSynthesis(e, with).run();
 }
 
 }  // namespace tilekit

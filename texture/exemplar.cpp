@@ -167,6 +167,63 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
   return p;
 }
 
+TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period) {
+  TileSizeChoice c;
+  const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();
+  const int most = std::max(16, std::min({512, e.width() - 16, e.height() - 16}) / 2 * 2);
+  const auto clamp = [&](int t) { return std::clamp(t / 2 * 2, std::min(64, most), most); };
+  c.period = std::max(period.x, period.y);
+  if (c.period > 0) {
+    const double k = std::max(1.0, std::round(128 / c.period));
+    c.tile_px = clamp(int(std::lround(k * c.period)));
+    c.reason = fmt::format("period {:.1f} px: {} px tiles hold {:g} whole period{}", c.period, c.tile_px, k,
+                           k == 1 ? "" : "s");
+    return c;
+  }
+  // the luminance's autocorrelation along x and y (the torus, or the pairs inside the image)
+  std::vector<float> l(std::size_t(w) * std::size_t(h));
+  double mean = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) mean += l[std::size_t(y) * std::size_t(w) + std::size_t(x)] = luma(e.at(x, y));
+  mean /= double(l.size());
+  double var = 0;
+  for (float& v : l) v = float(v - mean), var += double(v) * v;
+  var /= double(l.size());
+  c.feature_px = std::min(w, h) / 2.0;
+  if (var > 0) {
+    auto r = [&](int dx, int dy) {
+      double sum = 0;
+      std::size_t pairs = 0;
+      for (int y = 0; y < (e.wrap_h ? h : h - dy); ++y)
+        for (int x = 0; x < (e.wrap_w ? w : w - dx); ++x, ++pairs)
+          sum += double(l[std::size_t(y) * std::size_t(w) + std::size_t(x)]) *
+                 l[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)];
+      return pairs ? sum / double(pairs) / var : 0.0;
+    };
+    double before = 1, lowest = 1;
+    int lowest_at = std::min(w, h) / 2;
+    bool found = false;
+    for (int d = 1; d < std::min(w, h) / 2; ++d) {
+      const double here = (r(d, 0) + r(0, d)) / 2;
+      if (here <= kFeatureCorrelation) {  // between lags, linearly
+        c.feature_px = d - 1 + (before - kFeatureCorrelation) / std::max(1e-9, before - here);
+        found = true;
+        break;
+      }
+      if (here < lowest) lowest = here, lowest_at = d;
+      before = here;
+    }
+    if (!found) c.feature_px = lowest_at;  // never that low (slow shading): where it is lowest
+  }
+  c.tile_px = clamp(int(std::ceil(2 * c.feature_px / 32)) * 32);
+  c.reason = fmt::format(
+      "features up to about {:.0f} px across (where the luminance autocorrelation falls to {:g}): "
+      "{} px tiles{}",
+      c.feature_px, kFeatureCorrelation, c.tile_px,
+      c.tile_px >= int(std::ceil(2 * c.feature_px)) ? " hold two across" : " (the most this exemplar allows)");
+  return c;
+}
+
 std::string texture_cache_dir() {
   if (const char* dir = std::getenv("TILEKIT_TEXTURES"); dir && *dir) return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/tilekit/textures";

@@ -67,6 +67,23 @@ inline bool structure_likely(const ExemplarPeriod& p) {
 }
 ExemplarPeriod dominant_period(const Exemplar& e);
 
+// `texture tiles --tile-px auto`: a tile size from the exemplar's feature scale. With a period
+// (dominant_period, or the user's): the multiple of the larger period nearest 128 px (at least one
+// period), so a tile holds whole periods. Otherwise the size D of the largest features: the least
+// lag at which the autocorrelation of its luminance (along x and y, averaged) falls to
+// kFeatureCorrelation (a texture of blobs of diameter D decorrelates at about D; where it never
+// falls that low, slow shading, the lag where it is lowest), and tiles of the least multiple of
+// 32 px that holds two features across. Both clamped to 64 .. 512 px and to what the exemplar
+// allows (tile_px + 16 <= its smaller side, tile_synthesis.cpp).
+inline constexpr double kFeatureCorrelation = 0.1;
+struct TileSizeChoice {
+  int tile_px = 128;
+  double feature_px = 0;  // D (0 with a period)
+  double period = 0;      // the larger period used (0: none)
+  std::string reason;     // one line for the user
+};
+TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period);
+
 // Euclidean RGB distance between two pixels (0 .. 441.7).
 inline float colour_distance(const std::uint8_t* a, const std::uint8_t* b) {
   const int dr = int(a[0]) - int(b[0]), dg = int(a[1]) - int(b[1]), db = int(a[2]) - int(b[2]);

@@ -49,7 +49,8 @@ class Builder {
 }  // namespace
 
 GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
-                               const std::vector<std::uint8_t>& forced, double keep_cost) {
+                               const std::vector<std::uint8_t>& forced, double keep_cost,
+                               const std::function<float(std::size_t, std::size_t)>& extra, float colour_weight) {
   const std::int64_t keep = std::int64_t(std::llround(keep_cost * kScale));
   const int w = a.width, h = a.height;
   assert(b.width == w && b.height == h && region.size() == std::size_t(w) * std::size_t(h));
@@ -64,7 +65,12 @@ GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector
   // next to B(t) and B(s) next to A(t), whichever side takes which patch.
   auto cost = [&](int x, int y, int dx, int dy) {
     const int x1 = x + dx, y1 = y + dy;
-    const float m = colour_distance(a.at(x, y), b.at(x1, y1)) + colour_distance(b.at(x, y), a.at(x1, y1));
+    float m = colour_distance(a.at(x, y), b.at(x1, y1)) + colour_distance(b.at(x, y), a.at(x1, y1));
+    if (extra) {
+      const std::size_t s = std::size_t(y) * std::size_t(w) + std::size_t(x),
+                        t = std::size_t(y1) * std::size_t(w) + std::size_t(x1);
+      m = colour_weight * m + extra(s, t) + extra(t, s);
+    }
     return std::int64_t(std::llround(double(m) * kScale));
   };
   for (int y = 0; y < h; ++y)

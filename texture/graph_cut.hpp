@@ -9,6 +9,7 @@
 // where the step across them is large: both saw more visible cuts, by texture/README.md's cut
 // visibility, on every texture tried). The minimum cut is Boost.Graph's boykov_kolmogorov_max_flow.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "image/image.hpp"
@@ -26,7 +27,12 @@ struct GraphCutResult {
 // units of colour_distance) is paid for every pixel of the region, not forced, that keeps A: a
 // pull towards B, so the cut leaves a pixel to A only where that makes the seam cheaper by as
 // much. The result's cost includes it.
+// Material sets: `extra(i, j)`, when given, is the further cost (the maps' terms) of A's texel
+// at pixel i shown next to B's at pixel j; the seam then costs colour_weight times the colour's
+// steps plus extra(s, t) + extra(t, s).
 GraphCutResult graph_cut_merge(const Image& a, const Image& b, const std::vector<std::uint8_t>& region,
-                               const std::vector<std::uint8_t>& forced, double keep_cost = 0);
+                               const std::vector<std::uint8_t>& forced, double keep_cost = 0,
+                               const std::function<float(std::size_t, std::size_t)>& extra = {},
+                               float colour_weight = 1);
 
 }  // namespace tilekit

@@ -70,54 +70,6 @@ void renormalise(Image& img) {
     }
 }
 
-// Jacobi's method: the eigenvalues (descending) and eigenvectors (rows) of a symmetric matrix.
-void symmetric_eigen(std::vector<double> a, std::size_t d, std::vector<double>& values, std::vector<double>& vectors) {
-  std::vector<double> v(d * d, 0.0);
-  for (std::size_t i = 0; i < d; ++i) v[i * d + i] = 1;
-  for (int sweep = 0; sweep < 64; ++sweep) {
-    double off = 0;
-    for (std::size_t p = 0; p < d; ++p)
-      for (std::size_t q = p + 1; q < d; ++q) off += a[p * d + q] * a[p * d + q];
-    if (off < 1e-22) break;
-    for (std::size_t p = 0; p < d; ++p)
-      for (std::size_t q = p + 1; q < d; ++q) {
-        if (std::abs(a[p * d + q]) < 1e-30) continue;
-        const double theta = (a[q * d + q] - a[p * d + p]) / (2 * a[p * d + q]);
-        const double t = (theta >= 0 ? 1 : -1) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (std::size_t k = 0; k < d; ++k) {  // columns p, q
-          const double akp = a[k * d + p], akq = a[k * d + q];
-          a[k * d + p] = c * akp - s * akq, a[k * d + q] = s * akp + c * akq;
-        }
-        for (std::size_t k = 0; k < d; ++k) {  // rows p, q
-          const double apk = a[p * d + k], aqk = a[q * d + k];
-          a[p * d + k] = c * apk - s * aqk, a[q * d + k] = s * apk + c * aqk;
-        }
-        for (std::size_t k = 0; k < d; ++k) {
-          const double vkp = v[k * d + p], vkq = v[k * d + q];
-          v[k * d + p] = c * vkp - s * vkq, v[k * d + q] = s * vkp + c * vkq;
-        }
-      }
-  }
-  std::vector<std::size_t> order(d);
-  for (std::size_t i = 0; i < d; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t x, std::size_t y) { return a[x * d + x] > a[y * d + y]; });
-  values.assign(d, 0);
-  vectors.assign(d * d, 0);
-  for (std::size_t r = 0; r < d; ++r) {
-    values[r] = a[order[r] * d + order[r]];
-    for (std::size_t k = 0; k < d; ++k) vectors[r * d + k] = v[k * d + order[r]];
-  }
-}
-
-bool is_grey(const Image& img) {
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      if (img.sample(x, y, 0) != img.sample(x, y, 1) || img.sample(x, y, 0) != img.sample(x, y, 2)) return false;
-  return true;
-}
-
 }  // namespace
 
 void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
@@ -140,84 +92,9 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
   }
 }
 
-MaterialFeatures material_features(const Image& albedo, double albedo_weight, const std::vector<MaterialMap>& maps) {
-  const int w = albedo.width, h = albedo.height;
-  const std::size_t texels = std::size_t(w) * std::size_t(h);
-  // The blocks: (image, space, weight, channels used).
-  struct Block {
-    const Image* img;
-    ColourSpace space;
-    double weight;
-    int channels;
-  };
-  std::vector<Block> blocks{{&albedo, ColourSpace::Srgb, albedo_weight, 3}};
-  for (const MaterialMap& m : maps) {
-    if (m.image.width != w || m.image.height != h)
-      throw InputError(fmt::format("map {} ({}x{}) is not the exemplar's size ({}x{})", m.name, m.image.width,
-                                   m.image.height, w, h));
-    blocks.push_back({&m.image, m.space, m.weight, m.space != ColourSpace::Normal && is_grey(m.image) ? 1 : 3});
-  }
-  std::size_t d = 0;
-  for (const Block& b : blocks) d += std::size_t(b.channels);
-  std::vector<double> f(texels * d);
-  std::size_t offset = 0;
-  for (const Block& b : blocks) {
-    const double max = b.img->max_value();
-    std::vector<double> mean(std::size_t(b.channels), 0.0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < b.channels; ++c) {
-          const double v = b.img->sample(x, y, c) / max;
-          const double val = b.space == ColourSpace::Normal ? 2 * v - 1 : v;  // normals as vectors
-          f[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset + std::size_t(c)] = val;
-          mean[std::size_t(c)] += val;
-        }
-    for (int c = 0; c < b.channels; ++c) mean[std::size_t(c)] /= double(texels);
-    for (std::size_t i = 0; i < texels; ++i)
-      for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] -= mean[std::size_t(c)];
-    // The block's unit: the mean distance between 4-neighbours (what a cut through it shows),
-    // so that a map counts by how visible its steps are, not by its contrast.
-    double step = 0;
-    std::size_t pairs = 0;
-    for (int y = 0; y + 1 < h; ++y)
-      for (int x = 0; x + 1 < w; ++x) {
-        const std::size_t i = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * d + offset;
-        for (const std::size_t j : {i + d, i + std::size_t(w) * d}) {
-          double s2 = 0;
-          for (int c = 0; c < b.channels; ++c)
-            s2 += (f[i + std::size_t(c)] - f[j + std::size_t(c)]) * (f[i + std::size_t(c)] - f[j + std::size_t(c)]);
-          step += std::sqrt(s2), ++pairs;
-        }
-      }
-    step /= double(std::max<std::size_t>(pairs, 1));
-    const double scale = step > 0 ? b.weight / step : 0.0;
-    for (std::size_t i = 0; i < texels; ++i)
-      for (int c = 0; c < b.channels; ++c) f[i * d + offset + std::size_t(c)] *= scale;
-    offset += std::size_t(b.channels);
-  }
-  std::vector<double> cov(d * d, 0.0);
-  for (std::size_t i = 0; i < texels; ++i)
-    for (std::size_t p = 0; p < d; ++p)
-      for (std::size_t q = p; q < d; ++q) cov[p * d + q] += f[i * d + p] * f[i * d + q];
-  for (std::size_t p = 0; p < d; ++p)
-    for (std::size_t q = p; q < d; ++q) cov[q * d + p] = cov[p * d + q] /= double(texels);
-  std::vector<double> values, vectors;
-  symmetric_eigen(cov, d, values, vectors);
-  double total = 0;
-  for (double v : values) total += std::max(0.0, v);
-  MaterialFeatures out;
-  out.image = Image(w, h, Rgb{128, 128, 128});
-  const double sigma = std::sqrt(std::max(values[0], 1e-12));
-  const double scale = 127.0 / (3.5 * sigma);  // +-3.5 standard deviations of the first component
-  for (std::size_t k = 0; k < 3 && k < d; ++k) out.explained[k] = total > 0 ? std::max(0.0, values[k]) / total : 0;
-  for (std::size_t i = 0; i < texels; ++i) {
-    std::uint8_t* px = out.image.pixels.data() + 4 * i;
-    for (std::size_t k = 0; k < 3 && k < d; ++k) {
-      double p = 0;
-      for (std::size_t j = 0; j < d; ++j) p += vectors[k * d + j] * f[i * d + j];
-      px[k] = std::uint8_t(std::clamp(std::lround(128 + scale * p), 0l, 255l));
-    }
-  }
+std::vector<SeamCostMap> seam_cost_maps(const std::vector<MaterialMap>& maps) {
+  std::vector<SeamCostMap> out;
+  for (const MaterialMap& m : maps) out.push_back({m.image, m.space == ColourSpace::Normal, m.weight});
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Material sets: several aligned maps of one surface (albedo, normal, roughness, height, ...)
-// made into texture tiles by one synthesis. The samples and cuts are chosen once, on a feature
-// image that weighs every map (material_features), and every map's tiles are then copies of its
+// made into texture tiles by one synthesis. The samples and cuts are chosen once, on the albedo
+// with a weighted term per map in every seam cost (seam_cost_maps), and every map's tiles are then copies of its
 // own texels at the positions the synthesis recorded (TextureTileSet::coords), so the maps stay
 // aligned texel for texel. The positions are written as a map of their own (coordinate tiles), so
 // a map made later can be carried over the same way (`texture transfer`).
@@ -22,7 +22,7 @@ struct MaterialMap {
   std::string name;  // what its folder is called (DIR/maps/NAME)
   std::string file;
   ColourSpace space = ColourSpace::Srgb;  // srgb colour, linear data or tangent-space normals
-  double weight = 1;                      // its share of the synthesis cost (material_features)
+  double weight = 1;                      // its term's weight in the seam costs (seam_cost_maps)
   Image image;                            // as read: 8 or 16 bits, RGBA; the exemplar's size after resize_maps
   bool resized = false;                   // resampled to the exemplar's grid (resize_maps)
 };
@@ -34,17 +34,11 @@ MaterialMap parse_material_map(const std::string& spec);
 // Every map resampled (bilinear; normals renormalised) to w x h where it is not that size already.
 void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus);
 
-// The feature image the synthesis runs on: per texel the albedo (sRGB values) and every map
-// (normals as vectors, n = 2v - 1; grey data as one channel), each map's block scaled to unit
-// total variance times its weight, projected onto the three principal components of all texels
-// and stored as 8-bit RGB (one scale for all three, so distances stay Euclidean). The costs of the
-// synthesis (cut error, graph cuts, seam goal) compare these, so a cut that is invisible in the
-// albedo but shows in the normals costs what it shows. `albedo` is the exemplar's w x h image.
-struct MaterialFeatures {
-  Image image;
-  std::array<double, 3> explained{0, 0, 0};  // the fraction of the weighted variance each component holds
-};
-MaterialFeatures material_features(const Image& albedo, double albedo_weight, const std::vector<MaterialMap>& maps);
+// The maps as the synthesis' seam costs weigh them (SynthesisOptions::cost_maps): cost = the
+// albedo's own term (exactly the albedo-only cost) + the sum over the maps of WEIGHT x the map's
+// distance (normals as vectors) in units of its mean neighbour distance. A cut that is invisible
+// in the albedo but shows in the normals costs what it shows.
+std::vector<SeamCostMap> seam_cost_maps(const std::vector<MaterialMap>& maps);
 
 // A map of the exemplar's size as the synthesis saw the exemplar: rectified (perspective) and
 // resampled to whole periods (exemplar_scale) as the tile set records; unchanged otherwise.

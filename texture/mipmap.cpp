@@ -188,4 +188,24 @@ double toksvig_roughness(double r, double len) {
   return std::clamp(std::sqrt(std::sqrt(alpha2)), 0.0, 1.0);
 }
 
+std::vector<Image> toksvig_chain(const Image& roughness0, const std::vector<Image>& normals, MipEdge edge) {
+  if (normals.empty() || normals[0].width != roughness0.width || normals[0].height != roughness0.height) return {};
+  std::vector<Image> chain{roughness0};
+  for (std::size_t k = 1; k < normals.size(); ++k) {
+    Image r = downsample(chain.back(), edge, ColourSpace::Linear);
+    const std::vector<double> len = normal_lengths(normals[k - 1], edge);
+    if (r.width != normals[k].width || r.height != normals[k].height || len.size() != std::size_t(r.width) * r.height)
+      return {};
+    const double max = r.max_value();
+    for (int y = 0; y < r.height; ++y)
+      for (int x = 0; x < r.width; ++x) {
+        const double l = len[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
+        for (int c = 0; c < std::min(3, r.channels); ++c)
+          r.set_sample(x, y, c, unsigned(std::lround(toksvig_roughness(r.sample(x, y, c) / max, l) * max)));
+      }
+    chain.push_back(std::move(r));
+  }
+  return chain;
+}
+
 }  // namespace tilekit

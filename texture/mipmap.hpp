@@ -52,5 +52,11 @@ std::vector<double> normal_lengths(const Image& normals, MipEdge edge);
 // Roughness r (GGX alpha = r^2) widened by the variance a normal of length `len` shows:
 // alpha'^2 = alpha^2 + (1 - len) / len (Toksvig 2005), back as roughness.
 double toksvig_roughness(double r, double len);
+// The mip chain of a roughness map (linear data, roughness in R, G and B) that goes with the
+// normal map whose chain is `normals` (levels of the same sizes): level k is level k - 1 of this
+// chain downsampled, each texel widened (toksvig_roughness) by the length the normals lost from
+// normals[k - 1] to level k (normal_lengths), so the variances of successive levels add up.
+// Level 0 is `roughness0` itself; alpha is left as it is. Empty when the sizes differ.
+std::vector<Image> toksvig_chain(const Image& roughness0, const std::vector<Image>& normals, MipEdge edge);
 
 }  // namespace tilekit

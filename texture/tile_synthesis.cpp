@@ -18,6 +18,7 @@
 #include "base/random.hpp"
 #include "base/signals.hpp"
 #include "texture/graph_cut.hpp"
+#include "texture/material.hpp"
 
 namespace tilekit {
 
@@ -77,8 +78,65 @@ double seam_goal_miss(double ratio) {
   return std::max(0.0, std::abs(ratio - 1) - kBorderTolerance);
 }
 
+void SynthesisExemplar::build_planes(const SynthesisOptions& o) {
+  colour_weight_ = float(o.colour_weight);
+  if (o.cost_maps.empty()) return;
+  const int ew = e_.width(), eh = e_.height();
+  struct Plane {
+    Image map;  // as sampled
+    int channels;
+    bool normal;
+    double weight;
+  };
+  std::vector<Plane> maps;
+  for (const SeamCostMap& m : o.cost_maps) {
+    Image img = map_as_sampled(m.image, e_.wrap_w > 0, perspective_, scale_);
+    bool grey = !m.normal;
+    for (int y = 0; grey && y < img.height; ++y)
+      for (int x = 0; grey && x < img.width; ++x)
+        grey = img.sample(x, y, 0) == img.sample(x, y, 1) && img.sample(x, y, 0) == img.sample(x, y, 2);
+    maps.push_back({std::move(img), grey ? 1 : 3, m.normal, m.weight});
+    map_widths_.push_back(grey ? 1 : 3);
+    map_channels_ += grey ? 1 : 3;
+  }
+  planes_.assign(std::size_t(ew) * std::size_t(eh) * std::size_t(map_channels_), 0.0f);
+  int offset = 0;
+  for (const Plane& m : maps) {
+    const int mw = m.map.width, mh = m.map.height;
+    const double max = m.map.max_value();
+    auto value = [&](int x, int y, int c) {
+      const double v = m.map.sample(x, y, c) / max;
+      return m.normal ? 2 * v - 1 : v;
+    };
+    // the map's unit: its mean step between 4-neighbours (what a cut through it shows)
+    double sum = 0;
+    std::size_t pairs = 0;
+    for (int y = 0; y + 1 < mh; ++y)
+      for (int x = 0; x + 1 < mw; ++x)
+        for (auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          double d2 = 0;
+          for (int c = 0; c < m.channels; ++c) d2 += std::pow(value(x, y, c) - value(x + dx, y + dy, c), 2);
+          sum += std::sqrt(d2), ++pairs;
+        }
+    const double unit = pairs ? sum / double(pairs) : 0.0;
+    const double scale = unit > 0 ? m.weight / unit : 0.0;
+    for (int y = 0; y < eh; ++y)
+      for (int x = 0; x < ew; ++x) {
+        // the torus' copies repeat the map; elsewhere the sizes agree (at most a rounding apart)
+        const int mx = e_.wrap_w ? x % mw : std::min(x, mw - 1), my = e_.wrap_h ? y % mh : std::min(y, mh - 1);
+        float* f = planes_.data() + (std::size_t(y) * std::size_t(ew) + std::size_t(x)) * std::size_t(map_channels_) +
+                   std::size_t(offset);
+        for (int c = 0; c < m.channels; ++c) f[c] = float(scale * value(mx, my, c));
+      }
+    offset += m.channels;
+  }
+}
+
 SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& o) : e_(e) {
-  if (!o.keep_period) return;
+  if (!o.keep_period) {
+    build_planes(o);
+    return;
+  }
   if (o.rectify) {
     perspective_ = fit_perspective(e);
     if (perspective_.applied) e_ = rectify_exemplar(e, perspective_);
@@ -119,6 +177,7 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
       lines_[k] = line_phase(p, 0, rw, rh, k);
       if (!std::isnan(lines_[k])) phase_[k] = std::fmod(p[k] + lines_[k], step_[k]), lines_[k] = 0;
     }
+  build_planes(o);
 }
 
 double SynthesisExemplar::line_clarity(std::array<int, 2> p, int w, int h, std::size_t axis, double spacing) const {
@@ -312,9 +371,12 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
       const std::array<int, 2> q =
           x.in_phase(draw(derive_seed(derive_seed(o.seed, 7000 + t), std::uint64_t(k))), 0, 0, n, n);
       double d = 0;
-      for (std::size_t i : band)
-        d += colour_distance(img.pixels.data() + 4 * i,
-                             e.at(q[0] + int(i % std::size_t(n)), q[1] + int(i / std::size_t(n))));
+      for (std::size_t i : band) {
+        const std::uint8_t* c = e.at(q[0] + int(i % std::size_t(n)), q[1] + int(i / std::size_t(n)));
+        d += x.has_cost_maps() ? o.colour_weight * colour_distance(img.pixels.data() + 4 * i, c) +
+                                     x.map_cost(x.texel(s.coords[t][i]), x.texel(c))
+                               : colour_distance(img.pixels.data() + 4 * i, c);
+      }
       ranked[t].push_back({d, q});
     }
     std::stable_sort(ranked[t].begin(), ranked[t].end(),
@@ -359,7 +421,14 @@ double merge_centre_patches(TextureTileSet& s, const SynthesisExemplar& x, const
     for (std::size_t k = 0; k < chosen[t].size(); ++k) {
       const std::array<int, 2> q = chosen[t][k];
       for (int y = 0; y < n; ++y) std::copy_n(e.at(q[0], q[1] + y), std::size_t(n) * 4, patch.at(0, y));
-      GraphCutResult r = graph_cut_merge(img, patch, region, forced, pull);
+      // with cost maps, the maps' terms between the tile's texel at pixel i and the patch's at j
+      const auto maps = [&](std::size_t i, std::size_t j) {
+        return x.map_cost(x.texel(s.coords[t][i]),
+                          x.texel(e.at(q[0] + int(j % std::size_t(n)), q[1] + int(j / std::size_t(n)))));
+      };
+      GraphCutResult r = x.has_cost_maps()
+                             ? graph_cut_merge(img, patch, region, forced, pull, maps, float(o.colour_weight))
+                             : graph_cut_merge(img, patch, region, forced, pull);
       if (k == 0 || r.cost < best.cost) best = std::move(r), best_patch = patch, s.centres[t] = q;
     }
     for (std::size_t i = 0; i < px; ++i)

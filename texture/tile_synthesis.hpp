@@ -8,6 +8,7 @@
 // pixels), and periodic textures stay in phase. Seeded and deterministic: the same seed gives
 // the same bytes on any thread count.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -21,6 +22,17 @@
 #include "tilesets/tile.hpp"
 
 namespace tilekit {
+
+// A further map of a material (texture/material.hpp) that the seam costs weigh beside the colour:
+// the map at the exemplar's size (one copy of a torus), any depth. Its term is `weight` times its
+// step between the two texels (normals as vectors, n = 2v - 1; a grey map as one channel) in
+// units of its own mean 4-neighbour step, times the colour's mean step, so that a map's typical
+// step costs what the colour's typical step does (SynthesisExemplar::distance).
+struct SeamCostMap {
+  Image image;
+  bool normal = false;  // tangent-space normals, RGB = (n + 1) / 2
+  double weight = 1;
+};
 
 struct SynthesisOptions {
   TileKind kind = TileKind::Corner;
@@ -51,6 +63,10 @@ struct SynthesisOptions {
   // Record where every tile texel was copied from (TextureTileSet::coords): what material sets
   // and `texture transfer` carry further maps by.
   bool record_coords = false;
+  // Material sets: seam cost = colour_weight * the colour's term + the maps' terms (SeamCostMap);
+  // the colour's term is exactly the albedo-only cost. With maps, coordinates are recorded.
+  std::vector<SeamCostMap> cost_maps;
+  double colour_weight = 1;
 };
 
 // Where the samples of a tile lie, relative to the tile (n x n pixels). Every border has a band
@@ -176,7 +192,46 @@ class SynthesisExemplar {
   // The position nearest p that keeps the phase for a w x h sample shown at lattice (u, v).
   std::array<int, 2> in_phase(std::array<int, 2> p, int u, int v, int w, int h) const;
 
+  // The seam costs between two texels of exemplar() (pointers into its image): colour_distance
+  // (distance) or channel_step (step) times the colour weight, plus the maps' terms
+  // (map_distance) times the colour's mean step in the same units (neighbour_difference,
+  // mean_step). Without cost maps exactly colour_distance and channel_step.
+  float distance(const std::uint8_t* a, const std::uint8_t* b) const {
+    if (map_channels_ == 0) return colour_distance(a, b);
+    return colour_weight_ * colour_distance(a, b) + float(e_.neighbour_difference) * map_distance(texel(a), texel(b));
+  }
+  float step(const std::uint8_t* a, const std::uint8_t* b) const {
+    if (map_channels_ == 0) return channel_step(a, b);
+    return colour_weight_ * channel_step(a, b) + float(e_.mean_step) * map_distance(texel(a), texel(b));
+  }
+  bool has_cost_maps() const { return map_channels_ > 0; }
+  // The maps' terms between texels a and b of exemplar() (index y * width + x) in the units of
+  // colour_distance; 0 without cost maps.
+  float map_cost(std::size_t a, std::size_t b) const { return float(e_.neighbour_difference) * map_distance(a, b); }
+  // The sum over the maps of weight x the map's step from a to b / its mean neighbour step.
+  float map_distance(std::size_t a, std::size_t b) const {
+    float sum = 0;
+    const float* pa = planes_.data() + a * std::size_t(map_channels_);
+    const float* pb = planes_.data() + b * std::size_t(map_channels_);
+    for (int k : map_widths_) {
+      float d2 = 0;
+      for (int c = 0; c < k; ++c) d2 += (pa[c] - pb[c]) * (pa[c] - pb[c]);
+      sum += std::sqrt(d2);
+      pa += k, pb += k;
+    }
+    return sum;
+  }
+  std::size_t texel(const std::uint8_t* p) const { return std::size_t(p - e_.image.pixels.data()) / 4; }
+  // A texel recorded as x | y << 16 (exemplar_coord) as an index of exemplar().
+  std::size_t texel(std::uint32_t coord) const {
+    return std::size_t(coord >> 16) * std::size_t(e_.width()) + std::size_t(coord & 0xffff);
+  }
+
  private:
+  // The cost maps as the samples see them (rectified and resampled like the exemplar, laid out
+  // like its image, the torus' copies too), each scaled by weight / its mean neighbour step.
+  void build_planes(const SynthesisOptions& o);
+
   // Where the lines of a w x h window at p lie along an axis, in lattice coordinates modulo the
   // lines' spacing (the window shown at lattice u); NaN when unclear.
   double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const;
@@ -189,6 +244,10 @@ class SynthesisExemplar {
   std::array<double, 2> scale_{1, 1}, step_{0, 0}, phase_{0, 0};  // step: the period after resampling
   std::array<int, 2> harmonic_{1, 1};                             // the lines' spacing is step / harmonic
   std::array<double, 2> lines_{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  std::vector<float> planes_;    // per texel of e_.image, map_channels_ floats
+  std::vector<int> map_widths_;  // channels per map (3, or 1 for a grey map)
+  int map_channels_ = 0;
+  float colour_weight_ = 1;
 };
 
 // Whether a synthesis uses thin bands: asked for, and the exemplar has no period kept.

@@ -117,7 +117,7 @@ class WangSynthesis {
         float cost = 0;
         for (int d : {p - 1, p + 1}) {
           const auto [x, y] = pixel_of(k, (a - d) / 2, (a + d) / 2);
-          cost += colour_distance(hpix(pos, h, kCorners[k].sy, x, y), vpix(pos, v, kCorners[k].sx, x, y));
+          cost += x_.distance(hpix(pos, h, kCorners[k].sy, x, y), vpix(pos, v, kCorners[k].sx, x, y));
         }
         band.at(a - 1, p + A) = cost / unit;
       }
@@ -202,7 +202,9 @@ class WangSynthesis {
 
 TextureTileSet synthesize_wang_tiles(const Exemplar& e, const SynthesisOptions& o) {
   check_synthesis_options(e, o);
-  return WangSynthesis(e, o).run();
+  SynthesisOptions with = o;
+  with.record_coords = o.record_coords || !o.cost_maps.empty();  // the maps' costs look texels up by them
+  return WangSynthesis(e, with).run();
 }
 
 }  // namespace tilekit

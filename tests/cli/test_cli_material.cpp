@@ -98,5 +98,63 @@ TEST(CliMaterial, BadMapsAndPeriodsAreExitTwoAndQuietPrintsNothing) {
   EXPECT_EQ(read_json(d / "o/tiles.json")["period"][0], 24.0);
 }
 
+// `texture atlas` of a material with a normal map and a map called roughness folds the length the
+// normal mips lose into the roughness mips (Toksvig); --no-toksvig keeps plain averages.
+TEST(CliMaterial, AtlasFoldsTheNormalsLostLengthIntoRoughness) {
+  TempDir d;
+  write_png(d / "albedo.png", test::synthetic_image(96, 96, 11));
+  write_png(d / "normal.png", normal_map_from_height(test::synthetic_image(96, 96, 12), 40, false));
+  write_png(d / "roughness.png", Image(96, 96, Rgb{77, 77, 77}));
+  const auto t = run_cli("texture tiles --exemplar " + (d / "albedo.png") + " --map normal=" + (d / "normal.png") +
+                         " --map roughness=" + (d / "roughness.png") +
+                         " --colors 2 --tile-px 32 --search 8 --period off --quiet --out " + (d / "mat"));
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto on = run_cli("texture atlas " + (d / "mat") + " --out " + (d / "on/atlas.png") + " --json");
+  ASSERT_EQ(on.code, 0) << on.err;
+  EXPECT_EQ(on.json()["maps"]["roughness"]["toksvig"], "normal");
+  const auto off = run_cli("texture atlas " + (d / "mat") + " --no-toksvig --out " + (d / "off/atlas.png") + " --json");
+  ASSERT_EQ(off.code, 0) << off.err;
+  EXPECT_TRUE(off.json()["maps"]["roughness"]["toksvig"].is_null());
+  EXPECT_EQ(read_image(d / "on/atlas-roughness.png").pixels, read_image(d / "off/atlas-roughness.png").pixels);
+  const auto mean = [](const Image& img) {
+    double sum = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) sum += img.at(x, y)[0];
+    return sum / (double(img.width) * img.height);
+  };
+  const double widened = mean(read_image(d / "on/atlas-roughness.mip2.png"));
+  EXPECT_NEAR(mean(read_image(d / "off/atlas-roughness.mip2.png")), 77, 0.5);
+  EXPECT_GT(widened, 80);
+}
+
+// --tile-px auto: a periodic exemplar gets whole periods near 128 px, a fine-grained one the
+// smallest tiles; the choice and its reason on stderr and in tiles.json.
+TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
+  TempDir d;
+  Image stripes(200, 200);  // vertical bars every 24 px, horizontal ones every 30 px
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x) {
+      const std::uint8_t v = x % 24 < 3 || y % 30 < 3 ? 40 : std::uint8_t(180 + (x * 7 + y * 13) % 40);
+      stripes.set(x, y, {v, v, v});
+    }
+  write_png(d / "stripes.png", stripes);
+  write_png(d / "grain.png", test::synthetic_image(200, 200, 3));
+  const auto p = run_cli("texture tiles --exemplar " + (d / "stripes.png") +
+                         " --colors 1 --search 0 --tile-px auto --out " + (d / "p") + " --json");
+  ASSERT_EQ(p.code, 0) << p.err;
+  EXPECT_EQ(p.json()["tile_px"], 120);  // 4 periods of 30 (the larger), the multiple nearest 128
+  EXPECT_NE(p.err.find("--tile-px auto: period 30"), std::string::npos) << p.err;
+  EXPECT_EQ(read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 120);
+  const auto g = run_cli("texture tiles --exemplar " + (d / "grain.png") +
+                         " --colors 1 --search 0 --tile-px auto --out " + (d / "g") + " --json");
+  ASSERT_EQ(g.code, 0) << g.err;
+  EXPECT_EQ(g.json()["tile_px"], 64);
+  EXPECT_NE(g.err.find("features up to about"), std::string::npos) << g.err;
+  for (const char* bad : {"abc", "-64", "0x40", "99999999999999999999"})
+    EXPECT_EQ(
+        run_cli("texture tiles --exemplar " + (d / "grain.png") + " --tile-px " + bad + " --out " + (d / "x")).code, 2)
+        << bad;
+}
+
 }  // namespace
 }  // namespace tilekit

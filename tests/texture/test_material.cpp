@@ -16,9 +16,11 @@
 #include "image/image.hpp"
 #include "texture/material.hpp"
 #include "texture/mipmap.hpp"
+#include "texture/seam_metrics.hpp"
 #include "texture/texture_atlas.hpp"
 #include "texture/tile_synthesis.hpp"
 #include "texture_fixtures.hpp"
+#include "tiling/direct_tiling.hpp"
 
 namespace tilekit {
 namespace {
@@ -152,8 +154,8 @@ TEST(SixteenBit, PngKeepsSixteenBitsWhenAsked) {
   std::filesystem::remove_all(dir);
 }
 
-// Material synthesis as `texture tiles --map` runs it (cli/cmd_texture.cpp): features of every
-// map, the synthesis recording its texels, each map copied at them.
+// Material synthesis as `texture tiles --map` runs it (cli/cmd_texture.cpp): the albedo with every
+// map's term in the seam costs, the synthesis recording its texels, each map copied at them.
 struct MaterialResult {
   TextureTileSet set;
   Image albedo_sampled;
@@ -163,9 +165,9 @@ MaterialResult material_tiles(const Image& albedo, std::vector<MaterialMap>& map
   o.record_coords = true;
   o.keep_period = false;  // the texels as they are: no resampling to whole periods
   resize_maps(maps, albedo.width, albedo.height, false);
-  const MaterialFeatures f = material_features(albedo, 1.0, maps);
+  o.cost_maps = seam_cost_maps(maps);
   MaterialResult r;
-  r.set = synthesize_tiles(exemplar_from_image(f.image, "features"), o);
+  r.set = synthesize_tiles(exemplar_from_image(albedo, "albedo"), o);
   r.albedo_sampled = map_as_sampled(albedo, false, r.set.perspective, r.set.exemplar_scale);
   r.set.tiles = transfer_tiles(r.set.coords, r.set.tile_px, r.albedo_sampled);
   return r;
@@ -203,6 +205,76 @@ TEST(MaterialSet, EveryMapEqualsItsSourceAtTheRecordedCoordinate) {
     // The coordinates survive their own files (16-bit tiles) for `texture transfer`.
     EXPECT_EQ(coords_from_tiles(coordinate_tiles(r.set.coords, 32)), r.set.coords);
   }
+}
+
+// The albedo's term of the seam costs is exactly the albedo-only cost: a map of weight 0 changes
+// no byte of the tiles (the old feature image, three principal components in 8 bits, did).
+TEST(MaterialCosts, AMapOfWeightZeroLeavesTheAlbedoOnlyTilesUnchanged) {
+  const Image albedo = test::synthetic_image(160, 160, 4);
+  SynthesisOptions o = test::small_options(TileKind::Corner, 2, 32);
+  o.record_coords = true;
+  o.keep_period = false;
+  const TextureTileSet plain = synthesize_tiles(exemplar_from_image(albedo, "albedo"), o);
+  o.cost_maps = {{bumpy_normals(160, 3), true, 0.0}};
+  const TextureTileSet zero = synthesize_tiles(exemplar_from_image(albedo, "albedo"), o);
+  ASSERT_EQ(plain.tiles.size(), zero.tiles.size());
+  for (std::size_t t = 0; t < plain.tiles.size(); ++t) EXPECT_EQ(plain.tiles[t].pixels, zero.tiles[t].pixels) << t;
+  EXPECT_EQ(plain.coords, zero.coords);
+  o.cost_maps[0].weight = 1;  // and a weight that counts changes them (so the test can fail)
+  const TextureTileSet one = synthesize_tiles(exemplar_from_image(albedo, "albedo"), o);
+  EXPECT_NE(plain.coords, one.coords);
+}
+
+// A relief the albedo does not show (a normal map of another surface): with its term in the
+// costs, the cuts show less in the normal map, for corner and Wang tiles alike (same seeds).
+TEST(MaterialCosts, NormalMapCutsShowLessWhenTheNormalsAreInTheCost) {
+  const Image albedo = test::synthetic_image(192, 192, 4);
+  const Image normals = normal_map_from_height(test::synthetic_image(192, 192, 11), 6.0, false);
+  for (TileKind kind : {TileKind::Corner, TileKind::Wang}) {
+    SynthesisOptions o = test::small_options(kind, 2, 32);
+    o.record_coords = true;
+    o.keep_period = false;
+    double ratio[2] = {0, 0};
+    for (int all = 0; all < 2; ++all) {
+      if (all) o.cost_maps = {{normals, true, 1.0}};
+      TextureTileSet s = synthesize_tiles(exemplar_from_image(albedo, "albedo"), o);
+      s.tiles = transfer_tiles(s.coords, s.tile_px, normals);
+      const Tiling t = kind == TileKind::Corner ? DirectCornerTiling(2, HashKind::LongPeriod, 1).generate(12, 12)
+                                                : DirectWangTiling(2, 2, HashKind::LongPeriod, 1).generate(12, 12);
+      std::vector<std::uint32_t> sources;
+      const Image window = stitch_tiles(s, t, &sources);
+      ratio[all] = seam_statistics(window, s.tile_px, &sources).cut_ratio;
+    }
+    EXPECT_LT(ratio[1], 0.95 * ratio[0]) << (kind == TileKind::Corner ? "corner" : "wang") << ": albedo-only "
+                                         << ratio[0] << ", with the normals " << ratio[1];
+  }
+}
+
+// Toksvig in the atlas (texture/mipmap.hpp, toksvig_chain): where the normals under a texel
+// disagree, the roughness mips widen; where they agree, the roughness is a plain average.
+TEST(ColourMips, ToksvigWidensRoughnessWhereTheNormalsDisagree) {
+  const Image rough(64, 64, Rgb{77, 77, 77});  // roughness 0.3
+  const Image flat(64, 64, Rgb{128, 128, 255});
+  const auto flat_chain = toksvig_chain(rough, mip_chain(flat, MipEdge::Wrap, ColourSpace::Normal), MipEdge::Wrap);
+  ASSERT_EQ(flat_chain.size(), 7u);
+  for (const Image& level : flat_chain) EXPECT_NEAR(mean_channel(level, 0), 77, 0.5);
+  const Image bumpy = bumpy_normals(64, 9);
+  const auto chain = toksvig_chain(rough, mip_chain(bumpy, MipEdge::Wrap, ColourSpace::Normal), MipEdge::Wrap);
+  ASSERT_EQ(chain.size(), 7u);
+  EXPECT_EQ(chain[0].pixels, rough.pixels);
+  for (std::size_t k = 1; k < chain.size(); ++k) {
+    // level 1 widens (the random normals disagree), and the deeper levels keep it (a plain average
+    // of the widened level, widened again where the renormalised normals still disagree)
+    EXPECT_GT(mean_channel(chain[k], 0), 77 + 40) << "level " << k;
+    // the first step by the formula: alpha'^2 = alpha^2 + (1 - |n|) / |n|
+    if (k == 1) {
+      const std::vector<double> len = normal_lengths(bumpy, MipEdge::Wrap);
+      EXPECT_NEAR(chain[1].sample(3, 5, 0) / 255.0, toksvig_roughness(77 / 255.0, len[5 * 32 + 3]), 1.0 / 255);
+    }
+    EXPECT_EQ(chain[k].sample(0, 0, 3), 255u);
+  }
+  EXPECT_TRUE(
+      toksvig_chain(Image(32, 32), mip_chain(bumpy, MipEdge::Wrap, ColourSpace::Normal), MipEdge::Wrap).empty());
 }
 
 TEST(MaterialSet, SixteenBitRampSurvivesTilesAtlasAndMips) {
