@@ -482,7 +482,11 @@ class ParallelSearch {
     for (;;) {
       {
         std::unique_lock lock(monitor_mu_);
-        monitor_cv_.wait_for(lock, std::chrono::milliseconds(20), [&] { return done.load(); });
+        // Every 20 ms, or at the deadline if it comes sooner (a limit of a few ms is kept to).
+        const auto now = std::chrono::steady_clock::now();
+        auto wait = now + std::chrono::milliseconds(20);
+        if (deadline_.when() > now && deadline_.when() < wait) wait = deadline_.when();
+        monitor_cv_.wait_until(lock, wait, [&] { return done.load(); });
         if (done) break;
       }
       poll_stop();
