@@ -1,8 +1,11 @@
 #pragma once
 // One `tilekit pack --mpi` run as one MPI job: every rank runs the same search (the same
-// subproblem list), its threads take subproblems from a dynamic pool that the root rank (0)
-// holds and hands out one at a time on request (a dynamic work pool: subproblems are not split
-// further, an open subtree is never stolen from a busy rank). Each rank checkpoints what it ran
+// subproblem list), its threads take jobs from a pool that the root rank (0) holds and hands out
+// one at a time on request. When the pool runs dry while jobs still run, the root asks the rank
+// with the most running jobs (itself included) to split: one of its workers gives away the untried
+// alternatives of its shallowest open level (its oldest open subtree), which join the pool as
+// pieces for the waiting workers (work stealing through the root; solver/work_source.hpp says how
+// the counts and checkpoints of a split subproblem stay exact). Each rank checkpoints what it ran
 // to its own file; the root's file is the run's (`--checkpoint F`: rank R > 0 writes F.rank-R), and
 // a resume with any number of ranks merges F and every F.rank-* (checkpoints/checkpoint.hpp).
 // At the end every rank sends its counters to the root, which alone stores the result.
