@@ -307,7 +307,8 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "portfolio-stats.json); with --portfolio-report repeatable: the files are added up");
   cmd->add_flag("--mpi", a->mpi,
                 "Run as one MPI job (mpirun/srun -n RANKS tilekit pack --mpi ...; count mode): the ranks take "
-                "subproblems from a pool on rank 0, each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
+                "subproblems from a pool on rank 0 and, once it is empty, pieces a busy rank splits off its oldest open "
+                "subtree (work stealing), each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
                 "--resume F continues with any number of ranks, rank 0 alone prints and writes the database");
   cmd->add_option("--trace", a->trace,
                   "Write a trace of the run to this file (JSON lines, rewritten whole at every checkpoint and at the "
