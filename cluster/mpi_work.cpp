@@ -50,7 +50,10 @@ std::mutex& mpi_mutex() {
   return mu;
 }
 
-void pause() { std::this_thread::sleep_for(std::chrono::microseconds(200)); }
+// The poll interval of a wait for a message: short where a worker waits on the answer, longer for
+// the threads that only watch (a split request, the root's own steals in a one-rank job).
+void pause(std::chrono::microseconds d = std::chrono::microseconds(200)) { std::this_thread::sleep_for(d); }
+constexpr std::chrono::microseconds kWatchPoll(1000);
 
 // Waits for `req` without MPI's busy wait: test, sleep, test.
 void wait_for(MPI_Request& req) {
@@ -422,7 +425,7 @@ class MpiWork final : public WorkSource {
       const bool got = take_message();
       serve_waiting();
       steal_if_hungry();
-      if (!got) pause();
+      if (!got) ranks_ > 1 ? pause() : pause(kWatchPoll);
     }
   }
 
@@ -552,7 +555,7 @@ class MpiWork final : public WorkSource {
         pending = false;
         if (split_flag_.exchange(false)) send(encode_pieces(0, {}), 0, kPieces);
       }
-      pause();
+      pause(kWatchPoll);
     }
     // Ending with a request unanswered: answer it, so that the root does not wait on this rank.
     if (pending && split_flag_.exchange(false)) send(encode_pieces(0, {}), 0, kPieces);

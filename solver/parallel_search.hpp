@@ -322,7 +322,8 @@ class ParallelSearch {
   void trace_subproblem(const Job& job, const SearchCounters& c, double seconds, Control& ctl) {
     std::string path, pieces;
     const char* type = !job.piece.empty() ? "piece" : ctl.gave ? "split" : "subproblem";
-    for (const Decision& d : job.piece.empty() ? subs_[job.index] : job.piece) path += fmt::format("{}{}={}", path.empty() ? "" : " ", d.var, d.value);
+    for (const Decision& d : job.piece.empty() ? subs_[job.index] : job.piece)
+      path += fmt::format("{}{}={}", path.empty() ? "" : " ", d.var, d.value);
     for (const auto& [n, t] : ctl.pieces) pieces += fmt::format("{}[{},{:.6g}]", pieces.empty() ? "" : ",", n, t);
     cfg_.run.trace->add(fmt::format(
         R"({{"type":"{}","title":"{}","index":{},"path":"{}","owner":"{}","nodes":{},"seconds":{:.6g},"solutions":{},"resumed":{},"pieces":[{}]}})",
