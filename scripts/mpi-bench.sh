@@ -23,7 +23,7 @@ for rep in $(seq "$reps"); do
       /usr/bin/time -f "%e %U %S" -o "$out/time.txt" mpirun -np "$cfg" "$tk" "${args[@]}" --mpi >"$out/run.json"
     fi
     read -r wall user sys <"$out/time.txt"
-    cpu=$(echo "$user + $sys" | bc)
+    cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN {printf "%.2f", u + s}')
     echo "$cfg $rep wall $wall cpu $cpu solutions $(field solutions "$out/run.json") steals $(field steals "$out/run.json") load $load" |
       tee -a "$out/runs.txt"
   done
