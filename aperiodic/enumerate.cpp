@@ -20,12 +20,14 @@
 #include "base/checkpoint_envelope.hpp"
 #include "base/error.hpp"
 #include "base/hash.hpp"
+#include "base/parse.hpp"
 #include "base/json_input.hpp"
 #include "base/parallel.hpp"
 #include "base/progress.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
 #include "results/results_db.hpp"
+#include "solver/run_trace.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit {
@@ -83,11 +85,21 @@ std::string decide_lead(const TileSet& set, int max_k, std::string* label) {
                                  : fmt::format("unknown at k={} ({})", r.k, r.stopped_by);
 }
 
-// Stops between steps when `stop` asks (the batch is then dropped and redone on resume).
-std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const std::function<bool()>& stop) {
+// Stops between steps when `stop` asks (the batch is then dropped and redone on resume). With
+// `pieces`, each step's seconds (for the trace).
+std::vector<Child> expand(const TileSet& set, const EnumerateOptions& o, const std::function<bool()>& stop,
+                          std::vector<double>* pieces = nullptr) {
   std::vector<Child> out;
   for (const std::string& step : steps_of(set.kind(), operations_of(o))) {
     if (stop()) return out;
+    const auto t0 = Clock::now();
+    struct Timed {  // every way out of this step
+      std::vector<double>* pieces;
+      Clock::time_point t0;
+      ~Timed() {
+        if (pieces) pieces->push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+      }
+    } timed{pieces, t0};
     std::optional<StepResult> r;
     try {
       r = apply_step(set, step);  // a long step (a merge search, a 5x5 prune) stops on a signal
@@ -343,6 +355,20 @@ void merge_children(EnumerateResult& r, const std::string& parent_hash, std::vec
   }
 }
 
+// The trace's lines of one batch (enumerate.hpp, "Trace").
+void trace_batch(RunTrace& trace, const EnumerateOptions& o, std::size_t batch_number, const std::vector<EnumNode>& batch,
+                 const std::vector<std::vector<Child>>& children, const std::vector<std::vector<double>>& pieces,
+                 const std::vector<double>& seconds) {
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    std::string p;
+    for (double s : pieces[i]) p += fmt::format("{}[1,{:.6g}]", p.empty() ? "" : ",", s);
+    trace.add(fmt::format(
+        R"({{"type":"subproblem","title":"aperiodic enumerate","index":{},"path":"set {} depth {}","owner":"{}","nodes":{},"seconds":{:.6g},"solutions":{},"resumed":false,"batch":{},"pieces":[{}]}})",
+        batch_number * o.batch + i, batch[i].hash, batch[i].owned_depth, shard_text(o.shard), pieces[i].size(),
+        seconds[i], children[i].size(), batch_number, p));
+  }
+}
+
 // The run's sources, after every option is checked (InputError naming the first bad one).
 std::vector<std::string> checked_sources(const EnumerateOptions& o) {
   if (o.max_depth < 0) throw RequestError("max_depth", fmt::format("`max_depth` must be >= 0, got {}", o.max_depth));
@@ -413,6 +439,10 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
   std::vector<std::string> new_nodes;
   std::vector<EnumEdge> new_edges;
   if (!r.resumed) add_sources(r, sources, new_nodes);
+  if (o.trace)
+    o.trace->add(fmt::format(
+        R"({{"type":"search","title":"aperiodic enumerate","mode":"count","subproblems":0,"threads":{},"owner":"{}","split_nodes":0,"resumed":{}}})",
+        threads, shard_text(o.shard), r.resumed));
 
   auto pending = [&] {
     std::vector<const EnumNode*> p;
@@ -434,6 +464,7 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
       new_nodes.clear();
       new_edges.clear();
     }
+    if (o.trace) o.trace->write();
     if (o.checkpoint_path.empty()) return;
     st.seconds = before + elapsed();
     write_checkpoint_envelope(o.checkpoint_path, kMagic, kVersion, encode_state(st).dump());
@@ -465,19 +496,28 @@ EnumerateResult enumerate_conversions(const EnumerateOptions& o) {
     std::vector<const TileSet*> batch_sets;
     for (const EnumNode& n : batch) batch_sets.push_back(&set_of(n));
     std::vector<std::vector<Child>> children(batch.size());
+    std::vector<std::vector<double>> pieces(o.trace ? batch.size() : 0);
+    std::vector<double> seconds(batch.size(), 0.0);
     // A signal or the time limit in the middle of a batch drops the batch: the state stays that of
     // the last batch boundary, which the checkpoint below records.
     StopToken stop;
     auto stopping = [&] { return poll_stop(stop, limit, o.catch_signals); };
     parallel_for(
         std::int64_t(batch.size()), threads,
-        [&](std::int64_t i) { children[std::size_t(i)] = expand(*batch_sets[std::size_t(i)], o, stopping); }, &stop);
+        [&](std::int64_t i) {
+          const auto t = Clock::now();
+          const std::size_t k = std::size_t(i);
+          children[k] = expand(*batch_sets[k], o, stopping, o.trace ? &pieces[k] : nullptr);
+          seconds[k] = std::chrono::duration<double>(Clock::now() - t).count();
+        },
+        &stop);
     if (stop.requested()) {
       r.interrupted = stop.reason() == StopReason::Signal;
       r.signal = r.interrupted ? SignalCatcher::caught() : 0;
       r.timed_out = stop.reason() == StopReason::TimeLimit;
       break;
     }
+    if (o.trace) trace_batch(*o.trace, o, r.batches, batch, children, pieces, seconds);
     // Merge in batch order, steps in order: the same state whatever the threads did.
     for (std::size_t i = 0; i < batch.size(); ++i)
       merge_children(r, batch[i].hash, children[i], o, new_nodes, new_edges, best_corner);

@@ -24,11 +24,18 @@
 // limit and on SIGTERM/SIGINT/SIGUSR1 (then `interrupted`, the CLI exits 3). A corrupt, truncated
 // or foreign checkpoint, or one of other options, is an InputError.
 //
+// Trace (`--trace FILE`, solver/run_trace.hpp): a "search" line, then one "subproblem" line per
+// set expanded: index (batch * batch size + position), path "set HASH depth D", owner "I/N",
+// nodes = the steps applied, seconds, solutions = the results kept or counted, batch, and a piece
+// [1, seconds] per step. Batches run one after another (a batch's sets come from the one before),
+// which a simulator replaying the lines as independent units does not model.
+//
 // Storage: every set as a tile set (name enum-HASH, content hash = the canonical hash, source
 // "published: NAME" for the sources) and every edge as a conversion (method = the step, soundness =
 // its label), written batch by batch; rows are keyed by content, so rewriting is harmless.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +44,8 @@
 #include "tilesets/tile_set.hpp"
 
 namespace tilekit {
+
+class RunTrace;  // solver/run_trace.hpp
 
 struct EnumerateOptions {
   std::vector<std::string> sources;  // built-in names; empty: every published aperiodic Wang set
@@ -53,6 +62,9 @@ struct EnumerateOptions {
   std::string db;                    // results database; "" = none
   bool progress = false;
   bool catch_signals = false;
+  // Record every set this run expands (solver/run_trace.hpp; written at every checkpoint and at the
+  // end): a line per expansion, its steps as pieces [1, seconds]. Null: no trace.
+  std::shared_ptr<RunTrace> trace;
 };
 
 struct EnumNode {

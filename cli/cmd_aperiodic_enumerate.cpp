@@ -20,6 +20,7 @@
 #include "cli/cmd_aperiodic.hpp"
 #include "cli/numeric_flags.hpp"
 #include "cli/run_options.hpp"
+#include "solver/run_trace.hpp"
 #include "tilesets/tile_set_io.hpp"
 
 namespace tilekit::cli {
@@ -43,6 +44,7 @@ struct EnumerateArgs {
   bool quiet = false;
   SmallestCheckOptions smallest;
   std::string record;  // --record FILE
+  std::string trace;   // --trace FILE (solver/run_trace.hpp)
 };
 
 nlohmann::json link_json(const ChainLink& l) {
@@ -160,7 +162,8 @@ void print_enumerate(const EnumerateOptions& o, const EnumerateResult& r, const 
 }
 
 void run_enumerate(const EnumerateArgs& a, const Context& ctx) {
-  const EnumerateOptions o = enumerate_options(a);
+  EnumerateOptions o = enumerate_options(a);
+  if (!a.trace.empty()) o.trace = std::make_shared<RunTrace>(a.trace);
   const double cpu0 = cpu_seconds();
   const EnumerateResult r = enumerate_conversions(o);
   const EnumerateReport rep = enumerate_report(r, a.smallest);
@@ -252,6 +255,9 @@ void add_aperiodic_enumerate_commands(CLI::App* ap, Context& ctx) {
   cmd->add_option("--record", a->record,
                   "Write the least sound corner set's chain and this run's command and digest here (JSON, atomically): "
                   "what `aperiodic smallest` re-derives (aperiodic/data/smallest-chain.json)");
+  cmd->add_option("--trace", a->trace,
+                  "Write a trace of the run to this file (JSON lines, rewritten whole at every checkpoint and at the "
+                  "end): every set expanded with its steps' seconds, for `tilekit cluster simulate --cost seconds`");
   cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
   add_json_flag(cmd, ctx);
   cmd->footer(

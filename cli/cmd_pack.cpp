@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
@@ -239,7 +240,18 @@ void run_pack_command(const PackArgs& a, const CLI::App& cmd, const Context& ctx
   }
   nlohmann::json j = outcome_json(o, out_file);
   if (a.stats) j["stats"] = o.result.stats;
-  emit(ctx, j, [&] { print_outcome(o); });
+  std::optional<WorkStats> mpi;
+  if (a.mpi) {
+    mpi = req.run.work->stats();
+    j["mpi"] = {{"ranks", mpi->ranks},     {"jobs", mpi->jobs},         {"steals", mpi->steals},
+                {"pieces", mpi->pieces},   {"declined", mpi->declined}, {"splits_completed", mpi->splits_completed}};
+  }
+  emit(ctx, j, [&] {
+    print_outcome(o);
+    if (mpi)
+      fmt::print("mpi: {} ranks, {} jobs, {} steals ({} pieces, {} split subproblems completed), {} split requests declined\n",
+                 mpi->ranks, mpi->jobs, mpi->steals, mpi->pieces, mpi->splits_completed, mpi->declined);
+  });
   if (a.stats && !ctx.json) fmt::print(stderr, "{}", stats_table(o.result.stats));
   if (o.interrupted)
     throw Interrupted(interrupted_message(
@@ -286,6 +298,10 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "window: over a known de Bruijn torus B): 'M' or 'm=M,base=FILE'; --formulation sat solves it "
                   "with cadical");
   cmd->add_flag("--plain", r.plain, "First mode: plain search only (no portfolio)");
+  cmd->add_option("--subproblems", r.subproblems,
+                  "Split the search into about this many subproblems (0 = auto: 1024, at least 64 per shard; part "
+                  "of the run's identity)")
+      ->capture_default_str();
   cmd->add_option("--candidate", r.candidates,
                   "A portfolio candidate (repeatable): plain, a group SPEC, impose:SPEC or sat:SPEC (default: the "
                   "candidate groups and plain)");
@@ -302,7 +318,8 @@ void add_pack_command(CLI::App& app, Context& ctx) {
                   "portfolio-stats.json); with --portfolio-report repeatable: the files are added up");
   cmd->add_flag("--mpi", a->mpi,
                 "Run as one MPI job (mpirun/srun -n RANKS tilekit pack --mpi ...; count mode): the ranks take "
-                "subproblems from a pool on rank 0, each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
+                "subproblems from a pool on rank 0 and, once it is empty, pieces a busy rank splits off its oldest open "
+                "subtree (work stealing), each rank checkpoints to F.rank-R beside --checkpoint F (rank 0: F), "
                 "--resume F continues with any number of ranks, rank 0 alone prints and writes the database");
   cmd->add_option("--part", a->part,
                   "J/K: of --shard I/N, run only the subproblems i with (i / N) % K == J (a work unit of a split job "

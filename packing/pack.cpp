@@ -12,6 +12,7 @@
 #include "base/parse.hpp"
 #include "base/signals.hpp"
 #include "checkpoints/checkpoint.hpp"
+#include "solver/search_state.hpp"
 #include "packing/find_packing.hpp"
 #include "packing/solution_sink.hpp"
 #include "results/results_db.hpp"
@@ -103,6 +104,10 @@ SearchOptions search_options(const PackRequest& a) {
     throw RequestError("lift", "`lift` searches its own subspace: drop `impose` and `method` construct");
   if (!a.candidates.empty() && (a.plain || !a.impose.empty() || !a.lift.empty()))
     throw RequestError("candidates", "`candidates` names a portfolio candidate: not with `plain`, `impose` or `lift`");
+  if (a.subproblems < 0 || std::uint64_t(a.subproblems) > kMaxSplitSubproblems)
+    throw RequestError("subproblems", fmt::format("`subproblems` must be 0 (auto) to {}, got {}",
+                                                  kMaxSplitSubproblems, a.subproblems));
+  o.subproblems = std::size_t(a.subproblems);
   o.formulation = a.formulation;
   o.ordering = a.ordering;
   o.impose = a.impose;

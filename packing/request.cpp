@@ -47,6 +47,7 @@ const Field kFields[] = {
     TILEKIT_FIELD(PackField::Lift, "lift", lift, std::string),
     TILEKIT_FIELD(PackField::Plain, "plain", plain, bool),
     TILEKIT_FIELD(PackField::Candidates, "candidates", candidates, std::vector<std::string>),
+    TILEKIT_FIELD(PackField::Subproblems, "subproblems", subproblems, std::int64_t),
     TILEKIT_FIELD(PackField::Seed, "seed", run.seed, std::uint64_t),
     // Stored as the text "I/N", as every checkpoint has it.
     Field{PackField::Shard, "shard", [](const PackRequest& r) { return nlohmann::json(shard_text(r.run.shard)); },
@@ -103,6 +104,8 @@ std::string_view pack_field_name(PackField f) {
       return "plain";
     case PackField::Candidates:
       return "candidates";
+    case PackField::Subproblems:
+      return "subproblems";
     case PackField::Seed:
       return "seed";
     case PackField::Shard:

@@ -31,6 +31,7 @@ struct PackRequest {
   std::string lift;                     // search only colour-quotient lifts (solver/colour_lift_model.hpp SPEC)
   bool plain = false;                   // first mode: no portfolio, the plain search alone
   std::vector<std::string> candidates;  // portfolio candidates (empty = the default list)
+  std::int64_t subproblems = 0;         // the split's subproblem target (0 = auto: 1024, 64 per shard)
   // ---- run settings: free to change on resume, except run.seed and run.shard ----
   // The seconds between checkpoints; not given: 300 s with a checkpoint file (run.checkpoint_path,
   // else run.resume_path, which a resumed run keeps checkpointing to), else none. It sets
@@ -67,6 +68,7 @@ enum class PackField {
   Lift,
   Plain,
   Candidates,
+  Subproblems,
   Seed,
   Shard,
   TimeLimit,

@@ -8,6 +8,11 @@
 //        called on entering every node, before it is counted; false stops the search (the
 //        node at `path` is then the first one not yet explored)
 //   void leaf(const M& model, SearchCounters& counted)   at every solution
+//   optional, for work stealing (cluster/mpi_work.hpp): bool split_wanted() and
+//   bool give(std::vector<std::vector<Decision>> children): when split_wanted() says so on
+//        entering a node, the search offers the untried alternatives of its shallowest open
+//        level (the oldest open subtree), one child prefix each; when give() takes them the
+//        search skips them (another worker explores each as a subtree of its own)
 //
 // Statistics (solver/search_stats.hpp): the search counts nodes, decisions, conflicts,
 // backtracks, leaves and empty domains in stats(), and adds the model's own counters
@@ -33,12 +38,13 @@ class SubtreeSearch {
   // Explores the subtree below `prefix` (decisions replayed from the root of `m`), starting at
   // `resume` when that is longer than the prefix (a path recorded by at_node in an earlier
   // run). `counted` accumulates. Throws InputError when `resume` does not replay (a checkpoint
-  // from a different search).
+  // from a different search). With `last_may_fail` (a child given away by give()) a prefix whose
+  // last decision fails is an empty subtree, as it is in the search that gave it away.
   template <class Control>
   SubtreeOutcome run(M& m, const std::vector<Decision>& prefix, const std::vector<Decision>& resume,
-                     SearchCounters& counted, Control& ctl) {
+                     SearchCounters& counted, Control& ctl, bool last_may_fail = false) {
     if constexpr (kModelStats) m.stats() = {};
-    const SubtreeOutcome o = explore(m, prefix, resume, counted, ctl);
+    const SubtreeOutcome o = explore(m, prefix, resume, counted, ctl, last_may_fail);
     if constexpr (kModelStats) stats_.model += m.stats();
     return o;
   }
@@ -54,11 +60,16 @@ class SubtreeSearch {
 
   template <class Control>
   SubtreeOutcome explore(M& m, const std::vector<Decision>& prefix, const std::vector<Decision>& resume,
-                         SearchCounters& counted, Control& ctl) {
+                         SearchCounters& counted, Control& ctl, bool last_may_fail) {
     path_.clear();
-    for (const Decision& d : prefix) {
-      path_.push_back(d);
-      if (!m.assign(d.var, d.value)) throw InputError("subproblem prefix does not replay");
+    for (std::size_t i = 0; i < prefix.size(); ++i) {
+      path_.push_back(prefix[i]);
+      if (m.assign(prefix[i].var, prefix[i].value)) continue;
+      if (last_may_fail && i + 1 == prefix.size() && resume.empty()) {
+        ++stats_.decisions, ++stats_.conflicts;
+        return SubtreeOutcome::Exhausted;
+      }
+      throw InputError("subproblem prefix does not replay");
     }
     if (!resume.empty() && (resume.size() < prefix.size() || !std::equal(prefix.begin(), prefix.end(), resume.begin())))
       throw InputError("checkpoint path does not start with its subproblem's prefix");
@@ -81,6 +92,9 @@ class SubtreeSearch {
       assert(path_.size() == prefix.size() + d && "the path holds one decision per level below the prefix");
       if (entering) {
         if (!ctl.at_node(path_, counted)) return SubtreeOutcome::Stopped;
+        if constexpr (requires { ctl.split_wanted(); }) {
+          if (ctl.split_wanted()) give_away(prefix.size(), d, ctl);
+        }
         ++counted.nodes;
         ++stats_.nodes;
         ensure(d);
@@ -124,6 +138,26 @@ class SubtreeSearch {
       Decision x = path_.back();
       path_.pop_back();
       m.unassign(x.var, x.value);
+    }
+  }
+
+  // The untried alternatives of the shallowest level above depth `d` that has any, offered to
+  // ctl.give() as child prefixes; skipped here once taken. Every level above it has none, so the
+  // rest of this search is the subtree of the alternative being explored at that level.
+  template <class Control>
+  void give_away(std::size_t prefix_size, std::size_t d, Control& ctl) {
+    for (std::size_t l = 0; l < d; ++l) {
+      Frame& f = frames_[l];
+      const std::vector<int>& vals = values_[l];
+      if (f.next >= vals.size()) continue;
+      std::vector<std::vector<Decision>> children;
+      for (std::size_t k = f.next; k < vals.size(); ++k) {
+        std::vector<Decision> c(path_.begin(), path_.begin() + std::ptrdiff_t(prefix_size + l));
+        c.push_back({f.var, vals[k]});
+        children.push_back(std::move(c));
+      }
+      if (ctl.give(std::move(children))) f.next = vals.size();
+      return;
     }
   }
 

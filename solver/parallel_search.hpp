@@ -17,7 +17,9 @@
 //    The first checkpoint is written before any work, so a run killed at once can resume.
 //  - scale-out (run_settings.hpp): with `run.trace` every subproblem (dive) run is a line of the
 //    trace (run_trace.hpp); with `run.work` the workers take their subproblems from a WorkSource
-//    (several processes of one MPI job) instead of the shard's list.
+//    (several processes of one MPI job) instead of the shard's list; the source may ask a worker
+//    to give away the untried alternatives of its oldest open level (work stealing, see
+//    work_source.hpp for what a checkpoint keeps of a split subproblem).
 //  - statistics (search_stats.hpp): each worker's SubtreeSearch counts in plain integers; a
 //    worker adds them to the run's total once, when it leaves (under stats_mu_).
 //
@@ -127,10 +129,12 @@ class ParallelSearch {
     std::uint64_t index = 0;
     std::vector<Decision> resume;
     SearchCounters counted;
+    std::vector<Decision> piece;  // a piece of subproblem `index` given away by a split: its path
   };
   struct Slot {
     std::mutex mu;
     bool active = false;
+    bool record = true;  // a piece's snapshot is not a checkpoint record (work_source.hpp)
     InFlightSubproblem snap;
     std::uint64_t epoch = 0;
     std::atomic<std::uint64_t> live_nodes{0};
@@ -150,6 +154,17 @@ class ParallelSearch {
     std::uint64_t piece_nodes = 0;
     std::chrono::steady_clock::time_point piece_start{};
     std::vector<std::pair<std::uint64_t, double>> pieces{};
+    // Work stealing (solver/dfs.hpp's split_wanted/give): the source's flag, and whether this job
+    // gave alternatives away.
+    std::atomic<bool>* split_flag = nullptr;
+    bool gave = false;
+    bool split_wanted() const { return split_flag && split_flag->load(std::memory_order_relaxed); }
+    bool give(std::vector<std::vector<Decision>> children) {
+      if (!split_flag->exchange(false)) return false;  // another worker took the request
+      s.cfg_.run.work->give(index, std::move(children));
+      gave = true;
+      return true;
+    }
     void cut_piece(std::uint64_t nodes) {
       const auto now = std::chrono::steady_clock::now();
       if (nodes > piece_nodes)
@@ -226,14 +241,14 @@ class ParallelSearch {
       finished_counts_ = r->finished_counts;
       for (std::uint64_t i = 0, k = 0; i < finished_.size(); ++i)
         if (finished_[i]) finished_each_[i] = r->finished_each[k++];
-      for (const InFlightSubproblem& f : r->in_flight) jobs.push_back({f.index, f.path, f.counted});
+      for (const InFlightSubproblem& f : r->in_flight) jobs.push_back({f.index, f.path, f.counted, {}});
     }
     for (std::uint64_t i = 0; i < subs_.size(); ++i) {
       if (!mine(i)) continue;
       ++out.shard_subproblems;
       if (finished_[i]) continue;
       bool inflight = std::any_of(jobs.begin(), jobs.end(), [&](const Job& j) { return j.index == i; });
-      if (!inflight) jobs.push_back({i, {}, {}});
+      if (!inflight) jobs.push_back({i, {}, {}, {}});
     }
     // In first mode keep DFS order; a resumed in-flight job goes where its index says.
     std::stable_sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.index < b.index; });
@@ -241,9 +256,9 @@ class ParallelSearch {
                               [](const Job& a, const Job& b) { return a.index == b.index; }) == jobs.end());
     if (WorkSource* w = cfg_.run.work.get()) {  // the root hands these out to every process
       std::vector<WorkItem> items;
-      for (Job& j : jobs) items.push_back({j.index, std::move(j.resume), j.counted});
+      for (Job& j : jobs) items.push_back({j.index, std::move(j.resume), j.counted, {}});
       jobs.clear();
-      w->start(subs_.size(), hash, std::move(items));
+      w->start(subs_.size(), hash, std::move(items), [this] { return stop_.requested(); });
     }
     jobs_ = std::move(jobs);
     split_nodes_ = split_nodes;
@@ -253,10 +268,14 @@ class ParallelSearch {
 
     run_workers([this](int tid) { worker_subproblems(tid); });
 
+    {
+      std::lock_guard lock(mu_);
+      absorb_splits();
+    }
     out.counts = finished_counts_;
     out.counts.nodes += split_nodes_;
     for (auto& s : slots_)
-      if (s->active) {
+      if (s->active && s->record) {
         out.counts.solutions += s->snap.counted.solutions;
         out.counts.orbits += s->snap.counted.orbits;
         out.counts.nodes += s->snap.counted.nodes;
@@ -298,13 +317,17 @@ class ParallelSearch {
     return o;
   }
 
+  // A split subproblem's jobs (what was left of it, a piece) are lines of type "split" and
+  // "piece": the scheduling simulator replays whole subproblems only.
   void trace_subproblem(const Job& job, const SearchCounters& c, double seconds, Control& ctl) {
     std::string path, pieces;
-    for (const Decision& d : subs_[job.index]) path += fmt::format("{}{}={}", path.empty() ? "" : " ", d.var, d.value);
+    const char* type = !job.piece.empty() ? "piece" : ctl.gave ? "split" : "subproblem";
+    for (const Decision& d : job.piece.empty() ? subs_[job.index] : job.piece)
+      path += fmt::format("{}{}={}", path.empty() ? "" : " ", d.var, d.value);
     for (const auto& [n, t] : ctl.pieces) pieces += fmt::format("{}[{},{:.6g}]", pieces.empty() ? "" : ",", n, t);
     cfg_.run.trace->add(fmt::format(
-        R"({{"type":"subproblem","title":"{}","index":{},"path":"{}","owner":"{}","nodes":{},"seconds":{:.6g},"solutions":{},"resumed":{},"pieces":[{}]}})",
-        json_text(cfg_.title), job.index, path, owner(), c.nodes - job.counted.nodes, seconds,
+        R"({{"type":"{}","title":"{}","index":{},"path":"{}","owner":"{}","nodes":{},"seconds":{:.6g},"solutions":{},"resumed":{},"pieces":[{}]}})",
+        type, json_text(cfg_.title), job.index, path, owner(), c.nodes - job.counted.nodes, seconds,
         c.solutions - job.counted.solutions, !job.resume.empty(), pieces));
   }
 
@@ -325,7 +348,7 @@ class ParallelSearch {
       if (WorkSource* w = cfg_.run.work.get()) {  // another process may hand it out: ask the source
         WorkItem item;
         if (stop_.requested() || !w->next(item)) return;
-        job = {item.index, std::move(item.resume), item.counted};
+        job = {item.index, std::move(item.resume), item.counted, std::move(item.piece)};
       }
       {
         std::lock_guard lock(mu_);
@@ -337,34 +360,57 @@ class ParallelSearch {
         }
         std::lock_guard sl(slot.mu);
         slot.active = true;
+        slot.record = job.piece.empty();
         slot.snap.index = job.index;
-        slot.snap.path = job.resume.empty() ? subs_[job.index] : job.resume;
+        slot.snap.path = !job.piece.empty() ? job.piece : job.resume.empty() ? subs_[job.index] : job.resume;
         slot.snap.counted = job.counted;
         slot.epoch = epoch_.load();
       }
       Control ctl{*this, slot, job.index, slot.epoch};
+      WorkSource* w = cfg_.run.work.get();
+      if (w) ctl.split_flag = w->split_flag();
+      const std::vector<Decision>& prefix = job.piece.empty() ? subs_[job.index] : job.piece;
       SearchCounters c = job.counted;
       M m = root_;
       const auto t0 = std::chrono::steady_clock::now();
       if (cfg_.run.trace) {
-        ctl.piece_depth = subs_[job.index].size() + kTracePieceDepth;
+        ctl.piece_depth = prefix.size() + kTracePieceDepth;
         ctl.piece_nodes = c.nodes;
         ctl.piece_start = t0;
       }
-      SubtreeOutcome o = dfs.run(m, subs_[job.index], job.resume, c, ctl);
+      SubtreeOutcome o = dfs.run(m, prefix, job.resume, c, ctl, !job.piece.empty());
       if (o == SubtreeOutcome::Stopped) return;  // the slot keeps the published snapshot
       if (cfg_.run.trace) {
         ctl.cut_piece(c.nodes);
         trace_subproblem(job, c, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), ctl);
       }
-      std::lock_guard lock(mu_);
-      assert(!finished_[job.index] && "a subproblem is finished once");
-      finished_[job.index] = true;
+      const bool split = !job.piece.empty() || ctl.gave;  // counted by the root once all its jobs are done
+      {
+        std::lock_guard lock(mu_);
+        if (!split) {
+          assert(!finished_[job.index] && "a subproblem is finished once");
+          finished_[job.index] = true;
+          finished_counts_ += c;
+          finished_each_[job.index] = c;
+        }
+        std::lock_guard sl(slot.mu);
+        slot.active = false;
+        slot.live_nodes.store(0);
+      }
+      if (w) w->done(job.index, split, c);
+    }
+  }
+
+  // The root of a run with work stealing: split subproblems whose every piece is done are
+  // finished, with the sum of their jobs' counts (mu_ held).
+  void absorb_splits() {
+    WorkSource* w = cfg_.run.work.get();
+    if (!w) return;
+    for (const auto& [i, c] : w->completed_splits()) {
+      if (i >= finished_.size() || finished_[i]) continue;
+      finished_[i] = true;
       finished_counts_ += c;
-      finished_each_[job.index] = c;
-      std::lock_guard sl(slot.mu);
-      slot.active = false;
-      slot.live_nodes.store(0);
+      finished_each_[i] = c;
     }
   }
 
@@ -564,13 +610,14 @@ class ParallelSearch {
       std::lock_guard lock(mu_);
       st.subproblem_count = subs_.size();
       st.subproblem_hash = subs_.empty() ? 0 : hash_subproblems(subs_);
+      absorb_splits();
       st.finished = finished_;
       st.finished_counts = finished_counts_;
       for (std::size_t i = 0; i < finished_.size(); ++i)
         if (finished_[i]) st.finished_each.push_back(finished_each_[i]);
       for (auto& s : slots_) {
         std::lock_guard sl(s->mu);
-        if (s->active) st.in_flight.push_back(s->snap);
+        if (s->active && s->record) st.in_flight.push_back(s->snap);
       }
       // Resumed subproblems not yet picked up by a worker keep their paths.
       for (std::size_t j = next_job_; j < jobs_.size(); ++j)

@@ -12,6 +12,9 @@
 //   {"type":"subproblem","title":...,"index":i,"path":"var=value ...","owner":"I/N" or
 //    "rank R","nodes":n,"seconds":s,"solutions":k,"resumed":bool,"pieces":[[nodes,seconds],...]}
 //   {"type":"dive","title":...,"dive":r,"owner":...,"nodes":n,"seconds":s,"found":bool}
+//   with work stealing (work_source.hpp), the same fields as a subproblem line for what was left of
+//   a subproblem that gave work away ("type":"split") and for each stolen piece ("type":"piece",
+//   "path" its own decision path); a simulator replaying whole subproblems skips them.
 #include <cstdint>
 #include <mutex>
 #include <string>

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -16,6 +18,8 @@
 #include "base/atomic_file.hpp"
 #include "base/checkpoint_envelope.hpp"
 #include "base/error.hpp"
+#include "cluster/schedule_sim.hpp"
+#include "solver/run_trace.hpp"
 #include "tests/cli_runner.hpp"
 #include "tilesets/tile_set_io.hpp"
 
@@ -280,4 +284,43 @@ TEST(Enumerate, BadOptionsAreInputErrors) {
   o = small_run();
   o.time_limit = -1;
   EXPECT_THROW(enumerate_conversions(o), InputError);
+}
+
+// `aperiodic enumerate --trace`: one line per set expanded, its steps as pieces, and the
+// scheduling simulator replays it (cluster/schedule_sim.hpp, cost = seconds).
+TEST(Enumerate, TraceHasALinePerSetExpandedThatTheSimulatorReplays) {
+  test::TempDir d;
+  EnumerateOptions o = small_run();
+  o.max_depth = 1;
+  o.threads = 2;
+  const std::string path = d / "enum.jsonl";
+  o.trace = std::make_shared<RunTrace>(path);
+  const EnumerateResult r = enumerate_conversions(o);
+  ASSERT_TRUE(r.complete);
+  std::ifstream in(path);
+  std::string line;
+  std::size_t searches = 0, units = 0;
+  std::set<std::uint64_t> indices;
+  while (std::getline(in, line)) {
+    const nlohmann::json j = nlohmann::json::parse(line);
+    if (j["type"] == "search") {
+      ++searches;
+      continue;
+    }
+    ASSERT_EQ(j["type"], "subproblem");
+    ++units;
+    indices.insert(j["index"].get<std::uint64_t>());
+    EXPECT_EQ(j["nodes"].get<std::size_t>(), j["pieces"].size());
+    EXPECT_GT(j["nodes"].get<std::size_t>(), 0u);
+    double sum = 0;
+    for (const auto& p : j["pieces"]) sum += p[1].get<double>();
+    EXPECT_LE(sum, j["seconds"].get<double>() * (1 + 1e-5) + 1e-6);  // 6 significant digits each
+  }
+  EXPECT_EQ(searches, 1u);
+  EXPECT_EQ(units, r.expanded);
+  EXPECT_EQ(indices.size(), units);
+  const cluster::Trace t = cluster::read_trace({path}, "seconds");
+  EXPECT_EQ(t.units.size(), units);
+  const cluster::SimResult one = cluster::simulate(t, cluster::SchedulePolicy::Pool, 1);
+  EXPECT_NEAR(one.efficiency, 1.0, 1e-9);
 }
