@@ -1,6 +1,7 @@
 #include "cluster/part_work.hpp"
 
 #include <deque>
+#include <functional>
 #include <mutex>
 #include <utility>
 
@@ -12,7 +13,7 @@ class PartWork final : public WorkSource {
   PartWork(const ShardSpec& shard, const ShardPart& part) : shard_(shard), part_(part) {}
   int rank() const override { return 0; }
   int ranks() const override { return 1; }
-  void start(std::uint64_t, std::uint64_t, std::vector<WorkItem> jobs) override {
+  void start(std::uint64_t, std::uint64_t, std::vector<WorkItem> jobs, std::function<bool()>) override {
     std::lock_guard lock(mu_);
     queue_.clear();
     for (WorkItem& j : jobs)
@@ -25,6 +26,12 @@ class PartWork final : public WorkSource {
     queue_.pop_front();
     return true;
   }
+  // One process: no work is given away, so every job is finished where it ran.
+  void done(std::uint64_t, bool, const SearchCounters&) override {}
+  std::atomic<bool>* split_flag() override { return nullptr; }
+  void give(std::uint64_t, std::vector<std::vector<Decision>>) override {}
+  std::vector<std::pair<std::uint64_t, SearchCounters>> completed_splits() override { return {}; }
+  WorkStats stats() override { return {}; }
   std::vector<WorkItem> queued_resumed() override {
     std::lock_guard lock(mu_);
     std::vector<WorkItem> out;
