@@ -27,7 +27,7 @@ seconds=${1:-10}
 shift || true
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(tile_set tiling checkpoint db_export group_spec portfolio_stats probability_map flags
-  results_db texture_input point_tiles specs decide_checkpoint smallest_record)
+  results_db texture_input point_tiles specs decide_checkpoint smallest_record tiled_map)
 jobs=${FUZZ_JOBS:-$(nproc)}
 "$root/scripts/setup.sh"
 [ -x "$root/build/tilekit" ] || "$root/scripts/build.sh"
