@@ -128,13 +128,7 @@ TEST(FillPainted, AWfcMapPaintedInTiledIsFilledAndDrawnAsTiledDrawsIt) {
     }
   }
   ASSERT_EQ(tiled::run_qt("tmxrasterizer", q(tmx) + " " + q(d / "tiled.png")), 0);
-  const Image theirs = read_image(d / "tiled.png"), ours = read_image(d / "w.png");
-  ASSERT_EQ(theirs.width, ours.width);
-  ASSERT_EQ(theirs.height, ours.height);
-  int differ = 0;
-  for (int y = 0; y < ours.height; ++y)
-    for (int x = 0; x < ours.width; ++x) differ += theirs.get(x, y) != ours.get(x, y);
-  EXPECT_EQ(differ, 0);
+  EXPECT_EQ(tiled::differing_pixels(read_image(d / "tiled.png"), read_image(d / "w.png")), 0);
 }
 
 // Bad painted maps (no Tiled needed: the maps are written here) exit 2 with the problem and write nothing.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "image/image.hpp"
 #include "tests/cli_runner.hpp"
 
 namespace tilekit::test::tiled {
@@ -28,6 +29,16 @@ inline int run_qt(const std::string& program, const std::string& args) {
       "QT_QPA_PLATFORM=offscreen timeout 120 " + program + " " + args + " >/dev/null 2>&1 </dev/null";
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+// The pixels of `theirs` (tmxrasterizer's render) that differ from `ours` (Tilekit's picture of the
+// same map); -1 when the sizes differ.
+inline int differing_pixels(const Image& theirs, const Image& ours) {
+  if (theirs.width != ours.width || theirs.height != ours.height) return -1;
+  int differ = 0;
+  for (int y = 0; y < ours.height; ++y)
+    for (int x = 0; x < ours.width; ++x) differ += theirs.get(x, y) != ours.get(x, y);
+  return differ;
 }
 
 // One Wang set as Tiled exported it: type and wangid per tile id.
