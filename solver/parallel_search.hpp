@@ -173,7 +173,12 @@ class ParallelSearch {
       piece_start = now;
     }
     bool at_node(const std::vector<Decision>& path, const SearchCounters& c) {
-      if ((c.nodes & 1023) == 0) slot.live_nodes.store(c.nodes, std::memory_order_relaxed);
+      if ((c.nodes & 1023) == 0) {
+        slot.live_nodes.store(c.nodes, std::memory_order_relaxed);
+        // The monitor thread keeps the time limit, but on a busy machine it may not run before a
+        // short search ends: the workers look at the clock too.
+        if (s.deadline_.expired()) s.stop_.request(StopReason::TimeLimit);
+      }
       if (path.size() <= piece_depth) cut_piece(c.nodes);
       if (s.stop_.requested()) {
         publish(path, c, s.epoch_.load());
