@@ -123,7 +123,9 @@ void run_render(const RenderArgs& a, const Context& ctx) {
   if (a.glsl || a.compare) img = render_glsl(a, src, view, o, cpu, j);
   j["renderer"] = a.glsl || a.compare ? "glsl" : "cpu";
   write_png(a.out, img);
-  emit(ctx, j, [&] { print_render(a, src, view, o, j); });
+  emit(ctx, j, [&] {
+    if (!a.quiet) print_render(a, src, view, o, j);
+  });
 }
 
 }  // namespace
@@ -147,7 +149,7 @@ void add_texture_render(CLI::App& texture, Context& ctx) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_flag("--compare", a->compare, "Render both ways, write the GLSL image, report the largest difference");
-  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr");
+  cmd->add_flag("--quiet", a->quiet, "No progress output on stderr and no summary on stdout");
   add_json_flag(cmd, ctx);
   cmd->callback([a, &ctx] { run_render(*a, ctx); });
 }

@@ -56,6 +56,9 @@ TEST(CliTexture, TilesAtlasAndRenderMakeTheirFilesAndReportJson) {
   auto human =
       run_cli("texture render --atlas " + (d / "atlas.json") + " --size 20x10 --out " + (d / "h.png") + " --quiet");
   EXPECT_EQ(human.code, 0);
+  EXPECT_EQ(human.out, "") << "--quiet: no summary";
+  human = run_cli("texture render --atlas " + (d / "atlas.json") + " --size 20x10 --out " + (d / "h.png"));
+  EXPECT_EQ(human.code, 0);
   EXPECT_NE(human.out.find("cpu renderer"), std::string::npos) << human.out;
 }
 
