@@ -3,16 +3,18 @@
 # through the real job scripts, with a stand-in sbatch that runs each job at once (every array task
 # in turn, with Slurm's variables; a job with --dependency=afterok runs only if that job's tasks
 # all ended with 0). tests/CMakeLists.txt registers it. Usage: split-test.sh TILEKIT CASE
-#   wang    the C=2 Wang count in 2 shards, each shard and unit stopped after 3 ms: at least one
-#           round of split units (the units of round 1 finish), then the merge: the shards' results
-#           add up to 203520 (538 orbits), every shard complete (seconds)
+#   wang    the C=2 Wang count in 2 shards, each shard and unit stopped after a quarter of the time
+#           the whole count takes here (measured first; at least 3 ms): at least one round of split
+#           units, then the merge: the shards' results add up to 203520 (538 orbits), every shard
+#           complete (seconds). A fixed limit of a few ms was too near a unit's start-up under load:
+#           units that get nothing done are split again, and the rounds grow without end.
 #   corner  the C=3 corner count under t=(0,3) (about 30 CPU-s) in 2 shards, stopped after 4 s
 #           each, split 2 ways: at least two rounds of split units, then 303264 (a minute; slow)
 # Both: a second `cluster split` after the last round changes nothing.
 set -euo pipefail
 tk=$1 case=$2
 case $case in
-  wang) what=(--kind wang --colors 2) after=0.003 expect=203520 orbits_expected=538 min_rounds=1 ;;
+  wang) what=(--kind wang --colors 2) after=probe expect=203520 orbits_expected=538 min_rounds=1 ;;
   corner) what=(--kind corner --colors 3 --pack-arg=--impose=t=0,3:pi=1,2,0) after=4 expect=303264 orbits_expected="" min_rounds=2 ;;
   *) echo "unknown case $case" >&2; exit 2 ;;
 esac
@@ -24,6 +26,12 @@ fail() {
   exit 1
 }
 mkdir -p "$dir/bin" "$dir/fake"
+if [ "$after" = probe ]; then
+  whole=$("$tk" pack "${what[@]}" --mode count --threads 1 --json --db "$dir/probe.sqlite" 2>/dev/null |
+    grep -o '"seconds":[0-9.eE+-]*' | head -n 1 | cut -d: -f2)
+  [ -n "$whole" ] || fail "the probe count printed no seconds"
+  after=$(awk -v t="$whole" 'BEGIN { a = t / 4; if (a < 0.003) a = 0.003; printf "%.4f", a }')
+fi
 export FAKE_SLURM=$dir/fake
 cat >"$dir/bin/sbatch" <<'EOF'
 #!/bin/bash
@@ -66,7 +74,7 @@ run=$dir/run
   --tilekit "$tk" --sbatch "$dir/bin/sbatch" --run-dir "$run" --json >"$dir/submit.json" ||
   fail "cluster submit failed: $(cat "$dir/submit.json")"
 ls "$dir"/fake/failed-* >/dev/null 2>&1 && fail "a job failed: $(ls "$dir"/fake/failed-*)"
-[ -s "$run/units/round-1.tsv" ] || fail "no round 1: no shard ran past its 3 ms"
+[ -s "$run/units/round-1.tsv" ] || fail "no round 1: no shard ran past its $after s"
 ((min_rounds < 2)) || [ -s "$run/units/round-2.tsv" ] || fail "no round 2: every unit of round 1 finished within $after s"
 for i in 0 1; do
   grep -q '"complete":true' "$run/shards/shard-$i.done.json" || fail "shard $i not complete"
