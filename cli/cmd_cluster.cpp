@@ -255,7 +255,8 @@ void add_submit(CLI::App& cluster, Context& ctx) {
   cmd->add_option("--shards", plan.shards, "Number of shards = array tasks (required without --mpi)");
   cmd->add_option("--split-after", plan.split_after,
                   "Adaptive splitting: each shard (and each later work unit) stops after this many seconds; the merge "
-                  "job splits what it left into --split-ways units, queued as a follow-up array (0 = never)")
+                  "job splits what it left into --split-ways units, queued as a follow-up array (0 = never). A unit's "
+                  "start-up (its first checkpoint) counts against it: give minutes, not milliseconds")
       ->capture_default_str();
   cmd->add_option("--split-ways", plan.split_ways, "Units an unfinished shard or unit becomes in the next round")
       ->capture_default_str();

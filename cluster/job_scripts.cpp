@@ -100,7 +100,7 @@ std::string pack_array_script(const ClusterPlan& p) {
   s += variable("SPLIT_AFTER", fmt::format("{}", p.split_after));
   s += bash_array("COMMAND", p.command);
   s += bash_array("PACK_ARGS", p.pack_args);
-  s += "\n" + body("pack-array");
+  s += "\n" + body("pack-common") + "\n" + body("pack-array");
   return s;
 }
 
@@ -135,7 +135,7 @@ std::string pack_mpi_script(const ClusterPlan& p) {
   s += variable("SRUN_MPI", p.srun_mpi);
   s += bash_array("COMMAND", p.command);
   s += bash_array("PACK_ARGS", p.pack_args);
-  s += "\n" + body("pack-mpi");
+  s += "\n" + body("pack-common") + "\n" + body("pack-mpi");
   return s;
 }
 

@@ -69,6 +69,7 @@ TEST(ClusterJobScripts, ArrayScriptCarriesEverySettingOfThePlan) {
   const std::string_view body = cluster::slurm_script_body("pack-array");
   ASSERT_FALSE(body.empty());
   EXPECT_TRUE(s.ends_with(body));
+  EXPECT_TRUE(has(s, std::string(cluster::slurm_script_body("pack-common")) + "\n" + std::string(body)));
   EXPECT_TRUE(has(s, "OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK"));
   EXPECT_TRUE(has(s, "scontrol requeue"));
 }

@@ -15,7 +15,9 @@
 #     resumes from the merged rank files and completes: 303,264.
 #  3. mpirun inside the allocation (--launcher mpirun): the C=2 Wang count, 203,520.
 #  4. Adaptive splitting of a job array (no MPI: `--split-after`, cluster/split.hpp): the C=2 Wang
-#     count in 2 shards stopped after 3 ms each; the merge job queues the split units as a
+#     count in 2 shards stopped after a quarter of the time the whole count takes here (a fixed
+#     3 ms was eaten by a unit's first checkpoint under load: no unit got anything done, and
+#     the rounds doubled without end); the merge job queues the split units as a
 #     follow-up array and itself after it, and merges when nothing is left: 203,520.
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
@@ -172,10 +174,13 @@ check "3: the ranks were started by mpirun" grep -q "starting (resume: false): m
 
 # ---- 4. adaptive splitting of a job array: follow-up arrays queued by the merge job ------------
 r4=$work/wang2-split
-out=$("$TK" cluster submit --kind wang --colors 2 --mode count --shards 2 --split-after 0.003 --split-ways 2 \
+whole=$("$TK" pack --kind wang --colors 2 --mode count --threads 1 --json --db "$work/probe4.sqlite" 2>/dev/null |
+  grep -o '"seconds":[0-9.eE+-]*' | head -n 1 | cut -d: -f2)
+after4=$(awk -v t="${whole:-0.012}" 'BEGIN { a = t / 4; if (a < 0.003) a = 0.003; printf "%.4f", a }')
+out=$("$TK" cluster submit --kind wang --colors 2 --mode count --shards 2 --split-after "$after4" --split-ways 2 \
   --time 5 --run-dir "$r4" --json)
 m4=$({ grep -o '"merge_job":"[0-9]*"' <<<"$out" || true; } | { grep -o '[0-9][0-9]*' || true; })
-log "case 4: split run, first merge job $m4"
+log "case 4: split run (shards stopped after $after4 s), first merge job $m4"
 check "4: the first merge job completed" equals "$(wait_final "$m4")" COMPLETED
 # The last merge job is the one whose log says it merged.
 while ! grep -qs "the shards reported" "$r4"/logs/merge-*.out && (($(time_left) > 0)); do sleep 1; done
