@@ -103,7 +103,9 @@ class ParallelSearch {
     deadline_ = Deadline(cfg_.run.time_limit, start_);
     ParallelOutcome out;
     if (cfg_.estimate_probes) {
-      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed, [this] { return poll_stop(); });
+      // The time limit ends the estimate but is not yet the run's stop: the search gets its slice.
+      out.estimate = knuth_estimate(root_, cfg_.estimate_probes, cfg_.run.seed,
+                                    [this] { return poll_stop(false) || deadline_.expired(); });
       stats_.estimate_seconds = elapsed();
     }
     estimate_ = out.estimate.nodes;
@@ -497,9 +499,22 @@ class ParallelSearch {
     }
   };
 
+  // However long the set-up took (the estimate, the split, a resumed state, the first checkpoint),
+  // the search itself runs at least this long (or the whole limit, if shorter) before the time
+  // limit stops it: a run cut by its limit always got some search done, so the slices of a
+  // resumed run, or the units of a split array, always progress.
+  static constexpr std::chrono::milliseconds kLeastSearchSlice{20};
+
   template <class Work>
   void run_workers(Work work) {
     const double search_start = elapsed();
+    if (deadline_.limited()) {
+      const auto slice = std::min<std::chrono::steady_clock::duration>(
+          kLeastSearchSlice, std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 std::chrono::duration<double>(cfg_.run.time_limit)));
+      const auto least = std::chrono::steady_clock::now() + slice;
+      if (deadline_.when() < least) deadline_ = Deadline::at(least);
+    }
     struct Timed {  // the search phase ends when the workers and the monitor are done
       ParallelSearch& s;
       double start;
@@ -552,14 +567,14 @@ class ParallelSearch {
     if (cfg_.run.progress) report(progress);
   }
 
-  // Signals, the time limit and another lane's cancel: requests the stop, and says whether one is
-  // requested.
-  bool poll_stop() {
+  // Signals, the time limit (unless `time_limit` is false) and another lane's cancel: requests the
+  // stop, and says whether one is requested.
+  bool poll_stop(bool time_limit = true) {
     if (cfg_.run.catch_signals && SignalCatcher::caught()) {
       signal_ = SignalCatcher::caught();
       stop_.request(StopReason::Signal);
     }
-    if (deadline_.expired()) stop_.request(StopReason::TimeLimit);
+    if (time_limit && deadline_.expired()) stop_.request(StopReason::TimeLimit);
     if (cfg_.run.cancelled()) stop_.request(StopReason::Cancelled);
     return stop_.requested();
   }

@@ -46,8 +46,8 @@ std::pair<PackOutcome, int> in_slices(PackRequest first, double slice, const std
   return {out, slices};
 }
 
-// A subspace whose count takes about 0.1 CPU s: several 20 ms slices (the engine's monitor looks
-// at the time limit every 20 ms) on any machine.
+// A subspace whose count takes about 0.1 CPU s: several 20 ms slices on any machine (each slice
+// searches at least 20 ms, however long its resume and first checkpoint took: kLeastSearchSlice).
 PackRequest c3_group(const TempDir& dir, const std::string& mode, const std::string& shard) {
   PackRequest r;
   r.kind = "wang", r.colours = 3, r.mode = mode, r.db = dir / (mode + ".sqlite");
