@@ -141,10 +141,10 @@ void seams(const std::string& name, int seeds) {
       const double up = kLight[2], out = std::hypot(kLight[0], kLight[1]);
       for (int k = 0; k < 8; ++k) {
         const double phi = std::atan2(kLight[1], kLight[0]) + k * std::numbers::pi / 4;
-        ring += seam_statistics(lit(colour, normals, {out * std::cos(phi), out * std::sin(phi), up}), s.tile_px,
-                                &sources)
-                    .cut_ratio /
-                8;
+        ring +=
+            seam_statistics(lit(colour, normals, {out * std::cos(phi), out * std::sin(phi), up}), s.tile_px, &sources)
+                .cut_ratio /
+            8;
       }
       const std::size_t side = all ? 1 : 0;
       for (const auto& [key, v] : {std::pair<const char*, double>{"cut_ratio", r.cut_ratio},
