@@ -1,12 +1,19 @@
 // Material sets (texture/material.hpp) on the held-out textures, which no tuning decision looks
 // at (scripts/fetch-textures.sh --held-out: UFO: Alien Invasion's colour, normal and specular
-// maps). One JSON line per case. Usage: build/bench_material [--reps R] [--only PREFIX]
-//   material-seams/NAME/{albedo,all}  corner tiles (C = 4, 64 px, seed 1, one thread) whose
-//       samples and cuts are chosen on the albedo alone or on every map (--map-cost), the normal
-//       map carried by the recorded texels either way; a 16x16-tile window of the tiling, lit
-//       through its normal map (albedo in linear light x max(0, n.l) + ambient, back to sRGB):
-//       cut_ratio is the step across sample boundaries over the step inside samples in that
-//       render (texture/seam_metrics.hpp), normal_cut_ratio the same on the normal map itself.
+// maps). One JSON line per case. Usage: build/bench_material [--reps R] [--seeds S] [--only PREFIX]
+//   material-seams/NAME/{albedo,all}  corner tiles (C = 4, 64 px, one thread, seeds 1..S, default
+//       3: the albedo-only and the all-map run of one seed are a pair) whose samples and cuts are
+//       chosen on the albedo alone or on every map (--map-cost), the normal map carried by the
+//       recorded texels either way; a 16x16-tile window of the tiling, lit through its normal map
+//       (albedo in linear light x (0.15 + 0.85 max(0, n.l)), back to sRGB), light from the upper
+//       left at 50 degrees: cut_ratio is the step across sample boundaries (cut_step) over the step
+//       inside samples (same_source_step) in that render (texture/seam_metrics.hpp); ring_cut_ratio
+//       the mean of the same over 8 lights all round at that elevation (no light favoured);
+//       shading_cut_ratio the same for the shading alone (grey albedo), normal_cut_ratio and
+//       albedo_cut_ratio on the maps themselves. The all-map run draws its samples with the
+//       maps in the cost too, so a pair differs in samples as well as cuts: one seed's
+//       difference mixes the two (seed to seed the lit ratio moves by up to 0.07), hence seeds.
+//   material-seams-mean/NAME  the means over the seeds of both runs.
 //   material-speed/NAME  synthesis of the albedo alone against a four-map material (albedo,
 //       normal, specular, height), C = 4, 64 px, one thread, interleaved; the median of R runs
 //       each; goal: ratio <= 2.
@@ -15,10 +22,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
@@ -64,20 +74,21 @@ HeldOut held_out(const std::string& name) {
 
 constexpr double kAlbedoWeight = 1.0;
 
-SynthesisOptions options() {
+SynthesisOptions options(std::uint64_t seed = 1) {
   SynthesisOptions o;
   o.kind = TileKind::Corner;
   o.colours = 4;
   o.tile_px = 64;
-  o.seed = 1;
+  o.seed = seed;
   o.threads = 1;
   o.thin_bands = true;
   o.record_coords = true;
   return o;
 }
 
-TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<MaterialMap>& maps) {
-  const SynthesisOptions o = options();
+TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<MaterialMap>& maps,
+                          std::uint64_t seed = 1) {
+  const SynthesisOptions o = options(seed);
   if (!all_maps) return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), o);
   SynthesisOptions with = o;
   const char* w = std::getenv("TILEKIT_ALBEDO_WEIGHT");  // --albedo-weight
@@ -86,9 +97,9 @@ TextureTileSet synthesize(const HeldOut& h, bool all_maps, const std::vector<Mat
   return synthesize_tiles(exemplar_from_image(h.albedo, h.name, true), with);
 }
 
-// The window lit through its normal map.
-Image lit(const Image& albedo, const Image& normals) {
-  const double l[3] = {0.45, -0.45, 0.77};  // light from the upper left
+// The window lit through its normal map; by default the light from the upper left, 50 degrees up.
+constexpr std::array<double, 3> kLight{0.45, -0.45, 0.77};
+Image lit(const Image& albedo, const Image& normals, const std::array<double, 3>& l = kLight) {
   const double ll = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
   Image out(albedo.width, albedo.height);
   for (int y = 0; y < albedo.height; ++y)
@@ -105,46 +116,71 @@ Image lit(const Image& albedo, const Image& normals) {
   return out;
 }
 
-void seams(const std::string& name) {
+void seams(const std::string& name, int seeds) {
   const HeldOut h = held_out(name);
   const Tiling window = DirectCornerTiling(4, HashKind::LongPeriod, 1).generate(16, 16);
-  for (const bool all : {false, true}) {
-    TextureTileSet s = synthesize(h, all, h.maps);
-    const Image albedo = map_as_sampled(h.albedo, true, s.perspective, s.exemplar_scale);
-    s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
-    TextureTileSet normal_set = s;
-    normal_set.tiles =
-        transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.maps[0].image, true, s.perspective, s.exemplar_scale));
-    std::vector<std::uint32_t> sources;
-    const Image colour = stitch_tiles(s, window, &sources);
-    const Image normals = stitch_tiles(normal_set, window);
-    const Image render = lit(colour, normals);
-    const SeamStatistics r = seam_statistics(render, s.tile_px, &sources);
-    const SeamStatistics nm = seam_statistics(normals, s.tile_px, &sources);
-    const SeamStatistics al = seam_statistics(colour, s.tile_px, &sources);
-    print({{"case", fmt::format("material-seams/{}/{}", name, all ? "all" : "albedo")},
-           {"maps", h.maps.size() + 1},
-           {"cut_ratio", r.cut_ratio},
-           {"seam_ratio", r.seam_ratio},
-           {"normal_cut_ratio", nm.cut_ratio},
-           {"albedo_cut_ratio", al.cut_ratio},
-           {"cut_error", s.cut_error},
-           {"period", {s.period.x, s.period.y}},
-           {"thin_bands", s.thin_bands},
-           {"shared_fraction", s.shared_fraction},
-           {"window_tiles", "16x16"}});
-    if (const char* dir = std::getenv("TILEKIT_BENCH_PICTURES")) {  // 256x256 crops: lit, and the shading alone
+  std::map<std::string, std::array<double, 2>> sums;  // per figure: albedo-only, all-map
+  for (int seed = 1; seed <= seeds; ++seed)
+    for (const bool all : {false, true}) {
+      TextureTileSet s = synthesize(h, all, h.maps, std::uint64_t(seed));
+      const Image albedo = map_as_sampled(h.albedo, true, s.perspective, s.exemplar_scale);
+      s.tiles = transfer_tiles(s.coords, s.tile_px, albedo);
+      TextureTileSet normal_set = s;
+      normal_set.tiles =
+          transfer_tiles(s.coords, s.tile_px, map_as_sampled(h.maps[0].image, true, s.perspective, s.exemplar_scale));
+      std::vector<std::uint32_t> sources;
+      const Image colour = stitch_tiles(s, window, &sources);
+      const Image normals = stitch_tiles(normal_set, window);
+      const Image render = lit(colour, normals);
       const Image shading = lit(Image(colour.width, colour.height, Rgb{188, 188, 188}), normals);
-      for (const auto& [what, img] : {std::pair<const char*, const Image*>{"lit", &render}, {"shading", &shading}}) {
-        Image crop(256, 256);
-        for (int y = 0; y < 256; ++y) std::copy_n(img->at(0, y), 256 * 4, crop.at(0, y));
-        write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
-      }
+      const SeamStatistics r = seam_statistics(render, s.tile_px, &sources);
+      const SeamStatistics nm = seam_statistics(normals, s.tile_px, &sources);
+      const SeamStatistics al = seam_statistics(colour, s.tile_px, &sources);
       const SeamStatistics sh = seam_statistics(shading, s.tile_px, &sources);
-      print(
-          {{"case", fmt::format("material-shading/{}/{}", name, all ? "all" : "albedo")}, {"cut_ratio", sh.cut_ratio}});
+      double ring = 0;  // the same light from 8 azimuths
+      const double up = kLight[2], out = std::hypot(kLight[0], kLight[1]);
+      for (int k = 0; k < 8; ++k) {
+        const double phi = std::atan2(kLight[1], kLight[0]) + k * std::numbers::pi / 4;
+        ring +=
+            seam_statistics(lit(colour, normals, {out * std::cos(phi), out * std::sin(phi), up}), s.tile_px, &sources)
+                .cut_ratio /
+            8;
+      }
+      const std::size_t side = all ? 1 : 0;
+      for (const auto& [key, v] : {std::pair<const char*, double>{"cut_ratio", r.cut_ratio},
+                                   {"ring_cut_ratio", ring},
+                                   {"shading_cut_ratio", sh.cut_ratio},
+                                   {"normal_cut_ratio", nm.cut_ratio},
+                                   {"albedo_cut_ratio", al.cut_ratio}})
+        sums[key][side] += v / seeds;
+      print({{"case", fmt::format("material-seams/{}/{}", name, all ? "all" : "albedo")},
+             {"seed", seed},
+             {"maps", h.maps.size() + 1},
+             {"cut_ratio", r.cut_ratio},
+             {"cut_step", r.cut_step},
+             {"same_source_step", r.same_source_step},
+             {"cut_pairs", r.cut_pairs},
+             {"ring_cut_ratio", ring},
+             {"shading_cut_ratio", sh.cut_ratio},
+             {"seam_ratio", r.seam_ratio},
+             {"normal_cut_ratio", nm.cut_ratio},
+             {"albedo_cut_ratio", al.cut_ratio},
+             {"cut_error", s.cut_error},
+             {"period", {s.period.x, s.period.y}},
+             {"thin_bands", s.thin_bands},
+             {"shared_fraction", s.shared_fraction},
+             {"window_tiles", "16x16"}});
+      const char* dir = std::getenv("TILEKIT_BENCH_PICTURES");  // 256x256 crops of seed 1: lit, and the shading
+      if (dir && seed == 1)
+        for (const auto& [what, img] : {std::pair<const char*, const Image*>{"lit", &render}, {"shading", &shading}}) {
+          Image crop(256, 256);
+          for (int y = 0; y < 256; ++y) std::copy_n(img->at(0, y), 256 * 4, crop.at(0, y));
+          write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
+        }
     }
-  }
+  nlohmann::json mean = {{"case", fmt::format("material-seams-mean/{}", name)}, {"seeds", seeds}};
+  for (const auto& [key, v] : sums) mean[key] = {{"albedo", v[0]}, {"all", v[1]}, {"change", v[1] / v[0] - 1}};
+  print(mean);
 }
 
 void speed(const std::string& name, int reps) {
@@ -194,17 +230,19 @@ void speed(const std::string& name, int reps) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int reps = 3;
+  int reps = 3, seeds = 3;
   std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
       reps = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--seeds") && i + 1 < argc)
+      seeds = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
       only = argv[++i];
   }
   const auto want = [&](const std::string& c) { return only.empty() || c.rfind(only, 0) == 0; };
   for (const std::string name : {"ufo-brick", "ufo-tile", "ufo-wood", "ufo-concrete", "ufo-dirt", "ufo-mud"})
-    if (want("material-seams/" + name)) seams(name);
+    if (want("material-seams/" + name)) seams(name, seeds);
   for (const std::string name : {"ufo-concrete", "ufo-dirt"})
     if (want("material-speed/" + name)) speed(name, reps);
 }
