@@ -182,7 +182,7 @@ Image read_image(const std::string& path, int channels, bool keep_depth) {
   // stb's 16-bit decoders other than PNG's (PNM with a maxval over 255, PSD) can write past their
   // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
   if (stbi_is_16_bit_from_memory(bytes, size) && !std::string_view(file).starts_with(kPngSignature))
-    throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
+    throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG or TIFF)", path));
   if (keep_depth && stbi_is_16_bit_from_memory(bytes, size)) {
     stbi_us* wide = stbi_load_16_from_memory(bytes, size, &w, &h, &n, channels);
     if (!wide) throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
