@@ -1,13 +1,13 @@
 // OpenEXR through the OpenEXR library (Debian libopenexr-dev; its C++ API, single-threaded): files
 // read from and written to memory (read_image reads the file whole through read_input_file; write_exr
 // renames a complete file into place). Every exception of the library becomes one InputError.
+#include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <ImathBox.h>
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -106,8 +106,7 @@ Image decode_tiff(const std::string& path, std::string_view file, int channels, 
   if (!tif) throw fail("damaged or not a TIFF");
   TIFF* t = tif.get();
   std::uint32_t w = 0, h = 0;
-  if (TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w) != 1 || TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h) != 1 || w == 0 ||
-      h == 0)
+  if (TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w) != 1 || TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h) != 1 || w == 0 || h == 0)
     throw fail("no image size");
   check_decoded_size(path, file.size(), w, h);
   const auto bits = field<std::uint16_t>(t, TIFFTAG_BITSPERSAMPLE, 1);
@@ -116,13 +115,13 @@ Image decode_tiff(const std::string& path, std::string_view file, int channels, 
   const auto planar = field<std::uint16_t>(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
   std::uint16_t photometric = 0;
   if (TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photometric) != 1) photometric = spp >= 3 ? PHOTOMETRIC_RGB : 1;
-  const bool as_stored = ((bits == 8 || bits == 16) && format == SAMPLEFORMAT_UINT) ||
-                         (bits == 32 && format == SAMPLEFORMAT_IEEEFP);
+  const bool as_stored =
+      ((bits == 8 || bits == 16) && format == SAMPLEFORMAT_UINT) || (bits == 32 && format == SAMPLEFORMAT_IEEEFP);
   const bool grey = photometric == PHOTOMETRIC_MINISBLACK && spp >= 1;
   const bool rgb = photometric == PHOTOMETRIC_RGB && spp >= 3;
   if (format == SAMPLEFORMAT_IEEEFP && !(as_stored && (grey || rgb)))
-    throw fail(fmt::format("{}-bit float samples, photometric {}: only 32-bit float grey or RGB is read", bits,
-                           photometric));
+    throw fail(
+        fmt::format("{}-bit float samples, photometric {}: only 32-bit float grey or RGB is read", bits, photometric));
   if (as_stored && (grey || rgb)) {
     const int keep = grey ? std::min<int>(spp, 2) : std::min<int>(spp, 4);  // grey(+alpha), RGB(+alpha)
     const std::size_t bb = bits / 8;
@@ -139,7 +138,8 @@ Image decode_tiff(const std::string& path, std::string_view file, int channels, 
     };
     for (int p = 0; p < std::min(planes, keep); ++p) {
       if (TIFFIsTiled(t)) {
-        const auto tw = field<std::uint32_t>(t, TIFFTAG_TILEWIDTH, 0), th = field<std::uint32_t>(t, TIFFTAG_TILELENGTH, 0);
+        const auto tw = field<std::uint32_t>(t, TIFFTAG_TILEWIDTH, 0),
+                   th = field<std::uint32_t>(t, TIFFTAG_TILELENGTH, 0);
         const std::uint64_t need = std::uint64_t(tw) * th * std::uint64_t(per_plane) * bb;
         if (tw == 0 || th == 0 || TIFFTileSize64(t) < need || need > (std::uint64_t(512) << 20))
           throw fail(fmt::format("tiles of {}x{} texels", tw, th));

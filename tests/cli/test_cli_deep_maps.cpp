@@ -98,8 +98,8 @@ TEST(CliDeepMaps, SixteenBitTiffAndFloatExrMapsKeepTheirDepthThroughTilesAndAtla
 TEST(CliDeepMaps, DamagedTiffAndExrSrgbFloatAndFloatExemplarsAreExitTwo) {
   TempDir d;
   write_png(d / "ex.png", test::synthetic_image(96, 96));
-  const std::string base =
-      "texture tiles --exemplar " + (d / "ex.png") + " --colors 1 --tile-px 32 --search 0 --quiet --out " + (d / "o") + " ";
+  const std::string base = "texture tiles --exemplar " + (d / "ex.png") +
+                           " --colors 1 --tile-px 32 --search 0 --quiet --out " + (d / "o") + " ";
   test::write_text(d / "bad.tif", std::string("II*\0", 4) + std::string(64, '\x11'));
   test::write_text(d / "bad.exr", std::string("\x76\x2f\x31\x01", 4) + std::string(64, '\x11'));
   expect_one_line_exit_2(run_cli(base + "--map h=" + (d / "bad.tif")), "bad.tif: cannot read the TIFF");

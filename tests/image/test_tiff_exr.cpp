@@ -48,9 +48,8 @@ std::string read_file_bytes(const std::string& path) {
 TEST(TiffInput, SixteenBitSamplesReadAsStoredInEveryLayout) {
   test::TempDir d;
   const std::string path = d / "ramp.tif";
-  for (const test::TiffLayout layout :
-       {test::TiffLayout{}, test::TiffLayout{true, false, 8, 4}, test::TiffLayout{false, true, 5, 4},
-        test::TiffLayout{true, true, 1, 3}}) {
+  for (const test::TiffLayout layout : {test::TiffLayout{}, test::TiffLayout{true, false, 8, 4},
+                                        test::TiffLayout{false, true, 5, 4}, test::TiffLayout{true, true, 1, 3}}) {
     for (int channels : {1, 4}) {
       const Image ramp = ramp_image(37, 21, channels, 16);  // not a multiple of the tiles
       test::write_tiff(path, ramp, layout);
@@ -140,8 +139,8 @@ TEST(TiffExrInput, DamagedFilesAreOneLineErrorsAndStderrStaysQuiet) {
   // A TIFF whose directory claims 10000 x 10000 texels from a few kilobytes (at most 1024 a byte).
   std::string huge = tif;
   for (std::size_t i = 8; i + 12 < huge.size(); ++i)
-    if ((huge[i] == '\x00' || huge[i] == '\x01') && huge[i + 1] == '\x01' && huge[i + 2] == '\x03' && huge[i + 3] == 0 &&
-        huge[i + 4] == 1 && huge[i + 5] == 0) {
+    if ((huge[i] == '\x00' || huge[i] == '\x01') && huge[i + 1] == '\x01' && huge[i + 2] == '\x03' &&
+        huge[i + 3] == 0 && huge[i + 4] == 1 && huge[i + 5] == 0) {
       huge[i + 8] = char(0x10), huge[i + 9] = char(0x27);  // 10000 (the entry's SHORT value)
     }
   ASSERT_NE(huge, tif);

@@ -16,10 +16,10 @@
 namespace tilekit::test {
 
 struct TiffLayout {
-  bool tiled = false;      // 16x16 tiles, else strips of 4 rows
-  bool planar = false;     // one plane per sample (PLANARCONFIG_SEPARATE)
-  int compression = 1;     // COMPRESSION_NONE; 5 LZW, 8 Adobe deflate
-  int colour_channels = 3; // of an RGBA image: 3 (RGB, alpha dropped) or 4 (RGBA)
+  bool tiled = false;       // 16x16 tiles, else strips of 4 rows
+  bool planar = false;      // one plane per sample (PLANARCONFIG_SEPARATE)
+  int compression = 1;      // COMPRESSION_NONE; 5 LZW, 8 Adobe deflate
+  int colour_channels = 3;  // of an RGBA image: 3 (RGB, alpha dropped) or 4 (RGBA)
 };
 
 // `img` (1 channel: grey; 4: RGB or RGBA by layout) as a TIFF at img.depth bits.
@@ -48,7 +48,8 @@ inline void write_tiff(const std::string& path, const Image& img, const TiffLayo
   }
   const int planes = l.planar ? spp : 1, per_plane = l.planar ? 1 : spp;
   const auto put = [&](std::uint8_t* to, int x, int y, int p) {
-    for (int s = 0; s < per_plane; ++s) std::memcpy(to + std::size_t(s) * bb, img.at(x, y) + std::size_t(l.planar ? p : s) * bb, bb);
+    for (int s = 0; s < per_plane; ++s)
+      std::memcpy(to + std::size_t(s) * bb, img.at(x, y) + std::size_t(l.planar ? p : s) * bb, bb);
   };
   bool ok = true;
   for (int p = 0; p < planes; ++p) {

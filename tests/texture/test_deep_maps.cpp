@@ -17,8 +17,8 @@
 #include "../image/tiff_writer.hpp"
 #include "base/error.hpp"
 #include "base/input.hpp"
-#include "image/ktx2.hpp"
 #include "image/image.hpp"
+#include "image/ktx2.hpp"
 #include "texture/material.hpp"
 #include "texture/mipmap.hpp"
 #include "texture/texture_atlas.hpp"
@@ -59,8 +59,8 @@ void expect_atlas_copies_source(const TextureAtlas& atlas, const TextureTileSet&
       for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) {
           const std::uint32_t c = set.coords[t][std::size_t(y) * 32 + std::size_t(x)];
-          ASSERT_EQ(std::memcmp(atlas.levels[0].at(col * 32 + x, row * 32 + y), source.at(int(c & 0xffff), int(c >> 16)),
-                                bytes),
+          ASSERT_EQ(std::memcmp(atlas.levels[0].at(col * 32 + x, row * 32 + y),
+                                source.at(int(c & 0xffff), int(c >> 16)), bytes),
                     0)
               << "tile " << t << " texel " << x << "," << y;
         }
