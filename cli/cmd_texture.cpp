@@ -53,9 +53,10 @@ Image exemplar_at_depth(const std::string& path_or_name, const Exemplar& e) {
   if (fs::is_regular_file(path_or_name, ec)) {
     Image img = read_image(path_or_name, 4, true);
     if (img.is_float())
-      throw InputError(fmt::format("{}: a float exemplar (OpenEXR or float TIFF); give float data as --map "
-                                   "NAME=FILE:linear beside an 8- or 16-bit exemplar",
-                                   path_or_name));
+      throw InputError(
+          fmt::format("{}: a float exemplar (OpenEXR or float TIFF); give float data as --map "
+                      "NAME=FILE:linear beside an 8- or 16-bit exemplar",
+                      path_or_name));
     if (img.width == (e.wrap_w ? e.wrap_w : e.width()) && img.height == (e.wrap_h ? e.wrap_h : e.height())) return img;
   }
   const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();

@@ -57,8 +57,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (int channels : {4, 1})
           for (bool keep_depth : {false, true}) {  // 16-bit PNG and TIFF, float TIFF and OpenEXR kept
             const Image img = read_image(path, channels, keep_depth);
-            if (std::int64_t(img.width) * img.height > kMaxImagePixels ||
-                (!keep_depth && img.depth != 8) ||
+            if (std::int64_t(img.width) * img.height > kMaxImagePixels || (!keep_depth && img.depth != 8) ||
                 img.pixels.size() != std::size_t(img.width) * std::size_t(img.height) * std::size_t(channels) *
                                          std::size_t(img.depth / 8))
               __builtin_trap();

@@ -129,8 +129,8 @@ namespace image_codecs {
 
 void check_decoded_size(const std::string& path, std::size_t file_bytes, std::int64_t w, std::int64_t h) {
   if (w * h > kMaxImagePixels)
-    throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
-                                 kMaxImagePixels));
+    throw InputError(
+        fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h, kMaxImagePixels));
   if (w * h > kMaxPixelsPerByte * std::int64_t(file_bytes))
     throw InputError(fmt::format("{}: {}x{} pixels from {} bytes is damaged (at most {} pixels a byte)", path, w, h,
                                  file_bytes, kMaxPixelsPerByte));
@@ -140,7 +140,8 @@ Image from_channels(int w, int h, int depth, int src_channels, std::vector<std::
   Image src(w, h, std::move(data), src_channels);
   src.depth = depth;
   if (src_channels == channels) return src;
-  Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(channels) * std::size_t(depth / 8)),
+  Image out(w, h,
+            std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(channels) * std::size_t(depth / 8)),
             channels);
   out.depth = depth;
   const bool colour = src_channels >= 3, alpha = src_channels == 2 || src_channels == 4;

@@ -125,6 +125,8 @@ std::string encode_exr(const Image& img);
 void write_exr(const std::string& path, const Image& img);
 // Whatever holds the image exactly: PNG at 8 or 16 bits, OpenEXR for float; and its extension.
 std::string encode_image(const Image& img);
-inline const char* image_extension(const Image& img) { return img.depth == 32 ? ".exr" : ".png"; }
+inline const char* image_extension(const Image& img) {
+  return img.depth == 32 ? ".exr" : ".png";
+}
 
 }  // namespace tilekit

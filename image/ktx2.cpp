@@ -64,9 +64,9 @@ std::string dfd(const Ktx2Texture& t) {
     std::uint32_t type = channels[c];
     if (c == 3 && t.transfer == Ktx2Transfer::Srgb) type |= kDfSampleLinear;
     if (is_float) type |= kDfSampleFloatSigned;
-    put32(d, (c * bits) | ((bits - 1) << 16) | (type << 24));          // bitOffset, bitLength - 1, channelType
-    put32(d, 0);                                                       // sample position
-    put32(d, is_float ? kDfFloatMinusOne : 0);                         // sampleLower
+    put32(d, (c * bits) | ((bits - 1) << 16) | (type << 24));              // bitOffset, bitLength - 1, channelType
+    put32(d, 0);                                                           // sample position
+    put32(d, is_float ? kDfFloatMinusOne : 0);                             // sampleLower
     put32(d, is_float ? kDfFloatOne : std::uint32_t((1ull << bits) - 1));  // sampleUpper
   }
   return d;

@@ -111,8 +111,8 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
       fit.depth = m.image.depth;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-          std::copy_n(m.image.at(std::min(x, m.image.width - 1), std::min(y, m.image.height - 1)),
-                      fit.texel_bytes(), fit.at(x, y));
+          std::copy_n(m.image.at(std::min(x, m.image.width - 1), std::min(y, m.image.height - 1)), fit.texel_bytes(),
+                      fit.at(x, y));
       m.image = std::move(fit);
     }
     if (m.space == ColourSpace::Normal) renormalise(m.image);
@@ -123,7 +123,7 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
 std::vector<SeamCostMap> seam_cost_maps(const std::vector<MaterialMap>& maps) {
   std::vector<SeamCostMap> out;
   for (const MaterialMap& m : maps)
-    out.push_back({!m.image.is_float()                ? m.image
+    out.push_back({!m.image.is_float()              ? m.image
                    : m.space == ColourSpace::Normal ? m.image.to_depth(16)  // (n + 1) / 2 in 0..1
                                                     : cost_image(m.image),
                    m.space == ColourSpace::Normal, m.weight});

@@ -23,7 +23,7 @@ struct MaterialMap {
   std::string file;
   ColourSpace space = ColourSpace::Srgb;  // srgb colour, linear data or tangent-space normals
   double weight = 1;                      // its term's weight in the seam costs (seam_cost_maps)
-  Image image;  // as read: 8 or 16 bits or float, RGBA; the exemplar's size after resize_maps
+  Image image;                            // as read: 8 or 16 bits or float, RGBA; the exemplar's size after resize_maps
   bool resized = false;                   // resampled to the exemplar's grid (resize_maps)
 };
 
