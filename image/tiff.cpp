@@ -3,7 +3,8 @@
 // file, libtiff 4.5's TIFFOpenOptions: nothing reaches stderr, no global state), and its single
 // allocations are capped. Grey and RGB images of 8 or 16 bits unsigned or 32-bit float are read
 // as stored, strips or tiles, samples together or in planes; every other kind libtiff reads
-// (palette, CMYK, YCbCr, 1-bit, ...) through its RGBA reader, at 8 bits.
+// (palette, CMYK, YCbCr, 1-bit, ...) through its RGBA reader, at 8 bits. Samples read as stored
+// are taken rows from the top as stored: an Orientation tag other than top-left is not applied.
 #include <fmt/format.h>
 #include <tiffio.h>
 
