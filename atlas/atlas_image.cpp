@@ -85,7 +85,7 @@ Image generated_tile(TileKind kind, std::uint32_t colours, TileIndex tile, int s
 namespace {
 
 Image assemble(const AtlasLookup& a, int tile_size, const std::function<const Image&(TileIndex)>& tile_image) {
-  // The depth of the tiles (all 8-bit or all 16-bit: atlas_from_tile_images makes them agree).
+  // The depth of the tiles (all 8-bit, 16-bit or float: atlas_from_tile_images makes them agree).
   const int depth = a.cells.empty() ? 8 : tile_image(a.cells[0]).depth;
   Image atlas{a.cols * tile_size, a.rows * tile_size,
               std::vector<std::uint8_t>(std::size_t(a.cols) * std::size_t(a.rows) * std::size_t(tile_size) *
@@ -150,10 +150,10 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
                                    dir, i, files.size(), a.cells.size(), i));
   std::vector<Image> tiles(a.cells.size());
   int size = 0;
-  bool wide = false;  // a 16-bit tile makes a 16-bit atlas
+  int depth = 8;  // a 16-bit tile makes a 16-bit atlas, a float tile a float one
   for (auto& [index, path] : files) {
     Image img = read_image(path.string(), 4, true);
-    wide = wide || img.depth == 16;
+    depth = std::max(depth, img.depth);
     const int w = img.width, h = img.height;
     if (w != h) throw InputError(fmt::format("{}: tile images must be square, this one is {}x{}", path.string(), w, h));
     if (size == 0) size = w;
@@ -164,8 +164,7 @@ Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir) {
       throw InputError(fmt::format("{}: {}x{} pixels, but the other tiles are {}x{}", path.string(), w, h, size, size));
     tiles[index] = std::move(img);
   }
-  if (wide)
-    for (Image& t : tiles) t = t.to_depth(16);
+  for (Image& t : tiles) t = t.to_depth(depth);
   return assemble(a, size, [&](TileIndex i) -> const Image& { return tiles[i]; });
 }
 

@@ -24,7 +24,8 @@ std::array<std::uint8_t, 3> palette_colour(std::uint32_t k, std::uint32_t colour
 Image atlas_from_generated_tiles(const AtlasLookup& a, int tile_size);
 // Files in `dir` whose name (without extension) ends in a tile index, e.g. 17.png or
 // tile-0017.png; every tile of the set exactly once, all of one size. Throws InputError. 16-bit
-// PNG tiles make a 16-bit atlas (8-bit tiles among them are widened).
+// tiles (PNG, TIFF) make a 16-bit atlas and float tiles (OpenEXR, float TIFF) a float one (the
+// other tiles among them are converted: image/image.hpp's to_depth).
 Image atlas_from_tile_images(const AtlasLookup& a, const std::string& dir);
 
 // Largest colour step (max over channels) between horizontally or vertically adjacent pixels

@@ -46,11 +46,17 @@ struct TilesArgs {
   double albedo_weight = 1;
 };
 
-// The exemplar at its own depth (a 16-bit PNG keeps 16 bits), one copy of a torus.
+// The exemplar at its own depth (a 16-bit PNG or TIFF keeps 16 bits), one copy of a torus. A
+// float exemplar is refused: the synthesis reads 8 bits, which would clamp float data to 0..1.
 Image exemplar_at_depth(const std::string& path_or_name, const Exemplar& e) {
   std::error_code ec;
   if (fs::is_regular_file(path_or_name, ec)) {
     Image img = read_image(path_or_name, 4, true);
+    if (img.is_float())
+      throw InputError(
+          fmt::format("{}: a float exemplar (OpenEXR or float TIFF); give float data as --map "
+                      "NAME=FILE:linear beside an 8- or 16-bit exemplar",
+                      path_or_name));
     if (img.width == (e.wrap_w ? e.wrap_w : e.width()) && img.height == (e.wrap_h ? e.wrap_h : e.height())) return img;
   }
   const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();
@@ -209,7 +215,8 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       texture.add_subcommand("tiles", "Synthesise the complete corner or Wang texture tile set from an exemplar");
   auto a = std::make_shared<TilesArgs>();
   cmd->add_option("--exemplar", a->exemplar,
-                  "Example texture (PNG, JPEG, TGA, PPM), or a fetched real texture by name: brick, grass, gravel, "
+                  "Example texture (PNG, JPEG, TIFF, TGA, PPM; 16-bit PNG and TIFF keep 16 bits), or a fetched real "
+                  "texture by name: brick, grass, gravel, "
                   "gimp-stone33, gimp-walnut, oa-dirt, oa-brick, oa-rock")
       ->required();
   cmd->add_flag("--tileable", a->tileable,
@@ -258,7 +265,9 @@ void add_tiles(CLI::App& texture, Context& ctx) {
   cmd->add_option("--map", a->maps,
                   "Another map of the exemplar's surface, NAME=FILE[:ROLE[:WEIGHT]] (any number): ROLE srgb (colour), "
                   "linear (data: roughness, height; the default) or normal (tangent-space; the default for a map "
-                  "called normal); tiles in DIR/maps/NAME/, aligned texel for texel with the exemplar's")
+                  "called normal); tiles in DIR/maps/NAME/, aligned texel for texel with the exemplar's. FILE: PNG, "
+                  "JPEG, TIFF or OpenEXR; 16-bit PNG and TIFF keep 16 bits (16-bit PNG tiles), float TIFF and "
+                  "OpenEXR stay float (OpenEXR tiles; linear or normal only)")
       ->type_name("NAME=FILE[:ROLE[:WEIGHT]]");
   cmd->add_option("--map-cost", a->map_cost,
                   "all: the seam costs of samples and cuts add each map's term (WEIGHT x its step in units of its "
@@ -422,7 +431,8 @@ void add_atlas(CLI::App& texture, Context& ctx) {
   cmd->add_option("--color-space", a->color_space,
                   "How the levels are averaged and stored (default: the tile set's, from its tiles.json): srgb, "
                   "colour in linear light (atlas.ktx2 RGBA8 sRGB); linear, data such as roughness or height; normal, "
-                  "tangent-space normals averaged as vectors (both RGBA8, or RGBA16 for 16-bit tiles, UNORM)")
+                  "tangent-space normals averaged as vectors (both RGBA8, or RGBA16 for 16-bit tiles, UNORM; float "
+                  "tiles: OpenEXR levels and RGBA32 SFLOAT, never srgb)")
       ->check(CLI::IsMember({"srgb", "linear", "normal"}));
   cmd->add_option("--db", a->db,
                   "Results database to look for a stored packing in first (default: none, the constructed or "

@@ -57,5 +57,6 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME libtilekit-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 # What TilekitConfig.cmake finds (OpenMP comes with the compiler: libgomp).
-set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "libboost-dev (>= 1.74), libsqlite3-dev, libfmt-dev, nlohmann-json3-dev")
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
+    "libboost-dev (>= 1.74), libsqlite3-dev, libfmt-dev, nlohmann-json3-dev, libtiff-dev, libopenexr-dev")
 include(CPack)

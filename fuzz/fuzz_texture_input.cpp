@@ -1,5 +1,6 @@
 // What `texture tiles`, `texture atlas` and `texture render` read from outside. Byte 0 picks:
-//   0: an image file (PNG, JPEG, ... through image/image.hpp's one decoder, as RGBA and as grey):
+//   0: an image file (PNG, JPEG, TIFF, OpenEXR, ... through image/image.hpp's one decoder, as RGBA
+//      and as grey, at 8 bits and at its own depth):
 //      headers that claim more than kMaxImagePixels are refused before decoding;
 //   1: an atlas manifest (atlas.json, texture/texture_atlas.hpp) beside a valid two-colour atlas's
 //      mip levels: read_texture_atlas must load it or refuse it, and what loads is a packing whose
@@ -53,12 +54,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case 0: {
         const std::string path = dir + "/image";
         write(path, data + 1, size - 1);
-        for (int channels : {4, 1}) {
-          const Image img = read_image(path, channels);
-          if (std::int64_t(img.width) * img.height > kMaxImagePixels ||
-              img.pixels.size() != std::size_t(img.width) * std::size_t(img.height) * std::size_t(channels))
-            __builtin_trap();
-        }
+        for (int channels : {4, 1})
+          for (bool keep_depth : {false, true}) {  // 16-bit PNG and TIFF, float TIFF and OpenEXR kept
+            const Image img = read_image(path, channels, keep_depth);
+            if (std::int64_t(img.width) * img.height > kMaxImagePixels || (!keep_depth && img.depth != 8) ||
+                img.pixels.size() != std::size_t(img.width) * std::size_t(img.height) * std::size_t(channels) *
+                                         std::size_t(img.depth / 8))
+              __builtin_trap();
+          }
         break;
       }
       case 1: {

@@ -13,6 +13,7 @@
 #include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "base/input.hpp"
+#include "image/codecs.hpp"
 
 // stb as private, static implementations (no symbols shared with other translation units).
 #define STB_IMAGE_STATIC
@@ -113,16 +114,59 @@ Image Image::to_depth(int bits) const {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < channels; ++c) {
+        if (depth == 32 || bits == 32) {  // float holds 0..1 for 0..max_value()
+          const double v = value(x, y, c) / max_value();
+          out.set_value(x, y, c, bits == 32 ? v : (v > 0 ? std::min(v, 1.0) : 0.0) * out.max_value());
+          continue;
+        }
         const unsigned v = sample(x, y, c);
         out.set_sample(x, y, c, bits == 16 ? v * 257 : (v * 255 + 32767) / 65535);
       }
   return out;
 }
 
-Image read_image(const std::string& path, int channels, bool keep_16) {
+namespace image_codecs {
+
+void check_decoded_size(const std::string& path, std::size_t file_bytes, std::int64_t w, std::int64_t h) {
+  if (w * h > kMaxImagePixels)
+    throw InputError(
+        fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h, kMaxImagePixels));
+  if (w * h > kMaxPixelsPerByte * std::int64_t(file_bytes))
+    throw InputError(fmt::format("{}: {}x{} pixels from {} bytes is damaged (at most {} pixels a byte)", path, w, h,
+                                 file_bytes, kMaxPixelsPerByte));
+}
+
+Image from_channels(int w, int h, int depth, int src_channels, std::vector<std::uint8_t> data, int channels) {
+  Image src(w, h, std::move(data), src_channels);
+  src.depth = depth;
+  if (src_channels == channels) return src;
+  Image out(w, h,
+            std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(channels) * std::size_t(depth / 8)),
+            channels);
+  out.depth = depth;
+  const bool colour = src_channels >= 3, alpha = src_channels == 2 || src_channels == 4;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (channels == 1) {  // luminance as stb_image converts to grey
+        const double v = colour ? (77 * src.value(x, y, 0) + 150 * src.value(x, y, 1) + 29 * src.value(x, y, 2)) / 256
+                                : src.value(x, y, 0);
+        out.set_value(x, y, 0, depth == 32 ? v : std::floor(v));
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) out.set_value(x, y, c, src.value(x, y, colour ? c : 0));
+      out.set_value(x, y, 3, alpha ? src.value(x, y, colour ? 3 : 1) : src.max_value());
+    }
+  return out;
+}
+
+}  // namespace image_codecs
+
+Image read_image(const std::string& path, int channels, bool keep_depth) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such image file", path));
   std::string file = read_input_file(path, "image");
+  if (image_codecs::is_tiff(file)) return image_codecs::decode_tiff(path, file, channels, keep_depth);
+  if (image_codecs::is_exr(file)) return image_codecs::decode_exr(path, file, channels, keep_depth);
   check_pnm_header(path, file);
   drop_empty_idat_chunks(file);
   const auto* bytes = reinterpret_cast<const stbi_uc*>(file.data());
@@ -139,8 +183,8 @@ Image read_image(const std::string& path, int channels, bool keep_16) {
   // stb's 16-bit decoders other than PNG's (PNM with a maxval over 255, PSD) can write past their
   // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
   if (stbi_is_16_bit_from_memory(bytes, size) && !std::string_view(file).starts_with(kPngSignature))
-    throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG)", path));
-  if (keep_16 && stbi_is_16_bit_from_memory(bytes, size)) {
+    throw InputError(fmt::format("{}: a 16-bit image that is not a PNG (convert it to PNG or TIFF)", path));
+  if (keep_depth && stbi_is_16_bit_from_memory(bytes, size)) {
     stbi_us* wide = stbi_load_16_from_memory(bytes, size, &w, &h, &n, channels);
     if (!wide) throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
     const std::size_t count = std::size_t(w) * std::size_t(h) * std::size_t(channels);
@@ -221,6 +265,7 @@ std::string encode_png16(const Image& img) {
 }  // namespace
 
 std::string encode_png(const Image& img) {
+  if (img.depth == 32) throw InputError("a float image is written as OpenEXR, not PNG");
   if (img.depth == 16) return encode_png16(img);
   // The fewest channels that hold the picture exactly (grey, grey+alpha, RGB or RGBA): pictures
   // of grey textures take a quarter of the space.
@@ -250,6 +295,10 @@ std::string encode_png(const Image& img) {
   if (!stbi_write_png_to_func(sink, &bytes, img.width, img.height, channels, data, img.width * channels))
     throw InputError(fmt::format("cannot encode a {}x{} PNG", img.width, img.height));
   return bytes;
+}
+
+std::string encode_image(const Image& img) {
+  return img.depth == 32 ? encode_exr(img) : encode_png(img);
 }
 
 void write_png(const std::string& path, const Image& img) {

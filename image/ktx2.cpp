@@ -21,6 +21,8 @@ constexpr std::size_t kLevelIndexBytes = 24;
 // Khronos Data Format 1.3 sec. 5: the basic descriptor block.
 constexpr std::uint32_t kDfModelRgbsda = 1, kDfPrimariesBt709 = 1, kDfTransferLinear = 1, kDfTransferSrgb = 2;
 constexpr std::uint32_t kDfVersion = 2, kDfSampleLinear = 0x10, kDfChannelAlpha = 15;
+// A float sample (sec. 5.6 channelType qualifiers float and signed) spans -1.0 .. 1.0 as floats.
+constexpr std::uint32_t kDfSampleFloatSigned = 0x80 | 0x40, kDfFloatMinusOne = 0xBF800000, kDfFloatOne = 0x3F800000;
 constexpr std::size_t kDfdBytes = 4 + 24 + 4 * 16;  // dfdTotalSize, the block's header, four samples
 
 void put32(std::string& s, std::uint32_t v) {
@@ -43,8 +45,10 @@ std::uint64_t level_bytes(const Ktx2Texture& t, std::size_t k) {
 }
 
 // The data format descriptor of an uncompressed RGBA format (what libktx's vk2dfd makes): one
-// sample per channel, the alpha sample flagged linear under the sRGB transfer.
+// sample per channel, the alpha sample flagged linear under the sRGB transfer; float samples
+// flagged float and signed, their bounds -1.0 and 1.0.
 std::string dfd(const Ktx2Texture& t) {
+  const bool is_float = t.bytes_per_channel == 4;
   const std::uint32_t bits = 8u * std::uint32_t(t.bytes_per_channel);
   std::string d;
   put32(d, std::uint32_t(kDfdBytes));
@@ -59,10 +63,11 @@ std::string dfd(const Ktx2Texture& t) {
   for (std::uint32_t c = 0; c < 4; ++c) {
     std::uint32_t type = channels[c];
     if (c == 3 && t.transfer == Ktx2Transfer::Srgb) type |= kDfSampleLinear;
-    put32(d, (c * bits) | ((bits - 1) << 16) | (type << 24));  // bitOffset, bitLength - 1, channelType
-    put32(d, 0);                                               // sample position
-    put32(d, 0);                                               // sampleLower
-    put32(d, (1u << bits) - 1u);                               // sampleUpper
+    if (is_float) type |= kDfSampleFloatSigned;
+    put32(d, (c * bits) | ((bits - 1) << 16) | (type << 24));              // bitOffset, bitLength - 1, channelType
+    put32(d, 0);                                                           // sample position
+    put32(d, is_float ? kDfFloatMinusOne : 0);                             // sampleLower
+    put32(d, is_float ? kDfFloatOne : std::uint32_t((1ull << bits) - 1));  // sampleUpper
   }
   return d;
 }
@@ -89,6 +94,7 @@ struct Reader {
 std::uint32_t Ktx2Texture::vk_format() const {
   if (bytes_per_channel == 1) return transfer == Ktx2Transfer::Srgb ? kVkR8G8B8A8Srgb : kVkR8G8B8A8Unorm;
   if (bytes_per_channel == 2 && transfer == Ktx2Transfer::Linear) return kVkR16G16B16A16Unorm;
+  if (bytes_per_channel == 4 && transfer == Ktx2Transfer::Linear) return kVkR32G32B32A32Sfloat;
   throw InputError(fmt::format("KTX2: no Vulkan format for {}-bit {} RGBA", 8 * bytes_per_channel,
                                transfer == Ktx2Transfer::Srgb ? "sRGB" : "linear"));
 }
@@ -169,11 +175,11 @@ Ktx2Texture decode_ktx2(std::string_view bytes, const std::string& name) {
   if (format == kVkR8G8B8A8Srgb || format == kVkR8G8B8A8Unorm) {
     t.bytes_per_channel = 1;
     t.transfer = format == kVkR8G8B8A8Srgb ? Ktx2Transfer::Srgb : Ktx2Transfer::Linear;
-  } else if (format == kVkR16G16B16A16Unorm) {
-    t.bytes_per_channel = 2;
+  } else if (format == kVkR16G16B16A16Unorm || format == kVkR32G32B32A32Sfloat) {
+    t.bytes_per_channel = format == kVkR16G16B16A16Unorm ? 2 : 4;
     t.transfer = Ktx2Transfer::Linear;
   } else {
-    r.fail(fmt::format("vkFormat {} is not RGBA8 (37, 43) or RGBA16 (91)", format));
+    r.fail(fmt::format("vkFormat {} is not RGBA8 (37, 43), RGBA16 (91) or RGBA32 float (109)", format));
   }
   if (type_size != std::uint32_t(t.bytes_per_channel))
     r.fail(fmt::format("typeSize {} for vkFormat {}", type_size, format));

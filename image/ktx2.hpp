@@ -1,6 +1,6 @@
 #pragma once
 // KTX 2.0 (Khronos Texture Container, KTX File Format Specification 2.0): one 2-D texture with its
-// mip chain, uncompressed RGBA of 8 or 16 bits a channel, its Vulkan format, a basic data format
+// mip chain, uncompressed RGBA of 8 or 16 bits a channel or 32-bit float, its Vulkan format, a basic data format
 // descriptor (the colour model RGBSDA, BT.709 primaries, the transfer function: sRGB for colour,
 // linear for data such as normals and roughness), key/value data (sorted by key) and the levels,
 // smallest first in the file as the specification orders them. What engines (Unity, Unreal,
@@ -14,13 +14,15 @@
 namespace tilekit {
 
 // The Vulkan formats written and read (VkFormat values).
-inline constexpr std::uint32_t kVkR8G8B8A8Unorm = 37, kVkR8G8B8A8Srgb = 43, kVkR16G16B16A16Unorm = 91;
+inline constexpr std::uint32_t kVkR8G8B8A8Unorm = 37, kVkR8G8B8A8Srgb = 43, kVkR16G16B16A16Unorm = 91,
+                               kVkR32G32B32A32Sfloat = 109;
 
 enum class Ktx2Transfer { Linear, Srgb };  // the data format descriptor's transfer function
 
 struct Ktx2Texture {
   int width = 0, height = 0;
-  int bytes_per_channel = 1;  // 1 (RGBA8) or 2 (RGBA16, little-endian; linear only)
+  // 1 (RGBA8), 2 (RGBA16 UNORM) or 4 (RGBA32 SFLOAT); 2 and 4 little-endian and linear only.
+  int bytes_per_channel = 1;
   Ktx2Transfer transfer = Ktx2Transfer::Srgb;
   // Level 0 first, each width_k * height_k * 4 * bytes_per_channel bytes, rows from the top
   // (KTXorientation "rd"), width_k = max(1, width >> k).

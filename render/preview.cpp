@@ -62,7 +62,9 @@ struct Page {
     nlohmann::json ids = nlohmann::json::array();
     for (const Image& l : levels) {
       const std::string id = fmt::format("tk-img-{}", next_image++);
-      images += fmt::format("<img id=\"{}\" alt=\"\" src=\"data:image/png;base64,{}\">\n", id, base64(encode_png(l)));
+      // A float atlas (OpenEXR levels) is shown as 8 bits, clamped to 0..1, as the renderers sample it.
+      images += fmt::format("<img id=\"{}\" alt=\"\" src=\"data:image/png;base64,{}\">\n", id,
+                            base64(encode_png(l.is_float() ? l.to_depth(8) : l)));
       ids.push_back(id);
     }
     return {{"format", "rgba8"}, {"levels", ids}};

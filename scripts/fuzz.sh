@@ -120,8 +120,23 @@ png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 23000, 23000
       chunk(b"IDAT", zlib.compress(b"\0" * 64)) + chunk(b"IEND", b"")
 open(sys.argv[1] + "/bomb.png", "wb").write(b"\0" + png)
 open(sys.argv[1] + "/bomb.ppm", "wb").write(b"\0P6\n23000 23000\n255\n" + b"\0" * 64)
+def tiff(w, h, bps, fmt, data):  # a grey TIFF, one uncompressed strip (image/tiff.cpp reads it as stored)
+    tags = [(256, 3, w), (257, 3, h), (258, 3, bps), (259, 3, 1), (262, 3, 1), (273, 4, 8 + 2 + 12 * 10 + 4),
+            (277, 3, 1), (278, 3, h), (279, 4, len(data)), (339, 3, fmt)]
+    ifd = struct.pack("<H", len(tags)) + b"".join(
+        struct.pack("<HHI", t, k, 1) + (struct.pack("<HH", v, 0) if k == 3 else struct.pack("<I", v)) for t, k, v in tags)
+    return b"II*\0" + struct.pack("<I", 8) + ifd + struct.pack("<I", 0) + data
+open(sys.argv[1] + "/ramp16.tif", "wb").write(b"\0" + tiff(4, 4, 16, 1, b"".join(struct.pack("<H", 4000 * i) for i in range(16))))
+open(sys.argv[1] + "/float.tif", "wb").write(tiff(8, 8, 32, 3, b"".join(struct.pack("<f", i * 0.5 - 3.5) for i in range(64))))
+open(sys.argv[1] + "/bomb.tif", "wb").write(b"\0" + tiff(23000, 23000, 8, 1, b"\0" * 64))
 PY
   seed texture_input "$s/bomb.png" && seed texture_input "$s/bomb.ppm"
+  # TIFF and OpenEXR: a 16-bit TIFF, a TIFF that claims 23000 x 23000 pixels, and the OpenEXR tile
+  # that `texture tiles` writes for a float map (here a float TIFF)
+  seed texture_input "$s/ramp16.tif" && seed texture_input "$s/bomb.tif"
+  "$tk" texture tiles --exemplar brick --colors 1 --tile-px 16 --search 0 --map "d=$s/float.tif" \
+    --quiet --out "$s/ftiles" >/dev/null
+  { printf '\000'; cat "$s/ftiles/maps/d/tile-0000.exr"; } >"$s/img.exr" && seed texture_input "$s/img.exr"
   { printf '\001'; cat "$s/atlas/atlas.json"; } >"$s/atlas.seed" && seed texture_input "$s/atlas.seed"
   { printf '\002'; cat "$s/ttiles/tiles.json"; } >"$s/tiles.seed" && seed texture_input "$s/tiles.seed"
   # point tile files, whole (byte 0: 0 .ptiles, 1 .rtiles) and without their checksum line (2, 3)

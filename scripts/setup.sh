@@ -15,6 +15,7 @@ PKGS=(g++ cmake make pkg-config libboost-graph-dev libsqlite3-dev sqlite3 libfmt
       ninja-build  # the build (scripts/build.sh)
       chromium     # the browser test of `texture preview`
       nodejs       # the preview page's JavaScript against its golden vectors (tests/render/preview_golden.test.js)
+      libtiff-dev libopenexr-dev  # image/: TIFF (libtiff) and OpenEXR input, OpenEXR output of float tiles and atlases
       openmpi-bin libopenmpi-dev)  # `pack --mpi` (cluster/mpi_work.*) and its mpirun tests (optional in the build)
 missing=()
 for p in "${PKGS[@]}"; do

@@ -75,7 +75,6 @@ Image resample_image(const Image& src, int w0, int h0, double sx, double sy, boo
   Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(src.texel_bytes())),
             src.channels);
   out.depth = src.depth;
-  const long max = src.max_value();
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const double fx = (x + 0.5) * w0 / w - 0.5, fy = (y + 0.5) * h0 / h - 0.5;
@@ -84,12 +83,12 @@ Image resample_image(const Image& src, int w0, int h0, double sx, double sy, boo
       auto texel = [&](int xx, int yy, int c) {
         xx = torus ? (xx % w0 + w0) % w0 : std::clamp(xx, 0, w0 - 1);
         yy = torus ? (yy % h0 + h0) % h0 : std::clamp(yy, 0, h0 - 1);
-        return double(src.sample(xx, yy, c));
+        return src.value(xx, yy, c);
       };
       for (int c = 0; c < src.channels; ++c) {
         const double v = (1 - ay) * ((1 - ax) * texel(x0, y0, c) + ax * texel(x0 + 1, y0, c)) +
                          ay * ((1 - ax) * texel(x0, y0 + 1, c) + ax * texel(x0 + 1, y0 + 1, c));
-        out.set_sample(x, y, c, unsigned(std::clamp(std::lround(v), 0l, max)));
+        out.set_value(x, y, c, v);  // rounded and clamped to 0..max at 8 and 16 bits
       }
     }
   return out;

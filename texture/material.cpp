@@ -52,6 +52,11 @@ MaterialMap parse_material_map(const std::string& spec) {
   }
   m.file = rest;
   m.image = read_image(m.file, 4, true);
+  // Float (OpenEXR, float TIFF) is scene-linear data of any range: there is no sRGB float to
+  // average in linear light, so the role srgb is refused rather than quietly changed.
+  if (m.image.is_float() && m.space == ColourSpace::Srgb)
+    throw InputError(fmt::format("map '{}': {} holds float samples, which are linear: give the role linear (or normal)",
+                                 spec, m.file));
   return m;
 }
 
@@ -62,12 +67,35 @@ void renormalise(Image& img) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       double n[3], len = 0;
-      for (int c = 0; c < 3; ++c) n[c] = 2 * img.sample(x, y, c) / max - 1, len += n[c] * n[c];
+      for (int c = 0; c < 3; ++c) n[c] = 2 * img.value(x, y, c) / max - 1, len += n[c] * n[c];
       len = std::sqrt(len);
       if (len <= 0) continue;
-      for (int c = 0; c < 3; ++c)
-        img.set_sample(x, y, c, unsigned(std::lround(std::clamp((n[c] / len + 1) / 2, 0.0, 1.0) * max)));
+      for (int c = 0; c < 3; ++c) img.set_value(x, y, c, std::clamp((n[c] / len + 1) / 2, 0.0, 1.0) * max);
     }
+}
+
+// A float map as the seam costs see it: 16 bits over its own range (min .. max of R, G, B). The
+// costs count a map's steps in units of its mean step, so this changes nothing but rounding, and
+// the synthesis reads 8- and 16-bit samples only.
+Image cost_image(const Image& img) {
+  double lo = 0, hi = 0;
+  bool any = false;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < std::min(3, img.channels); ++c)
+        if (const double v = img.value(x, y, c); std::isfinite(v)) {
+          lo = any ? std::min(lo, v) : v, hi = any ? std::max(hi, v) : v;
+          any = true;
+        }
+  Image out = Image(img.width, img.height, Rgb{0, 0, 0}).to_depth(16);
+  const double scale = hi > lo ? 65535 / (hi - lo) : 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double v = img.value(x, y, std::min(c, img.channels - 1));
+        out.set_value(x, y, c, std::isfinite(v) ? (v - lo) * scale : 0);
+      }
+  return out;
 }
 
 }  // namespace
@@ -83,8 +111,8 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
       fit.depth = m.image.depth;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-          for (int c = 0; c < fit.channels; ++c)
-            fit.set_sample(x, y, c, m.image.sample(std::min(x, m.image.width - 1), std::min(y, m.image.height - 1), c));
+          std::copy_n(m.image.at(std::min(x, m.image.width - 1), std::min(y, m.image.height - 1)), fit.texel_bytes(),
+                      fit.at(x, y));
       m.image = std::move(fit);
     }
     if (m.space == ColourSpace::Normal) renormalise(m.image);
@@ -94,7 +122,11 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus) {
 
 std::vector<SeamCostMap> seam_cost_maps(const std::vector<MaterialMap>& maps) {
   std::vector<SeamCostMap> out;
-  for (const MaterialMap& m : maps) out.push_back({m.image, m.space == ColourSpace::Normal, m.weight});
+  for (const MaterialMap& m : maps)
+    out.push_back({!m.image.is_float()              ? m.image
+                   : m.space == ColourSpace::Normal ? m.image.to_depth(16)  // (n + 1) / 2 in 0..1
+                                                    : cost_image(m.image),
+                   m.space == ColourSpace::Normal, m.weight});
   return out;
 }
 
@@ -163,8 +195,8 @@ Image normal_map_from_height(const Image& height, double strength, bool torus) {
   auto lum = [&](int x, int y) {
     x = torus ? (x % w + w) % w : std::clamp(x, 0, w - 1);
     y = torus ? (y % h + h) % h : std::clamp(y, 0, h - 1);
-    if (height.channels < 3) return height.sample(x, y, 0) / max;
-    return (0.299 * height.sample(x, y, 0) + 0.587 * height.sample(x, y, 1) + 0.114 * height.sample(x, y, 2)) / max;
+    if (height.channels < 3) return height.value(x, y, 0) / max;
+    return (0.299 * height.value(x, y, 0) + 0.587 * height.value(x, y, 1) + 0.114 * height.value(x, y, 2)) / max;
   };
   Image out(w, h);
   for (int y = 0; y < h; ++y)
@@ -185,11 +217,17 @@ void write_map_tiles(const std::string& dir, const std::vector<Image>& tiles, Co
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (ec) throw InputError(fmt::format("{}: cannot create the folder ({})", folder.string(), ec.message()));
-  for (std::size_t t = 0; t < tiles.size(); ++t)
-    write_png((folder / fmt::format("tile-{:04d}.png", t)).string(), tiles[t]);
+  const bool is_float = !tiles.empty() && tiles[0].is_float();
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    const std::string stem = (folder / fmt::format("tile-{:04d}", t)).string();
+    write_file_atomic(stem + image_extension(tiles[t]), encode_image(tiles[t]));
+    // A tile of the other format from an earlier run would hold the same tile index.
+    fs::remove(stem + (is_float ? ".png" : ".exr"), ec);
+  }
   nlohmann::json j = manifest;
   j["colour_space"] = std::string(colour_space_name(space));
   j["bits"] = tiles.empty() ? 8 : tiles[0].depth;
+  j["format"] = is_float ? "exr float" : "png unorm";
   write_file_atomic((folder / "tiles.json").string(), j.dump(2) + "\n");
 }
 

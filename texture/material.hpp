@@ -23,12 +23,13 @@ struct MaterialMap {
   std::string file;
   ColourSpace space = ColourSpace::Srgb;  // srgb colour, linear data or tangent-space normals
   double weight = 1;                      // its term's weight in the seam costs (seam_cost_maps)
-  Image image;                            // as read: 8 or 16 bits, RGBA; the exemplar's size after resize_maps
+  Image image;                            // as read: 8 or 16 bits or float, RGBA; the exemplar's size after resize_maps
   bool resized = false;                   // resampled to the exemplar's grid (resize_maps)
 };
 
 // Reads NAME=FILE[:ROLE[:WEIGHT]] (ROLE srgb, linear or normal; default linear, "normal" for a
-// map called normal); InputError (exit 2) naming the argument otherwise. 16-bit PNGs keep 16 bits.
+// map called normal); InputError (exit 2) naming the argument otherwise. 16-bit PNGs and TIFFs
+// keep 16 bits, float TIFF and OpenEXR stay float (and may not have the role srgb: float is linear).
 MaterialMap parse_material_map(const std::string& spec);
 
 // Every map resampled (bilinear; normals renormalised) to w x h where it is not that size already.
@@ -37,7 +38,8 @@ void resize_maps(std::vector<MaterialMap>& maps, int w, int h, bool torus);
 // The maps as the synthesis' seam costs weigh them (SynthesisOptions::cost_maps): cost = the
 // albedo's own term (exactly the albedo-only cost) + the sum over the maps of WEIGHT x the map's
 // distance (normals as vectors) in units of its mean neighbour distance. A cut that is invisible
-// in the albedo but shows in the normals costs what it shows.
+// in the albedo but shows in the normals costs what it shows. A float map is weighed as 16 bits
+// over its own range (the unit makes the scale irrelevant).
 std::vector<SeamCostMap> seam_cost_maps(const std::vector<MaterialMap>& maps);
 
 // A map of the exemplar's size as the synthesis saw the exemplar: rectified (perspective) and
@@ -60,8 +62,9 @@ std::vector<std::vector<std::uint32_t>> coords_from_tiles(const std::vector<Imag
 // `torus`). For tests, benchmarks and examples; real materials come with their own.
 Image normal_map_from_height(const Image& height, double strength, bool torus);
 
-// Writes FOLDER/tile-NNNN.png and FOLDER/tiles.json (`manifest` with the colour space and depth):
-// a tile set of its own, as `texture atlas FOLDER` reads it (DIR/maps/NAME, DIR/coords).
+// Writes FOLDER/tile-NNNN.png (float tiles: tile-NNNN.exr, OpenEXR 32-bit float) and
+// FOLDER/tiles.json (`manifest` with the colour space, "bits" 8, 16 or 32 and "format" "png unorm"
+// or "exr float"): a tile set of its own, as `texture atlas FOLDER` reads it (DIR/maps/NAME, DIR/coords).
 void write_map_tiles(const std::string& folder, const std::vector<Image>& tiles, ColourSpace space,
                      const nlohmann::json& manifest);
 

@@ -50,18 +50,21 @@ std::vector<std::vector<Tap>> taps(int in, int out, MipEdge edge) {
 }
 
 // The texels as the quantities that are averaged (ColourSpace): linear light or data, times
-// alpha; normals as vectors (alpha kept apart, never premultiplied into a normal).
+// alpha; normals as vectors (alpha kept apart, never premultiplied into a normal). Float images
+// (depth 32) hold linear values of any range: sRGB is not applied to them (OpenEXR colour is
+// scene-linear), and nothing is clamped.
 std::vector<double> to_work(const Image& img, ColourSpace space) {
   const int nc = img.channels;
+  if (img.is_float() && space == ColourSpace::Srgb) space = ColourSpace::Linear;
   const double scale = 1.0 / img.max_value();
   std::vector<double> w(std::size_t(img.width) * std::size_t(img.height) * std::size_t(nc));
   std::size_t i = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x, i += std::size_t(nc)) {
-      const double a = nc == 4 ? img.sample(x, y, 3) * scale : 1.0;
+      const double a = nc == 4 ? img.value(x, y, 3) * scale : 1.0;
       const int colour = nc == 4 ? 3 : 1;
       for (int c = 0; c < colour; ++c) {
-        const double v = img.sample(x, y, c) * scale;
+        const double v = img.value(x, y, c) * scale;
         w[i + std::size_t(c)] = space == ColourSpace::Normal ? 2 * v - 1
                                 : space == ColourSpace::Srgb ? srgb_to_linear(v) * a
                                                              : v * a;
@@ -103,6 +106,14 @@ unsigned quantise(double v, int max) {
   return unsigned(std::lround(std::clamp(v, 0.0, 1.0) * max));
 }
 
+// v (1 = full intensity) into channel c: rounded and clamped at 8 and 16 bits, as it is in float.
+void store(Image& img, int x, int y, int c, double v) {
+  if (img.is_float())
+    img.set_value(x, y, c, v);
+  else
+    img.set_sample(x, y, c, quantise(v, img.max_value()));
+}
+
 }  // namespace
 
 std::string_view colour_space_name(ColourSpace c) {
@@ -136,11 +147,11 @@ double linear_to_srgb(double v) {
 
 Image downsample(const Image& img, MipEdge edge, ColourSpace space) {
   const int nc = img.channels;
+  if (img.is_float() && space == ColourSpace::Srgb) space = ColourSpace::Linear;  // as to_work
   int w = 0, h = 0;
   const std::vector<double> avg = filter(to_work(img, space), nc, img.width, img.height, edge, w, h);
   Image out(w, h, std::vector<std::uint8_t>(std::size_t(w) * std::size_t(h) * std::size_t(img.texel_bytes())), nc);
   out.depth = img.depth;
-  const int max = img.max_value();
   std::size_t i = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x, i += std::size_t(nc)) {
@@ -150,15 +161,14 @@ Image downsample(const Image& img, MipEdge edge, ColourSpace space) {
       if (space == ColourSpace::Normal && colour == 3) {
         const double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
         const double n[3] = {len > 0 ? p[0] / len : 0, len > 0 ? p[1] / len : 0, len > 0 ? p[2] / len : 1};
-        for (int c = 0; c < 3; ++c) out.set_sample(x, y, c, quantise((n[c] + 1) / 2, max));
+        for (int c = 0; c < 3; ++c) store(out, x, y, c, (n[c] + 1) / 2);
       } else {
         for (int c = 0; c < colour; ++c) {
           const double v = space == ColourSpace::Normal ? (p[c] + 1) / 2 : a > 0 ? p[c] / a : 0.0;
-          out.set_sample(x, y, c,
-                         quantise(space == ColourSpace::Srgb ? linear_to_srgb(std::clamp(v, 0.0, 1.0)) : v, max));
+          store(out, x, y, c, space == ColourSpace::Srgb ? linear_to_srgb(std::clamp(v, 0.0, 1.0)) : v);
         }
       }
-      if (nc == 4) out.set_sample(x, y, 3, quantise(a, max));
+      if (nc == 4) store(out, x, y, 3, a);
     }
   return out;
 }
@@ -201,7 +211,7 @@ std::vector<Image> toksvig_chain(const Image& roughness0, const std::vector<Imag
       for (int x = 0; x < r.width; ++x) {
         const double l = len[std::size_t(y) * std::size_t(r.width) + std::size_t(x)];
         for (int c = 0; c < std::min(3, r.channels); ++c)
-          r.set_sample(x, y, c, unsigned(std::lround(toksvig_roughness(r.sample(x, y, c) / max, l) * max)));
+          r.set_value(x, y, c, toksvig_roughness(r.value(x, y, c) / max, l) * max);
       }
     chain.push_back(std::move(r));
   }

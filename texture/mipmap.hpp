@@ -13,7 +13,10 @@
 // averaged as stored, alpha premultiplied too; tangent-space normals (RGB = (n + 1) / 2) are
 // averaged as vectors and renormalised, and the length the average lost (Toksvig 2005: |mean n|
 // < 1 where the normals disagree) can be read off with `normal_lengths` before renormalising.
-// 16-bit images (Image::depth 16) keep 16 bits at every level.
+// 16-bit images (Image::depth 16) keep 16 bits at every level, float images (depth 32) stay float:
+// averaged as stored, never clamped (heights of -3.5 .. 1200.25 average to what they average to),
+// and as linear data even when called sRGB (float colour is scene-linear, as OpenEXR's is; the
+// CLI refuses sRGB for float maps).
 #include <string>
 #include <string_view>
 #include <vector>

@@ -330,7 +330,6 @@ Image rectify_image(const Image& img, const PerspectiveFit& fit) {
   Image out(ow, oh, std::vector<std::uint8_t>(std::size_t(ow) * std::size_t(oh) * std::size_t(img.texel_bytes())),
             img.channels);
   out.depth = img.depth;
-  const long max = img.max_value();
   for (int y = 0; y < oh; ++y)
     for (int x = 0; x < ow; ++x) {
       const auto p = back.apply(x0 + x + 0.5, y0 + y + 0.5);
@@ -338,9 +337,9 @@ Image rectify_image(const Image& img, const PerspectiveFit& fit) {
       const int xa = std::min(int(fx), w - 2), ya = std::min(int(fy), h - 2);
       const double ax = fx - xa, ay = fy - ya;
       for (int c = 0; c < img.channels; ++c) {
-        const double v = (1 - ay) * ((1 - ax) * img.sample(xa, ya, c) + ax * img.sample(xa + 1, ya, c)) +
-                         ay * ((1 - ax) * img.sample(xa, ya + 1, c) + ax * img.sample(xa + 1, ya + 1, c));
-        out.set_sample(x, y, c, unsigned(std::clamp(std::lround(v), 0l, max)));
+        const double v = (1 - ay) * ((1 - ax) * img.value(xa, ya, c) + ax * img.value(xa + 1, ya, c)) +
+                         ay * ((1 - ax) * img.value(xa, ya + 1, c) + ax * img.value(xa + 1, ya + 1, c));
+        out.set_value(x, y, c, v);  // rounded and clamped to 0..max at 8 and 16 bits
       }
     }
   return out;

@@ -21,6 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 TextureAtlas from_level0(const AtlasLookup& lookup, Image level0, int tile_px, ColourSpace space) {
+  if (level0.is_float() && space == ColourSpace::Srgb)
+    throw InputError("float tiles hold linear data (OpenEXR): their atlas is linear or normal, not sRGB colour");
   TextureAtlas a;
   a.lookup = lookup;
   a.tile_px = tile_px;
@@ -70,7 +72,9 @@ TextureAtlas resample_to_power_of_two(const TextureAtlas& a) {
   const int w = nearest_power_of_two(l0.width), h = nearest_power_of_two(l0.height);
   if (w == l0.width && h == l0.height) return a;
   // resample_axis averages 8-bit values as stored (for sRGB colour, in the sRGB encoding).
-  if (l0.depth != 8) throw InputError("a power-of-two atlas is made from 8-bit tiles only; these are 16-bit");
+  if (l0.depth != 8)
+    throw InputError(fmt::format("a power-of-two atlas is made from 8-bit tiles only; these are {}",
+                                 l0.is_float() ? "float" : "16-bit"));
   TextureAtlas r = a;
   r.levels = mip_chain(resample_axis(resample_axis(l0, w, true), h, false), MipEdge::Wrap, a.colour_space);
   return r;
@@ -85,8 +89,7 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::vector<Im
   const int depth = tiles.empty() ? 8 : tiles[0].depth;
   for (const Image& t : tiles)
     if (t.depth != depth || t.channels != 4) throw InputError("tile images must all be RGBA of one depth");
-  Image level0(lookup.cols * n, lookup.rows * n, Rgb{0, 0, 0});
-  if (depth == 16) level0 = level0.to_depth(16);
+  Image level0 = Image(lookup.cols * n, lookup.rows * n, Rgb{0, 0, 0}).to_depth(depth);
   const std::size_t row_bytes = std::size_t(n) * std::size_t(level0.texel_bytes());
   for (int r = 0; r < lookup.rows; ++r)
     for (int c = 0; c < lookup.cols; ++c) {
@@ -106,7 +109,7 @@ TextureAtlas build_texture_atlas(const AtlasLookup& lookup, const std::string& t
 
 std::string atlas_stem(const std::string& path) {
   fs::path p(path);
-  if (p.extension() == ".png" || p.extension() == ".json") p.replace_extension();
+  if (p.extension() == ".png" || p.extension() == ".json" || p.extension() == ".exr") p.replace_extension();
   return p.string();
 }
 
@@ -115,7 +118,8 @@ Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a) {
   t.width = a.levels.at(0).width;
   t.height = a.levels[0].height;
   // sRGB colour is RGBA8 sRGB (Vulkan has no 16-bit sRGB format: 16-bit colour levels are
-  // rounded to 8 bits here); data and normals are RGBA8 or RGBA16 UNORM at the atlas's depth.
+  // rounded to 8 bits here); data and normals are RGBA8 or RGBA16 UNORM at the atlas's depth, or
+  // RGBA32 SFLOAT for float.
   t.transfer = a.colour_space == ColourSpace::Srgb ? Ktx2Transfer::Srgb : Ktx2Transfer::Linear;
   const int depth = t.transfer == Ktx2Transfer::Srgb ? 8 : a.levels[0].depth;
   t.bytes_per_channel = depth / 8;
@@ -142,8 +146,9 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
   AtomicFileSet files;
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < a.levels.size(); ++k) {
-    const std::string file = k == 0 ? stem + ".png" : fmt::format("{}.mip{}.png", stem, k);
-    files.stage(file, encode_png(a.levels[k]));
+    const char* ext = image_extension(a.levels[k]);  // float levels as OpenEXR
+    const std::string file = k == 0 ? stem + ext : fmt::format("{}.mip{}{}", stem, k, ext);
+    files.stage(file, encode_image(a.levels[k]));
     f.levels.push_back(file);
     levels.push_back(
         {{"file", fs::path(file).filename().string()}, {"width", a.levels[k].width}, {"height", a.levels[k].height}});
@@ -154,6 +159,7 @@ AtlasFiles write_texture_atlas(const TextureAtlas& a, const std::string& png, co
                       {"tile_px", a.tile_px},
                       {"colour_space", std::string(colour_space_name(a.colour_space))},
                       {"bits", a.levels.empty() ? 8 : a.levels[0].depth},
+                      {"format", !a.levels.empty() && a.levels[0].is_float() ? "exr float" : "png unorm"},
                       {"rows", a.lookup.rows},
                       {"cols", a.lookup.cols},
                       {"levels", levels},

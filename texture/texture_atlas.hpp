@@ -20,8 +20,8 @@ struct TextureAtlas {
   std::vector<Image> levels;  // level 0 (rows * tile_px x cols * tile_px) down to 1x1
   std::string tiles_dir;      // where the tiles came from (informational)
   // How the levels were averaged and how a renderer samples them (mipmap.hpp): an sRGB atlas is
-  // uploaded as SRGB8_ALPHA8 and filtered in linear light. The levels are 8-bit, or 16-bit when
-  // the tiles were (levels[k].depth).
+  // uploaded as SRGB8_ALPHA8 and filtered in linear light. The levels are 8-bit, or 16-bit or
+  // float when the tiles were (levels[k].depth; float is linear or normal, never sRGB).
   ColourSpace colour_space = ColourSpace::Srgb;
 };
 
@@ -53,8 +53,9 @@ TextureAtlas resample_to_power_of_two(const TextureAtlas& a);
 Ktx2Texture texture_atlas_ktx2(const TextureAtlas& a);
 
 // Files written next to `png` (say atlas.png): atlas.png (level 0), atlas.mip1.png ...
-// atlas.mipL.png, atlas.ktx2 (every level in one file), atlas.json (the manifest: tile size,
-// levels, colour space, the lookup), atlas.h (C lookup table) and atlas.glsl (the GLSL ES 3.0
+// atlas.mipL.png (a float atlas: atlas.exr, atlas.mip1.exr, ..., OpenEXR 32-bit float),
+// atlas.ktx2 (every level in one file), atlas.json (the manifest: tile size, levels, colour
+// space, "bits" and "format", the lookup), atlas.h (C lookup table) and atlas.glsl (the GLSL ES 3.0
 // sampler, render/glsl_sampler.hpp, with the given hash), and one file per entry of `shaders`
 // (the stem plus its suffix, say ".hlsl": the sampler in other languages).
 struct AtlasFiles {

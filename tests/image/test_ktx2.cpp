@@ -87,7 +87,8 @@ TEST(Ktx2, HeaderLevelsAndDescriptorFollowTheSpecification) {
 TEST(Ktx2, ReadsBackWhatItWritesAtEightAndSixteenBits) {
   for (const auto& [bytes, transfer, format] :
        {std::tuple{1, Ktx2Transfer::Srgb, kVkR8G8B8A8Srgb}, std::tuple{1, Ktx2Transfer::Linear, kVkR8G8B8A8Unorm},
-        std::tuple{2, Ktx2Transfer::Linear, kVkR16G16B16A16Unorm}}) {
+        std::tuple{2, Ktx2Transfer::Linear, kVkR16G16B16A16Unorm},
+        std::tuple{4, Ktx2Transfer::Linear, kVkR32G32B32A32Sfloat}}) {
     const Ktx2Texture t = ramp(9, 16, bytes, transfer);
     const std::string b = encode_ktx2(t);
     EXPECT_EQ(u32(b, 12), format);
@@ -104,6 +105,23 @@ TEST(Ktx2, ReadsBackWhatItWritesAtEightAndSixteenBits) {
     EXPECT_EQ(r.key_values[2], t.key_values[0]);
   }
   EXPECT_THROW(ramp(4, 4, 2, Ktx2Transfer::Srgb).vk_format(), InputError);  // no 16-bit sRGB format
+  EXPECT_THROW(ramp(4, 4, 4, Ktx2Transfer::Srgb).vk_format(), InputError);  // nor a float one
+}
+
+// R32G32B32A32_SFLOAT's descriptor as libktx's vk2dfd makes it (Khronos Data Format 1.3 sec. 5.6):
+// 16 bytes a texel, 32-bit samples flagged float and signed, bounds -1.0 and 1.0 as floats.
+TEST(Ktx2, FloatDescriptorFlagsFloatSignedSamples) {
+  const std::string b = encode_ktx2(ramp(4, 4, 4, Ktx2Transfer::Linear));
+  const std::uint32_t dfd = u32(b, 48);
+  EXPECT_EQ(u32(b, 16), 4u);                                  // typeSize
+  EXPECT_EQ(u32(b, dfd + 12), 1u | (1u << 8) | (1u << 16));   // RGBSDA, BT.709, linear
+  EXPECT_EQ(u32(b, dfd + 20), 16u);                           // bytesPlane0
+  for (std::uint32_t c = 0; c < 4; ++c) {
+    const std::uint32_t s = dfd + 28 + c * 16;
+    EXPECT_EQ(u32(b, s), (c * 32) | (31u << 16) | ((c == 3 ? 15u : c) | 0xC0u) << 24);
+    EXPECT_EQ(u32(b, s + 8), 0xBF800000u);
+    EXPECT_EQ(u32(b, s + 12), 0x3F800000u);
+  }
 }
 
 TEST(Ktx2, RefusesDamagedFilesNamingTheProblem) {

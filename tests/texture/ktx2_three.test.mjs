@@ -6,7 +6,8 @@
 //    and flat views at scales 1, 2, 4 and 8 (mip levels 0-3);
 //  - the colour atlas (RGBA8 sRGB, decoded to linear light by the GPU, encoded back by the shader):
 //    the flat views, whose pixels each read one texel of one level (the CPU filters sRGB bytes as
-//    they are, the GPU in linear light, so blended texels would differ by design).
+//    they are, the GPU in linear light, so blended texels would differ by design);
+//  - a float map's atlas (R32G32B32A32_SFLOAT): ktx-parse only.
 // Usage: NODE_PATH=$(scripts/npm-deps.sh)/node_modules node --experimental-websocket THIS TILEKIT SOURCE_DIR
 // Exit 0 on success; skipped (exit 77, "skipped" printed) where chromium or the npm packages are
 // missing, unless TILEKIT_REQUIRE_BROWSER=1.
@@ -76,6 +77,40 @@ for (const space of ['linear', 'srgb']) {
     cases.push({ name: `${space}/${v.name}`, space, ktx2: `${space}/atlas.ktx2`, ref: `${space}/${v.name}.png`, w: v.size[0], h: v.size[1], aniso: v.aniso, hw: v.filter === 'hardware', rows: Array.from(r.rows), dudyStep: r.dudyStep });
   }
   fs.copyFileSync(path.join(dir, space, 'atlas.glsl'), path.join(dir, space + '.glsl'));
+}
+
+// A float map (a 32-bit float TIFF of heights -3.5 .. 1200.25, written here by hand: one strip,
+// uncompressed) atlased beside the tiles: its atlas-h.ktx2 is R32G32B32A32_SFLOAT, and ktx-parse
+// reads the format, the float descriptor and every level, and writes the same bytes back.
+{
+  const w = 96, h = 96, tags = [[256, 3, w], [257, 3, h], [258, 3, 32], [259, 3, 1], [262, 3, 1], [273, 4, 8 + 2 + 12 * 10 + 4],
+    [277, 3, 1], [278, 3, h], [279, 4, w * h * 4], [339, 3, 3]];
+  const tif = new DataView(new ArrayBuffer(8 + 2 + 12 * tags.length + 4 + w * h * 4));
+  tif.setUint32(0, 0x002A4949, true); tif.setUint32(4, 8, true); tif.setUint16(8, tags.length, true);
+  tags.forEach(([tag, type, v], i) => {
+    const at = 10 + 12 * i;
+    tif.setUint16(at, tag, true); tif.setUint16(at + 2, type, true); tif.setUint32(at + 4, 1, true);
+    if (type === 3) tif.setUint16(at + 8, v, true); else tif.setUint32(at + 8, v, true);
+  });
+  for (let i = 0; i < w * h; ++i) tif.setFloat32(8 + 2 + 12 * tags.length + 4 + 4 * i, -3.5 + ((i * 37) % 128) * (1203.75 / 127), true);
+  fs.writeFileSync(path.join(dir, 'h.tif'), new Uint8Array(tif.buffer));
+  run(['texture', 'tiles', '--exemplar', path.join(dir, 'ex.png'), '--map', 'h=' + path.join(dir, 'h.tif'), '--colors', '2', '--tile-px', '16', '--search', '2', '--out', path.join(dir, 'fm'), '--quiet']);
+  run(['texture', 'atlas', path.join(dir, 'fm'), '--out', path.join(dir, 'float', 'atlas.png'), '--quiet']);
+  const manifest = JSON.parse(fs.readFileSync(path.join(dir, 'float', 'atlas-h.json'), 'utf8'));
+  const bytes = new Uint8Array(fs.readFileSync(path.join(dir, 'float', 'atlas-h.ktx2')));
+  const c = read(bytes), dfd = c.dataFormatDescriptor[0];
+  check(manifest.bits === 32 && manifest.format === 'exr float' && manifest.levels[0].file === 'atlas-h.exr', `float: manifest ${manifest.bits} ${manifest.format}`);
+  check(c.vkFormat === 109 && c.typeSize === 4, `float: vkFormat ${c.vkFormat}, typeSize ${c.typeSize}`);
+  check(dfd.colorModel === 1 && dfd.transferFunction === 1 && dfd.bytesPlane[0] === 16, 'float: DFD model/transfer/bytes');
+  check(dfd.samples.length === 4 && dfd.samples.every((s, i) => s.bitOffset === 32 * i && s.bitLength === 31 && (s.channelType & 0xC0) === 0xC0 && s.sampleLower >>> 0 === 0xBF800000 && s.sampleUpper >>> 0 === 0x3F800000), 'float: DFD samples (float, signed, -1 .. 1)');
+  check(c.levels.length === manifest.levels.length, `float: ${c.levels.length} levels, manifest ${manifest.levels.length}`);
+  c.levels.forEach((l, k) => check(l.levelData.byteLength === manifest.levels[k].width * manifest.levels[k].height * 16, `float: level ${k} length`));
+  const l0 = new Float32Array(c.levels[0].levelData.slice().buffer);
+  let lo = Infinity, hi = -Infinity;
+  for (let i = 0; i < l0.length; i += 4) lo = Math.min(lo, l0[i]), hi = Math.max(hi, l0[i]);
+  check(lo >= -3.5 && lo < 0 && hi > 1000 && hi <= 1200.25, `float: level 0 heights ${lo} .. ${hi}`);
+  const again = write(c, { keepWriter: true });
+  check(again.length === bytes.length && again.every((b, i) => b === bytes[i]), "float: ktx-parse's write(read(file)) differs from the file");
 }
 
 // The page: three.js from the npm package, KTX2Loader, atlas.glsl plus the renderer's main().
