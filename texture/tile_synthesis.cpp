@@ -186,9 +186,10 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
       if (std::isnan(lines_[k])) continue;
       // Lines at a spacing of the period / j lie at `lines` + i period / j; of these j the one
       // with the strongest lines over the whole exemplar, folded by the period, goes on the border
-      // (planks: their edges, not a line of the grain a third of a plank away).
+      // (planks: their edges, not a line of the grain a third of a plank away). A rectified wall's
+      // lines are not where the whole exemplar folded puts them: there the window's stay.
       double at = lines_[k];
-      if (harmonic_[k] > 1) {
+      if (whole && harmonic_[k] > 1) {
         const std::vector<double> g = gradient_profile(k);
         double best = -1;
         for (int i = 0; i < harmonic_[k]; ++i) {
