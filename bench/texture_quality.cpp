@@ -93,9 +93,8 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
   // The exemplar's own line continuity on the same lattice, as the samples saw it (rectified,
   // resampled), with a corner where the synthesis puts one (its phase; 0 along an axis without a
   // period): what the render's is compared with.
-  Lattice own = Lattice::square(px);
-  own.offset = {std::round(s.phase[0]), std::round(s.phase[1])};
-  const TextureAnalysis ea = analyze_texture(s.sampled.width ? s.sampled : e.image, own, nullptr, nullptr, threads);
+  const LineContinuity own = line_continuity(s.sampled.width ? s.sampled : e.image, px, int(std::lround(s.phase[0])),
+                                             int(std::lround(s.phase[1])));
   nlohmann::json j = {{"case", fmt::format("quality/{}/{}/C={}", name, kind_name(kind), c)},
                       {"texture", name},
                       {"kind", std::string(kind_name(kind))},
@@ -110,11 +109,8 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
                       {"shared_fraction", s.shared_fraction},
                       {"bands", s.thin_bands ? "thin" : "default"}};
   j.update(measures(a));
-  if (ea.line_continuity) {
-    j["exemplar_line_continuity"] = *ea.line_continuity;
-    if (a.line_continuity && *ea.line_continuity > 0)
-      j["line_continuity_vs_exemplar"] = *a.line_continuity / *ea.line_continuity;
-  }
+  j["exemplar_line_continuity"] = own.ratio;
+  if (a.line_continuity && own.ratio > 0) j["line_continuity_vs_exemplar"] = *a.line_continuity / own.ratio;
   j["period"] = {s.period.x, s.period.y};
   j["phase"] = s.phase;
   print(j);
