@@ -5,9 +5,12 @@
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
-//                visibility, histogram distance, lattice peak, line continuity (held-out ufo-*
-//                textures, scripts/fetch-textures.sh --held-out, as tori). Goals (corner, C = 4, 64 px): grid
-//                repetition <= 0.05 with seam ratio <= 1.10, cut visibility <= 1.5.
+//                visibility, histogram distance, lattice peak, line continuity beside the exemplar's
+//                own on the same lattice at the synthesis' phase (line_continuity_vs_exemplar;
+//                held-out ufo-* textures, scripts/fetch-textures.sh --held-out, as tori). --tile-px
+//                auto: per texture the size `texture tiles --tile-px auto` picks (tile-px-auto/...).
+//                Goals (corner, C = 4, 64 px): grid repetition <= 0.05 with seam ratio <= 1.10, cut
+//                visibility <= 1.5; line continuity within 20 % of the exemplar's.
 //   naive/...    the baseline of the same run: random crops of the exemplar abutted (no cuts, no
 //                lattice repetition, visible seams)
 //   speed/...    with --speed R: corner C = 4 synthesis on one thread, median of R runs (goal < 10 s)
