@@ -233,8 +233,7 @@ double SynthesisExemplar::line_clarity(std::array<int, 2> p, int w, int h, std::
   return total > 0 ? std::abs(sum) / total : 0.0;
 }
 
-double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis,
-                                     double clear) const {
+double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis, double clear) const {
   const double step = step_[axis] / harmonic_[axis];
   std::complex<double> sum = 0;
   double total = 0;
@@ -262,8 +261,9 @@ std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int 
     while (q > extent[k] - size[k]) q -= step;
     while (q < 0) q += step;
     p[k] = std::clamp(int(std::lround(q)), 0, extent[k] - size[k]);
+    if (std::isnan(lines_[k])) continue;  // not refined (an exemplar that repeats exactly)
     const double lines = line_phase(p, uv[k], w, h, k);
-    if (std::isnan(lines) || std::isnan(lines_[k])) continue;
+    if (std::isnan(lines)) continue;
     // moving the window by s moves its lines by -s in lattice coordinates
     const double spacing = step / harmonic_[k], s = std::remainder(lines - lines_[k], spacing);
     if (std::abs(s) <= spacing / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);

@@ -14,6 +14,7 @@
 #include "base/random.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_analysis.hpp"
+#include "texture/tile_synthesis.hpp"
 #include "texture_fixtures.hpp"
 #include "tiling/direct_tiling.hpp"
 
@@ -100,12 +101,11 @@ Image planks() {
 // A 16x16-tile stitched render of corner tiles (C = 2, 64 px) over the exemplar's own continuity
 // on the same lattice with a corner where the synthesis puts one.
 double continuity_vs_exemplar(const Exemplar& e, const TextureTileSet& s) {
-  const std::array<double, 2> phase = s.phase;
   const Tiling t = DirectCornerTiling(2, HashKind::LongPeriod, 1).generate(16, 16);
   const LineContinuity render = line_continuity(stitch_tiles(s, t), s.tile_px);
   const Image& own = s.sampled.width ? s.sampled : e.image;
   const LineContinuity exemplar =
-      line_continuity(own, s.tile_px, int(std::lround(phase[0])), int(std::lround(phase[1])));
+      line_continuity(own, s.tile_px, int(std::lround(s.phase[0])), int(std::lround(s.phase[1])));
   EXPECT_GT(exemplar.ratio, 0.0);
   return render.ratio / exemplar.ratio;
 }
