@@ -1,13 +1,16 @@
 // Whether rendered surfaces of texture tiles show their grid (texture/README.md's measures), per
 // real texture, tile kind and C, one JSON line per case. Usage:
 //   build/bench_texture_quality [--textures a,b,...] [--kinds corner,wang] [--colors 2,3,4]
-//                               [--tile-px 64] [--size 1024] [--threads 2] [--out DIR] [--speed REPS]
+//                               [--tile-px 64|auto] [--size 1024] [--threads 2] [--out DIR] [--speed REPS]
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
-//                visibility, histogram distance, lattice peak, line continuity (held-out ufo-*
-//                textures, scripts/fetch-textures.sh --held-out, as tori). Goals (corner, C = 4, 64 px): grid
-//                repetition <= 0.05 with seam ratio <= 1.10, cut visibility <= 1.5.
+//                visibility, histogram distance, lattice peak, line continuity beside the exemplar's
+//                own on the same lattice at the synthesis' phase (line_continuity_vs_exemplar;
+//                held-out ufo-* textures, scripts/fetch-textures.sh --held-out, as tori). --tile-px
+//                auto: per texture the size `texture tiles --tile-px auto` picks (tile-px-auto/...).
+//                Goals (corner, C = 4, 64 px): grid repetition <= 0.05 with seam ratio <= 1.10, cut
+//                visibility <= 1.5; line continuity within 20 % of the exemplar's.
 //   naive/...    the baseline of the same run: random crops of the exemplar abutted (no cuts, no
 //                lattice repetition, visible seams)
 //   speed/...    with --speed R: corner C = 4 synthesis on one thread, median of R runs (goal < 10 s)
@@ -90,6 +93,11 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
   const Image lab = render_cpu(build_texture_atlas(lookup, labels), view, ro);
   const TextureAnalysis a = analyze_texture(img, Lattice::square(px), &e.image, &lab, threads);
   if (!out.empty()) write_png(fmt::format("{}/{}-{}-c{}.png", out, name, kind_name(kind), c), img);
+  // The exemplar's own line continuity on the same lattice, as the samples saw it (rectified,
+  // resampled), with a corner where the synthesis puts one (its phase; 0 along an axis without a
+  // period): what the render's is compared with.
+  const LineContinuity own = line_continuity(s.sampled.width ? s.sampled : e.image, px, int(std::lround(s.phase[0])),
+                                             int(std::lround(s.phase[1])));
   nlohmann::json j = {{"case", fmt::format("quality/{}/{}/C={}", name, kind_name(kind), c)},
                       {"texture", name},
                       {"kind", std::string(kind_name(kind))},
@@ -104,6 +112,10 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
                       {"shared_fraction", s.shared_fraction},
                       {"bands", s.thin_bands ? "thin" : "default"}};
   j.update(measures(a));
+  j["exemplar_line_continuity"] = own.ratio;
+  if (a.line_continuity && own.ratio > 0) j["line_continuity_vs_exemplar"] = *a.line_continuity / own.ratio;
+  j["period"] = {s.period.x, s.period.y};
+  j["phase"] = s.phase;
   print(j);
 }
 
@@ -200,7 +212,7 @@ int main(int argc, char** argv) {
   std::vector<std::uint32_t> colours = {2, 3, 4};
   int px = 64, size = 1024, threads = 2, reps = 0;
   std::string out;
-  bool thin = false;
+  bool thin = false, auto_px = false;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--textures") textures = split(value);
@@ -209,7 +221,7 @@ int main(int argc, char** argv) {
       colours.clear();
       for (const std::string& c : split(value)) colours.push_back(std::uint32_t(std::stoul(c)));
     }
-    if (flag == "--tile-px") px = std::stoi(value);
+    if (flag == "--tile-px") auto_px = value == "auto", px = auto_px ? 0 : std::stoi(value);
     if (flag == "--size") size = std::stoi(value);
     if (flag == "--threads") threads = std::stoi(value);
     if (flag == "--out") out = value;
@@ -218,6 +230,11 @@ int main(int argc, char** argv) {
   }
   for (const std::string& name : textures) {
     const Exemplar e = texture(name);
+    if (auto_px) {  // texture tiles --tile-px auto (texture/exemplar.hpp)
+      const TileSizeChoice choice = choose_tile_size(e, dominant_period(e));
+      px = choice.tile_px;
+      print({{"case", fmt::format("tile-px-auto/{}", name)}, {"tile_px", px}, {"reason", choice.reason}});
+    }
     if (reps > 0) {
       speed(name, e, px, reps);
       continue;

@@ -33,7 +33,7 @@ HashKind hash_option(const std::string& name) {
 }
 
 struct TilesArgs {
-  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto", tile_px = "128";
+  std::string exemplar, kind = "corner", out, period = "auto", perspective = "auto", tile_px = "auto";
   SynthesisOptions synthesis;  // kind, threads, seed, progress and keep_period come from the fields here
   RunOptions run = [] {
     RunOptions r;
@@ -230,9 +230,9 @@ void add_tiles(CLI::App& texture, Context& ctx) {
                   "bands on every irregular texture measured, against 0.03-0.04 for C = 3)")
       ->required();
   cmd->add_option("--tile-px", a->tile_px,
-                  "Tile size in pixels (even, 16..1024), or auto: from the exemplar's feature scale (a multiple of its "
-                  "period near 128, else two features across by its luminance autocorrelation; 64..512), the "
-                  "choice and its reason on stderr and in tiles.json")
+                  "Tile size in pixels (even, 16..1024), or auto (the default, by measurement: BENCHMARKS.md): from "
+                  "the exemplar's feature scale (a multiple of its period near 128, else two features across by its "
+                  "luminance autocorrelation; 64..512), the choice and its reason on stderr and in tiles.json")
       ->type_name("PX|auto")
       ->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")

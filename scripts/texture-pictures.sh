@@ -15,7 +15,7 @@
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
 #       the borders, the corner squares, a centre patch per tile);
 #   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
-#   texture-heldout-{ufo-brick,ufo-wood,ufo-dirt}-{tiles,hex,hpn,naive}.png  (--held-out: only
+#   texture-heldout-{ufo-brick,ufo-tile,ufo-wood,ufo-dirt}-{tiles,hex,hpn,naive}.png  (--held-out: only
 #       these) flat 256x256 renders of held-out textures (scripts/fetch-textures.sh --held-out),
 #       side by side: corner tiles (C = 4, 64 px, --thin-bands, which a periodic exemplar ignores),
 #       hex tiling, histogram-preserving blending and the naive mosaic of random 64-px crops
@@ -30,7 +30,7 @@ trap 'rm -rf "$work"' EXIT
 if [ "${1:-}" = --held-out ]; then
   "$root/scripts/fetch-textures.sh" --held-out
   cache=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
-  for t in ufo-brick ufo-wood ufo-dirt; do
+  for t in ufo-brick ufo-tile ufo-wood ufo-dirt; do
     ex="$cache/$t.png"
     "$tk" texture tiles --exemplar "$ex" --tileable --kind corner --colors 4 --tile-px 64 --seed 1 --thin-bands \
       --out "$work/$t/tiles" --quiet

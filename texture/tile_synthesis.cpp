@@ -156,14 +156,22 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
     step_[std::size_t(axis)] = o.tile_px / k;
   }
   if (scale_[0] != 1 || scale_[1] != 1) e_ = resample_exemplar(e_, scale_[0], scale_[1]);
-  // The phase: that of a tile-sized window in the middle of the exemplar, shown at a tile corner,
-  // moved so that its lines (where they are clear) fall on the tile borders. A border then runs
-  // along a mortar line, both tiles' bands hold its halves and a little of the faces beside it,
-  // and the cuts to the centre patches run close to the line instead of across the middle of the
-  // bricks (skimage's brick: cut visibility 1.78 -> 1.54, seam ratio 1.71 -> 1.05).
+  // The phase: where the lines (where they are clear) fall on the tile borders. A border then
+  // runs along a mortar line, both tiles' bands hold its halves and a little of the faces beside
+  // it, and the cuts to the centre patches run close to the line instead of across the middle of
+  // the bricks (skimage's brick: cut visibility 1.78 -> 1.54, seam ratio 1.71 -> 1.05). A
+  // rectified wall is periodic only roughly, so its phase is that of a tile-sized window in the
+  // middle, and every sample is then moved to put its own lines there (in_phase). Any other
+  // exemplar repeats exactly: its phase comes from the whole of it (lines too faint for one
+  // window, like the ends of planks, still count), and samples are not moved (a window's own
+  // estimate of its lines, off by a few pixels, broke a tile floor's grout at the corners).
   const int n = o.tile_px;
-  const std::array<int, 2> p{std::max(0, (e_.width() - n) / 2), std::max(0, (e_.height() - n) / 2)};
-  const int rw = std::min(n, e_.width() - p[0] - 1), rh = std::min(n, e_.height() - p[1] - 1);
+  const bool whole = !perspective_.applied;
+  const std::array<int, 2> p =
+      whole ? std::array<int, 2>{0, 0}
+            : std::array<int, 2>{std::max(0, (e_.width() - n) / 2), std::max(0, (e_.height() - n) / 2)};
+  const int rw = whole ? e_.width() - 1 : std::min(n, e_.width() - p[0] - 1);
+  const int rh = whole ? e_.height() - 1 : std::min(n, e_.height() - p[1] - 1);
   for (std::size_t k = 0; k < 2; ++k)
     if (step_[k] > 0) {
       phase_[k] = std::fmod(p[k], step_[k]);
@@ -174,10 +182,39 @@ SynthesisExemplar::SynthesisExemplar(const Exemplar& e, const SynthesisOptions& 
         const double c = line_clarity(p, rw, rh, k, step_[k] / j);
         if (c > clearest) clearest = c, harmonic_[k] = j;
       }
-      lines_[k] = line_phase(p, 0, rw, rh, k);
-      if (!std::isnan(lines_[k])) phase_[k] = std::fmod(p[k] + lines_[k], step_[k]), lines_[k] = 0;
+      lines_[k] = line_phase(p, 0, rw, rh, k, whole ? 0.0 : kLinesClear);
+      if (std::isnan(lines_[k])) continue;
+      // Lines at a spacing of the period / j lie at `lines` + i period / j; of these j the one
+      // with the strongest lines over the whole exemplar, folded by the period, goes on the border
+      // (planks: their edges, not a line of the grain a third of a plank away). A rectified wall's
+      // lines are not where the whole exemplar folded puts them: there the window's stay.
+      double at = lines_[k];
+      if (whole && harmonic_[k] > 1) {
+        const std::vector<double> g = gradient_profile(k);
+        double best = -1;
+        for (int i = 0; i < harmonic_[k]; ++i) {
+          const double c = lines_[k] + i * step_[k] / harmonic_[k];
+          double sum = 0;
+          for (std::size_t q = 0; q < g.size(); ++q)
+            if (std::abs(std::remainder(double(q) + 0.5 - (p[k] + c), step_[k])) <= 1.5) sum += g[q];
+          if (sum > best) best = sum, at = c;
+        }
+      }
+      phase_[k] = std::fmod(p[k] + at, step_[k]);
+      lines_[k] = whole ? std::numeric_limits<double>::quiet_NaN() : 0.0;  // NaN: samples are not moved
     }
   build_planes(o);
+}
+
+std::vector<double> SynthesisExemplar::gradient_profile(std::size_t axis) const {
+  const int along = axis == 0 ? e_.width() : e_.height(), across = axis == 0 ? e_.height() : e_.width();
+  std::vector<double> g(std::size_t(std::max(0, along - 1)), 0.0);
+  for (int c = 0; c + 1 < along; ++c)
+    for (int r = 0; r < across; ++r) {
+      const int x = axis == 0 ? c : r, y = axis == 0 ? r : c;
+      g[std::size_t(c)] += std::abs(luma(e_.at(x + (axis == 0), y + (axis == 1))) - luma(e_.at(x, y)));
+    }
+  return g;
 }
 
 double SynthesisExemplar::line_clarity(std::array<int, 2> p, int w, int h, std::size_t axis, double spacing) const {
@@ -196,7 +233,7 @@ double SynthesisExemplar::line_clarity(std::array<int, 2> p, int w, int h, std::
   return total > 0 ? std::abs(sum) / total : 0.0;
 }
 
-double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const {
+double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis, double clear) const {
   const double step = step_[axis] / harmonic_[axis];
   std::complex<double> sum = 0;
   double total = 0;
@@ -210,7 +247,7 @@ double SynthesisExemplar::line_phase(std::array<int, 2> p, int u, int w, int h, 
     sum += g * std::polar(1.0, -2 * std::numbers::pi * (u + c + 0.5) / step);
     total += g;
   }
-  if (total <= 0 || std::abs(sum) < 0.1 * total) return std::nan("");
+  if (total <= 0 || std::abs(sum) <= clear * total) return std::nan("");
   return std::fmod(-std::arg(sum) / (2 * std::numbers::pi) * step + step, step);
 }
 
@@ -224,8 +261,9 @@ std::array<int, 2> SynthesisExemplar::in_phase(std::array<int, 2> p, int u, int 
     while (q > extent[k] - size[k]) q -= step;
     while (q < 0) q += step;
     p[k] = std::clamp(int(std::lround(q)), 0, extent[k] - size[k]);
+    if (std::isnan(lines_[k])) continue;  // not refined (an exemplar that repeats exactly)
     const double lines = line_phase(p, uv[k], w, h, k);
-    if (std::isnan(lines) || std::isnan(lines_[k])) continue;
+    if (std::isnan(lines)) continue;
     // moving the window by s moves its lines by -s in lattice coordinates
     const double spacing = step / harmonic_[k], s = std::remainder(lines - lines_[k], spacing);
     if (std::abs(s) <= spacing / 4) p[k] = std::clamp(p[k] + int(std::lround(s)), 0, extent[k] - size[k]);
@@ -547,6 +585,7 @@ nlohmann::json tile_set_json(const TextureTileSet& s) {
           {"period", {s.period.x, s.period.y}},
           {"structure", structure_json(s.period)},
           {"exemplar_scale", s.exemplar_scale},
+          {"phase", s.phase},
           {"colour_space", "srgb"},
           {"seconds", s.seconds}};
 }

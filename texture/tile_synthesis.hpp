@@ -133,6 +133,8 @@ struct TextureTileSet {
   PerspectiveFit perspective;    // the rectification of a photographed wall (applied: the exemplar was resampled)
   ExemplarPeriod period;         // of the exemplar as rectified (0: none found, or keep_period off)
   std::array<double, 2> exemplar_scale{1, 1};  // the resampling that fits whole periods into a tile
+  // Where the lattice's corners fall in the exemplar as sampled, modulo the period (SynthesisExemplar::phase).
+  std::array<double, 2> phase{0, 0};
   Image sampled;  // the exemplar as the samples saw it, when rectified or resampled (else empty)
   double seconds = 0;
   std::string method;  // "corner-strips", "wang-strips" or "naive"
@@ -233,8 +235,13 @@ class SynthesisExemplar {
   void build_planes(const SynthesisOptions& o);
 
   // Where the lines of a w x h window at p lie along an axis, in lattice coordinates modulo the
-  // lines' spacing (the window shown at lattice u); NaN when unclear.
-  double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis) const;
+  // lines' spacing (the window shown at lattice u); NaN when unclear (that component at most
+  // `clear` of the summed gradient).
+  static constexpr double kLinesClear = 0.1;
+  double line_phase(std::array<int, 2> p, int u, int w, int h, std::size_t axis, double clear = kLinesClear) const;
+  // Per column (axis 0) or row (1) c of the whole exemplar, the gradient along the axis between
+  // c and c + 1 summed across it.
+  std::vector<double> gradient_profile(std::size_t axis) const;
   // |that Fourier component| / the summed gradient, at a given spacing of the lines.
   double line_clarity(std::array<int, 2> p, int w, int h, std::size_t axis, double spacing) const;
 

@@ -62,6 +62,7 @@ class WangSynthesis {
     if (s.perspective.applied || x_.scale() != std::array<double, 2>{1, 1}) s.sampled = x_.exemplar().image;
     s.thin_bands = g_.thin;
     s.exemplar_scale = x_.scale();
+    s.phase = x_.phase();
     choose_samples(s);
     compose_tiles(s);
     s.centre_cost = merge_centre_patches(s, x_, o_, fmt::format("Wang tiles C={} {}px", c_, g_.n));

@@ -127,8 +127,8 @@ TEST(CliMaterial, AtlasFoldsTheNormalsLostLengthIntoRoughness) {
   EXPECT_GT(widened, 80);
 }
 
-// --tile-px auto: a periodic exemplar gets whole periods near 128 px, a fine-grained one the
-// smallest tiles; the choice and its reason on stderr and in tiles.json.
+// --tile-px auto (the default): a periodic exemplar gets whole periods near 128 px, a
+// fine-grained one the smallest tiles; the choice and its reason on stderr and in tiles.json.
 TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   TempDir d;
   Image stripes(200, 200);  // vertical bars every 24 px, horizontal ones every 30 px
@@ -145,11 +145,13 @@ TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   EXPECT_EQ(p.json()["tile_px"], 120);  // 4 periods of 30 (the larger), the multiple nearest 128
   EXPECT_NE(p.err.find("--tile-px auto: period 30"), std::string::npos) << p.err;
   EXPECT_EQ(read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 120);
-  const auto g = run_cli("texture tiles --exemplar " + (d / "grain.png") +
-                         " --colors 1 --search 0 --tile-px auto --out " + (d / "g") + " --json");
+  // auto is the default (BENCHMARKS.md, "Texture structure and tile size")
+  const auto g = run_cli("texture tiles --exemplar " + (d / "grain.png") + " --colors 1 --search 0 --out " + (d / "g") +
+                         " --json");
   ASSERT_EQ(g.code, 0) << g.err;
   EXPECT_EQ(g.json()["tile_px"], 64);
-  EXPECT_NE(g.err.find("features up to about"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("--tile-px auto: features up to about"), std::string::npos) << g.err;
+  EXPECT_EQ(read_json(d / "g/tiles.json")["tile_px_auto"]["tile_px"], 64);
   for (const char* bad : {"abc", "-64", "0x40", "99999999999999999999"})
     EXPECT_EQ(
         run_cli("texture tiles --exemplar " + (d / "grain.png") + " --tile-px " + bad + " --out " + (d / "x")).code, 2)
