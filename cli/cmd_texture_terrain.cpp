@@ -169,7 +169,7 @@ void add_texture_terrain(CLI::App& texture, Context& ctx) {
   auto a = std::make_shared<TerrainArgs>();
   cmd->add_option("--terrain", a->terrains,
                   "A terrain, NAME=FILE[:tileable] (2 to 6 of them; corner colour k is the k-th): FILE a texture "
-                  "(PNG, JPEG, TGA, PPM) or a fetched real texture by name (grass, gravel, oa-dirt, oa-rock, ...; "
+                  "(PNG, JPEG, TIFF, TGA, PPM) or a fetched real texture by name (grass, gravel, oa-dirt, oa-rock, ...; "
                   "the oa-* and gimp-* ones are tileable); :tileable samples FILE as a torus")
       ->type_name("NAME=FILE[:tileable]")
       ->required();

@@ -34,6 +34,9 @@ inline std::string slurp(const std::string& path) {
   return b.str();
 }
 
+// A JSON file the command wrote (a manifest, tiles.json, ...).
+inline nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
+
 // A fresh temporary directory, removed when the object goes out of scope.
 struct TempDir {
   std::filesystem::path path;

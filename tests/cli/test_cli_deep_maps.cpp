@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -23,11 +22,6 @@ namespace {
 
 using test::run_cli;
 using test::TempDir;
-
-nlohmann::json deep_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 void expect_one_line_exit_2(const test::CliResult& r, const std::string& fragment) {
   EXPECT_EQ(r.code, 2) << r.err;
@@ -56,11 +50,11 @@ TEST(CliDeepMaps, SixteenBitTiffAndFloatExrMapsKeepTheirDepthThroughTilesAndAtla
   EXPECT_EQ(j["maps"][0]["bits"], 16);
   EXPECT_EQ(j["maps"][1]["bits"], 32);
   EXPECT_EQ(j["maps"][1]["colour_space"], "linear");
-  const nlohmann::json mj = deep_json(d / "mat/maps/depth/tiles.json");
+  const nlohmann::json mj = test::read_json(d / "mat/maps/depth/tiles.json");
   EXPECT_EQ(mj["bits"], 32);
   EXPECT_EQ(mj["format"], "exr float");
   EXPECT_EQ(mj["colour_space"], "linear");
-  EXPECT_EQ(deep_json(d / "mat/maps/height/tiles.json")["format"], "png unorm");
+  EXPECT_EQ(test::read_json(d / "mat/maps/height/tiles.json")["format"], "png unorm");
   for (const char* name : {"tile-0000", "tile-0011"}) {
     const Image where = read_image(d / (std::string("mat/coords/") + name + ".png"), 4, true);
     const Image h = read_image(d / (std::string("mat/maps/height/") + name + ".png"), 4, true);
@@ -81,7 +75,7 @@ TEST(CliDeepMaps, SixteenBitTiffAndFloatExrMapsKeepTheirDepthThroughTilesAndAtla
   EXPECT_EQ(aj["maps"]["depth"]["bits"], 32);
   EXPECT_EQ(aj["maps"]["depth"]["colour_space"], "linear");
   EXPECT_EQ(aj["maps"]["depth"]["out"], d / "atlas/atlas-depth.exr");
-  const nlohmann::json am = deep_json(d / "atlas/atlas-depth.json");
+  const nlohmann::json am = test::read_json(d / "atlas/atlas-depth.json");
   EXPECT_EQ(am["bits"], 32);
   EXPECT_EQ(am["format"], "exr float");
   EXPECT_EQ(am["levels"][1]["file"], "atlas-depth.mip1.exr");

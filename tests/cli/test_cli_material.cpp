@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -18,11 +17,6 @@ namespace {
 
 using test::run_cli;
 using test::TempDir;
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 TEST(CliMaterial, EveryMapIsCopiedAtTheRecordedTexelsAndAtlasedTheSameWay) {
   TempDir d;
@@ -44,8 +38,8 @@ TEST(CliMaterial, EveryMapIsCopiedAtTheRecordedTexelsAndAtlasedTheSameWay) {
   ASSERT_EQ(j["maps"].size(), 2u);
   EXPECT_EQ(j["maps"][0]["colour_space"], "normal");
   EXPECT_EQ(j["maps"][1]["bits"], 16);
-  EXPECT_EQ(read_json(d / "mat/maps/height/tiles.json")["colour_space"], "linear");
-  EXPECT_EQ(read_json(d / "mat/tiles.json")["colour_space"], "srgb");
+  EXPECT_EQ(test::read_json(d / "mat/maps/height/tiles.json")["colour_space"], "linear");
+  EXPECT_EQ(test::read_json(d / "mat/tiles.json")["colour_space"], "srgb");
   for (int t_index : {0, 5, 15}) {
     const std::string name = "tile-" + std::string(t_index < 10 ? "000" : "00") + std::to_string(t_index) + ".png";
     const Image where = read_image(d / ("mat/coords/" + name), 4, true);
@@ -70,7 +64,7 @@ TEST(CliMaterial, EveryMapIsCopiedAtTheRecordedTexelsAndAtlasedTheSameWay) {
   EXPECT_EQ(a.json()["colour_space"], "srgb");
   EXPECT_EQ(a.json()["maps"]["height"]["bits"], 16);
   EXPECT_EQ(a.json()["maps"]["normal"]["colour_space"], "normal");
-  EXPECT_EQ(read_json(d / "new/folder/atlas-height.json")["colour_space"], "linear");
+  EXPECT_EQ(test::read_json(d / "new/folder/atlas-height.json")["colour_space"], "linear");
   EXPECT_EQ(read_image(d / "new/folder/atlas-height.mip1.png", 4, true).depth, 16);
   // A map carried later equals the same map given at synthesis.
   const auto tr = run_cli("texture transfer " + (d / "mat") + " --map again=" + (d / "height.png") + " --json");
@@ -95,7 +89,7 @@ TEST(CliMaterial, BadMapsAndPeriodsAreExitTwoAndQuietPrintsNothing) {
   const auto q = run_cli(base + "--period 24,0 --quiet");
   ASSERT_EQ(q.code, 0) << q.err;
   EXPECT_EQ(q.out, "");
-  EXPECT_EQ(read_json(d / "o/tiles.json")["period"][0], 24.0);
+  EXPECT_EQ(test::read_json(d / "o/tiles.json")["period"][0], 24.0);
 }
 
 // `texture atlas` of a material with a normal map and a map called roughness folds the length the
@@ -144,14 +138,14 @@ TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   ASSERT_EQ(p.code, 0) << p.err;
   EXPECT_EQ(p.json()["tile_px"], 120);  // 4 periods of 30 (the larger), the multiple nearest 128
   EXPECT_NE(p.err.find("--tile-px auto: period 30"), std::string::npos) << p.err;
-  EXPECT_EQ(read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 120);
+  EXPECT_EQ(test::read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 120);
   // auto is the default (BENCHMARKS.md, "Texture structure and tile size")
   const auto g = run_cli("texture tiles --exemplar " + (d / "grain.png") + " --colors 1 --search 0 --out " + (d / "g") +
                          " --json");
   ASSERT_EQ(g.code, 0) << g.err;
   EXPECT_EQ(g.json()["tile_px"], 64);
   EXPECT_NE(g.err.find("--tile-px auto: features up to about"), std::string::npos) << g.err;
-  EXPECT_EQ(read_json(d / "g/tiles.json")["tile_px_auto"]["tile_px"], 64);
+  EXPECT_EQ(test::read_json(d / "g/tiles.json")["tile_px_auto"]["tile_px"], 64);
   for (const char* bad : {"abc", "-64", "0x40", "99999999999999999999"})
     EXPECT_EQ(
         run_cli("texture tiles --exemplar " + (d / "grain.png") + " --tile-px " + bad + " --out " + (d / "x")).code, 2)
