@@ -29,82 +29,15 @@
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-TK=${TILEKIT_BINARY:-$root/build/tilekit}
-# `cluster submit` gives the jobs the tilekit on PATH (an installed one) unless --tilekit says
-# otherwise: this build's goes first, so that the jobs run the binary under test.
-PATH="$(dirname "$(readlink -f "$TK")"):$PATH"
-SLURM=$root/scripts/slurm/local-slurm.sh
+log_name=slurm-test
 DEADLINE=$((SECONDS + ${TILEKIT_SLURM_TEST_BUDGET:-280}))  # whole test < 5 minutes
-passed=0
-failed=0
-
-log() { echo "slurm-test: $*"; }
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-    log "ok:   $what"
-  else
-    failed=$((failed + 1))
-    log "FAIL: $what"
-  fi
-}
-fatal() {
-  log "FATAL: $*"
-  failed=$((failed + 1))
-  exit 1
-}
-
-[ "$(id -u)" -eq 0 ] || fatal "needs root (it starts munged, slurmctld and slurmd)"
-[ -x "$TK" ] || fatal "$TK is not built (run scripts/build.sh)"
-"$SLURM" install
-
-work=$(mktemp -d /tmp/tilekit-slurm-test.XXXXXX)
-finish() {
-  local rc=$?
-  if ((failed > 0 || rc != 0)); then
-    for f in "$work"/slurm/log/slurmctld.log "$work"/slurm/log/slurmd.log "$work"/*/logs/*.out; do
-      [ -f "$f" ] && { echo "---- $f (last 25 lines)"; tail -n 25 "$f"; }
-    done
-  fi
-  "$SLURM" stop "$work/slurm" || true
-  rm -rf "$work"
-  echo "$passed passed, $failed failed"
-  ((failed == 0 && rc == 0)) || exit 1
-}
-trap finish EXIT
-"$SLURM" start "$work/slurm" || fatal "Slurm did not start"
-# shellcheck disable=SC1091
-source "$work/slurm/env"
+# shellcheck source=tests/slurm/lib.sh
+source "$root/tests/slurm/lib.sh"
+start_slurm "$(mktemp -d /tmp/tilekit-slurm-test.XXXXXX)"
 
 # ---- helpers ----------------------------------------------------------------------------------
-# Field $2 of job $1 as `scontrol show job` prints it (e.g. JobState, ExitCode, Restarts).
-field() {
-  scontrol -o show job "$1" 2>/dev/null | head -n 1 | tr ' ' '\n' | awk -v k="$2" 'index($0, k "=") == 1 {
-    print substr($0, length(k) + 2); exit }'
-}
-time_left() { echo $((DEADLINE - SECONDS)); }
-# Waits until job $1 reaches a final state and prints it; prints NEVER(...) when its dependency
-# can never be met and TEST-TIMEOUT(...) on the test's deadline.
-wait_final() {
-  local state reason
-  while :; do
-    state=$(field "$1" JobState)
-    reason=$(field "$1" Reason)
-    case $state in
-      COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | BOOT_FAIL | DEADLINE | PREEMPTED)
-        echo "$state"
-        return 0 ;;
-    esac
-    [ "$reason" != DependencyNeverSatisfied ] || { echo "NEVER($reason)"; return 0; }
-    (($(time_left) > 0)) || { echo "TEST-TIMEOUT($state)"; return 0; }
-    sleep 1
-  done
-}
 submitted_id() { { grep -o "\"$1\":\"[0-9]*\"" <<<"$2" || true; } | { grep -o '[0-9][0-9]*' || true; }; }
 json_number() { { grep -o "\"$2\":[0-9]*" "$1" 2>/dev/null || true; } | head -n 1 | cut -d: -f2; }
-attempt_exits() { { grep -o '"exit":[0-9]*' "$1" 2>/dev/null || true; } | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
 last_attempt_resumed() { tail -n 1 "$1" | grep -q '"resumed":true'; }
 # Bit $2 (a mask) of field $3 (SigCgt, SigPnd, ShdPnd) in /proc/$1/status.
 proc_mask() {

@@ -22,35 +22,12 @@
 # Ends with the line "N passed, M failed"; exits 1 if any check failed or Slurm did not work.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-TK=${TILEKIT_BINARY:-$root/build/tilekit}
-PATH="$(dirname "$(readlink -f "$TK")"):$PATH"
-SLURM=$root/scripts/slurm/local-slurm.sh
+log_name=slurm-mpi-test
 DEADLINE=$((SECONDS + ${TILEKIT_SLURM_MPI_TEST_BUDGET:-420}))  # about 2 minutes on a quiet machine
-passed=0
-failed=0
+# shellcheck source=tests/slurm/lib.sh
+source "$root/tests/slurm/lib.sh"
 # Slurm runs these jobs as root here; Open MPI refuses root unless told (the jobs inherit this).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-
-log() { echo "slurm-mpi-test: $*"; }
-check() {
-  local what=$1
-  shift
-  if "$@"; then
-    passed=$((passed + 1))
-    log "ok:   $what"
-  else
-    failed=$((failed + 1))
-    log "FAIL: $what"
-  fi
-}
-fatal() {
-  log "FATAL: $*"
-  failed=$((failed + 1))
-  exit 1
-}
-
-[ "$(id -u)" -eq 0 ] || fatal "needs root (it starts munged, slurmctld and slurmd)"
-[ -x "$TK" ] || fatal "$TK is not built (run scripts/build.sh)"
 work=$(mktemp -d /tmp/tilekit-slurm-mpi-test.XXXXXX)
 if "$TK" pack --mpi --kind wang --colors 1 --mode count --quiet --db "$work/probe.sqlite" 2>&1 | grep -q "without MPI"; then
   log "skipped: $TK was built without MPI"
@@ -58,42 +35,8 @@ if "$TK" pack --mpi --kind wang --colors 1 --mode count --quiet --db "$work/prob
   echo "0 passed, 0 failed"
   exit 0
 fi
-"$SLURM" install
-finish() {
-  local rc=$?
-  if ((failed > 0 || rc != 0)); then
-    for f in "$work"/slurm/log/slurmctld.log "$work"/slurm/log/slurmd.log "$work"/*/logs/*.out; do
-      [ -f "$f" ] && { echo "---- $f (last 25 lines)"; tail -n 25 "$f"; }
-    done
-  fi
-  "$SLURM" stop "$work/slurm" || true
-  rm -rf "$work"
-  echo "$passed passed, $failed failed"
-  ((failed == 0 && rc == 0)) || exit 1
-}
-trap finish EXIT
-"$SLURM" start "$work/slurm" || fatal "Slurm did not start"
-# shellcheck disable=SC1091
-source "$work/slurm/env"
+start_slurm "$work"
 
-field() {
-  scontrol -o show job "$1" 2>/dev/null | head -n 1 | tr ' ' '\n' | awk -v k="$2" 'index($0, k "=") == 1 {
-    print substr($0, length(k) + 2); exit }'
-}
-time_left() { echo $((DEADLINE - SECONDS)); }
-wait_final() {
-  local state
-  while :; do
-    state=$(field "$1" JobState)
-    case $state in
-      COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | BOOT_FAIL | DEADLINE | PREEMPTED)
-        echo "$state"
-        return 0 ;;
-    esac
-    (($(time_left) > 0)) || { echo "TEST-TIMEOUT($state)"; return 0; }
-    sleep 1
-  done
-}
 # Waits until file $1 exists and was written after file $2 (or the deadline).
 wait_newer() {
   while ! [ "$1" -nt "$2" ]; do
@@ -102,7 +45,6 @@ wait_newer() {
   done
 }
 json_value() { { grep -o "\"$2\":[a-z0-9]*" "$1" 2>/dev/null || true; } | head -n 1 | cut -d: -f2; }
-attempt_exits() { { grep -o '"exit":[0-9]*' "$1" 2>/dev/null || true; } | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
 resumed_flags() { { grep -o '"resumed":[a-z]*' "$1" 2>/dev/null || true; } | cut -d: -f2 | tr '\n' ' ' | sed 's/ $//'; }
 job_of() { { grep -o '"mpi_job":"[0-9]*"' <<<"$1" || true; } | { grep -o '[0-9][0-9]*' || true; }; }
 equals() { [ "$1" = "$2" ] || { log "  got '$1', expected '$2'"; return 1; }; }
