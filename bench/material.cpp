@@ -1,6 +1,7 @@
 // Material sets (texture/material.hpp) on the held-out textures, which no tuning decision looks
-// at (scripts/fetch-textures.sh --held-out: UFO: Alien Invasion's colour, normal and specular
-// maps). One JSON line per case. Usage: build/bench_material [--reps R] [--seeds S] [--only PREFIX]
+// at (scripts/fetch-textures.sh --held-out: colour, normal and specular maps of UFO: Alien
+// Invasion, ufo-*, and of Red Eclipse's trak4 surfaces, re-*). One JSON line per case.
+// Usage: build/bench_material [--reps R] [--seeds S] [--only PREFIX] [--textures NAME,...]
 //   material-seams/NAME/{albedo,all}  corner tiles (C = 4, 64 px, one thread, seeds 1..S, default
 //       3: the albedo-only and the all-map run of one seed are a pair) whose samples and cuts are
 //       chosen on the albedo alone or on every map (--map-cost), the normal map carried by the
@@ -14,6 +15,8 @@
 //       maps in the cost too, so a pair differs in samples as well as cuts: one seed's
 //       difference mixes the two (seed to seed the lit ratio moves by up to 0.07), hence seeds.
 //   material-seams-mean/NAME  the means over the seeds of both runs.
+//   material-seams-tally/SET  per set (ufo, re): of its textures, on how many the all-map mean is
+//       lower (lit, 8 lights, shading), and in how many of the seed pairs the lit ratio is lower.
 //   material-speed/NAME  synthesis of the albedo alone against a four-map material (albedo,
 //       normal, specular, height), C = 4, 64 px, one thread, interleaved; the median of R runs
 //       each; goal: ratio <= 2.
@@ -116,7 +119,46 @@ Image lit(const Image& albedo, const Image& normals, const std::array<double, 3>
   return out;
 }
 
-void seams(const std::string& name, int seeds) {
+// How much of the lit exemplar's texel-to-texel steps its normal map carries: the mean step of
+// the exemplar lit through its normals with its mean colour everywhere, over the mean step of it
+// lit with its own colours on a flat surface. Low where the colour map already holds the relief
+// (painted-in shading), high where the relief lives in the normal map.
+double relief_share(const HeldOut& h) {
+  const Image& a = h.albedo;
+  const Image& n = h.maps[0].image;
+  double mean[3] = {0, 0, 0};
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 3; ++c) mean[c] += a.at(x, y)[c] / double(a.width) / double(a.height);
+  const Rgb flat_colour{std::uint8_t(std::lround(mean[0])), std::uint8_t(std::lround(mean[1])),
+                        std::uint8_t(std::lround(mean[2]))};
+  auto step = [](const Image& img) {
+    double sum = 0;
+    for (int y = 0; y + 1 < img.height; ++y)
+      for (int x = 0; x + 1 < img.width; ++x)
+        sum += channel_step(img.at(x, y), img.at(x + 1, y)) + channel_step(img.at(x, y), img.at(x, y + 1));
+    return sum;
+  };
+  const double relief = step(lit(Image(a.width, a.height, flat_colour), n));
+  const double colour = step(lit(a, Image(a.width, a.height, Rgb{128, 128, 255})));
+  return colour > 0 ? relief / colour : 0.0;
+}
+
+// How often the all-map run's cut ratio is lower than the albedo-only run's: per texture (the
+// means over seeds) and per pair (one seed).
+struct Tally {
+  int textures = 0, lit_mean_lower = 0, ring_mean_lower = 0, shading_mean_lower = 0, pairs = 0, lit_pairs_lower = 0;
+  Tally& operator+=(const Tally& o) {
+    textures += o.textures, lit_mean_lower += o.lit_mean_lower, ring_mean_lower += o.ring_mean_lower;
+    shading_mean_lower += o.shading_mean_lower, pairs += o.pairs, lit_pairs_lower += o.lit_pairs_lower;
+    return *this;
+  }
+};
+
+Tally seams(const std::string& name, int seeds) {
+  Tally tally;
+  tally.textures = 1;
+  double albedo_lit = 0;
   const HeldOut h = held_out(name);
   const Tiling window = DirectCornerTiling(4, HashKind::LongPeriod, 1).generate(16, 16);
   std::map<std::string, std::array<double, 2>> sums;  // per figure: albedo-only, all-map
@@ -147,6 +189,8 @@ void seams(const std::string& name, int seeds) {
             8;
       }
       const std::size_t side = all ? 1 : 0;
+      if (!all) albedo_lit = r.cut_ratio;
+      else tally.pairs += 1, tally.lit_pairs_lower += r.cut_ratio < albedo_lit;
       for (const auto& [key, v] : {std::pair<const char*, double>{"cut_ratio", r.cut_ratio},
                                    {"ring_cut_ratio", ring},
                                    {"shading_cut_ratio", sh.cut_ratio},
@@ -178,9 +222,14 @@ void seams(const std::string& name, int seeds) {
           write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
         }
     }
-  nlohmann::json mean = {{"case", fmt::format("material-seams-mean/{}", name)}, {"seeds", seeds}};
+  nlohmann::json mean = {
+      {"case", fmt::format("material-seams-mean/{}", name)}, {"seeds", seeds}, {"relief_share", relief_share(h)}};
   for (const auto& [key, v] : sums) mean[key] = {{"albedo", v[0]}, {"all", v[1]}, {"change", v[1] / v[0] - 1}};
   print(mean);
+  tally.lit_mean_lower = sums["cut_ratio"][1] < sums["cut_ratio"][0];
+  tally.ring_mean_lower = sums["ring_cut_ratio"][1] < sums["ring_cut_ratio"][0];
+  tally.shading_mean_lower = sums["shading_cut_ratio"][1] < sums["shading_cut_ratio"][0];
+  return tally;
 }
 
 void speed(const std::string& name, int reps) {
@@ -232,6 +281,10 @@ void speed(const std::string& name, int reps) {
 int main(int argc, char** argv) {
   int reps = 3, seeds = 3;
   std::string only;
+  std::vector<std::string> names{"ufo-brick", "ufo-tile", "ufo-wood", "ufo-concrete", "ufo-dirt", "ufo-mud"};
+  for (const char* r : {"brick1", "brick2", "concrete1", "concrete2a", "concrete4", "concrete5", "concrete6", "paint",
+                        "painted2", "plaster1", "plaster3", "rust1", "rust2", "tile1", "tile2", "tile3", "wood1"})
+    names.push_back(std::string("re-") + r);
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--reps") && i + 1 < argc)
       reps = std::max(1, std::atoi(argv[++i]));
@@ -239,10 +292,30 @@ int main(int argc, char** argv) {
       seeds = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
       only = argv[++i];
+    else if (!std::strcmp(argv[i], "--textures") && i + 1 < argc) {
+      names.clear();
+      for (std::string list = argv[++i]; !list.empty();) {
+        const std::size_t comma = list.find(',');
+        names.push_back(list.substr(0, comma));
+        list = comma == std::string::npos ? "" : list.substr(comma + 1);
+      }
+    }
   }
   const auto want = [&](const std::string& c) { return only.empty() || c.rfind(only, 0) == 0; };
-  for (const std::string name : {"ufo-brick", "ufo-tile", "ufo-wood", "ufo-concrete", "ufo-dirt", "ufo-mud"})
-    if (want("material-seams/" + name)) seams(name, seeds);
+  std::map<std::string, Tally> sets;  // per set (the name up to its first '-'): how often all-map is lower
+  for (const std::string& name : names)
+    if (want("material-relief/" + name))
+      print({{"case", "material-relief/" + name}, {"relief_share", relief_share(held_out(name))}});
+  for (const std::string& name : names)
+    if (want("material-seams/" + name)) sets[name.substr(0, name.find('-'))] += seams(name, seeds);
+  for (const auto& [set, t] : sets)
+    print({{"case", "material-seams-tally/" + set},
+           {"textures", t.textures},
+           {"lit_mean_lower", t.lit_mean_lower},
+           {"ring_mean_lower", t.ring_mean_lower},
+           {"shading_mean_lower", t.shading_mean_lower},
+           {"pairs", t.pairs},
+           {"lit_pairs_lower", t.lit_pairs_lower}});
   for (const std::string name : {"ufo-concrete", "ufo-dirt"})
     if (want("material-speed/" + name)) speed(name, reps);
 }

@@ -12,6 +12,11 @@
 # specular NAME.spec.png:
 #   ufo-brick ufo-tile ufo-wood   brick, floor tiles and planks (structured)
 #   ufo-concrete ufo-dirt ufo-mud  concrete, dirt and dry mud (irregular)
+# and the material set of Red Eclipse's trak4 textures (Georges 'TRaK' Grondin, CC-BY-3.0; Debian
+# package redeclipse-data, 862 MB): every trak4 surface with a colour map and normals (_nm) of
+# its size, less the decals (door, grates, trim) and concrete3 (ufo-concrete is a copy), each as
+# re-NAME.jpg, re-NAME.normal.png and re-NAME.spec.jpg (_s). Where a surface has lettered colour
+# variants (brick2a, paint_blue, ...), the first.
 # Idempotent: does nothing when they are there. apt-get runs under flock /tmp/tilekit-apt.lock,
 # since other builds on the machine may install at the same time.
 #   TILEKIT_TEXTURES  the cache folder (default: ${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures)
@@ -19,6 +24,9 @@ set -euo pipefail
 dest=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
 if [ "${1:-}" = --held-out ]; then
   held=(ufo-brick ufo-tile ufo-wood ufo-concrete ufo-dirt ufo-mud)
+  re=(brick1 brick2 concrete1 concrete2a concrete4 concrete5 concrete6 paint painted2 plaster1 plaster3
+      rust1 rust2 tile1 tile2 tile3 wood1)
+  for r in "${re[@]}"; do held+=("re-$r"); done
   missing=0
   for f in "${held[@]}"; do [ -s "$dest/$f.normal.png" ] || missing=1; done
   if [ "$missing" = 0 ]; then
@@ -52,6 +60,37 @@ ufo-concrete tex_trak/trak4_concrete3 png
 ufo-dirt tex_nature/dirt_se05 png
 ufo-mud tex_nature/drymud jpg
 LIST
+  flock /tmp/tilekit-apt.lock apt-get download redeclipse-data >/dev/null 2>&1 ||
+    { flock /tmp/tilekit-apt.lock apt-get update -q >/dev/null 2>&1 || true; flock /tmp/tilekit-apt.lock apt-get download redeclipse-data >/dev/null; }
+  dpkg-deb --fsys-tarfile redeclipse-data_*.deb | tar -x --wildcards './usr/share/games/redeclipse/data/trak/trak4/*'
+  t4=usr/share/games/redeclipse/data/trak/trak4
+  # NAME (re-NAME in the cache, the normals' and specular map's stem), its colour map
+  while read -r r colour; do
+    [ -s "$t4/$colour.jpg" ] && [ -s "$t4/${r}_nm.png" ] || { echo "fetch-textures: trak4 $r is not in redeclipse-data" >&2; exit 1; }
+    cp "$t4/$colour.jpg" "$dest/re-$r.jpg.tmp" && mv "$dest/re-$r.jpg.tmp" "$dest/re-$r.jpg"
+    cp "$t4/${r}_nm.png" "$dest/re-$r.normal.png.tmp" && mv "$dest/re-$r.normal.png.tmp" "$dest/re-$r.normal.png"
+    if [ -s "$t4/${r}_s.jpg" ]; then
+      cp "$t4/${r}_s.jpg" "$dest/re-$r.spec.jpg.tmp" && mv "$dest/re-$r.spec.jpg.tmp" "$dest/re-$r.spec.jpg"
+    fi
+  done <<'LIST'
+brick1 brick1
+brick2 brick2
+concrete1 concrete1a
+concrete2a concrete2a
+concrete4 concrete4a
+concrete5 concrete5a
+concrete6 concrete6
+paint paint_blue
+painted2 painted2
+plaster1 plaster1
+plaster3 plaster3
+rust1 rust1
+rust2 rust2
+tile1 tile1
+tile2 tile2a
+tile3 tile3a
+wood1 wood1c
+LIST
   cat >"$dest/SOURCE-held-out.txt" <<TXT
 ufo-*.png/jpg (colour), ufo-*.normal.png (tangent-space normals, _nm), ufo-*.spec.png (specular, _sm):
 UFO: Alien Invasion's textures tex_buildings/wall_brick01, tex_buildings/tile01,
@@ -59,6 +98,9 @@ tex_buildings/floor_wood01, tex_trak/trak4_concrete3, tex_nature/dirt_se05, tex_
 (Debian package ufoai-textures, $(dpkg-deb -f ufoai-textures_*.deb Version), 0textures.pk3); see
 /usr/share/doc/ufoai-textures/copyright in the package for each file's licence. Held out: no
 tuning decision of Tilekit looks at them.
+re-*.jpg (colour), re-*.normal.png (_nm), re-*.spec.jpg (_s): Red Eclipse's data/trak/trak4
+textures by Georges 'TRaK' Grondin, CC-BY-3.0 (Debian package redeclipse-data,
+$(dpkg-deb -f redeclipse-data_*.deb Version)): ${re[*]}. Held out as well.
 TXT
   echo "fetch-textures: ${held[*]} -> $dest" >&2
   exit 0
