@@ -58,8 +58,9 @@ Exemplar texture(const std::string& name) {
     fmt::print(stderr, "bench_texture_quality: {} not fetched: run scripts/fetch-textures.sh\n", name);
     std::exit(1);
   }
-  // the held-out game textures (scripts/fetch-textures.sh --held-out, ufo-*) are made to repeat
-  return load_exemplar(real_texture_path(name), is_tileable_real_texture(name) || name.rfind("ufo-", 0) == 0);
+  // the held-out game textures (scripts/fetch-textures.sh --held-out, ufo-* and re-*) are made to repeat
+  return load_exemplar(real_texture_path(name),
+                       is_tileable_real_texture(name) || name.rfind("ufo-", 0) == 0 || name.rfind("re-", 0) == 0);
 }
 
 nlohmann::json measures(const TextureAnalysis& a) {

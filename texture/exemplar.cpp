@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -100,14 +101,56 @@ Exemplar resample_exemplar(const Exemplar& e, double sx, double sy) {
   return exemplar_from_image(resample_image(e.image, w0, h0, sx, sy, e.wrap_w > 0), e.name, e.wrap_w > 0);
 }
 
-ExemplarPeriod dominant_period(const Exemplar& e) {
+namespace {
+
+// The exemplar's luminance (all of it: on a torus the copies too), smoothed by a Gaussian of
+// `sigma` pixels (none at 0; the image's edges clamped, the torus' copies wrap it).
+std::vector<float> smoothed_luma(const Exemplar& e, double sigma) {
+  const int W = e.width(), H = e.height();
+  std::vector<float> l(std::size_t(W) * std::size_t(H));
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) l[std::size_t(y) * std::size_t(W) + std::size_t(x)] = luma(e.at(x, y));
+  if (sigma <= 0) return l;
+  const int radius = int(std::ceil(3 * sigma));
+  std::vector<float> k(std::size_t(2 * radius + 1));
+  float total = 0;
+  for (int i = -radius; i <= radius; ++i)
+    total += k[std::size_t(i + radius)] = float(std::exp(-0.5 * i * i / (sigma * sigma)));
+  for (float& v : k) v /= total;
+  std::vector<float> t(l.size());
+  for (int y = 0; y < H; ++y)  // along x, then along y
+    for (int x = 0; x < W; ++x) {
+      float sum = 0;
+      for (int i = -radius; i <= radius; ++i)
+        sum +=
+            k[std::size_t(i + radius)] * l[std::size_t(y) * std::size_t(W) + std::size_t(std::clamp(x + i, 0, W - 1))];
+      t[std::size_t(y) * std::size_t(W) + std::size_t(x)] = sum;
+    }
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      float sum = 0;
+      for (int i = -radius; i <= radius; ++i)
+        sum +=
+            k[std::size_t(i + radius)] * t[std::size_t(std::clamp(y + i, 0, H - 1)) * std::size_t(W) + std::size_t(x)];
+      l[std::size_t(y) * std::size_t(W) + std::size_t(x)] = sum;
+    }
+  return l;
+}
+
+}  // namespace
+
+ExemplarPeriod period_at_scale(const Exemplar& e, double sigma) {
   const int w = e.wrap_w ? e.wrap_w : e.width(), h = e.wrap_h ? e.wrap_h : e.height();
+  const int W = e.width(), H = e.height();
+  const std::vector<float> l = smoothed_luma(e, sigma);
+  // a period spans at least kPeriodSpan smoothing widths: shorter ones are the grain's to keep
+  const int shortest = std::max(6, int(std::ceil(kPeriodSpan * sigma)));
+  const auto at = [&](int x, int y) { return l[std::size_t(y) * std::size_t(W) + std::size_t(x)]; };
   std::vector<float> g(std::size_t(w) * std::size_t(h));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const float c = luma(e.at(x, y));  // the torus' last column and row step onto its first ones
-      const float dx = luma(e.at(std::min(x + 1, e.width() - 1), y)) - c,
-                  dy = luma(e.at(x, std::min(y + 1, e.height() - 1))) - c;
+      const float c = at(x, y);  // the torus' last column and row step onto its first ones
+      const float dx = at(std::min(x + 1, W - 1), y) - c, dy = at(x, std::min(y + 1, H - 1)) - c;
       g[std::size_t(y) * std::size_t(w) + std::size_t(x)] = std::hypot(dx, dy);
     }
   double mean = 0, var = 0;
@@ -136,9 +179,10 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
     double lowest = 1;
     for (int d = 1; d <= reach; ++d) {
       const double here = v[std::size_t(d)];
-      if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
+      if (d >= shortest && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
         const double rise = (here - lowest) / (1 - lowest);
-        if (rise >= kPeriodProminence) peaks.push_back({d, rise});
+        if (rise >= kPeriodProminence)
+          peaks.push_back({d, rise});
         else
           (axis == 0 ? p.weak_x : p.weak_y) = std::max(axis == 0 ? p.weak_x : p.weak_y, rise);
       }
@@ -162,6 +206,17 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
     }
     (axis == 0 ? p.x : p.y) = period;
     (axis == 0 ? p.strength_x : p.strength_y) = strength;
+  }
+  return p;
+}
+
+ExemplarPeriod dominant_period(const Exemplar& e) {
+  ExemplarPeriod p = period_at_scale(e, 0);
+  for (const double sigma : kPeriodScales) {
+    if (p.x > 0 && p.y > 0) break;
+    const ExemplarPeriod coarse = period_at_scale(e, sigma);
+    if (p.x == 0 && coarse.x > 0) p.x = coarse.x, p.strength_x = coarse.strength_x;
+    if (p.y == 0 && coarse.y > 0) p.y = coarse.y, p.strength_y = coarse.strength_y;
   }
   return p;
 }

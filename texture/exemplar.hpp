@@ -48,7 +48,12 @@ Image resample_image(const Image& src, int w0, int h0, double sx, double sy, boo
 // kPeriodProminence of the way to 1, the shortest lag that rises within 3 % as high as the
 // highest (multiples of the period rise as high); between lags by a parabola through the peak,
 // and on a torus the nearest whole fraction of it. Staggered bricks give the full bond (two rows),
-// since only there do both the joints and the mortar lines align.
+// since only there do both the joints and the mortar lines align. An axis without a period at the
+// exemplar's own resolution is looked at again with the luminance smoothed (a Gaussian of each
+// of kPeriodScales pixels in turn): on rough bricks and grainy planks the grain's gradient hides
+// the joints' until it is smoothed away. Such a look keeps only periods of at least kPeriodSpan
+// times its smoothing (32 px): structure that the smoothing leaves standing, not a regular fine
+// pattern that it uncovers. The weak repeats are the first look's.
 struct ExemplarPeriod {
   double x = 0, y = 0;
   double strength_x = 0, strength_y = 0;  // that rise, as a fraction of the way to 1
@@ -57,6 +62,8 @@ struct ExemplarPeriod {
   double weak_x = 0, weak_y = 0;
 };
 inline constexpr double kPeriodProminence = 0.2;
+inline constexpr double kPeriodScales[] = {2.0};
+inline constexpr double kPeriodSpan = 16;
 // Structure likely but not all found: a period along one axis only (courses without head
 // joints, planks without ends), or a repeat of at least kStructureHint along an axis without one.
 inline constexpr double kStructureHint = 0.1;
@@ -66,6 +73,8 @@ inline bool structure_likely(const ExemplarPeriod& p) {
   return x != y || p.weak_x >= kStructureHint || p.weak_y >= kStructureHint;
 }
 ExemplarPeriod dominant_period(const Exemplar& e);
+// The same at one scale alone: the luminance smoothed by a Gaussian of `sigma` pixels first (none at 0).
+ExemplarPeriod period_at_scale(const Exemplar& e, double sigma);
 
 // `texture tiles --tile-px auto`: a tile size from the exemplar's feature scale. With a period
 // (dominant_period, or the user's): the multiple of the larger period nearest 128 px (at least one

@@ -132,7 +132,7 @@ TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
       stripes.set(x, y, {v, v, v});
     }
   write_png(d / "stripes.png", stripes);
-  write_png(d / "grain.png", test::synthetic_image(200, 200, 3));
+  write_png(d / "grain.png", test::blob_image(200));
   const auto p = run_cli("texture tiles --exemplar " + (d / "stripes.png") +
                          " --colors 1 --search 0 --tile-px auto --out " + (d / "p") + " --json");
   ASSERT_EQ(p.code, 0) << p.err;

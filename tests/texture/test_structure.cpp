@@ -151,5 +151,37 @@ TEST(Structure, BedJointsContinueAcrossTileBorders) {
   EXPECT_LE(r, 1.2);
 }
 
+// A tileable 256x256 running bond of rough bricks: 64 x 32 px bricks, every other course shifted
+// by half a brick (the bond repeats every 64 px along both axes), mortar 3 px wide and 30 levels
+// darker, and faces grainy: every texel off by up to +-grain levels. At +-40 (and already at +-20)
+// the first look at full resolution finds no period; smoothed by 2 px the bond shows.
+Image rough_bricks(int grain) {
+  const int side = 256;
+  SplitMix64 rng(5);
+  Image img(side, side);
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const int course = y / 32, shift = course % 2 ? 32 : 0;
+      const bool mortar = y % 32 < 3 || (x + shift) % 64 < 3;
+      const int v = std::clamp((mortar ? 100 : 130) + int((rng.uniform() * 2 - 1) * grain), 0, 255);
+      img.set(x, y, Rgb{std::uint8_t(v), std::uint8_t(v), std::uint8_t(v)});
+    }
+  return img;
+}
+
+TEST(Structure, RoughBricksShowTheirBondOnceTheGrainIsSmoothedAway) {
+  const Exemplar e = exemplar_from_image(rough_bricks(40), "rough bricks", true);
+  // at its own resolution the grain's gradient hides the joints' (this is why the detector looks again)
+  const ExemplarPeriod fine = period_at_scale(e, 0);
+  ASSERT_TRUE(fine.x == 0 || fine.y == 0) << fine.x << "," << fine.y;
+  const ExemplarPeriod p = dominant_period(e);
+  EXPECT_NEAR(p.x, 64, 0.5);
+  EXPECT_NEAR(p.y, 64, 0.5);
+  // smooth bricks: the first look finds the bond, and the coarser ones are not asked
+  const ExemplarPeriod smooth = period_at_scale(exemplar_from_image(rough_bricks(0), "bricks", true), 0);
+  EXPECT_NEAR(smooth.x, 64, 0.5);
+  EXPECT_NEAR(smooth.y, 64, 0.5);
+}
+
 }  // namespace
 }  // namespace tilekit

@@ -3,6 +3,7 @@
 // tile sets and atlases built once per test binary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -30,6 +31,23 @@ inline Image synthetic_image(int w, int h, std::uint64_t seed = 3) {
             std::uint8_t(std::clamp(int(255 * v + 40 * (rng.uniform() - 0.5) + 30 * c * std::sin(x * 0.05)), 0, 255));
       p[3] = 255;
     }
+  return img;
+}
+// Grey blobs (Gaussians of 4-18 px, lighter or darker) at random places: nothing repeats, not
+// even once smoothed (synthetic_image's sines do: dominant_period finds them at its second look).
+inline Image blob_image(int side, std::uint64_t seed = 9) {
+  Image img(side, side, Rgb{128, 128, 128});
+  SplitMix64 rng(seed);
+  for (int k = 0; k < side * side / 600; ++k) {
+    const double cx = rng.uniform() * side, cy = rng.uniform() * side, r = 4 + rng.uniform() * 14;
+    const int v = int(rng.uniform() * 200) - 100;
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+        const int c = std::clamp(int(img.at(x, y)[0] + v * std::exp(-d2 / (r * r))), 0, 255);
+        img.set(x, y, Rgb{std::uint8_t(c), std::uint8_t(c), std::uint8_t(c)});
+      }
+  }
   return img;
 }
 inline Exemplar synthetic_exemplar(int side = 160) {
