@@ -138,7 +138,8 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
       const double here = v[std::size_t(d)];
       if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
         const double rise = (here - lowest) / (1 - lowest);
-        if (rise >= kPeriodProminence) peaks.push_back({d, rise});
+        if (rise >= kPeriodProminence)
+          peaks.push_back({d, rise});
         else
           (axis == 0 ? p.weak_x : p.weak_y) = std::max(axis == 0 ? p.weak_x : p.weak_y, rise);
       }
@@ -173,7 +174,7 @@ TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period)
   const auto clamp = [&](int t) { return std::clamp(t / 2 * 2, std::min(64, most), most); };
   c.period = std::max(period.x, period.y);
   if (c.period > 0) {
-    const double k = std::max(1.0, std::round(128 / c.period));
+    const double k = std::max(1.0, std::ceil(kPeriodicTilePx / c.period - 1e-9));
     c.tile_px = clamp(int(std::lround(k * c.period)));
     c.reason = fmt::format("period {:.1f} px: {} px tiles hold {:g} whole period{}", c.period, c.tile_px, k,
                            k == 1 ? "" : "s");
