@@ -138,8 +138,7 @@ ExemplarPeriod dominant_period(const Exemplar& e) {
       const double here = v[std::size_t(d)];
       if (d >= 6 && here >= v[std::size_t(d - 1)] && here >= v[std::size_t(d + 1)] && here > lowest) {
         const double rise = (here - lowest) / (1 - lowest);
-        if (rise >= kPeriodProminence)
-          peaks.push_back({d, rise});
+        if (rise >= kPeriodProminence) peaks.push_back({d, rise});
         else
           (axis == 0 ? p.weak_x : p.weak_y) = std::max(axis == 0 ? p.weak_x : p.weak_y, rise);
       }

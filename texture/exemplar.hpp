@@ -69,8 +69,9 @@ ExemplarPeriod dominant_period(const Exemplar& e);
 
 // `texture tiles --tile-px auto`: a tile size from the exemplar's feature scale. With a period
 // (dominant_period, or the user's): the least multiple of the larger period of at least
-// kPeriodicTilePx, so a tile holds whole periods, as few as make 64 px (one where the period is 64
-// px or more). Against the multiple nearest 128 px this brought the tuning walls' seam ratio
+// kPeriodicTilePx, so a tile holds whole periods, as few as make 64 px (one where the period is
+// that or more; not the nearest multiple, which the 64-px floor could stretch by more than the
+// synthesis' 25 %). Against the multiple nearest 128 px this brought the tuning walls' seam ratio
 // under 1.10 and oa-brick's line continuity from 1.19 to 1.02 times the exemplar's (BENCHMARKS.md,
 // "Texture structure and tile size"). Otherwise the size D of the largest features: the least
 // lag at which the autocorrelation of its luminance (along x and y, averaged) falls to

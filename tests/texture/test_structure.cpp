@@ -145,7 +145,7 @@ TEST(Structure, TheDefaultTileSizeIsTheLeastWholeNumberOfPeriodsOfAtLeast64Px) {
   EXPECT_EQ(floor.tile_px, 64);
   EXPECT_EQ(floor.period, 64);
   EXPECT_NE(floor.reason.find("1 whole period"), std::string::npos) << floor.reason;
-  EXPECT_EQ(size(32, 0).tile_px, 64);    // two planks
+  EXPECT_EQ(size(32, 0).tile_px, 64);    // two periods of the planks above
   EXPECT_EQ(size(0, 34.6).tile_px, 68);  // two periods of skimage's brick as `tiles` sees it (69.2, even)
   EXPECT_EQ(size(24, 30).tile_px, 90);   // the larger period: three of 30
   EXPECT_EQ(size(100, 0).tile_px, 100);  // one period of 64 px or more
