@@ -3,6 +3,7 @@
 //   build/bench_texture_quality [--textures a,b,...] [--kinds corner,wang] [--colors 2,3,4]
 //                               [--tile-px 64|auto] [--size 1024] [--threads 2] [--out DIR] [--speed REPS]
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
+//                               [--seed S]   (the synthesis' seed, SynthesisOptions::seed; 1 unless given)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
 //                visibility, histogram distance, lattice peak, line continuity beside the exemplar's
@@ -76,8 +77,9 @@ nlohmann::json measures(const TextureAnalysis& a) {
 }
 
 void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uint32_t c, int px, int size, int threads,
-             const std::string& out, bool thin) {
+             const std::string& out, bool thin, std::uint64_t seed) {
   SynthesisOptions o;
+  o.seed = seed;
   o.thin_bands = thin;
   o.kind = kind;
   o.colours = c;
@@ -107,6 +109,7 @@ void quality(const std::string& name, const Exemplar& e, TileKind kind, std::uin
                       {"tile_px", px},
                       {"render", fmt::format("{}x{} flat, scale 1", size, size)},
                       {"threads", threads},
+                      {"seed", seed},
                       {"synthesis_seconds", seconds},
                       {"exemplar_scale", s.exemplar_scale},
                       {"sample_overlap", s.overlap},
@@ -214,6 +217,7 @@ int main(int argc, char** argv) {
   int px = 64, size = 1024, threads = 2, reps = 0;
   std::string out;
   bool thin = false, auto_px = false;
+  std::uint64_t seed = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--textures") textures = split(value);
@@ -228,6 +232,7 @@ int main(int argc, char** argv) {
     if (flag == "--out") out = value;
     if (flag == "--speed") reps = std::stoi(value);
     if (flag == "--bands") thin = value == "thin";
+    if (flag == "--seed") seed = std::stoull(value);
   }
   for (const std::string& name : textures) {
     const Exemplar e = texture(name);
@@ -244,7 +249,7 @@ int main(int argc, char** argv) {
     naive_in_phase(name, e, px, size, threads, out);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)
-        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out, thin);
+        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out, thin, seed);
   }
   return 0;
 }

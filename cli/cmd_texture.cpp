@@ -231,8 +231,9 @@ void add_tiles(CLI::App& texture, Context& ctx) {
       ->required();
   cmd->add_option("--tile-px", a->tile_px,
                   "Tile size in pixels (even, 16..1024), or auto (the default, by measurement: BENCHMARKS.md): from "
-                  "the exemplar's feature scale (a multiple of its period near 128, else two features across by its "
-                  "luminance autocorrelation; 64..512), the choice and its reason on stderr and in tiles.json")
+                  "the exemplar's feature scale (the fewest whole periods of 64 px or more, else two features "
+                  "across by its luminance autocorrelation; 64..512), the choice and its reason on stderr and in "
+                  "tiles.json")
       ->type_name("PX|auto")
       ->capture_default_str();
   cmd->add_option("--out", a->out, "Folder for tile-NNNN.png (by tile index), tiles.json, tileset.png and labels/")

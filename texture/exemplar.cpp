@@ -228,7 +228,7 @@ TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period)
   const auto clamp = [&](int t) { return std::clamp(t / 2 * 2, std::min(64, most), most); };
   c.period = std::max(period.x, period.y);
   if (c.period > 0) {
-    const double k = std::max(1.0, std::round(128 / c.period));
+    const double k = std::max(1.0, std::ceil(kPeriodicTilePx / c.period - 1e-9));
     c.tile_px = clamp(int(std::lround(k * c.period)));
     c.reason = fmt::format("period {:.1f} px: {} px tiles hold {:g} whole period{}", c.period, c.tile_px, k,
                            k == 1 ? "" : "s");

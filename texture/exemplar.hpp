@@ -77,14 +77,19 @@ ExemplarPeriod dominant_period(const Exemplar& e);
 ExemplarPeriod period_at_scale(const Exemplar& e, double sigma);
 
 // `texture tiles --tile-px auto`: a tile size from the exemplar's feature scale. With a period
-// (dominant_period, or the user's): the multiple of the larger period nearest 128 px (at least one
-// period), so a tile holds whole periods. Otherwise the size D of the largest features: the least
+// (dominant_period, or the user's): the least multiple of the larger period of at least
+// kPeriodicTilePx, so a tile holds whole periods, as few as make 64 px (one where the period is
+// that or more; not the nearest multiple, which the 64-px floor could stretch by more than the
+// synthesis' 25 %). Against the multiple nearest 128 px this brought the tuning walls' seam ratio
+// under 1.10 and oa-brick's line continuity from 1.19 to 1.02 times the exemplar's (BENCHMARKS.md,
+// "Texture structure and tile size"). Otherwise the size D of the largest features: the least
 // lag at which the autocorrelation of its luminance (along x and y, averaged) falls to
 // kFeatureCorrelation (a texture of blobs of diameter D decorrelates at about D; where it never
 // falls that low, slow shading, the lag where it is lowest), and tiles of the least multiple of
 // 32 px that holds two features across. Both clamped to 64 .. 512 px and to what the exemplar
 // allows (tile_px + 16 <= its smaller side, tile_synthesis.cpp).
 inline constexpr double kFeatureCorrelation = 0.1;
+inline constexpr double kPeriodicTilePx = 64;
 struct TileSizeChoice {
   int tile_px = 128;
   double feature_px = 0;  // D (0 with a period)

@@ -121,7 +121,7 @@ TEST(CliMaterial, AtlasFoldsTheNormalsLostLengthIntoRoughness) {
   EXPECT_GT(widened, 80);
 }
 
-// --tile-px auto (the default): a periodic exemplar gets whole periods near 128 px, a
+// --tile-px auto (the default): a periodic exemplar gets the fewest whole periods of 64 px or more, a
 // fine-grained one the smallest tiles; the choice and its reason on stderr and in tiles.json.
 TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   TempDir d;
@@ -136,9 +136,9 @@ TEST(CliTexture, TilePxAutoFollowsThePeriodOrTheFeatureSize) {
   const auto p = run_cli("texture tiles --exemplar " + (d / "stripes.png") +
                          " --colors 1 --search 0 --tile-px auto --out " + (d / "p") + " --json");
   ASSERT_EQ(p.code, 0) << p.err;
-  EXPECT_EQ(p.json()["tile_px"], 120);  // 4 periods of 30 (the larger), the multiple nearest 128
+  EXPECT_EQ(p.json()["tile_px"], 90);  // 3 periods of 30 (the larger), the least multiple of at least 64 px
   EXPECT_NE(p.err.find("--tile-px auto: period 30"), std::string::npos) << p.err;
-  EXPECT_EQ(test::read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 120);
+  EXPECT_EQ(test::read_json(d / "p/tiles.json")["tile_px_auto"]["tile_px"], 90);
   // auto is the default (BENCHMARKS.md, "Texture structure and tile size")
   const auto g = run_cli("texture tiles --exemplar " + (d / "grain.png") + " --colors 1 --search 0 --out " + (d / "g") +
                          " --json");

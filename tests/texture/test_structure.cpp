@@ -10,8 +10,10 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <string>
 
 #include "base/random.hpp"
+#include "texture/exemplar.hpp"
 #include "texture/seam_metrics.hpp"
 #include "texture/texture_analysis.hpp"
 #include "texture/tile_synthesis.hpp"
@@ -125,6 +127,40 @@ TEST(Structure, GroutThatWandersAPixelOrTwoStaysOnTheBordersWithEverySampleInPha
     for (int k = 0; k < 2; ++k)
       EXPECT_LE(std::abs(std::remainder(q[std::size_t(k)] - s.centres[0][std::size_t(k)], 64.0)), 0.5)
           << q[0] << "," << q[1];
+}
+
+// --tile-px auto (choose_tile_size): the least multiple of the larger period of at least 64 px.
+// A tile of one 64-px cell keeps the floor's grout on the borders only; tiles of two (the
+// multiple nearest 128 px, before) put grout halfway between the borders too, where the cuts
+// break it (ufo-tile: line continuity 1.26 times the exemplar's; BENCHMARKS.md, "Texture
+// structure and tile size").
+TEST(Structure, TheDefaultTileSizeIsTheLeastWholeNumberOfPeriodsOfAtLeast64Px) {
+  const Exemplar e = exemplar_from_image(tile_floor(), "tile-floor", true);
+  const auto size = [&](double px, double py) {
+    ExemplarPeriod p;
+    p.x = px, p.y = py;
+    return choose_tile_size(e, p);
+  };
+  const TileSizeChoice floor = size(64, 64);
+  EXPECT_EQ(floor.tile_px, 64);
+  EXPECT_EQ(floor.period, 64);
+  EXPECT_NE(floor.reason.find("1 whole period"), std::string::npos) << floor.reason;
+  EXPECT_EQ(size(32, 0).tile_px, 64);    // two periods of the planks above
+  EXPECT_EQ(size(0, 34.6).tile_px, 68);  // two periods of skimage's brick as `tiles` sees it (69.2, even)
+  EXPECT_EQ(size(24, 30).tile_px, 90);   // the larger period: three of 30
+  EXPECT_EQ(size(100, 0).tile_px, 100);  // one period of 64 px or more
+  // 50 px: two periods, not one stretched to the 64-px floor (the synthesis keeps a period only
+  // within 25 % of stretch)
+  EXPECT_EQ(size(50, 0).tile_px, 100);
+  // at most 512 px and what the exemplar allows (tile_px + 16 within it)
+  EXPECT_EQ(size(600, 0).tile_px, std::min({512, e.width() - 16, e.height() - 16}));
+  // the synthesis at the size chosen keeps both periods unstretched: one cell a tile
+  SynthesisOptions o = test::small_options(TileKind::Corner, 2, floor.tile_px, 2);
+  o.period_override = {64, 64};
+  const SynthesisExemplar x(e, o);
+  EXPECT_TRUE(x.periodic());
+  EXPECT_EQ(x.scale()[0], 1.0);
+  EXPECT_EQ(x.scale()[1], 1.0);
 }
 
 TEST(Structure, ThePlanksEdgesNotTheirGrainGoOnTheBorders) {
