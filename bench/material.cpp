@@ -119,31 +119,6 @@ Image lit(const Image& albedo, const Image& normals, const std::array<double, 3>
   return out;
 }
 
-// How much of the lit exemplar's texel-to-texel steps its normal map carries: the mean step of
-// the exemplar lit through its normals with its mean colour everywhere, over the mean step of it
-// lit with its own colours on a flat surface. Low where the colour map already holds the relief
-// (painted-in shading), high where the relief lives in the normal map.
-double relief_share(const HeldOut& h) {
-  const Image& a = h.albedo;
-  const Image& n = h.maps[0].image;
-  double mean[3] = {0, 0, 0};
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x)
-      for (int c = 0; c < 3; ++c) mean[c] += a.at(x, y)[c] / double(a.width) / double(a.height);
-  const Rgb flat_colour{std::uint8_t(std::lround(mean[0])), std::uint8_t(std::lround(mean[1])),
-                        std::uint8_t(std::lround(mean[2]))};
-  auto step = [](const Image& img) {
-    double sum = 0;
-    for (int y = 0; y + 1 < img.height; ++y)
-      for (int x = 0; x + 1 < img.width; ++x)
-        sum += channel_step(img.at(x, y), img.at(x + 1, y)) + channel_step(img.at(x, y), img.at(x, y + 1));
-    return sum;
-  };
-  const double relief = step(lit(Image(a.width, a.height, flat_colour), n));
-  const double colour = step(lit(a, Image(a.width, a.height, Rgb{128, 128, 255})));
-  return colour > 0 ? relief / colour : 0.0;
-}
-
 // How often the all-map run's cut ratio is lower than the albedo-only run's: per texture (the
 // means over seeds) and per pair (one seed).
 struct Tally {
@@ -189,8 +164,10 @@ Tally seams(const std::string& name, int seeds) {
             8;
       }
       const std::size_t side = all ? 1 : 0;
-      if (!all) albedo_lit = r.cut_ratio;
-      else tally.pairs += 1, tally.lit_pairs_lower += r.cut_ratio < albedo_lit;
+      if (!all)
+        albedo_lit = r.cut_ratio;
+      else
+        tally.pairs += 1, tally.lit_pairs_lower += r.cut_ratio < albedo_lit;
       for (const auto& [key, v] : {std::pair<const char*, double>{"cut_ratio", r.cut_ratio},
                                    {"ring_cut_ratio", ring},
                                    {"shading_cut_ratio", sh.cut_ratio},
@@ -222,8 +199,7 @@ Tally seams(const std::string& name, int seeds) {
           write_png(fmt::format("{}/material-{}-{}-{}.png", dir, name, what, all ? "all" : "albedo"), crop);
         }
     }
-  nlohmann::json mean = {
-      {"case", fmt::format("material-seams-mean/{}", name)}, {"seeds", seeds}, {"relief_share", relief_share(h)}};
+  nlohmann::json mean = {{"case", fmt::format("material-seams-mean/{}", name)}, {"seeds", seeds}};
   for (const auto& [key, v] : sums) mean[key] = {{"albedo", v[0]}, {"all", v[1]}, {"change", v[1] / v[0] - 1}};
   print(mean);
   tally.lit_mean_lower = sums["cut_ratio"][1] < sums["cut_ratio"][0];
@@ -303,9 +279,6 @@ int main(int argc, char** argv) {
   }
   const auto want = [&](const std::string& c) { return only.empty() || c.rfind(only, 0) == 0; };
   std::map<std::string, Tally> sets;  // per set (the name up to its first '-'): how often all-map is lower
-  for (const std::string& name : names)
-    if (want("material-relief/" + name))
-      print({{"case", "material-relief/" + name}, {"relief_share", relief_share(held_out(name))}});
   for (const std::string& name : names)
     if (want("material-seams/" + name)) sets[name.substr(0, name.find('-'))] += seams(name, seeds);
   for (const auto& [set, t] : sets)

@@ -5,6 +5,7 @@
 //                               [--bands default|thin]   (thin: SynthesisOptions::thin_bands)
 //                               [--seed S]   (the synthesis' seed, SynthesisOptions::seed; 1 unless given)
 //   quality/...  synthesis (seconds on --threads), the atlas of the packing, a flat size^2 CPU render
+//                (at least 4 tiles across: a 480-px tile takes 1920^2)
 //                at scale 1 and the labels of the same view; grid repetition, seam ratio, cut
 //                visibility, histogram distance, lattice peak, line continuity beside the exemplar's
 //                own on the same lattice at the synthesis' phase (line_continuity_vs_exemplar;
@@ -245,11 +246,12 @@ int main(int argc, char** argv) {
       speed(name, e, px, reps);
       continue;
     }
-    naive(name, e, px, size, threads, out);
-    naive_in_phase(name, e, px, size, threads, out);
+    const int view = std::max(size, 4 * px);  // the lattice's analysis takes lags up to twice the spacing
+    naive(name, e, px, view, threads, out);
+    naive_in_phase(name, e, px, view, threads, out);
     for (const std::string& k : kinds)
       for (std::uint32_t c : colours)
-        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, size, threads, out, thin, seed);
+        quality(name, e, k == "wang" ? TileKind::Wang : TileKind::Corner, c, px, view, threads, out, thin, seed);
   }
   return 0;
 }

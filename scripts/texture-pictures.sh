@@ -15,9 +15,10 @@
 #   texture-grid-labels.png  the samples of the grass view, one colour each (the shared bands along
 #       the borders, the corner squares, a centre patch per tile);
 #   texture-grid-spectrum.png  `texture analyze --plot` of a 1024x1024 grass render.
-#   texture-heldout-{ufo-brick,ufo-tile,ufo-wood,ufo-dirt}-{tiles,hex,hpn,naive}.png  (--held-out: only
-#       these) flat 256x256 renders of held-out textures (scripts/fetch-textures.sh --held-out),
-#       side by side: corner tiles (C = 4, 64 px, --thin-bands, which a periodic exemplar ignores),
+#   texture-heldout-{ufo-brick,ufo-tile,ufo-wood,ufo-dirt,re-brick1,re-brick2,re-tile1,re-wood1}-
+#       {tiles,hex,hpn,naive}.png  (--held-out: only these) flat 256x256 renders of held-out
+#       textures (scripts/fetch-textures.sh --held-out), side by side: corner tiles (C = 4, UFO's
+#       at 64 px, Red Eclipse's at the default tile size, --thin-bands, which a periodic exemplar ignores),
 #       hex tiling, histogram-preserving blending and the naive mosaic of random 64-px crops
 #       (build/bench_texture_quality's, so that needs the benchmarks built).
 # The exemplars are never copied into the repository (scripts/fetch-textures.sh caches them).
@@ -30,9 +31,10 @@ trap 'rm -rf "$work"' EXIT
 if [ "${1:-}" = --held-out ]; then
   "$root/scripts/fetch-textures.sh" --held-out
   cache=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
-  for t in ufo-brick ufo-tile ufo-wood ufo-dirt; do
-    ex="$cache/$t.png"
-    "$tk" texture tiles --exemplar "$ex" --tileable --kind corner --colors 4 --tile-px 64 --seed 1 --thin-bands \
+  # NAME and tile size: UFO's at 64 px, Red Eclipse's at the default (--tile-px auto)
+  while read -r t px; do
+    ex=$(ls "$cache/$t".png "$cache/$t".jpg 2>/dev/null | head -n 1)
+    "$tk" texture tiles --exemplar "$ex" --tileable --kind corner --colors 4 --tile-px "$px" --seed 1 --thin-bands \
       --out "$work/$t/tiles" --quiet
     "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
     "$tk" texture render --atlas "$work/$t/atlas.png" --size 256x256 --out "$img/texture-heldout-$t-tiles.png" --quiet
@@ -42,7 +44,16 @@ if [ "${1:-}" = --held-out ]; then
     "$root/build/bench_texture_quality" --textures "$t" --kinds corner --colors 2 --size 256 --threads 2 \
       --out "$work" >/dev/null
     cp "$work/$t-naive.png" "$img/texture-heldout-$t-naive.png"
-  done
+  done <<'LIST'
+ufo-brick 64
+ufo-tile 64
+ufo-wood 64
+ufo-dirt 64
+re-brick1 auto
+re-brick2 auto
+re-tile1 auto
+re-wood1 auto
+LIST
   echo "texture-pictures: $img/texture-heldout-*.png"
   exit 0
 fi
