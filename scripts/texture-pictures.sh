@@ -33,7 +33,8 @@ if [ "${1:-}" = --held-out ]; then
   cache=${TILEKIT_TEXTURES:-${XDG_CACHE_HOME:-$HOME/.cache}/tilekit/textures}
   # NAME and tile size: UFO's at 64 px, Red Eclipse's at the default (--tile-px auto)
   while read -r t px; do
-    ex=$(ls "$cache/$t".png "$cache/$t".jpg 2>/dev/null | head -n 1)
+    ex=$cache/$t.png
+    [ -s "$ex" ] || ex=$cache/$t.jpg
     "$tk" texture tiles --exemplar "$ex" --tileable --kind corner --colors 4 --tile-px "$px" --seed 1 --thin-bands \
       --out "$work/$t/tiles" --quiet
     "$tk" texture atlas "$work/$t/tiles" --out "$work/$t/atlas.png" --no-db
