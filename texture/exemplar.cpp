@@ -103,6 +103,14 @@ Exemplar resample_exemplar(const Exemplar& e, double sx, double sy) {
 
 namespace {
 
+// Lines (rows, or columns) apart over which an autocorrelation along one axis is summed: every
+// line up to kAutocorrelationLines of them, evenly spaced beyond (every fourth row of a 2048²
+// exemplar), so that the period and the feature size cost O(side²) per lag, not more.
+constexpr int kAutocorrelationLines = 512;
+int line_stride(int lines) {
+  return std::max(1, (lines + kAutocorrelationLines - 1) / kAutocorrelationLines);
+}
+
 // The exemplar's luminance (all of it: on a torus the copies too), smoothed by a Gaussian of
 // `sigma` pixels (none at 0; the image's edges clamped, the torus' copies wrap it).
 std::vector<float> smoothed_luma(const Exemplar& e, double sigma) {
@@ -160,11 +168,12 @@ ExemplarPeriod period_at_scale(const Exemplar& e, double sigma) {
   ExemplarPeriod p;
   if (var <= 0) return p;
   // R(d) along one axis: over the pairs inside the image, or round the torus
-  auto r = [&](int dx, int dy) {
+  const int sx = line_stride(w), sy = line_stride(h);
+  auto r = [&](int dx, int dy) {  // along x (dy = 0) or along y (dx = 0)
     double sum = 0;
     std::size_t pairs = 0;
-    for (int y = 0; y < (e.wrap_h ? h : h - dy); ++y)
-      for (int x = 0; x < (e.wrap_w ? w : w - dx); ++x, ++pairs)
+    for (int y = 0; y < (e.wrap_h ? h : h - dy); y += dy == 0 ? sy : 1)
+      for (int x = 0; x < (e.wrap_w ? w : w - dx); x += dx == 0 ? sx : 1, ++pairs)
         sum += (g[std::size_t(y) * std::size_t(w) + std::size_t(x)] - mean) *
                (g[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)] - mean);
     return sum / double(pairs) / (var / double(g.size()));
@@ -245,11 +254,12 @@ TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period)
   var /= double(l.size());
   c.feature_px = std::min(w, h) / 2.0;
   if (var > 0) {
-    auto r = [&](int dx, int dy) {
+    const int sx = line_stride(w), sy = line_stride(h);
+    auto r = [&](int dx, int dy) {  // along x (dy = 0) or along y (dx = 0)
       double sum = 0;
       std::size_t pairs = 0;
-      for (int y = 0; y < (e.wrap_h ? h : h - dy); ++y)
-        for (int x = 0; x < (e.wrap_w ? w : w - dx); ++x, ++pairs)
+      for (int y = 0; y < (e.wrap_h ? h : h - dy); y += dy == 0 ? sy : 1)
+        for (int x = 0; x < (e.wrap_w ? w : w - dx); x += dx == 0 ? sx : 1, ++pairs)
           sum += double(l[std::size_t(y) * std::size_t(w) + std::size_t(x)]) *
                  l[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)];
       return pairs ? sum / double(pairs) / var : 0.0;

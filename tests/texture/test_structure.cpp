@@ -191,8 +191,7 @@ TEST(Structure, BedJointsContinueAcrossTileBorders) {
 // by half a brick (the bond repeats every 64 px along both axes), mortar 3 px wide and 30 levels
 // darker, and faces grainy: every texel off by up to +-grain levels. At +-40 (and already at +-20)
 // the first look at full resolution finds no period; smoothed by 2 px the bond shows.
-Image rough_bricks(int grain) {
-  const int side = 256;
+Image rough_bricks(int grain, int side = 256) {
   SplitMix64 rng(5);
   Image img(side, side);
   for (int y = 0; y < side; ++y)
@@ -217,6 +216,18 @@ TEST(Structure, RoughBricksShowTheirBondOnceTheGrainIsSmoothedAway) {
   const ExemplarPeriod smooth = period_at_scale(exemplar_from_image(rough_bricks(0), "bricks", true), 0);
   EXPECT_NEAR(smooth.x, 64, 0.5);
   EXPECT_NEAR(smooth.y, 64, 0.5);
+}
+
+// A 1088x1088 wall: its autocorrelations sum every third row (or column) only, and still find
+// the bond, at the first look and at the second.
+TEST(Structure, ALargeExemplarsBondIsFoundFromEveryThirdLine) {
+  const Exemplar e = exemplar_from_image(rough_bricks(0, 1088), "large bricks", true);
+  const ExemplarPeriod p = period_at_scale(e, 0);
+  EXPECT_NEAR(p.x, 64, 0.5);
+  EXPECT_NEAR(p.y, 64, 0.5);
+  const ExemplarPeriod rough = dominant_period(exemplar_from_image(rough_bricks(40, 1088), "large rough bricks", true));
+  EXPECT_NEAR(rough.x, 64, 0.5);
+  EXPECT_NEAR(rough.y, 64, 0.5);
 }
 
 }  // namespace
