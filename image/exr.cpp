@@ -1,6 +1,6 @@
 // OpenEXR through the OpenEXR library (Debian libopenexr-dev; its C++ API, single-threaded): files
 // read from and written to memory (read_image reads the file whole through read_input_file; write_exr
-// renames a complete file into place). Every exception of the library becomes one InputError.
+// (image.cpp) renames a complete file into place). Every exception of the library becomes one InputError.
 #include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -19,7 +19,6 @@
 #include <string_view>
 #include <vector>
 
-#include "base/atomic_file.hpp"
 #include "base/error.hpp"
 #include "image/codecs.hpp"
 #include "image/image.hpp"
@@ -140,16 +139,6 @@ std::string encode_exr(const Image& img) {
   } catch (const std::exception& e) {
     throw InputError(fmt::format("cannot encode a {}x{} OpenEXR image ({})", img.width, img.height, e.what()));
   }
-}
-
-void write_exr(const std::string& path, const Image& img) {
-  std::string bytes;
-  try {
-    bytes = encode_exr(img);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", path, e.what()));
-  }
-  write_file_atomic(path, bytes);
 }
 
 }  // namespace tilekit

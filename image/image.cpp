@@ -73,9 +73,10 @@ void check_pixels_per_byte(const std::string& path, std::string_view file, int w
   if (file.starts_with(kPngSignature) || file.starts_with("\xff\xd8\xff") || file.starts_with("GIF8")) return;
   constexpr std::uint64_t kMaxPixelsPerByte = 256;  // twice the most run-length coding gives
   if (std::uint64_t(w) * std::uint64_t(h) > kMaxPixelsPerByte * file.size())
-    throw InputError(fmt::format("{}: {}x{} pixels from {} bytes is damaged (a raw or run-length coded image holds "
-                                 "at most {} pixels a byte)",
-                                 path, w, h, file.size(), kMaxPixelsPerByte));
+    throw InputError(
+        fmt::format("{}: {}x{} pixels from {} bytes is damaged (a raw or run-length coded image holds "
+                    "at most {} pixels a byte)",
+                    path, w, h, file.size(), kMaxPixelsPerByte));
 }
 
 // A PNG whose first IDAT chunk is empty makes stb copy zero bytes from a null pointer (undefined
@@ -177,8 +178,8 @@ Image read_image(const std::string& path, int channels, bool keep_depth) {
   if (!stbi_info_from_memory(bytes, size, &w, &h, &n))
     throw InputError(fmt::format("{}: cannot read the image ({})", path, failure_reason()));
   if (std::int64_t(w) * std::int64_t(h) > kMaxImagePixels)
-    throw InputError(fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h,
-                                 kMaxImagePixels));
+    throw InputError(
+        fmt::format("{}: {}x{} pixels is more than the {} pixels an image may have", path, w, h, kMaxImagePixels));
   check_pixels_per_byte(path, file, w, h);
   // stb's 16-bit decoders other than PNG's (PNM with a maxval over 255, PSD) can write past their
   // buffer on a damaged file (found by fuzz/fuzz_texture_input.cpp): such images are refused.
@@ -301,14 +302,26 @@ std::string encode_image(const Image& img) {
   return img.depth == 32 ? encode_exr(img) : encode_png(img);
 }
 
-void write_png(const std::string& path, const Image& img) {
+namespace {
+
+// `encode`'s bytes written atomically; an encoding error names the file.
+void write_encoded(const std::string& path, const Image& img, std::string (*encode)(const Image&)) {
   std::string bytes;
   try {
-    bytes = encode_png(img);
+    bytes = encode(img);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", path, e.what()));
   }
   write_file_atomic(path, bytes);
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& img) {
+  write_encoded(path, img, encode_png);
+}
+void write_exr(const std::string& path, const Image& img) {
+  write_encoded(path, img, encode_exr);
 }
 
 }  // namespace tilekit
