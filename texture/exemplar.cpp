@@ -111,6 +111,21 @@ int line_stride(int lines) {
   return std::max(1, (lines + kAutocorrelationLines - 1) / kAutocorrelationLines);
 }
 
+// The mean of (f(x, y) - centre) (f(x + dx, y + dy) - centre) over a w x h field, along x (dy =
+// 0) or along y (dx = 0): round the torus along an axis that wraps, else over the pairs inside;
+// every line_stride-th line across the lag. 0 without pairs.
+double mean_lagged_product(const std::vector<float>& f, int w, int h, bool wrap_x, bool wrap_y, int dx, int dy,
+                           double centre = 0) {
+  const int sx = line_stride(w), sy = line_stride(h);
+  double sum = 0;
+  std::size_t pairs = 0;
+  for (int y = 0; y < (wrap_y ? h : h - dy); y += dy == 0 ? sy : 1)
+    for (int x = 0; x < (wrap_x ? w : w - dx); x += dx == 0 ? sx : 1, ++pairs)
+      sum += (double(f[std::size_t(y) * std::size_t(w) + std::size_t(x)]) - centre) *
+             (double(f[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)]) - centre);
+  return pairs ? sum / double(pairs) : 0.0;
+}
+
 // The exemplar's luminance (all of it: on a torus the copies too), smoothed by a Gaussian of
 // `sigma` pixels (none at 0; the image's edges clamped, the torus' copies wrap it).
 std::vector<float> smoothed_luma(const Exemplar& e, double sigma) {
@@ -168,15 +183,8 @@ ExemplarPeriod period_at_scale(const Exemplar& e, double sigma) {
   ExemplarPeriod p;
   if (var <= 0) return p;
   // R(d) along one axis: over the pairs inside the image, or round the torus
-  const int sx = line_stride(w), sy = line_stride(h);
-  auto r = [&](int dx, int dy) {  // along x (dy = 0) or along y (dx = 0)
-    double sum = 0;
-    std::size_t pairs = 0;
-    for (int y = 0; y < (e.wrap_h ? h : h - dy); y += dy == 0 ? sy : 1)
-      for (int x = 0; x < (e.wrap_w ? w : w - dx); x += dx == 0 ? sx : 1, ++pairs)
-        sum += (g[std::size_t(y) * std::size_t(w) + std::size_t(x)] - mean) *
-               (g[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)] - mean);
-    return sum / double(pairs) / (var / double(g.size()));
+  auto r = [&](int dx, int dy) {
+    return mean_lagged_product(g, w, h, e.wrap_w > 0, e.wrap_h > 0, dx, dy, mean) / (var / double(g.size()));
   };
   for (int axis = 0; axis < 2; ++axis) {
     const int reach = (axis == 0 ? w : h) / 3;
@@ -254,16 +262,7 @@ TileSizeChoice choose_tile_size(const Exemplar& e, const ExemplarPeriod& period)
   var /= double(l.size());
   c.feature_px = std::min(w, h) / 2.0;
   if (var > 0) {
-    const int sx = line_stride(w), sy = line_stride(h);
-    auto r = [&](int dx, int dy) {  // along x (dy = 0) or along y (dx = 0)
-      double sum = 0;
-      std::size_t pairs = 0;
-      for (int y = 0; y < (e.wrap_h ? h : h - dy); y += dy == 0 ? sy : 1)
-        for (int x = 0; x < (e.wrap_w ? w : w - dx); x += dx == 0 ? sx : 1, ++pairs)
-          sum += double(l[std::size_t(y) * std::size_t(w) + std::size_t(x)]) *
-                 l[std::size_t((y + dy) % h) * std::size_t(w) + std::size_t((x + dx) % w)];
-      return pairs ? sum / double(pairs) / var : 0.0;
-    };
+    auto r = [&](int dx, int dy) { return mean_lagged_product(l, w, h, e.wrap_w > 0, e.wrap_h > 0, dx, dy) / var; };
     double before = 1, lowest = 1;
     int lowest_at = std::min(w, h) / 2;
     bool found = false;
