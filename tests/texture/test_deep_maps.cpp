@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "../cli_runner.hpp"
 #include "../image/tiff_writer.hpp"
 #include "base/error.hpp"
 #include "base/input.hpp"
@@ -74,9 +75,8 @@ TextureAtlas atlas_through_files(const std::vector<Image>& tiles, const fs::path
 }
 
 TEST(DeepMaps, SixteenBitTiffRampSurvivesTilesAtlasAndMips) {
-  const fs::path dir = fs::temp_directory_path() / "tilekit-test-deep-tiff";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::TempDir tmp;  // a fresh folder, removed however the test ends
+  const fs::path dir = tmp.path;
   // Heights 1000..3000 of 65535 (6 grey levels at 8 bits) as a 16-bit grey TIFF, deflated, tiled.
   Image ramp = Image::grey(128, 128).to_depth(16);
   for (int y = 0; y < 128; ++y)
@@ -96,13 +96,11 @@ TEST(DeepMaps, SixteenBitTiffRampSurvivesTilesAtlasAndMips) {
   for (int y = 0; y < atlas.levels[1].height; ++y)
     for (int x = 0; x < atlas.levels[1].width; ++x) values.insert(atlas.levels[1].sample(x, y, 0));
   EXPECT_GT(values.size(), 200u);  // an 8-bit chain would hold at most 9 values in 1000..3000
-  fs::remove_all(dir);
 }
 
 TEST(DeepMaps, FloatExrRampSurvivesTilesAndAtlasBitExactAndItsMipsAreFloatAverages) {
-  const fs::path dir = fs::temp_directory_path() / "tilekit-test-deep-exr";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::TempDir tmp;  // a fresh folder, removed however the test ends
+  const fs::path dir = tmp.path;
   // Heights -3.5 .. 1200.25 in metres, far outside 0..1: a sawtooth ramp, so that every tile
   // holds the whole range.
   Image heights = Image::grey(128, 128).to_depth(32);
@@ -164,7 +162,6 @@ TEST(DeepMaps, FloatExrRampSurvivesTilesAndAtlasBitExactAndItsMipsAreFloatAverag
   ASSERT_EQ(back.levels.size(), atlas.levels.size());
   for (std::size_t l = 0; l < back.levels.size(); ++l) EXPECT_EQ(back.levels[l].pixels, atlas.levels[l].pixels);
   EXPECT_THROW(build_texture_atlas(atlas_lookup(TileKind::Corner, 2), r.tiles, ColourSpace::Srgb), InputError);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../cli_runner.hpp"
 #include "base/random.hpp"
 #include "image/image.hpp"
 #include "texture/material.hpp"
@@ -141,8 +142,8 @@ Image ramp16(int w, int h) {
 }
 
 TEST(SixteenBit, PngKeepsSixteenBitsWhenAsked) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tilekit-test-16bit";
-  std::filesystem::create_directories(dir);
+  const test::TempDir tmp;  // a fresh folder, removed however the test ends
+  const std::filesystem::path dir = tmp.path;
   const Image ramp = ramp16(40, 30);
   write_png((dir / "ramp.png").string(), ramp);
   const Image back = read_image((dir / "ramp.png").string(), 4, true);
@@ -151,7 +152,6 @@ TEST(SixteenBit, PngKeepsSixteenBitsWhenAsked) {
   const Image eight = read_image((dir / "ramp.png").string());  // the default: rounded to 8 bits
   EXPECT_EQ(eight.depth, 8);
   EXPECT_NEAR(eight.sample(0, 0, 0), 1000.0 / 257.0, 1.0);
-  std::filesystem::remove_all(dir);
 }
 
 // Material synthesis as `texture tiles --map` runs it (cli/cmd_texture.cpp): the albedo with every
